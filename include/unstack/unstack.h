@@ -1,0 +1,411 @@
+/* unstack: plan how to take a structure of rigid blocks apart (or build it
+ * up) so that every intermediate structure stands under gravity.
+ *
+ * This is the whole public API. Every public symbol starts with `us_` (types
+ * `us_Xxx`, constants `US_XXX`). Everything under src/ is private.
+ *
+ * Shape of the library (after MuJoCo and OSQP):
+ *   - us_Structure   immutable description: bodies, materials, contacts.
+ *                    Built with us_structure_new / us_structure_add_* and
+ *                    sealed by us_structure_finalize (validation, mass
+ *                    properties, contact detection). Read by everything else.
+ *   - us_Stability   a stability workspace (settings / result / info / opaque
+ *                    backend state) that tests sub-assemblies of one
+ *                    structure, incrementally: the backend keeps its last
+ *                    sub-assembly and may reuse work when the next differs by
+ *                    one body.
+ *   - us_plan        search of the disassembly graph.
+ *   - errors (us_Status, with a message in us_Error) are kept apart from
+ *     outcomes (us_Verdict, us_PlanStatus).
+ *
+ * Conventions: dimension is a parameter (2 now, 3 later); points, normals
+ * and tangents are always stored with 3 components (z = 0 in 2D). A body's
+ * wrench has 3 components in 2D (fx, fy, torque_z) and 6 in 3D. A contact
+ * normal points from body `a` into body `b`: the contact force on b is
+ * f_n * n + f_t1 * t1 (+ f_t2 * t2) and a receives the opposite.
+ */
+#ifndef UNSTACK_UNSTACK_H
+#define UNSTACK_UNSTACK_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define US_VERSION "0.1.0"
+
+/* ------------------------------------------------------------------ errors */
+
+/* Errors: something prevented an answer. Outcomes are separate enums. */
+typedef enum us_Status {
+  US_OK = 0,
+  US_ERR_USAGE,   /* bad arguments or settings */
+  US_ERR_IO,      /* cannot open, read or write a file */
+  US_ERR_PARSE,   /* malformed JSON / SVG */
+  US_ERR_INPUT,   /* well-formed but invalid structure or plan */
+  US_ERR_NOMEM,   /* an allocation failed */
+  US_ERR_SOLVER,  /* a backend failed in a way that gives no verdict */
+  US_ERR_COUNT
+} us_Status;
+
+typedef struct us_Error {
+  us_Status code;
+  char msg[512];
+} us_Error;
+
+const char *us_status_name(us_Status s);
+/* Set err (if not NULL) and return code. printf-style. */
+us_Status us_error_set(us_Error *err, us_Status code, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+void us_error_clear(us_Error *err);
+
+/* ------------------------------------------------------------- allocation */
+
+/* One allocation funnel. Tests may install a hook that fails the N-th
+ * allocation (us_alloc_fail_after) to exercise out-of-memory paths. */
+void *us_malloc(size_t n);
+void *us_calloc(size_t count, size_t size);
+void *us_realloc(void *p, size_t n);
+void us_free(void *p);
+char *us_strdup(const char *s);
+/* After `n` more successful allocations, every allocation fails; n < 0 turns
+ * the hook off. Returns the number of live allocations (for leak checks). */
+long us_alloc_fail_after(long n);
+long us_alloc_live(void);
+
+/* ------------------------------------------------------------------ bitset */
+
+/* Dynamic bitset: sub-assemblies of any size. */
+typedef struct us_Bitset {
+  int nbits;
+  int nwords;
+  uint64_t *w;
+} us_Bitset;
+
+int us_bitset_init(us_Bitset *b, int nbits); /* all clear; 0 or -1 on OOM */
+void us_bitset_free(us_Bitset *b);
+int us_bitset_copy(us_Bitset *dst, const us_Bitset *src); /* dst inited or zeroed */
+static inline int us_bitset_get(const us_Bitset *b, int i) {
+  return (int)((b->w[i >> 6] >> (i & 63)) & 1u);
+}
+static inline void us_bitset_set(us_Bitset *b, int i) { b->w[i >> 6] |= (uint64_t)1 << (i & 63); }
+static inline void us_bitset_clear(us_Bitset *b, int i) { b->w[i >> 6] &= ~((uint64_t)1 << (i & 63)); }
+int us_bitset_count(const us_Bitset *b);
+int us_bitset_equal(const us_Bitset *a, const us_Bitset *b);
+uint64_t us_bitset_hash(const us_Bitset *b);
+void us_bitset_fill(us_Bitset *b); /* set bits 0..nbits-1 */
+
+/* --------------------------------------------------------------- structure */
+
+#define US_GROUND (-1) /* body index of the ground in contacts */
+
+typedef struct us_Body {
+  char *id;          /* unique, user-given */
+  int nvert;         /* polygon vertices (2D), 0 for a body without geometry */
+  double *verts;     /* 2*nvert, counter-clockwise after finalize */
+  double mass;       /* > 0 for movable bodies; fixed bodies: infinite */
+  double density;    /* used when mass was not given */
+  double com[3];     /* centre of mass */
+  double inertia;    /* 2D: polar moment about com (kg m^2) */
+  double friction;   /* < 0: not given (use the structure default) */
+  int fixed;         /* terrain, piers: never removed, never moves */
+  int mass_given;
+} us_Body;
+
+typedef struct us_Contact {
+  int a, b;          /* body indices; a may be US_GROUND; normal from a into b */
+  double p[3];       /* point */
+  double n[3];       /* unit normal */
+  double t[2][3];    /* tangent basis; 2D uses t[0] = (-n_y, n_x, 0) */
+  double mu;         /* Coulomb coefficient, >= 0 */
+} us_Contact;
+
+typedef struct us_Structure {
+  int dim;              /* 2 (3 reserved) */
+  double gravity[3];    /* default (0, -9.81, 0) */
+  double friction;      /* default contact coefficient (0.5) */
+  int ground;           /* 1: the half-plane y <= 0 is a fixed support */
+  double contact_tol;   /* <= 0 before finalize: derived from the size */
+  int nbody;
+  us_Body *bodies;
+  int ncontact;
+  us_Contact *contacts;
+  int explicit_contacts; /* contacts came from the user, not detection */
+  double bbox[4];       /* xmin, ymin, xmax, ymax of all geometry and centres */
+  double scale;         /* characteristic length: bbox diagonal (>0) */
+  double weight;        /* total weight of movable bodies, |g| * sum m */
+  int finalized;
+  int cap_body, cap_contact;
+} us_Structure;
+
+us_Structure *us_structure_new(int dim);
+void us_structure_free(us_Structure *s);
+
+/* Add a polygon body (2D). xy holds 2*nvert coordinates, any orientation.
+ * mass <= 0 means: use density (density <= 0 means 1). friction < 0: not
+ * given. Returns the body index or -1 (err set: duplicate id, OOM, ...). */
+int us_structure_add_polygon(us_Structure *s, const char *id, int nvert, const double *xy,
+                             double density, double mass, int fixed, double friction,
+                             us_Error *err);
+/* A body without geometry (only with explicit contacts). */
+int us_structure_add_point_body(us_Structure *s, const char *id, double mass,
+                                const double *center, int fixed, us_Error *err);
+/* Explicit contact; a = US_GROUND or a body index. mu < 0: use the rule
+ * (the smaller of the two bodies' coefficients, each defaulting to the
+ * structure's). The tangent basis is derived from the normal. */
+int us_structure_add_contact(us_Structure *s, int a, int b, const double *p, const double *n,
+                             double mu, us_Error *err);
+int us_structure_find_body(const us_Structure *s, const char *id); /* index or -1 */
+
+/* Validate geometry (>=3 vertices, finite, non-zero area, simple, not below
+ * the ground, no interpenetration beyond contact_tol), compute mass
+ * properties, and detect contacts unless explicit contacts were given.
+ * Messages name the body ids. */
+us_Status us_structure_finalize(us_Structure *s, us_Error *err);
+
+/* The friction coefficient of a contact between two bodies (a may be
+ * US_GROUND): the smaller of the two sides' coefficients, each side
+ * defaulting to the structure's coefficient. */
+double us_structure_pair_friction(const us_Structure *s, int a, int b);
+
+/* Number of movable bodies; index maps. */
+int us_structure_movable_count(const us_Structure *s);
+
+/* ---------------------------------------------------------------- contacts */
+
+typedef struct us_ContactSettings {
+  double tol;        /* <= 0: 1e-6 * structure scale (at least 1e-9) */
+} us_ContactSettings;
+
+/* Detect vertex-on-edge contacts between all bodies and with the ground,
+ * replacing s->contacts. Broad phase: sort and sweep on x. Reports
+ * interpenetration beyond tol as US_ERR_INPUT naming both bodies. */
+us_Status us_detect_contacts(us_Structure *s, const us_ContactSettings *set, us_Error *err);
+
+/* --------------------------------------------------------------- stability */
+
+typedef enum us_Method {
+  US_METHOD_LP = 0,     /* statics LP, CLP (default) */
+  US_METHOD_LPSOLVE,    /* statics LP, lp_solve 5.5, from scratch */
+  US_METHOD_LCP,        /* Baraff/Dantzig LCP from scratch */
+  US_METHOD_LCP_REUSE,  /* LCP with computation reuse */
+  US_METHOD_COUNT
+} us_Method;
+const char *us_method_name(us_Method m);
+int us_method_parse(const char *name, us_Method *out); /* 0 ok, -1 unknown */
+
+typedef enum us_Verdict {
+  US_STABLE = 0,
+  US_UNSTABLE = 1,
+  US_UNDECIDED = 2  /* a limit was hit and no fallback could decide */
+} us_Verdict;
+const char *us_verdict_name(us_Verdict v);
+
+typedef struct us_StabilitySettings {
+  us_Method method;
+  double cert_tol;    /* certificate tolerance, relative (default 1e-6) */
+  int max_pivots;     /* LCP pivot limit; <= 0: automatic */
+  int verbose;
+} us_StabilitySettings;
+us_StabilitySettings us_stability_default_settings(void);
+
+/* Contact forces of one sub-assembly: for each active contact, `dim`
+ * components (f_n, f_t1[, f_t2]) in the contact's frame. */
+typedef struct us_Forces {
+  int ncontact;      /* number of active contacts */
+  int cap;
+  int *contact;      /* indices into structure->contacts */
+  double *f;         /* dim * ncontact */
+} us_Forces;
+void us_forces_free(us_Forces *f);
+
+typedef struct us_CertCheck {
+  int ok;
+  double max_force_residual;   /* relative to the structure's weight */
+  double max_torque_residual;  /* relative to weight * scale */
+  double max_cone_violation;   /* relative to weight */
+  double max_sign_violation;   /* negative normal force, relative to weight */
+  int worst_body;              /* body with the largest residual, or -1 */
+  int worst_contact;           /* contact with the largest violation, or -1 */
+} us_CertCheck;
+
+typedef struct us_StabilityInfo {
+  long tests;            /* tests run by this workspace */
+  long pivots;           /* LCP pivots (total) */
+  long lp_fallbacks;     /* LCP verdicts settled by the LP */
+  long reused;           /* tests that started from the previous solution */
+  double solve_time;     /* seconds in the backend */
+  double check_time;     /* seconds re-checking certificates */
+} us_StabilityInfo;
+
+typedef struct us_StabilityResult {
+  us_Verdict verdict;
+  us_Forces forces;        /* filled when stable */
+  us_CertCheck check;      /* the independent re-check of forces */
+  int unstable_body;       /* evidence when unstable, if known, else -1 */
+  char note[128];          /* evidence text (solver status), may be empty */
+} us_StabilityResult;
+void us_stability_result_free(us_StabilityResult *r);
+
+typedef struct us_Stability us_Stability; /* opaque workspace */
+
+us_Stability *us_stability_new(const us_Structure *s, const us_StabilitySettings *set,
+                               us_Error *err);
+void us_stability_free(us_Stability *w);
+/* Test the sub-assembly `present` (bits over body indices; fixed bodies are
+ * always present, their bits are ignored). Incremental: the workspace
+ * remembers the last sub-assembly and tells the backend which bodies were
+ * added or removed. Returns US_OK and fills res, or an error. */
+us_Status us_stability_test(us_Stability *w, const us_Bitset *present, us_StabilityResult *res,
+                            us_Error *err);
+const us_StabilityInfo *us_stability_info(const us_Stability *w);
+
+/* Independent re-check of forces for a sub-assembly, without any solver. */
+us_CertCheck us_certificate_check(const us_Structure *s, const us_Bitset *present,
+                                  const us_Forces *f, double tol);
+
+/* Contacts active in a sub-assembly: both sides present (ground and fixed
+ * bodies always are) and at least one side movable. Fills idx (capacity
+ * s->ncontact) and returns the count. */
+int us_active_contacts(const us_Structure *s, const us_Bitset *present, int *idx);
+
+/* ----------------------------------------------------------------- planner */
+
+typedef enum us_Search { US_SEARCH_DFS = 0, US_SEARCH_BFS } us_Search;
+typedef enum us_Order { US_ORDER_HIGHEST = 0, US_ORDER_LOWEST, US_ORDER_INPUT } us_Order;
+typedef enum us_Direction { US_DIR_DOWN = 0, US_DIR_UP } us_Direction;
+
+typedef enum us_PlanStatus {
+  US_PLAN_FOUND = 0,
+  US_PLAN_NONE,      /* search exhausted: no one-at-a-time order exists */
+  US_PLAN_UNSTABLE,  /* the full structure does not stand */
+  US_PLAN_LIMIT      /* max_tests or time_limit reached */
+} us_PlanStatus;
+const char *us_plan_status_name(us_PlanStatus s);
+
+typedef struct us_PlanSettings {
+  us_Search search;
+  us_Order order;
+  us_Direction direction;
+  long max_tests;        /* <= 0: unlimited */
+  double time_limit;     /* seconds, <= 0: unlimited */
+  int certificates;      /* keep a certificate per step */
+  us_StabilitySettings stability;
+} us_PlanSettings;
+us_PlanSettings us_plan_default_settings(void);
+
+typedef struct us_PlanStats {
+  long tests;            /* stability tests run */
+  long stable;
+  long unstable;
+  long revisited;        /* nodes skipped because already known */
+  long nodes_expanded;
+  long max_depth;
+  double time_total;     /* seconds */
+  double time_setup;
+  double time_search;
+  double time_solve;     /* inside stability tests */
+  double time_check;     /* certificate re-checks */
+  size_t memo_bytes;     /* memory held by the failed-node set */
+  us_StabilityInfo stability;
+} us_PlanStats;
+
+typedef struct us_Plan {
+  us_PlanStatus status;
+  int nsteps;            /* number of removals (movable bodies) when found */
+  int *order;            /* body indices in removal order */
+  us_Forces *certs;      /* with certificates: nsteps+1 entries, certs[k] =
+                            forces of the structure before removal k
+                            (certs[nsteps] is the empty structure) */
+  us_PlanStats stats;
+} us_Plan;
+void us_plan_free(us_Plan *p);
+
+us_Status us_plan(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
+                  us_Error *err);
+
+/* Re-check a removal order step by step (test + certificate check).
+ * Returns US_OK; *failed_step = -1 if all steps stand, else the 0-based
+ * index k of the first removal after which the remainder does not stand
+ * (k = -1 never; the full structure failing is reported as step 0 with
+ * *full_unstable = 1). */
+us_Status us_verify_order(const us_Structure *s, const us_StabilitySettings *set, const int *order,
+                          int n, int *failed_step, int *full_unstable, us_Error *err);
+
+/* -------------------------------------------------------------- generators */
+
+typedef struct us_GenSettings {
+  int n;             /* column: blocks; pyramid: rows; arch: voussoirs */
+  int rows, cols;    /* wall; random: rows */
+  double width;      /* block width (random: structure width in blocks) */
+  double height;     /* block height */
+  double radius, thickness; /* arch */
+  double friction;   /* default coefficient written to the structure */
+  double density;
+  unsigned long seed;
+  int max_tries;     /* random: attempts per row before giving up */
+} us_GenSettings;
+us_GenSettings us_gen_default_settings(void);
+
+us_Structure *us_gen_column(const us_GenSettings *g, us_Error *err);
+us_Structure *us_gen_pyramid(const us_GenSettings *g, us_Error *err);
+us_Structure *us_gen_wall(const us_GenSettings *g, us_Error *err);
+us_Structure *us_gen_arch(const us_GenSettings *g, us_Error *err);
+us_Structure *us_gen_random(const us_GenSettings *g, us_Error *err);
+
+/* --------------------------------------------------------------------- I/O */
+
+/* Read a structure JSON file (docs/format.md); finalized on success.
+ * contact_tol > 0 overrides the derived tolerance. Errors name the file
+ * and line:column (syntax) or the JSON path / body id (content). */
+us_Structure *us_structure_read(const char *path, double contact_tol, us_Error *err);
+us_Structure *us_structure_parse(const char *text, const char *name, double contact_tol,
+                                 us_Error *err);
+/* Write atomically (temporary file + rename): no partial file on error. */
+us_Status us_structure_write(const us_Structure *s, const char *path, us_Error *err);
+
+/* Plan files. Reading maps ids to body indices of s. */
+us_Status us_plan_write(const us_Structure *s, const us_Plan *p, const us_PlanSettings *set,
+                        const char *path, us_Error *err);
+typedef struct us_PlanFile {
+  us_PlanStatus status;
+  int n;
+  int *order;
+} us_PlanFile;
+us_Status us_plan_read(const us_Structure *s, const char *path, us_PlanFile *out, us_Error *err);
+void us_plan_file_free(us_PlanFile *pf);
+
+/* ------------------------------------------------------------------ render */
+
+typedef struct us_RenderSettings {
+  const int *order;       /* removal order (may be NULL) */
+  int norder;
+  const us_Forces *forces;/* draw as arrows (may be NULL) */
+  int show_contacts;      /* default 1 */
+  int show_labels;        /* default 1 */
+  double width_px;        /* default 800 */
+} us_RenderSettings;
+us_RenderSettings us_render_default_settings(void);
+us_Status us_render_svg(const us_Structure *s, const us_RenderSettings *r, const char *path,
+                        us_Error *err);
+
+/* Atomic file writing shared by all writers: write to path.tmp.XXXXXX,
+ * then rename. Returns a FILE* to write to; commit or abort. */
+typedef struct us_AtomicFile us_AtomicFile;
+us_AtomicFile *us_atomic_open(const char *path, us_Error *err);
+void *us_atomic_stream(us_AtomicFile *af); /* FILE* */
+us_Status us_atomic_commit(us_AtomicFile *af, us_Error *err);
+void us_atomic_abort(us_AtomicFile *af);
+
+/* Monotonic clock in seconds. */
+double us_now(void);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Install the Debian 12 packages unstack needs, only when some are missing.
+set -euo pipefail
+pkgs=(build-essential cmake pkg-config coinor-libclp-dev liblpsolve55-dev libsuitesparse-dev
+      libjansson-dev libxml2-dev libcairo2-dev libsiconos-numerics-dev python3)
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+echo "installing: ${missing[*]}"
+SUDO=""
+[ "$(id -u)" -ne 0 ] && SUDO="sudo"
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

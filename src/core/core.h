@@ -1,0 +1,42 @@
+/* Private core utilities shared by every module: small math helpers, the
+ * hash set of sub-assemblies and a growable array macro. Public pieces
+ * (errors, allocation, bitsets) live in include/unstack/unstack.h. */
+#ifndef US_CORE_H
+#define US_CORE_H
+
+#include "unstack/unstack.h"
+
+#include <stdint.h>
+#include <stdio.h>
+
+#define US_MIN(a, b) ((a) < (b) ? (a) : (b))
+#define US_MAX(a, b) ((a) > (b) ? (a) : (b))
+#define US_UNUSED(x) ((void)(x))
+
+/* Grow *arr (element type T) so that it holds at least `need` elements.
+ * Returns 0 or -1 on OOM (then *arr is unchanged). */
+int us_grow(void **arr, int *cap, int need, size_t elem);
+#define US_GROW(arr, cap, need) us_grow((void **)&(arr), &(cap), (need), sizeof(*(arr)))
+
+/* Hash set of bitsets of one fixed width (the failed-node memo of the
+ * planner). Open addressing with linear probing; keys are copied into one
+ * growing word pool, so a set of k keys of w words costs about
+ * k * (w * 8 + 16) bytes. */
+typedef struct us_BitsetSet {
+  int nwords;            /* words per key */
+  size_t count;          /* keys stored */
+  size_t cap;            /* slots, power of two */
+  uint64_t *hashes;      /* cap entries, 0 = empty (hash 0 is remapped) */
+  size_t *slot_key;      /* cap entries: index of key in pool */
+  uint64_t *pool;        /* count * nwords words */
+  size_t pool_cap;       /* keys the pool can hold */
+} us_BitsetSet;
+
+int us_bitset_set_init(us_BitsetSet *s, int nbits);
+void us_bitset_set_free(us_BitsetSet *s);
+int us_bitset_set_contains(const us_BitsetSet *s, const us_Bitset *b);
+/* 1 added, 0 already present, -1 OOM */
+int us_bitset_set_add(us_BitsetSet *s, const us_Bitset *b);
+size_t us_bitset_set_bytes(const us_BitsetSet *s);
+
+#endif

@@ -1,0 +1,226 @@
+/* The structure model: building a structure body by body, and sealing it
+ * with finalize (validate, mass properties, measure, detect contacts).
+ *
+ * Invariants after finalize: polygons are counter-clockwise and simple;
+ * movable bodies have mass > 0 and finite inertia; every contact has a unit
+ * normal pointing from a into b, a tangent basis, and mu >= 0; contact_tol
+ * > 0 and scale > 0. Fixed bodies keep their geometry and take no mass. */
+#include "model.h"
+
+#include <math.h>
+#include <string.h>
+
+us_Structure *us_structure_new(int dim) {
+  us_Structure *s = us_calloc(1, sizeof *s);
+  if (!s) return NULL;
+  s->dim = dim;
+  s->gravity[0] = 0.0;
+  s->gravity[1] = -9.81;
+  s->gravity[2] = 0.0;
+  s->friction = 0.5;
+  s->ground = 1;
+  s->contact_tol = 0.0;
+  return s;
+}
+
+void us_structure_free(us_Structure *s) {
+  if (!s) return;
+  for (int i = 0; i < s->nbody; i++) {
+    us_free(s->bodies[i].id);
+    us_free(s->bodies[i].verts);
+  }
+  us_free(s->bodies);
+  us_free(s->contacts);
+  us_free(s);
+}
+
+int us_structure_find_body(const us_Structure *s, const char *id) {
+  for (int i = 0; i < s->nbody; i++)
+    if (strcmp(s->bodies[i].id, id) == 0) return i;
+  return -1;
+}
+
+/* Append a body with the given id; returns its index or -1. */
+static int add_body(us_Structure *s, const char *id, us_Error *err) {
+  if (!id || !*id) {
+    us_error_set(err, US_ERR_INPUT, "body %d: empty id", s->nbody);
+    return -1;
+  }
+  if (!strcmp(id, "ground")) {
+    us_error_set(err, US_ERR_INPUT, "body id 'ground' is reserved for the ground");
+    return -1;
+  }
+  if (us_structure_find_body(s, id) >= 0) {
+    us_error_set(err, US_ERR_INPUT, "duplicate body id '%s'", id);
+    return -1;
+  }
+  if (US_GROW(s->bodies, s->cap_body, s->nbody + 1)) {
+    us_error_set(err, US_ERR_NOMEM, "out of memory adding body '%s'", id);
+    return -1;
+  }
+  us_Body *b = &s->bodies[s->nbody];
+  memset(b, 0, sizeof *b);
+  b->id = us_strdup(id);
+  if (!b->id) {
+    us_error_set(err, US_ERR_NOMEM, "out of memory adding body '%s'", id);
+    return -1;
+  }
+  b->friction = -1.0;
+  s->finalized = 0;
+  return s->nbody++;
+}
+
+int us_structure_add_polygon(us_Structure *s, const char *id, int nvert, const double *xy,
+                             double density, double mass, int fixed, double friction,
+                             us_Error *err) {
+  if (nvert < 0 || (nvert > 0 && !xy)) {
+    us_error_set(err, US_ERR_INPUT, "body '%s': bad polygon", id ? id : "?");
+    return -1;
+  }
+  double *v = us_malloc((size_t)(nvert > 0 ? nvert : 1) * 2 * sizeof(double));
+  if (!v) {
+    us_error_set(err, US_ERR_NOMEM, "out of memory adding body '%s'", id ? id : "?");
+    return -1;
+  }
+  int i = add_body(s, id, err);
+  if (i < 0) {
+    us_free(v);
+    return -1;
+  }
+  us_Body *b = &s->bodies[i];
+  if (nvert > 0) memcpy(v, xy, (size_t)nvert * 2 * sizeof(double));
+  b->verts = v;
+  b->nvert = nvert;
+  b->density = density > 0 ? density : 1.0;
+  b->mass = mass;
+  b->mass_given = mass > 0;
+  b->fixed = fixed != 0;
+  b->friction = friction;
+  return i;
+}
+
+int us_structure_add_point_body(us_Structure *s, const char *id, double mass,
+                                const double *center, int fixed, us_Error *err) {
+  int i = add_body(s, id, err);
+  if (i < 0) return -1;
+  us_Body *b = &s->bodies[i];
+  b->mass = mass;
+  b->mass_given = 1;
+  b->fixed = fixed != 0;
+  b->density = 1.0;
+  b->com[0] = center[0];
+  b->com[1] = center[1];
+  b->inertia = 0.0; /* derived in finalize when not given */
+  return i;
+}
+
+double us_structure_pair_friction(const us_Structure *s, int a, int b) {
+  double fa = (a >= 0 && s->bodies[a].friction >= 0) ? s->bodies[a].friction : s->friction;
+  double fb = (b >= 0 && s->bodies[b].friction >= 0) ? s->bodies[b].friction : s->friction;
+  return fa < fb ? fa : fb;
+}
+
+void us_contact_frame(int dim, us_Contact *c) {
+  if (dim == 2) {
+    c->t[0][0] = -c->n[1];
+    c->t[0][1] = c->n[0];
+    c->t[0][2] = 0.0;
+    memset(c->t[1], 0, sizeof c->t[1]);
+    return;
+  }
+  /* 3D: t1 orthogonal to n from the smallest component, t2 = n x t1 */
+  double a[3] = {0, 0, 0};
+  int k = fabs(c->n[0]) < fabs(c->n[1]) ? (fabs(c->n[0]) < fabs(c->n[2]) ? 0 : 2)
+                                        : (fabs(c->n[1]) < fabs(c->n[2]) ? 1 : 2);
+  a[k] = 1.0;
+  double t1[3] = {a[1] * c->n[2] - a[2] * c->n[1], a[2] * c->n[0] - a[0] * c->n[2],
+                  a[0] * c->n[1] - a[1] * c->n[0]};
+  double l = sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
+  for (int j = 0; j < 3; j++) c->t[0][j] = t1[j] / l;
+  c->t[1][0] = c->n[1] * c->t[0][2] - c->n[2] * c->t[0][1];
+  c->t[1][1] = c->n[2] * c->t[0][0] - c->n[0] * c->t[0][2];
+  c->t[1][2] = c->n[0] * c->t[0][1] - c->n[1] * c->t[0][0];
+}
+
+int us_structure_add_contact(us_Structure *s, int a, int b, const double *p, const double *n,
+                             double mu, us_Error *err) {
+  if (a < US_GROUND || a >= s->nbody || b < 0 || b >= s->nbody || a == b) {
+    us_error_set(err, US_ERR_INPUT, "contact %d: bad body pair (%d, %d)", s->ncontact, a, b);
+    return -1;
+  }
+  int dim = s->dim;
+  double len = 0.0;
+  for (int j = 0; j < dim; j++) len += n[j] * n[j];
+  len = sqrt(len);
+  if (!(len > 1e-12) || !isfinite(len)) {
+    us_error_set(err, US_ERR_INPUT, "contact %d (%s, %s): zero or non-finite normal",
+                 s->ncontact, a < 0 ? "ground" : s->bodies[a].id, s->bodies[b].id);
+    return -1;
+  }
+  if (US_GROW(s->contacts, s->cap_contact, s->ncontact + 1)) {
+    us_error_set(err, US_ERR_NOMEM, "out of memory adding a contact");
+    return -1;
+  }
+  us_Contact *c = &s->contacts[s->ncontact];
+  memset(c, 0, sizeof *c);
+  c->a = a;
+  c->b = b;
+  for (int j = 0; j < dim; j++) {
+    c->p[j] = p[j];
+    c->n[j] = n[j] / len;
+  }
+  us_contact_frame(dim, c);
+  c->mu = mu >= 0 ? mu : us_structure_pair_friction(s, a, b);
+  return s->ncontact++;
+}
+
+int us_structure_movable_count(const us_Structure *s) {
+  int n = 0;
+  for (int i = 0; i < s->nbody; i++) n += !s->bodies[i].fixed;
+  return n;
+}
+
+static void bbox_add(double *bb, double x, double y) {
+  if (x < bb[0]) bb[0] = x;
+  if (y < bb[1]) bb[1] = y;
+  if (x > bb[2]) bb[2] = x;
+  if (y > bb[3]) bb[3] = y;
+}
+
+void us_model_measure(us_Structure *s) {
+  double bb[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+  double mass = 0.0;
+  for (int i = 0; i < s->nbody; i++) {
+    const us_Body *b = &s->bodies[i];
+    for (int k = 0; k < b->nvert; k++) bbox_add(bb, b->verts[2 * k], b->verts[2 * k + 1]);
+    if (b->nvert == 0) bbox_add(bb, b->com[0], b->com[1]);
+    if (!b->fixed) mass += b->mass;
+  }
+  for (int k = 0; k < s->ncontact; k++) bbox_add(bb, s->contacts[k].p[0], s->contacts[k].p[1]);
+  if (!(bb[0] <= bb[2])) bb[0] = bb[1] = bb[2] = bb[3] = 0.0;
+  memcpy(s->bbox, bb, sizeof bb);
+  double d = hypot(bb[2] - bb[0], bb[3] - bb[1]);
+  s->scale = d > 0 ? d : 1.0;
+  double g = sqrt(s->gravity[0] * s->gravity[0] + s->gravity[1] * s->gravity[1] +
+                  s->gravity[2] * s->gravity[2]);
+  s->weight = g * mass > 0 ? g * mass : 1.0;
+  if (!(s->contact_tol > 0)) s->contact_tol = US_MAX(1e-6 * s->scale, 1e-9);
+}
+
+us_Status us_structure_finalize(us_Structure *s, us_Error *err) {
+  us_Status st = us_model_validate(s, err);
+  if (st) return st;
+  st = us_model_mass_properties(s, err);
+  if (st) return st;
+  us_model_measure(s);
+  if (!s->explicit_contacts && s->ncontact == 0) {
+    us_ContactSettings cs = {s->contact_tol};
+    st = us_detect_contacts(s, &cs, err);
+    if (st) return st;
+  } else {
+    s->explicit_contacts = 1;
+  }
+  us_model_measure(s);
+  s->finalized = 1;
+  return US_OK;
+}
