@@ -329,13 +329,21 @@ void us_plan_free(us_Plan *p);
 us_Status us_plan(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
                   us_Error *err);
 
-/* Re-check a removal order step by step (test + certificate check).
- * Returns US_OK; *failed_step = -1 if all steps stand, else the 0-based
- * index k of the first removal after which the remainder does not stand
- * (k = -1 never; the full structure failing is reported as step 0 with
- * *full_unstable = 1). */
+/* Re-check a removal order step by step: the full structure, then the
+ * remainder after every removal, each with a fresh stability test whose
+ * certificate is re-checked. */
+typedef struct us_VerifyReport {
+  int ok;              /* every step stands and the order removes all bodies */
+  int full_unstable;   /* the full structure does not stand */
+  int failed_step;     /* 0-based removal after which the remainder falls, or -1 */
+  int incomplete;      /* the order leaves movable bodies in place */
+  int remaining;       /* bodies left after the failing step / at the end */
+  int unstable_body;   /* evidence from the test, or -1 */
+  int steps_checked;
+  double max_force_residual, max_torque_residual; /* worst over the steps */
+} us_VerifyReport;
 us_Status us_verify_order(const us_Structure *s, const us_StabilitySettings *set, const int *order,
-                          int n, int *failed_step, int *full_unstable, us_Error *err);
+                          int n, us_VerifyReport *rep, us_Error *err);
 
 /* -------------------------------------------------------------- generators */
 

@@ -1,0 +1,60 @@
+/* Candidate ordering: which body the search tries to move first.
+ *
+ * "highest" sorts bodies by the top of their geometry (the highest vertex,
+ * or the centre for bodies without geometry), then by centre height, then
+ * by index, so ties are deterministic. Going down the highest body is
+ * removed first; going up the order is reversed (the lowest body is placed
+ * first), so both directions mirror the same intuition: a structure comes
+ * apart top-down and goes up bottom-up. */
+#include "search.h"
+
+#include <stdlib.h>
+
+typedef struct {
+  double top, mid;
+  int body;
+} Key;
+
+static double body_top(const us_Body *b) {
+  if (b->nvert == 0) return b->com[1];
+  double t = b->verts[1];
+  for (int k = 1; k < b->nvert; k++)
+    if (b->verts[2 * k + 1] > t) t = b->verts[2 * k + 1];
+  return t;
+}
+
+/* Descending height, ascending index. */
+static int cmp_highest(const void *pa, const void *pb) {
+  const Key *a = pa, *b = pb;
+  if (a->top != b->top) return a->top > b->top ? -1 : 1;
+  if (a->mid != b->mid) return a->mid > b->mid ? -1 : 1;
+  return (a->body > b->body) - (a->body < b->body);
+}
+
+static void reverse(int *v, int n) {
+  for (int i = 0, j = n - 1; i < j; i++, j--) {
+    int t = v[i];
+    v[i] = v[j];
+    v[j] = t;
+  }
+}
+
+int us_plan_order_candidates(us_SearchCtx *ctx) {
+  const us_Structure *s = ctx->s;
+  Key *keys = us_malloc((size_t)(ctx->nmov > 0 ? ctx->nmov : 1) * sizeof *keys);
+  if (!keys) return -1;
+  int n = 0;
+  for (int i = 0; i < s->nbody; i++) {
+    if (s->bodies[i].fixed) continue;
+    keys[n].top = body_top(&s->bodies[i]);
+    keys[n].mid = s->bodies[i].com[1];
+    keys[n++].body = i;
+  }
+  if (ctx->set->order != US_ORDER_INPUT) qsort(keys, (size_t)n, sizeof *keys, cmp_highest);
+  for (int i = 0; i < n; i++) ctx->cand[i] = keys[i].body;
+  us_free(keys);
+  int flip = (ctx->set->order == US_ORDER_LOWEST) != (ctx->set->direction == US_DIR_UP);
+  if (ctx->set->order == US_ORDER_INPUT) flip = ctx->set->direction == US_DIR_UP;
+  if (flip) reverse(ctx->cand, n);
+  return 0;
+}
