@@ -1,0 +1,116 @@
+/* unstack plan: find a stable unstacking order and write it as a plan file. */
+#include "options.h"
+
+#include <stdio.h>
+#include <string.h>
+
+static const char help[] =
+    "usage: unstack plan FILE [-o PLAN.json] [options]\n"
+    "\n"
+    "Search the disassembly graph of the structure in FILE for an order that\n"
+    "removes one body at a time so that every intermediate structure stands.\n"
+    "Prints a one-line summary; writes the plan (docs/format.md) with -o.\n"
+    "\n"
+    "options:\n"
+    "  -o, --output PLAN   write the plan file (also when no order exists)\n"
+    "  --method M          lp (CLP, default), lpsolve, lcp, lcp-reuse\n"
+    "  --search S          dfs (default) or bfs\n"
+    "  --order O           candidate order: highest (default), lowest, input\n"
+    "  --direction D       down (disassembly, default) or up (assembly from\n"
+    "                      the ground; the plan is its reverse)\n"
+    "  --max-tests N       stop after N stability tests (status \"limit\")\n"
+    "  --time-limit SEC    stop after SEC seconds (status \"limit\")\n"
+    "  --certificates      store the contact forces of every step in the plan\n"
+    "  --stats             print the search statistics\n"
+    "  --contact-tol T     contact detection tolerance (default 1e-6 x size)\n"
+    "\n"
+    "exit: 0 order found, 1 no order (none, unstable, limit), 2 usage or input error\n";
+
+static void print_stats(const us_PlanStats *st) {
+  printf("statistics:\n  tests %ld (stable %ld, unstable %ld), revisited %ld, expanded %ld, "
+         "max depth %ld\n",
+         st->tests, st->stable, st->unstable, st->revisited, st->nodes_expanded, st->max_depth);
+  printf("  time: total %.3f s, setup %.3f s, search %.3f s, in solver %.3f s, "
+         "certificate checks %.3f s\n",
+         st->time_total, st->time_setup, st->time_search, st->time_solve, st->time_check);
+  printf("  memo %zu bytes; LCP pivots %ld, LP fallbacks %ld, reused %ld\n", st->memo_bytes,
+         st->stability.pivots, st->stability.lp_fallbacks, st->stability.reused);
+}
+
+static void print_summary(const us_Plan *p, const CliCommon *c, const char *out) {
+  const us_PlanStats *st = &p->stats;
+  printf("%s", us_plan_status_name(p->status));
+  if (p->status == US_PLAN_FOUND) printf(": %d removals", p->nsteps);
+  printf(", %ld tests (%ld unstable, %ld revisited), %.3f s [%s, %s, %s, %s]", st->tests,
+         st->unstable, st->revisited, st->time_total, us_method_name(c->stab.method),
+         cli_search_names[c->plan.search], cli_order_names[c->plan.order],
+         cli_direction_names[c->plan.direction]);
+  if (out) printf(" -> %s", out);
+  printf("\n");
+}
+
+typedef struct {
+  const char *file, *out;
+  int stats;
+} PlanArgs;
+
+static int parse(int argc, char **argv, CliCommon *c, PlanArgs *a) {
+  for (int i = 1; i < argc; i++) {
+    int r = cli_common_option("plan", argc, argv, &i, c);
+    const char *v;
+    long n;
+    if (r < 0) return CLI_EXIT_ERR;
+    if (r) continue;
+    if (cli_is_help(argv[i])) return fputs(help, stdout), -1;
+    if (!strcmp(argv[i], "-o") || !strcmp(argv[i], "--output")) {
+      if (!(a->out = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
+    } else if (!strcmp(argv[i], "--max-tests")) {
+      if (!(v = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
+      if (cli_parse_long(v, &n) || n <= 0)
+        return cli_fail("plan", "--max-tests needs a positive integer, got '%s'", v);
+      c->plan.max_tests = n;
+    } else if (!strcmp(argv[i], "--time-limit")) {
+      if (!(v = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
+      if (cli_parse_double(v, &c->plan.time_limit) || c->plan.time_limit <= 0)
+        return cli_fail("plan", "--time-limit needs a positive number of seconds, got '%s'", v);
+    } else if (!strcmp(argv[i], "--certificates")) {
+      c->plan.certificates = 1;
+    } else if (!strcmp(argv[i], "--stats")) {
+      a->stats = 1;
+    } else if (argv[i][0] == '-' && argv[i][1]) {
+      return cli_fail("plan", "unknown option '%s'", argv[i]);
+    } else if (a->file) {
+      return cli_fail("plan", "more than one FILE given");
+    } else {
+      a->file = argv[i];
+    }
+  }
+  if (!a->file) return cli_fail("plan", "no FILE given (see 'unstack plan --help')");
+  return 0;
+}
+
+int cmd_plan(int argc, char **argv) {
+  CliCommon c;
+  cli_common_init(&c);
+  PlanArgs a = {NULL, NULL, 0};
+  int r = parse(argc, argv, &c, &a);
+  if (r) return r < 0 ? CLI_EXIT_OK : r;
+  c.plan.stability = c.stab;
+  us_Structure *s = cli_load("plan", a.file, &c);
+  if (!s) return CLI_EXIT_ERR;
+  us_Error err;
+  us_error_clear(&err);
+  us_Plan p;
+  int code = CLI_EXIT_ERR;
+  if (us_plan(s, &c.plan, &p, &err) == US_OK) {
+    if (!a.out || us_plan_write(s, &p, &c.plan, a.out, &err) == US_OK) {
+      print_summary(&p, &c, a.out);
+      if (a.stats) print_stats(&p.stats);
+      code = p.status == US_PLAN_FOUND ? CLI_EXIT_OK : CLI_EXIT_NO;
+    }
+    us_plan_free(&p);
+  }
+  if (code == CLI_EXIT_ERR) cli_error("plan", &err);
+  us_structure_free(s);
+  return code;
+}

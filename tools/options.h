@@ -1,0 +1,23 @@
+/* Options shared by subcommands (method, search, order, direction,
+ * contact tolerance) and structure loading with error reporting. */
+#ifndef US_CLI_OPTIONS_H
+#define US_CLI_OPTIONS_H
+
+#include "cli.h"
+
+typedef struct CliCommon {
+  us_StabilitySettings stab;
+  us_PlanSettings plan;
+  double contact_tol; /* 0: derived */
+} CliCommon;
+
+extern const char *const cli_search_names[];
+extern const char *const cli_order_names[];
+extern const char *const cli_direction_names[];
+
+void cli_common_init(CliCommon *c);
+int cli_common_option(const char *cmd, int argc, char **argv, int *i, CliCommon *c);
+/* Read and finalize a structure; prints the error and returns NULL. */
+us_Structure *cli_load(const char *cmd, const char *path, const CliCommon *c);
+
+#endif
