@@ -1,0 +1,48 @@
+/* Private interface of contact detection: the broad phase (candidate body
+ * pairs), the narrow phase (overlap check and vertex-on-edge contacts of one
+ * pair) and the candidate list they fill. See detect.c for the rules. */
+#ifndef US_CONTACT_H
+#define US_CONTACT_H
+
+#include "geometry/geometry.h"
+#include "model/model.h"
+
+/* cos of the largest angle between two normals still taken as the same
+ * direction (1e-3 rad): used to merge duplicates and spot coincident
+ * edges. */
+#define US_CONTACT_NORMAL_COS 0.9999995
+
+typedef struct us_BodyPair {
+  int i, j; /* i < j */
+} us_BodyPair;
+
+/* A contact found but not yet added to the structure. */
+typedef struct us_Cand {
+  int a, b;     /* a: edge owner or US_GROUND; b: vertex owner */
+  us_Vec2 p, n; /* point, unit normal from a into b */
+} us_Cand;
+
+typedef struct us_CandList {
+  us_Cand *c;
+  int n, cap;
+} us_CandList;
+
+/* Append; 0 or -1 on OOM. */
+int us_cand_push(us_CandList *l, int a, int b, us_Vec2 p, us_Vec2 n);
+
+/* Pairs of polygon bodies whose boxes (inflated by tol) overlap, except
+ * pairs of two fixed bodies; sorted by (i, j). *pairs is allocated (free
+ * with us_free) even when empty. Sort and sweep along the axis where the
+ * box centres spread most. */
+us_Status us_broadphase(const us_Structure *s, double tol, us_BodyPair **pairs, int *npairs,
+                        us_Error *err);
+
+/* Interpenetration of bodies i and j beyond tol: US_ERR_INPUT naming both. */
+us_Status us_pair_overlap(const us_Structure *s, int i, int j, double tol, us_Error *err);
+
+/* Vertex-on-edge contacts between i and j, duplicates merged, appended to
+ * out in a deterministic order. */
+us_Status us_pair_contacts(const us_Structure *s, int i, int j, double tol, us_CandList *out,
+                           us_Error *err);
+
+#endif

@@ -1,0 +1,166 @@
+/* Interpenetration check of one pair of bodies, beyond the tolerance.
+ *
+ * Two simple polygons overlap by more than tol when some point of one's
+ * boundary lies inside the other deeper than tol, or when they share a
+ * boundary stretch with both interiors on the same side. The boundary test
+ * samples: (1) every vertex, and (2) every edge cut at the places where it
+ * meets the other polygon's boundary (proper crossings and the other's
+ * vertices within tol of it), testing the midpoint of each piece. A piece
+ * between two boundary meetings is either inside or outside the other
+ * polygon, so its midpoint decides; this catches two equal squares turned
+ * 45 degrees and a plus sign of two bars, where no vertex is inside. (3)
+ * Equal polygons on top of each other have no point strictly inside the
+ * other, hence the coincident-edge test: collinear edges (within tol) with
+ * the same outward normal overlapping for more than tol. Depth is the
+ * distance from the point to the other polygon's boundary. */
+#include "contact.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#define SMALL_BUF 130
+
+static us_Status report(const us_Structure *s, int i, int j, const char *what, int k, int owner,
+                        double depth, us_Error *err) {
+  return us_error_set(err, US_ERR_INPUT, "bodies '%s' and '%s' overlap (%s %d of '%s' is %g inside '%s')",
+                      s->bodies[i].id, s->bodies[j].id, what, k, s->bodies[owner].id, depth,
+                      s->bodies[owner == i ? j : i].id);
+}
+
+static int in_box(us_Vec2 p, const double bb[4], double tol) {
+  return p.x >= bb[0] - tol && p.x <= bb[2] + tol && p.y >= bb[1] - tol && p.y <= bb[3] + tol;
+}
+
+/* Deepest vertex of body v inside body p: returns its index or -1. */
+static int deep_vertex(const us_Body *v, const us_Body *p, double tol, double *depth) {
+  double bb[4];
+  us_poly_bbox(p->verts, p->nvert, bb);
+  for (int k = 0; k < v->nvert; k++) {
+    us_Vec2 q = us_poly_vertex(v->verts, v->nvert, k);
+    if (!in_box(q, bb, 0)) continue;
+    double d = us_point_polygon_depth(q, p->verts, p->nvert);
+    if (d > tol) {
+      *depth = d;
+      return k;
+    }
+  }
+  return -1;
+}
+
+static int dbl_cmp(const void *pa, const void *pb) {
+  double a = *(const double *)pa, b = *(const double *)pb;
+  return (a > b) - (a < b);
+}
+
+/* Parameters along q0->q1 where it meets p's boundary; returns the count. */
+static int cut_params(us_Vec2 q0, us_Vec2 q1, const us_Body *p, double tol, double *ts) {
+  int m = 0;
+  ts[m++] = 0.0;
+  ts[m++] = 1.0;
+  for (int e = 0; e < p->nvert; e++) {
+    us_Vec2 p0 = us_poly_vertex(p->verts, p->nvert, e);
+    us_Vec2 p1 = us_poly_vertex(p->verts, p->nvert, e + 1);
+    double t;
+    if (us_segment_intersect(q0, q1, p0, p1, &t, NULL) == US_SEG_PROPER) ts[m++] = t;
+    if (us_point_segment_dist(p0, q0, q1, &t) <= tol) ts[m++] = t;
+  }
+  qsort(ts, (size_t)m, sizeof *ts, dbl_cmp);
+  return m;
+}
+
+/* Edge f of body v cut by p's boundary: depth of the deepest piece
+ * midpoint inside p (or -inf). */
+static double edge_depth(const us_Body *v, int f, const us_Body *p, double tol, double *ts) {
+  us_Vec2 q0 = us_poly_vertex(v->verts, v->nvert, f);
+  us_Vec2 q1 = us_poly_vertex(v->verts, v->nvert, f + 1);
+  double len = us_v2_dist(q0, q1), worst = -INFINITY;
+  int m = cut_params(q0, q1, p, tol, ts);
+  for (int k = 0; k + 1 < m; k++) {
+    if ((ts[k + 1] - ts[k]) * len <= 2 * tol) continue; /* too short to go deeper than tol */
+    double t = 0.5 * (ts[k] + ts[k + 1]);
+    us_Vec2 mid = us_v2_add(q0, us_v2_scale(us_v2_sub(q1, q0), t));
+    worst = US_MAX(worst, us_point_polygon_depth(mid, p->verts, p->nvert));
+  }
+  return worst;
+}
+
+/* Deepest edge of v passing inside p: index or -1. */
+static int deep_edge(const us_Body *v, const us_Body *p, double tol, double *ts, double *depth) {
+  double bb[4];
+  us_poly_bbox(p->verts, p->nvert, bb);
+  for (int f = 0; f < v->nvert; f++) {
+    us_Vec2 q0 = us_poly_vertex(v->verts, v->nvert, f);
+    us_Vec2 q1 = us_poly_vertex(v->verts, v->nvert, f + 1);
+    if (US_MAX(q0.x, q1.x) < bb[0] || US_MIN(q0.x, q1.x) > bb[2] ||
+        US_MAX(q0.y, q1.y) < bb[1] || US_MIN(q0.y, q1.y) > bb[3])
+      continue;
+    double d = edge_depth(v, f, p, tol, ts);
+    if (d > tol) {
+      *depth = d;
+      return f;
+    }
+  }
+  return -1;
+}
+
+/* Outward unit normal of CCW edge e of body b. */
+static us_Vec2 edge_normal(const us_Body *b, int e) {
+  us_Vec2 d = us_v2_sub(us_poly_vertex(b->verts, b->nvert, e + 1),
+                        us_poly_vertex(b->verts, b->nvert, e));
+  double l = us_v2_norm(d);
+  return l > 0 ? us_v2(d.y / l, -d.x / l) : us_v2(0, 0);
+}
+
+/* Edges e of a and f of b collinear, same outward side, sharing > tol. */
+static int same_side_overlap(const us_Body *a, int e, const us_Body *b, int f, double tol) {
+  us_Vec2 na = edge_normal(a, e), nb = edge_normal(b, f);
+  if (us_v2_dot(na, nb) < US_CONTACT_NORMAL_COS) return 0;
+  us_Vec2 p0 = us_poly_vertex(a->verts, a->nvert, e);
+  us_Vec2 q0 = us_poly_vertex(b->verts, b->nvert, f), q1 = us_poly_vertex(b->verts, b->nvert, f + 1);
+  if (fabs(us_v2_dot(us_v2_sub(q0, p0), na)) > tol || fabs(us_v2_dot(us_v2_sub(q1, p0), na)) > tol)
+    return 0;
+  us_Vec2 dir = us_v2(-na.y, na.x); /* along edge e */
+  double la = us_v2_dist(p0, us_poly_vertex(a->verts, a->nvert, e + 1));
+  double u0 = us_v2_dot(us_v2_sub(q0, p0), dir), u1 = us_v2_dot(us_v2_sub(q1, p0), dir);
+  double lo = US_MAX(0.0, US_MIN(u0, u1)), hi = US_MIN(la, US_MAX(u0, u1));
+  return hi - lo > tol;
+}
+
+static us_Status coincident(const us_Structure *s, int i, int j, double tol, us_Error *err) {
+  const us_Body *a = &s->bodies[i], *b = &s->bodies[j];
+  for (int e = 0; e < a->nvert; e++)
+    for (int f = 0; f < b->nvert; f++)
+      if (same_side_overlap(a, e, b, f, tol))
+        return us_error_set(err, US_ERR_INPUT,
+                            "bodies '%s' and '%s' overlap (edge %d of '%s' lies on edge %d of "
+                            "'%s' with both bodies on the same side)",
+                            a->id, b->id, e, a->id, f, b->id);
+  return US_OK;
+}
+
+static us_Status overlap_with(const us_Structure *s, int i, int j, double tol, double *ts,
+                              us_Error *err) {
+  int pr[2][2] = {{j, i}, {i, j}}; /* (owner of the boundary, the other) */
+  double d = 0.0;
+  for (int r = 0; r < 2; r++) {
+    const us_Body *v = &s->bodies[pr[r][0]], *p = &s->bodies[pr[r][1]];
+    int k = deep_vertex(v, p, tol, &d);
+    if (k >= 0) return report(s, i, j, "vertex", k, pr[r][0], d, err);
+  }
+  for (int r = 0; r < 2; r++) {
+    const us_Body *v = &s->bodies[pr[r][0]], *p = &s->bodies[pr[r][1]];
+    int k = deep_edge(v, p, tol, ts, &d);
+    if (k >= 0) return report(s, i, j, "a point of edge", k, pr[r][0], d, err);
+  }
+  return coincident(s, i, j, tol, err);
+}
+
+us_Status us_pair_overlap(const us_Structure *s, int i, int j, double tol, us_Error *err) {
+  int need = 2 + 2 * US_MAX(s->bodies[i].nvert, s->bodies[j].nvert);
+  double small[SMALL_BUF];
+  double *ts = need <= SMALL_BUF ? small : us_malloc((size_t)need * sizeof *ts);
+  if (!ts) return us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
+  us_Status st = overlap_with(s, i, j, tol, ts, err);
+  if (ts != small) us_free(ts);
+  return st;
+}

@@ -1,0 +1,96 @@
+/* Planar geometry for unstack: pure functions on points, segments and simple
+ * polygons (convex or not), with value types in and out and no global state.
+ *
+ * Polygons are flat arrays xy[2*n] (x0, y0, x1, y1, ...), closed implicitly
+ * (edge i joins vertex i to vertex (i+1) % n). Counter-clockwise polygons
+ * have positive signed area; the outward normal of a CCW edge with direction
+ * (dx, dy) is (dy, -dx) / |d|. Every comparison that needs a tolerance takes
+ * it as an argument: a length, normally us_geom_tol(scale) of the structure,
+ * so that results do not depend on the units. */
+#ifndef US_GEOMETRY_H
+#define US_GEOMETRY_H
+
+#include "core/core.h"
+
+/* Default length tolerance: relative to the structure's characteristic size
+ * (its bounding-box diagonal), with an absolute floor for tiny scenes. */
+#define US_GEOM_TOL_REL 1e-6
+#define US_GEOM_TOL_MIN 1e-9
+
+typedef struct us_Vec2 {
+  double x, y;
+} us_Vec2;
+
+static inline us_Vec2 us_v2(double x, double y) {
+  us_Vec2 v = {x, y};
+  return v;
+}
+static inline us_Vec2 us_v2_sub(us_Vec2 a, us_Vec2 b) { return us_v2(a.x - b.x, a.y - b.y); }
+static inline us_Vec2 us_v2_add(us_Vec2 a, us_Vec2 b) { return us_v2(a.x + b.x, a.y + b.y); }
+static inline us_Vec2 us_v2_scale(us_Vec2 a, double k) { return us_v2(a.x * k, a.y * k); }
+static inline double us_v2_dot(us_Vec2 a, us_Vec2 b) { return a.x * b.x + a.y * b.y; }
+static inline double us_v2_cross(us_Vec2 a, us_Vec2 b) { return a.x * b.y - a.y * b.x; }
+/* Vertex i of a flat polygon array (i taken modulo n). */
+static inline us_Vec2 us_poly_vertex(const double *xy, int n, int i) {
+  int k = ((i % n) + n) % n;
+  return us_v2(xy[2 * k], xy[2 * k + 1]);
+}
+
+/* The default tolerance for a structure of the given size. */
+double us_geom_tol(double scale);
+double us_v2_norm(us_Vec2 a);
+double us_v2_dist(us_Vec2 a, us_Vec2 b);
+/* Twice the signed area of triangle (o, a, b): > 0 when o, a, b turn left. */
+double us_orient(us_Vec2 o, us_Vec2 a, us_Vec2 b);
+
+/* Signed area (> 0 counter-clockwise). n >= 3 for a meaningful value. */
+double us_poly_signed_area(const double *xy, int n);
+/* Reverse the vertex order in place if clockwise; returns 1 if reversed.
+ * Vertex 0 stays vertex 0. */
+int us_poly_make_ccw(double *xy, int n);
+/* Area centroid (either orientation); the vertex mean if the area is 0. */
+us_Vec2 us_poly_centroid(const double *xy, int n);
+/* Polar moment of inertia about the centroid for density 1 (>= 0, either
+ * orientation): integral of |r - c|^2 dA. */
+double us_poly_polar_moment(const double *xy, int n);
+/* Axis-aligned bounding box: out = {xmin, ymin, xmax, ymax}. */
+void us_poly_bbox(const double *xy, int n, double out[4]);
+
+/* Distance from p to segment [a, b]; *t (if not NULL) gets the parameter
+ * of the closest point in [0, 1]. */
+double us_point_segment_dist(us_Vec2 p, us_Vec2 a, us_Vec2 b, double *t);
+/* Smallest distance between two segments. */
+double us_segment_segment_dist(us_Vec2 a0, us_Vec2 a1, us_Vec2 b0, us_Vec2 b1);
+
+/* Segment intersection with exact sign tests (no tolerance):
+ * US_SEG_PROPER when the segments cross at one point interior to both,
+ * US_SEG_TOUCH when they share points otherwise (an endpoint on the other
+ * segment, or collinear overlap), US_SEG_NONE when disjoint. On PROPER,
+ * *ta and *tb (if not NULL) get the crossing parameters along a and b. */
+typedef enum us_SegHit { US_SEG_NONE = 0, US_SEG_PROPER, US_SEG_TOUCH } us_SegHit;
+us_SegHit us_segment_intersect(us_Vec2 a0, us_Vec2 a1, us_Vec2 b0, us_Vec2 b1, double *ta,
+                               double *tb);
+
+/* Point in polygon by the crossing rule (any simple polygon, either
+ * orientation): 1 inside, 0 outside; points on the boundary may go either
+ * way, so callers that care use us_point_polygon_depth with a tolerance. */
+int us_point_in_polygon(us_Vec2 p, const double *xy, int n);
+/* Distance from p to the polygon's boundary, and the closest edge. */
+double us_point_boundary_dist(us_Vec2 p, const double *xy, int n, int *edge);
+/* Signed depth: + distance to the boundary when inside, - when outside. */
+double us_point_polygon_depth(us_Vec2 p, const double *xy, int n);
+
+/* Simple-polygon test with a length tolerance: no two vertices within tol,
+ * adjacent edges do not fold back onto each other, non-adjacent edges stay
+ * more than tol apart. Edges are swept in order of their left end, so
+ * typical polygons of hundreds of vertices cost far less than n^2 tests. */
+typedef enum us_PolyDefect {
+  US_POLY_SIMPLE = 0,
+  US_POLY_REPEATED_VERTEX, /* vertices *i and *j coincide */
+  US_POLY_EDGES_CROSS,     /* edges *i and *j cross or touch */
+  US_POLY_EDGES_FOLD,      /* adjacent edges *i and *j overlap (a spike) */
+  US_POLY_NOMEM
+} us_PolyDefect;
+us_PolyDefect us_poly_check_simple(const double *xy, int n, double tol, int *i, int *j);
+
+#endif

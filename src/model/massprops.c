@@ -1,0 +1,64 @@
+/* Mass properties of every body: mass, centre of mass and polar moment of
+ * inertia about it.
+ *
+ * Polygons (counter-clockwise after validation; either orientation works):
+ * mass = density * area unless a mass was given, com = area centroid,
+ * inertia = (polar moment about the centroid for density 1) * mass / area,
+ * i.e. a uniform body of the final mass. Bodies without geometry (point
+ * bodies, explicit contacts only) keep their centre and mass; when their
+ * inertia is not given (0) it is derived as mass * r^2 / 3, with r the
+ * largest distance from the centre to the body's contact points (a uniform
+ * disc of radius r would have mass * r^2 / 2; the exact value is arbitrary,
+ * it only has to be positive and of the right size for the torque
+ * residuals), or r = the structure's scale (1 if unmeasured) when the body
+ * has no contacts. Fixed bodies are computed alike but their mass and
+ * inertia are never used (they are infinite). */
+#include "geometry/geometry.h"
+#include "model.h"
+
+#include <math.h>
+
+static void polygon_props(us_Body *b) {
+  double area = fabs(us_poly_signed_area(b->verts, b->nvert));
+  us_Vec2 c = us_poly_centroid(b->verts, b->nvert);
+  double j1 = us_poly_polar_moment(b->verts, b->nvert);
+  if (!b->mass_given) b->mass = b->density * area;
+  b->com[0] = c.x;
+  b->com[1] = c.y;
+  b->com[2] = 0.0;
+  b->inertia = area > 0 ? j1 * b->mass / area : 0.0;
+}
+
+/* Largest distance from body i's centre to its contact points (0: none). */
+static double contact_radius(const us_Structure *s, int i) {
+  const us_Body *b = &s->bodies[i];
+  double r = 0.0;
+  for (int k = 0; k < s->ncontact; k++) {
+    const us_Contact *c = &s->contacts[k];
+    if (c->a == i || c->b == i) r = US_MAX(r, hypot(c->p[0] - b->com[0], c->p[1] - b->com[1]));
+  }
+  return r;
+}
+
+static void point_props(const us_Structure *s, int i) {
+  us_Body *b = &s->bodies[i];
+  if (b->inertia > 0) return;
+  double r = contact_radius(s, i);
+  if (!(r > 0)) r = s->scale > 0 ? s->scale : 1.0;
+  double m = b->mass > 0 && isfinite(b->mass) ? b->mass : 1.0;
+  b->inertia = m * r * r / 3.0;
+}
+
+us_Status us_model_mass_properties(us_Structure *s, us_Error *err) {
+  for (int i = 0; i < s->nbody; i++) {
+    us_Body *b = &s->bodies[i];
+    if (b->nvert >= 3)
+      polygon_props(b);
+    else
+      point_props(s, i);
+    if (!b->fixed && !(b->mass > 0 && isfinite(b->mass) && isfinite(b->inertia)))
+      return us_error_set(err, US_ERR_INPUT, "body '%s': mass %g / inertia %g not usable",
+                          b->id, b->mass, b->inertia);
+  }
+  return US_OK;
+}
