@@ -1,11 +1,90 @@
-/* Tests of contact detection (src/contact) through us_structure_finalize. */
+/* Tests of contact detection (src/contact) through us_structure_finalize
+ * and us_detect_contacts: counts, points and normal directions of the
+ * contacts in small scenes, overlap and tolerance rules. Every scene is
+ * also checked for generic properties: unit normals, each point on the
+ * boundary of both bodies (within tol), the normal pointing from a into b
+ * (a step along it leaves a, a step against it leaves b). */
+#include "geometry/geometry.h"
 #include "model/model.h"
 #include "test.h"
+
+static int add_poly(us_Structure *s, const char *id, int n, const double *xy, us_Error *err) {
+  return us_structure_add_polygon(s, id, n, xy, 1.0, 0.0, 0, -1.0, err);
+}
 
 static int add_box(us_Structure *s, const char *id, double x0, double y0, double x1, double y1,
                    us_Error *err) {
   double xy[8] = {x0, y0, x1, y0, x1, y1, x0, y1};
-  return us_structure_add_polygon(s, id, 4, xy, 1.0, 0.0, 0, -1.0, err);
+  return add_poly(s, id, 4, xy, err);
+}
+
+/* Contacts between bodies i and j (either order; j may be US_GROUND). */
+static int count_pair(const us_Structure *s, int i, int j) {
+  int n = 0;
+  for (int k = 0; k < s->ncontact; k++) {
+    const us_Contact *c = &s->contacts[k];
+    n += (c->a == i && c->b == j) || (c->a == j && c->b == i);
+  }
+  return n;
+}
+
+/* Contact between i and j at (x, y), or -1. */
+static int find_at(const us_Structure *s, int i, int j, double x, double y) {
+  for (int k = 0; k < s->ncontact; k++) {
+    const us_Contact *c = &s->contacts[k];
+    if (((c->a == i && c->b == j) || (c->a == j && c->b == i)) &&
+        hypot(c->p[0] - x, c->p[1] - y) <= 1e-9)
+      return k;
+  }
+  return -1;
+}
+
+/* Normal of contact k expressed from i into j. */
+static us_Vec2 normal_from(const us_Structure *s, int k, int i) {
+  const us_Contact *c = &s->contacts[k];
+  double sg = c->a == i ? 1.0 : -1.0;
+  return us_v2(sg * c->n[0], sg * c->n[1]);
+}
+
+static int inside(const us_Structure *s, int i, us_Vec2 p) {
+  if (i == US_GROUND) return p.y < 0;
+  const us_Body *b = &s->bodies[i];
+  return us_point_polygon_depth(p, b->verts, b->nvert) > 0;
+}
+
+/* Generic properties of every contact (see the file comment). */
+static int contacts_sane(const us_Structure *s) {
+  double tol = s->contact_tol, step = 1e-3 * s->scale;
+  for (int k = 0; k < s->ncontact; k++) {
+    const us_Contact *c = &s->contacts[k];
+    us_Vec2 p = us_v2(c->p[0], c->p[1]), n = us_v2(c->n[0], c->n[1]);
+    int ok = fabs(us_v2_norm(n) - 1.0) < 1e-12 && c->mu >= 0 && c->b >= 0 && c->a != c->b;
+    for (int side = 0; side < 2; side++) {
+      int i = side ? c->b : c->a;
+      if (i == US_GROUND)
+        ok = ok && fabs(p.y) <= tol;
+      else
+        ok = ok && us_point_boundary_dist(p, s->bodies[i].verts, s->bodies[i].nvert, NULL) <= tol;
+    }
+    ok = ok && !inside(s, c->a, us_v2_add(p, us_v2_scale(n, step)));
+    ok = ok && !inside(s, c->b, us_v2_sub(p, us_v2_scale(n, step)));
+    if (!ok) {
+      fprintf(stderr, "  contact %d (%d, %d) at (%g, %g) n (%g, %g) fails\n", k, c->a, c->b,
+              p.x, p.y, n.x, n.y);
+      return 0;
+    }
+  }
+  return 1;
+}
+
+/* Finalize must fail with US_ERR_INPUT, message containing both pieces. */
+static int fails_with(us_Structure *s, const char *frag1, const char *frag2) {
+  us_Error err;
+  us_error_clear(&err);
+  us_Status st = us_structure_finalize(s, &err);
+  int ok = st == US_ERR_INPUT && strstr(err.msg, frag1) && (!frag2 || strstr(err.msg, frag2));
+  if (!ok) fprintf(stderr, "  status %s, message: %s\n", us_status_name(st), err.msg);
+  return ok;
 }
 
 static void block_on_ground(void) {
@@ -14,11 +93,343 @@ static void block_on_ground(void) {
   CHECK(add_box(s, "b0", 0, 0, 2, 1, &err) == 0);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_INT(s->ncontact, ==, 2);
+  CHECK(find_at(s, US_GROUND, 0, 0, 0) >= 0 && find_at(s, US_GROUND, 0, 2, 0) >= 0);
   for (int k = 0; k < s->ncontact; k++) {
     CHECK_INT(s->contacts[k].a, ==, US_GROUND);
     CHECK_NEAR(s->contacts[k].n[1], 1.0, 1e-12);
+    CHECK_NEAR(s->contacts[k].mu, 0.5, 0);
   }
+  CHECK(contacts_sane(s));
   us_structure_free(s);
 }
 
-US_TEST_MAIN(T(block_on_ground))
+/* Aligned corners: exactly two contacts between the blocks, vertical. */
+static void stacked_aligned(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  CHECK(add_box(s, "lo", 0, 0, 1, 1, &err) == 0);
+  CHECK(add_box(s, "hi", 0, 1, 1, 2, &err) == 1);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_INT(s->ncontact, ==, 4);
+  CHECK_INT(count_pair(s, US_GROUND, 0), ==, 2);
+  CHECK_INT(count_pair(s, 0, 1), ==, 2);
+  for (int x = 0; x <= 1; x++) {
+    int k = find_at(s, 0, 1, x, 1);
+    CHECK(k >= 0);
+    us_Vec2 n = normal_from(s, k, 0);
+    CHECK_NEAR(n.x, 0.0, 1e-12);
+    CHECK_NEAR(n.y, 1.0, 1e-12);
+  }
+  CHECK(contacts_sane(s));
+  us_structure_free(s);
+}
+
+/* Running bond: a brick over the joint of two bricks. */
+static void running_bond(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  CHECK(add_box(s, "l", 0, 0, 2, 1, &err) == 0);
+  CHECK(add_box(s, "r", 2, 0, 4, 1, &err) == 1);
+  CHECK(add_box(s, "top", 1, 1, 3, 2, &err) == 2);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_INT(count_pair(s, US_GROUND, 0), ==, 2);
+  CHECK_INT(count_pair(s, US_GROUND, 1), ==, 2);
+  CHECK_INT(count_pair(s, 0, 1), ==, 2);
+  CHECK_INT(count_pair(s, 0, 2), ==, 2);
+  CHECK_INT(count_pair(s, 1, 2), ==, 2);
+  CHECK_INT(s->ncontact, ==, 10);
+  CHECK(find_at(s, 0, 2, 1, 1) >= 0 && find_at(s, 0, 2, 2, 1) >= 0);
+  CHECK(find_at(s, 1, 2, 2, 1) >= 0 && find_at(s, 1, 2, 3, 1) >= 0);
+  for (int k = 0; k < s->ncontact; k++) {
+    const us_Contact *c = &s->contacts[k];
+    int side = (c->a == 0 && c->b == 1) || (c->a == 1 && c->b == 0);
+    CHECK_NEAR(fabs(c->n[side ? 0 : 1]), 1.0, 1e-12);
+  }
+  CHECK(contacts_sane(s));
+  us_structure_free(s);
+}
+
+/* Side by side, different heights: horizontal normals from left to right. */
+static void side_by_side(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  CHECK(add_box(s, "a", 0, 0, 1, 1, &err) == 0);
+  CHECK(add_box(s, "b", 1, 0, 2, 2, &err) == 1);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_INT(count_pair(s, 0, 1), ==, 2);
+  for (int y = 0; y <= 1; y++) {
+    int k = find_at(s, 0, 1, 1, y);
+    CHECK(k >= 0);
+    us_Vec2 n = normal_from(s, k, 0);
+    CHECK_NEAR(n.x, 1.0, 1e-12);
+    CHECK_NEAR(n.y, 0.0, 1e-12);
+  }
+  CHECK(contacts_sane(s));
+  us_structure_free(s);
+}
+
+/* A slab leaning at 30 degrees, its lower corner on the ground and its
+ * underside on the top corner of a block: one point, the slab's normal. */
+static void leaning_slab(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  double c = sqrt(3.0) / 2, sn = 0.5, len = 4.0, t = 0.2;
+  /* underside from (0,0) along (c, sn); the block corner is at distance 2 */
+  double bx = 2 * c, by = 2 * sn;
+  double slab[8] = {0, 0, len * c, len * sn, len * c - t * sn, len * sn + t * c, -t * sn, t * c};
+  CHECK(add_box(s, "block", bx, 0, bx + 1, by, &err) == 0);
+  CHECK(add_poly(s, "slab", 4, slab, &err) == 1);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_INT(count_pair(s, 0, 1), ==, 1);
+  int k = find_at(s, 0, 1, bx, by);
+  CHECK(k >= 0);
+  us_Vec2 n = normal_from(s, k, 1); /* from the slab into the block */
+  CHECK_NEAR(n.x, sn, 1e-9);
+  CHECK_NEAR(n.y, -c, 1e-9);
+  CHECK_INT(count_pair(s, US_GROUND, 1), ==, 1);
+  CHECK(contacts_sane(s));
+  us_structure_free(s);
+}
+
+/* A triangle standing on its apex on a block: one vertical contact. */
+static void triangle_apex(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  double tri[6] = {1.5, 1, 2.5, 2, 0.5, 2};
+  CHECK(add_box(s, "block", 0, 0, 3, 1, &err) == 0);
+  CHECK(add_poly(s, "tri", 3, tri, &err) == 1);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_INT(count_pair(s, 0, 1), ==, 1);
+  int k = find_at(s, 0, 1, 1.5, 1);
+  CHECK(k >= 0);
+  CHECK_INT(s->contacts[k].a, ==, 0);
+  CHECK_NEAR(s->contacts[k].n[1], 1.0, 1e-12);
+  CHECK(contacts_sane(s));
+  us_structure_free(s);
+}
+
+/* Corner to corner (diagonal boxes): documented to keep both edge
+ * normals at the shared point, each pointing away from the lower box. */
+static void corner_to_corner(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  CHECK(add_box(s, "lo", 0, 0, 1, 1, &err) == 0);
+  CHECK(add_box(s, "hi", 1, 1, 2, 2, &err) == 1);
+  s->bodies[1].fixed = 1; /* keep it from needing support */
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_INT(count_pair(s, 0, 1), ==, 2);
+  double sum[2] = {0, 0};
+  for (int k = 0; k < s->ncontact; k++)
+    if (s->contacts[k].a >= 0) {
+      us_Vec2 n = normal_from(s, k, 0);
+      CHECK_NEAR(s->contacts[k].p[0], 1.0, 1e-12);
+      CHECK_NEAR(s->contacts[k].p[1], 1.0, 1e-12);
+      sum[0] += n.x;
+      sum[1] += n.y;
+    }
+  CHECK_NEAR(sum[0], 1.0, 1e-12); /* (1,0) and (0,1) */
+  CHECK_NEAR(sum[1], 1.0, 1e-12);
+  us_structure_free(s);
+}
+
+/* A box sitting in the notch of an L (non-convex): two contacts on each
+ * face of the notch, none sideways at the reflex corner. */
+static void box_in_l_notch(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  double L[12] = {0, 0, 2, 0, 2, 2, 1, 2, 1, 1, 0, 1}; /* notch at the top left */
+  CHECK(add_poly(s, "L", 6, L, &err) == 0);
+  CHECK(add_box(s, "box", 0, 1, 1, 2, &err) == 1);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_INT(count_pair(s, 0, 1), ==, 4);
+  int kf0 = find_at(s, 0, 1, 0, 1), kf1 = find_at(s, 0, 1, 1, 1), kw = find_at(s, 0, 1, 1, 2);
+  CHECK(kf0 >= 0 && kf1 >= 0 && kw >= 0);
+  CHECK_NEAR(normal_from(s, kf0, 0).y, 1.0, 1e-12);
+  CHECK_NEAR(normal_from(s, kw, 0).x, -1.0, 1e-12);
+  CHECK(contacts_sane(s));
+  us_structure_free(s);
+}
+
+/* A block resting inside a U (non-convex): floor contacts only. */
+static void block_in_u(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  double U[16] = {0, 0, 5, 0, 5, 3, 4, 3, 4, 1, 1, 1, 1, 3, 0, 3};
+  CHECK(add_poly(s, "U", 8, U, &err) == 0);
+  CHECK(add_box(s, "in", 2, 1, 3, 2, &err) == 1);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_INT(count_pair(s, 0, 1), ==, 2);
+  CHECK(find_at(s, 0, 1, 2, 1) >= 0 && find_at(s, 0, 1, 3, 1) >= 0);
+  CHECK_INT(count_pair(s, US_GROUND, 0), ==, 2);
+  CHECK(contacts_sane(s));
+  us_structure_free(s);
+}
+
+/* Friction: the smaller of the two sides, each defaulting to the structure. */
+static void friction_rule(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  s->friction = 0.6;
+  double a[8] = {0, 0, 1, 0, 1, 1, 0, 1}, b[8] = {0, 1, 1, 1, 1, 2, 0, 2};
+  CHECK(us_structure_add_polygon(s, "a", 4, a, 1, 0, 0, 0.3, &err) == 0);
+  CHECK(us_structure_add_polygon(s, "b", 4, b, 1, 0, 0, 0.9, &err) == 1);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  for (int k = 0; k < s->ncontact; k++) CHECK_NEAR(s->contacts[k].mu, 0.3, 0);
+  us_structure_free(s);
+}
+
+static void fixed_bodies(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  double p1[8] = {0, 0, 1, 0, 1, 1, 0, 1}, p2[8] = {1, 0, 2, 0, 2, 1, 1, 1};
+  CHECK(us_structure_add_polygon(s, "pier1", 4, p1, 1, 0, 1, -1, &err) == 0);
+  CHECK(us_structure_add_polygon(s, "pier2", 4, p2, 1, 0, 1, -1, &err) == 1);
+  CHECK(add_box(s, "deck", 0.5, 1, 1.5, 1.2, &err) == 2);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_INT(count_pair(s, US_GROUND, 0), ==, 0);
+  CHECK_INT(count_pair(s, US_GROUND, 1), ==, 0);
+  CHECK_INT(count_pair(s, 0, 1), ==, 0);
+  CHECK_INT(count_pair(s, 0, 2), ==, 2);
+  CHECK_INT(count_pair(s, 1, 2), ==, 2);
+  CHECK_INT(s->ncontact, ==, 4);
+  CHECK(contacts_sane(s));
+  us_structure_free(s);
+}
+
+/* A gap of 0.5 tol is a contact, a gap of 2 tol is not. */
+static void tolerance(void) {
+  us_Error err;
+  double tol = 1e-3;
+  for (int far = 0; far <= 1; far++) {
+    double gap = far ? 2 * tol : 0.5 * tol;
+    us_Structure *s = us_structure_new(2);
+    s->contact_tol = tol;
+    CHECK(add_box(s, "lo", 0, gap, 1, 1, &err) == 0);
+    CHECK(add_box(s, "hi", 0.25, 1 + gap, 1.25, 2, &err) == 1);
+    CHECK_OK(us_structure_finalize(s, &err), &err);
+    CHECK_NEAR(s->contact_tol, tol, 0);
+    CHECK_INT(count_pair(s, US_GROUND, 0), ==, far ? 0 : 2);
+    CHECK_INT(count_pair(s, 0, 1), ==, far ? 0 : 2);
+    if (!far) CHECK(contacts_sane(s));
+    us_structure_free(s);
+  }
+  /* a penetration of 0.5 tol is also a contact, not an overlap */
+  us_Structure *s = us_structure_new(2);
+  s->contact_tol = tol;
+  CHECK(add_box(s, "lo", 0, 0, 1, 1, &err) == 0);
+  CHECK(add_box(s, "hi", 0.25, 1 - 0.5 * tol, 1.25, 2, &err) == 1);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_INT(count_pair(s, 0, 1), ==, 2);
+  us_structure_free(s);
+  /* ... and 2 tol is an overlap */
+  s = us_structure_new(2);
+  s->contact_tol = tol;
+  CHECK(add_box(s, "lo", 0, 0, 1, 1, &err) == 0);
+  CHECK(add_box(s, "hi", 0.25, 1 - 2 * tol, 1.25, 2, &err) == 1);
+  CHECK(fails_with(s, "'lo' and 'hi' overlap", NULL));
+  us_structure_free(s);
+}
+
+/* Overlaps are errors naming both bodies, also when no vertex is inside. */
+static void overlaps(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  CHECK(add_box(s, "a", 0, 0, 2, 1, &err) >= 0);
+  CHECK(add_box(s, "b", 1.5, 0.5, 3, 1.5, &err) >= 0);
+  CHECK(fails_with(s, "bodies 'a' and 'b' overlap", "vertex"));
+  us_structure_free(s);
+
+  /* two equal squares, one turned 45 degrees about the same centre */
+  s = us_structure_new(2);
+  double h = 0.5, r = 0.5 * sqrt(2.0), cx = 2, cy = 2;
+  double dia[8] = {cx, cy - r, cx + r, cy, cx, cy + r, cx - r, cy};
+  CHECK(add_box(s, "sq", cx - h, cy - h, cx + h, cy + h, &err) >= 0);
+  CHECK(add_poly(s, "diamond", 4, dia, &err) >= 0);
+  CHECK(fails_with(s, "bodies 'sq' and 'diamond' overlap", NULL));
+  us_structure_free(s);
+
+  /* a plus sign of two bars */
+  s = us_structure_new(2);
+  CHECK(add_box(s, "h", 0, 1.9, 4, 2.1, &err) >= 0);
+  CHECK(add_box(s, "v", 1.9, 0, 2.1, 4, &err) >= 0);
+  CHECK(fails_with(s, "bodies 'h' and 'v' overlap", NULL));
+  us_structure_free(s);
+
+  /* the same square twice */
+  s = us_structure_new(2);
+  CHECK(add_box(s, "one", 0, 0, 1, 1, &err) >= 0);
+  CHECK(add_box(s, "two", 0, 0, 1, 1, &err) >= 0);
+  CHECK(fails_with(s, "bodies 'one' and 'two' overlap", NULL));
+  us_structure_free(s);
+
+  /* a triangle inscribed in a square: its vertices on the square's edges */
+  s = us_structure_new(2);
+  double tri[6] = {1, 0, 2, 1, 0, 2};
+  CHECK(add_box(s, "sq", 0, 0, 2, 2, &err) >= 0);
+  CHECK(add_poly(s, "tri", 3, tri, &err) >= 0);
+  CHECK(fails_with(s, "bodies 'sq' and 'tri' overlap", NULL));
+  us_structure_free(s);
+
+  /* a small box entirely inside a big one */
+  s = us_structure_new(2);
+  CHECK(add_box(s, "big", 0, 0, 4, 4, &err) >= 0);
+  CHECK(add_box(s, "small", 1, 1, 2, 2, &err) >= 0);
+  CHECK(fails_with(s, "bodies 'big' and 'small' overlap", NULL));
+  us_structure_free(s);
+}
+
+/* Detection is deterministic and idempotent; running it again on a
+ * finalized structure gives the same contacts. */
+static void deterministic(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  CHECK(add_box(s, "l", 0, 0, 2, 1, &err) == 0);
+  CHECK(add_box(s, "r", 2, 0, 4, 1, &err) == 1);
+  CHECK(add_box(s, "top", 1, 1, 3, 2, &err) == 2);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  int n = s->ncontact;
+  us_Contact *copy = us_malloc((size_t)n * sizeof *copy);
+  CHECK(copy);
+  memcpy(copy, s->contacts, (size_t)n * sizeof *copy);
+  us_ContactSettings cs = {0};
+  us_Status st = us_detect_contacts(s, &cs, &err);
+  int same = st == US_OK && s->ncontact == n && !memcmp(copy, s->contacts, (size_t)n * sizeof *copy);
+  us_free(copy);
+  us_structure_free(s);
+  CHECK(same);
+}
+
+/* A running-bond wall of rows x cols bricks (odd rows shifted by half a
+ * brick): the expected count from the layout is 2 per bottom brick, 2 per
+ * pair of neighbours in a row and 2 per overlapping pair of bricks in
+ * consecutive rows. */
+static void small_wall(void) {
+  us_Error err;
+  int rows = 8, cols = 7;
+  double w = 2.0, h = 1.0;
+  us_Structure *s = us_structure_new(2);
+  for (int r = 0; r < rows; r++)
+    for (int c = 0; c < cols; c++) {
+      char id[32];
+      snprintf(id, sizeof id, "b%d_%d", r, c);
+      double x0 = c * w + (r % 2) * 0.5 * w;
+      CHECK(add_box(s, id, x0, r * h, x0 + w, (r + 1) * h, &err) >= 0);
+    }
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  int overl = 0; /* pairs with overlapping x-ranges between rows 0 and 1 */
+  for (int a = 0; a < cols; a++)
+    for (int b = 0; b < cols; b++) {
+      double lo = US_MAX(a * w, b * w + 0.5 * w), hi = US_MIN((a + 1) * w, (b + 1) * w + 0.5 * w);
+      overl += hi - lo > 0;
+    }
+  int expect = 2 * cols + rows * 2 * (cols - 1) + (rows - 1) * 2 * overl;
+  CHECK_INT(s->ncontact, ==, expect);
+  CHECK(contacts_sane(s));
+  us_structure_free(s);
+}
+
+
+US_TEST_MAIN(T(block_on_ground), T(stacked_aligned), T(running_bond), T(side_by_side),
+             T(leaning_slab), T(triangle_apex), T(corner_to_corner), T(box_in_l_notch),
+             T(block_in_u), T(friction_rule), T(fixed_bodies), T(tolerance), T(overlaps),
+             T(deterministic), T(small_wall))

@@ -6,9 +6,9 @@
  * numbers, vertex counts, masses, densities, friction, point bodies only
  * with explicit contacts). Then the structure is measured (bounding box ->
  * scale -> contact_tol), and the second pass checks shapes against that
- * tolerance: the area must exceed tol * diameter (the body is on average
- * thicker than the tolerance), the polygon must be simple, and with a
- * ground no vertex may lie below y = -tol. Polygons are made
+ * tolerance: the polygon must be simple, its area must exceed
+ * tol * diameter (the body is on average thicker than the tolerance), and
+ * with a ground no vertex may lie below y = -tol. Polygons are made
  * counter-clockwise in place (vertex 0 is kept). On error contact_tol is
  * restored, so a failed call leaves the structure as it was apart from
  * orientation. */
@@ -76,39 +76,49 @@ static us_Status check_values(const us_Structure *s, const us_Body *b, us_Error 
   return check_material(b, err);
 }
 
-static const char *defect_text(us_PolyDefect d) {
+static us_Status defect_error(const us_Body *b, us_PolyDefect d, int i, int j, us_Error *err) {
   switch (d) {
-  case US_POLY_REPEATED_VERTEX: return "repeated vertex (vertices %d and %d coincide)";
-  case US_POLY_EDGES_CROSS: return "polygon is self-intersecting (edges %d and %d cross)";
-  case US_POLY_EDGES_FOLD: return "polygon folds back on itself (edges %d and %d overlap)";
-  default: return "polygon is not simple (%d, %d)";
+  case US_POLY_NOMEM:
+    return us_error_set(err, US_ERR_NOMEM, "out of memory checking body '%s'", b->id);
+  case US_POLY_REPEATED_VERTEX:
+    return us_error_set(err, US_ERR_INPUT, "body '%s': repeated vertex (vertices %d and %d coincide)",
+                        b->id, i, j);
+  case US_POLY_EDGES_FOLD:
+    return us_error_set(err, US_ERR_INPUT,
+                        "body '%s': polygon folds back on itself (edges %d and %d overlap)", b->id,
+                        i, j);
+  default:
+    return us_error_set(err, US_ERR_INPUT,
+                        "body '%s': polygon is self-intersecting (edges %d and %d cross)", b->id,
+                        i, j);
   }
 }
 
-/* Area, simplicity, orientation and ground of one polygon body. */
+/* Do edges i and j of b cross at one point interior to both? */
+static int crosses_properly(const us_Body *b, int i, int j) {
+  const double *v = b->verts;
+  int n = b->nvert;
+  return us_segment_intersect(us_poly_vertex(v, n, i), us_poly_vertex(v, n, i + 1),
+                              us_poly_vertex(v, n, j), us_poly_vertex(v, n, j + 1), NULL,
+                              NULL) == US_SEG_PROPER;
+}
+
+/* Simplicity, area, orientation and ground of one polygon body. A sliver
+ * thinner than tol always has vertices or edges within tol of each other,
+ * so the area is judged before those defects are reported (the clearer
+ * message), but after a proper crossing (a bow-tie may have zero area). */
 static us_Status check_shape(const us_Structure *s, us_Body *b, double tol, us_Error *err) {
   double bb[4];
   us_poly_bbox(b->verts, b->nvert, bb);
+  int i = -1, j = -1;
+  us_PolyDefect d = us_poly_check_simple(b->verts, b->nvert, tol, &i, &j);
+  if (d == US_POLY_NOMEM || (d == US_POLY_EDGES_CROSS && crosses_properly(b, i, j)))
+    return defect_error(b, d, i, j, err);
   double area = us_poly_signed_area(b->verts, b->nvert);
   if (!(fabs(area) > tol * hypot(bb[2] - bb[0], bb[3] - bb[1])))
     return us_error_set(err, US_ERR_INPUT, "body '%s': polygon has (almost) zero area (%g)",
                         b->id, area);
-  int i = -1, j = -1;
-  us_PolyDefect d = us_poly_check_simple(b->verts, b->nvert, tol, &i, &j);
-  if (d == US_POLY_NOMEM)
-    return us_error_set(err, US_ERR_NOMEM, "out of memory checking body '%s'", b->id);
-  if (d != US_POLY_SIMPLE) {
-    char what[160];
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wformat-nonliteral"
-#endif
-    snprintf(what, sizeof what, defect_text(d), i, j);
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
-    return us_error_set(err, US_ERR_INPUT, "body '%s': %s", b->id, what);
-  }
+  if (d != US_POLY_SIMPLE) return defect_error(b, d, i, j, err);
   us_poly_make_ccw(b->verts, b->nvert);
   if (s->ground && bb[1] < -tol)
     return us_error_set(err, US_ERR_INPUT, "body '%s' is below the ground (y = %g)", b->id,

@@ -1,0 +1,235 @@
+/* Tests of structure validation and mass properties (src/model/validate.c,
+ * src/model/massprops.c) through us_structure_finalize: every bad input is
+ * rejected with US_ERR_INPUT and a message naming the body. */
+#include "model/model.h"
+#include "test.h"
+
+static int add_box(us_Structure *s, const char *id, double x0, double y0, double x1, double y1,
+                   us_Error *err) {
+  double xy[8] = {x0, y0, x1, y0, x1, y1, x0, y1};
+  return us_structure_add_polygon(s, id, 4, xy, 1.0, 0.0, 0, -1.0, err);
+}
+
+/* Finalize must fail with US_ERR_INPUT and a message containing both
+ * fragments (the second may be NULL). */
+static int fails_with(us_Structure *s, const char *frag1, const char *frag2) {
+  us_Error err;
+  us_error_clear(&err);
+  us_Status st = us_structure_finalize(s, &err);
+  int ok = st == US_ERR_INPUT && strstr(err.msg, frag1) && (!frag2 || strstr(err.msg, frag2));
+  if (!ok) fprintf(stderr, "  status %s, message: %s\n", us_status_name(st), err.msg);
+  return ok;
+}
+
+static void self_intersecting(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  double bow[8] = {0, 0, 1, 1, 1, 0, 0, 1};
+  CHECK(add_box(s, "ok", 2, 0, 3, 1, &err) >= 0);
+  CHECK(us_structure_add_polygon(s, "b3", 4, bow, 1, 0, 0, -1, &err) >= 0);
+  CHECK(fails_with(s, "'b3'", "self-intersecting (edges 0 and 2 cross)"));
+  us_structure_free(s);
+}
+
+static void zero_area(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  double flat[8] = {0, 0, 1, 0, 2, 0, 3, 1e-12};
+  CHECK(add_box(s, "ok", 4, 0, 5, 1, &err) >= 0);
+  CHECK(us_structure_add_polygon(s, "flat", 4, flat, 1, 0, 0, -1, &err) >= 0);
+  CHECK(fails_with(s, "'flat'", "zero area"));
+  us_structure_free(s);
+}
+
+static void too_few_vertices(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  double seg[4] = {0, 0, 1, 0};
+  CHECK(us_structure_add_polygon(s, "seg", 2, seg, 1, 0, 0, -1, &err) >= 0);
+  CHECK(fails_with(s, "'seg'", "2 vertices"));
+  us_structure_free(s);
+}
+
+static void non_finite(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  double xy[8] = {0, 0, 1, 0, 1, NAN, 0, 1};
+  CHECK(us_structure_add_polygon(s, "nan", 4, xy, 1, 0, 0, -1, &err) >= 0);
+  CHECK(fails_with(s, "'nan'", "vertex 2 has a non-finite"));
+  us_structure_free(s);
+  s = us_structure_new(2);
+  xy[5] = INFINITY;
+  CHECK(us_structure_add_polygon(s, "inf", 4, xy, 1, 0, 0, -1, &err) >= 0);
+  CHECK(fails_with(s, "'inf'", "non-finite"));
+  us_structure_free(s);
+}
+
+static void below_ground(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  CHECK(add_box(s, "b0", 0, 0, 1, 1, &err) >= 0);
+  CHECK(add_box(s, "b3", 2, -0.2, 3, 1, &err) >= 0);
+  CHECK(fails_with(s, "body 'b3' is below the ground", "y = -0.2"));
+  us_structure_free(s);
+  /* without a ground the same structure is fine */
+  s = us_structure_new(2);
+  s->ground = 0;
+  CHECK(add_box(s, "b3", 2, -0.2, 3, 1, &err) >= 0);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_INT(s->ncontact, ==, 0);
+  us_structure_free(s);
+}
+
+static void duplicate_id(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  CHECK(add_box(s, "b", 0, 0, 1, 1, &err) == 0);
+  CHECK(add_box(s, "b", 1, 0, 2, 1, &err) == -1);
+  CHECK(strstr(err.msg, "'b'") != NULL);
+  us_structure_free(s);
+}
+
+/* Values set directly (as a file reader may do) are checked too. */
+static void bad_materials(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  CHECK(add_box(s, "d", 0, 0, 1, 1, &err) >= 0);
+  s->bodies[0].density = -2.0;
+  CHECK(fails_with(s, "'d'", "density"));
+  s->bodies[0].density = 1.0;
+  s->bodies[0].friction = NAN;
+  CHECK(fails_with(s, "'d'", "friction"));
+  s->bodies[0].friction = INFINITY;
+  CHECK(fails_with(s, "'d'", "friction"));
+  s->bodies[0].friction = 0.0; /* zero friction is allowed */
+  s->bodies[0].mass_given = 1;
+  s->bodies[0].mass = NAN;
+  CHECK(fails_with(s, "'d'", "mass"));
+  s->bodies[0].mass = 2.0;
+  s->friction = -1.0;
+  CHECK(fails_with(s, "default friction", NULL));
+  s->friction = 0.5;
+  s->gravity[1] = NAN;
+  CHECK(fails_with(s, "gravity", NULL));
+  s->gravity[1] = -9.81;
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_NEAR(s->bodies[0].mass, 2.0, 0);
+  us_structure_free(s);
+}
+
+static void made_ccw(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  double cw[8] = {0, 0, 0, 1, 2, 1, 2, 0};
+  CHECK(us_structure_add_polygon(s, "cw", 4, cw, 1, 0, 0, -1, &err) >= 0);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  const us_Body *b = &s->bodies[0];
+  double a2 = 0;
+  for (int k = 0; k < 4; k++) {
+    int l = (k + 1) % 4;
+    a2 += b->verts[2 * k] * b->verts[2 * l + 1] - b->verts[2 * l] * b->verts[2 * k + 1];
+  }
+  CHECK_NEAR(a2, 4.0, 1e-12); /* twice the area, positive */
+  us_structure_free(s);
+}
+
+static void mass_properties(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  double w = 2.0, h = 0.5;
+  double xy[8] = {1, 0, 1 + w, 0, 1 + w, h, 1, h};
+  CHECK(us_structure_add_polygon(s, "dens", 4, xy, 3.0, 0.0, 0, -1, &err) == 0);
+  double xy2[8] = {1, h, 1 + w, h, 1 + w, 2 * h, 1, 2 * h};
+  CHECK(us_structure_add_polygon(s, "given", 4, xy2, 3.0, 7.0, 0, -1, &err) == 1);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  const us_Body *a = &s->bodies[0], *b = &s->bodies[1];
+  CHECK_NEAR(a->mass, 3.0 * w * h, 1e-12);
+  CHECK_NEAR(a->com[0], 1 + w / 2, 1e-12);
+  CHECK_NEAR(a->com[1], h / 2, 1e-12);
+  CHECK_NEAR(a->inertia, a->mass * (w * w + h * h) / 12.0, 1e-12);
+  CHECK_NEAR(b->mass, 7.0, 0);
+  CHECK_NEAR(b->com[1], 1.5 * h, 1e-12);
+  CHECK_NEAR(b->inertia, 7.0 * (w * w + h * h) / 12.0, 1e-12);
+  CHECK_NEAR(s->weight, 9.81 * (3.0 * w * h + 7.0), 1e-9);
+  us_structure_free(s);
+}
+
+/* Point bodies need explicit contacts; their inertia is derived from the
+ * distance to their contacts when not given. */
+static void point_bodies(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  double c[2] = {0, 1};
+  CHECK(us_structure_add_point_body(s, "p", 2.0, c, 0, &err) == 0);
+  CHECK(fails_with(s, "'p'", "explicit contacts"));
+  double p[3] = {0.5, 0, 0}, n[3] = {0, 1, 0};
+  CHECK(us_structure_add_contact(s, US_GROUND, 0, p, n, -1, &err) == 0);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  double r2 = 0.5 * 0.5 + 1.0;
+  CHECK_NEAR(s->bodies[0].inertia, 2.0 * r2 / 3.0, 1e-12);
+  CHECK_INT(s->ncontact, ==, 1);
+  CHECK(s->explicit_contacts);
+  us_structure_free(s);
+
+  s = us_structure_new(2);
+  CHECK(us_structure_add_point_body(s, "q", 0.0, c, 0, &err) == 0);
+  CHECK(us_structure_add_contact(s, US_GROUND, 0, p, n, -1, &err) == 0);
+  CHECK(fails_with(s, "'q'", "mass"));
+  s->bodies[0].mass = 1.0;
+  s->bodies[0].com[0] = NAN;
+  CHECK(fails_with(s, "'q'", "centre"));
+  us_structure_free(s);
+}
+
+static void empty_and_all_fixed(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_INT(s->ncontact, ==, 0);
+  CHECK(s->contact_tol > 0 && s->scale > 0);
+  us_structure_free(s);
+  s = us_structure_new(2);
+  double xy[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+  CHECK(us_structure_add_polygon(s, "pier", 4, xy, 1, 0, 1, -1, &err) == 0);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_INT(s->ncontact, ==, 0); /* fixed bodies take no ground contacts */
+  us_structure_free(s);
+}
+
+/* Every allocation failure is reported as US_ERR_NOMEM, never a crash or
+ * a leak (the harness checks leaks after the case). */
+static int three_boxes(us_Structure *s, us_Error *err) {
+  return add_box(s, "a", 0, 0, 2, 1, err) >= 0 && add_box(s, "b", 0, 1, 2, 2, err) >= 0 &&
+         add_box(s, "c", 2, 0, 3, 1, err) >= 0;
+}
+
+static void out_of_memory(void) {
+  us_Error err;
+  us_Structure *ref = us_structure_new(2);
+  CHECK(ref && three_boxes(ref, &err));
+  CHECK_OK(us_structure_finalize(ref, &err), &err);
+  int nref = ref->ncontact;
+  us_structure_free(ref);
+  int failures = 0;
+  for (long n = 0; n < 200; n++) {
+    us_Structure *s = us_structure_new(2);
+    if (!s) continue;
+    if (three_boxes(s, &err)) {
+      us_alloc_fail_after(n);
+      us_Status st = us_structure_finalize(s, &err);
+      us_alloc_fail_after(-1);
+      if (st != US_OK) {
+        CHECK_INT(st, ==, US_ERR_NOMEM);
+        failures++;
+      } else {
+        CHECK_INT(s->ncontact, ==, nref);
+      }
+    }
+    us_structure_free(s);
+  }
+  CHECK(failures > 0);
+}
+
+US_TEST_MAIN(T(self_intersecting), T(zero_area), T(too_few_vertices), T(non_finite),
+             T(below_ground), T(duplicate_id), T(bad_materials), T(made_ccw),
+             T(mass_properties), T(point_bodies), T(empty_and_all_fixed), T(out_of_memory))
