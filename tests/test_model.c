@@ -117,6 +117,31 @@ static void bad_materials(void) {
   us_structure_free(s);
 }
 
+static void repeated_vertex(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  double xy[10] = {0, 0, 2, 0, 2, 2, 2, 2, 0, 2};
+  CHECK(us_structure_add_polygon(s, "rep", 5, xy, 1, 0, 0, -1, &err) >= 0);
+  CHECK(fails_with(s, "'rep'", "vertices 2 and 3 coincide"));
+  us_structure_free(s);
+}
+
+/* A non-convex (L-shaped) body: centre of mass from the two rectangles. */
+static void l_shape_body(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  double L[12] = {0, 0, 3, 0, 3, 1, 1, 1, 1, 3, 0, 3};
+  CHECK(us_structure_add_polygon(s, "L", 6, L, 2.0, 0, 0, -1, &err) == 0);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  const us_Body *b = &s->bodies[0];
+  CHECK_NEAR(b->mass, 2.0 * (3.0 + 2.0), 1e-12);
+  CHECK_NEAR(b->com[0], (3.0 * 1.5 + 2.0 * 0.5) / 5.0, 1e-12);
+  CHECK_NEAR(b->com[1], (3.0 * 0.5 + 2.0 * 2.0) / 5.0, 1e-12);
+  CHECK(b->inertia > 0);
+  CHECK_INT(s->ncontact, ==, 2); /* (0,0) and (3,0) on the ground */
+  us_structure_free(s);
+}
+
 static void made_ccw(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
@@ -231,5 +256,6 @@ static void out_of_memory(void) {
 }
 
 US_TEST_MAIN(T(self_intersecting), T(zero_area), T(too_few_vertices), T(non_finite),
-             T(below_ground), T(duplicate_id), T(bad_materials), T(made_ccw),
-             T(mass_properties), T(point_bodies), T(empty_and_all_fixed), T(out_of_memory))
+             T(below_ground), T(duplicate_id), T(bad_materials), T(repeated_vertex),
+             T(l_shape_body), T(made_ccw), T(mass_properties), T(point_bodies),
+             T(empty_and_all_fixed), T(out_of_memory))

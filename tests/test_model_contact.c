@@ -69,8 +69,8 @@ static int contacts_sane(const us_Structure *s) {
     ok = ok && !inside(s, c->a, us_v2_add(p, us_v2_scale(n, step)));
     ok = ok && !inside(s, c->b, us_v2_sub(p, us_v2_scale(n, step)));
     if (!ok) {
-      fprintf(stderr, "  contact %d (%d, %d) at (%g, %g) n (%g, %g) fails\n", k, c->a, c->b,
-              p.x, p.y, n.x, n.y);
+      fprintf(stderr, "  contact %d (%d, %d) at (%g, %g) n (%g, %g) fails\n", k, c->a, c->b, p.x,
+              p.y, n.x, n.y);
       return 0;
     }
   }
@@ -336,7 +336,7 @@ static void overlaps(void) {
   us_Structure *s = us_structure_new(2);
   CHECK(add_box(s, "a", 0, 0, 2, 1, &err) >= 0);
   CHECK(add_box(s, "b", 1.5, 0.5, 3, 1.5, &err) >= 0);
-  CHECK(fails_with(s, "bodies 'a' and 'b' overlap", "vertex"));
+  CHECK(fails_with(s, "bodies 'a' and 'b' overlap (vertex 0 of 'b' is 0.5 inside 'a')", NULL));
   us_structure_free(s);
 
   /* two equal squares, one turned 45 degrees about the same centre */
@@ -370,6 +370,15 @@ static void overlaps(void) {
   CHECK(fails_with(s, "bodies 'sq' and 'tri' overlap", NULL));
   us_structure_free(s);
 
+  /* a block pushed into the arm of a U (non-convex), no vertex of the U
+   * inside the block */
+  s = us_structure_new(2);
+  double U[16] = {0, 0, 5, 0, 5, 3, 4, 3, 4, 1, 1, 1, 1, 3, 0, 3};
+  CHECK(add_poly(s, "U", 8, U, &err) >= 0);
+  CHECK(add_box(s, "in", 3.5, 1, 4.5, 2, &err) >= 0);
+  CHECK(fails_with(s, "bodies 'U' and 'in' overlap", NULL));
+  us_structure_free(s);
+
   /* a small box entirely inside a big one */
   s = us_structure_new(2);
   CHECK(add_box(s, "big", 0, 0, 4, 4, &err) >= 0);
@@ -393,7 +402,8 @@ static void deterministic(void) {
   memcpy(copy, s->contacts, (size_t)n * sizeof *copy);
   us_ContactSettings cs = {0};
   us_Status st = us_detect_contacts(s, &cs, &err);
-  int same = st == US_OK && s->ncontact == n && !memcmp(copy, s->contacts, (size_t)n * sizeof *copy);
+  int same =
+      st == US_OK && s->ncontact == n && !memcmp(copy, s->contacts, (size_t)n * sizeof *copy);
   us_free(copy);
   us_structure_free(s);
   CHECK(same);
@@ -427,7 +437,6 @@ static void small_wall(void) {
   CHECK(contacts_sane(s));
   us_structure_free(s);
 }
-
 
 US_TEST_MAIN(T(block_on_ground), T(stacked_aligned), T(running_bond), T(side_by_side),
              T(leaning_slab), T(triangle_apex), T(corner_to_corner), T(box_in_l_notch),

@@ -67,8 +67,8 @@ static int push_pair(us_BodyPair **pairs, int *np, int *cap, int a, int b) {
   return 0;
 }
 
-static int sweep(const us_Structure *s, const Box *bx, int n, int ax, us_BodyPair **pairs,
-                 int *np, int *cap) {
+static int sweep(const us_Structure *s, const Box *bx, int n, int ax, us_BodyPair **pairs, int *np,
+                 int *cap) {
   int other = 1 - ax;
   for (int k = 0; k < n; k++)
     for (int m = k + 1; m < n && bx[m].lo[ax] <= bx[k].hi[ax]; m++) {

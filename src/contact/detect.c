@@ -71,8 +71,8 @@ static us_Status install(us_Structure *s, const us_CandList *l, us_Error *err) {
 
 us_Status us_detect_contacts(us_Structure *s, const us_ContactSettings *set, us_Error *err) {
   if (s->dim != 2) return us_error_set(err, US_ERR_INPUT, "contact detection needs dim 2");
-  double tol = set && set->tol > 0 ? set->tol
-                                   : us_geom_tol(s->scale > 0 ? s->scale : polygon_scale(s));
+  double tol =
+      set && set->tol > 0 ? set->tol : us_geom_tol(s->scale > 0 ? s->scale : polygon_scale(s));
   us_CandList l = {NULL, 0, 0};
   us_Status st = US_OK;
   if (ground_contacts(s, tol, &l))

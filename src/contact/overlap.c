@@ -22,7 +22,8 @@
 
 static us_Status report(const us_Structure *s, int i, int j, const char *what, int k, int owner,
                         double depth, us_Error *err) {
-  return us_error_set(err, US_ERR_INPUT, "bodies '%s' and '%s' overlap (%s %d of '%s' is %g inside '%s')",
+  return us_error_set(err, US_ERR_INPUT,
+                      "bodies '%s' and '%s' overlap (%s %d of '%s' is %g inside '%s')",
                       s->bodies[i].id, s->bodies[j].id, what, k, s->bodies[owner].id, depth,
                       s->bodies[owner == i ? j : i].id);
 }
@@ -91,8 +92,8 @@ static int deep_edge(const us_Body *v, const us_Body *p, double tol, double *ts,
   for (int f = 0; f < v->nvert; f++) {
     us_Vec2 q0 = us_poly_vertex(v->verts, v->nvert, f);
     us_Vec2 q1 = us_poly_vertex(v->verts, v->nvert, f + 1);
-    if (US_MAX(q0.x, q1.x) < bb[0] || US_MIN(q0.x, q1.x) > bb[2] ||
-        US_MAX(q0.y, q1.y) < bb[1] || US_MIN(q0.y, q1.y) > bb[3])
+    if (US_MAX(q0.x, q1.x) < bb[0] || US_MIN(q0.x, q1.x) > bb[2] || US_MAX(q0.y, q1.y) < bb[1] ||
+        US_MIN(q0.y, q1.y) > bb[3])
       continue;
     double d = edge_depth(v, f, p, tol, ts);
     if (d > tol) {
@@ -105,18 +106,21 @@ static int deep_edge(const us_Body *v, const us_Body *p, double tol, double *ts,
 
 /* Outward unit normal of CCW edge e of body b. */
 static us_Vec2 edge_normal(const us_Body *b, int e) {
-  us_Vec2 d = us_v2_sub(us_poly_vertex(b->verts, b->nvert, e + 1),
-                        us_poly_vertex(b->verts, b->nvert, e));
+  us_Vec2 d =
+      us_v2_sub(us_poly_vertex(b->verts, b->nvert, e + 1), us_poly_vertex(b->verts, b->nvert, e));
   double l = us_v2_norm(d);
   return l > 0 ? us_v2(d.y / l, -d.x / l) : us_v2(0, 0);
 }
 
-/* Edges e of a and f of b collinear, same outward side, sharing > tol. */
-static int same_side_overlap(const us_Body *a, int e, const us_Body *b, int f, double tol) {
-  us_Vec2 na = edge_normal(a, e), nb = edge_normal(b, f);
+/* Edges e of a (outward normal na) and f of b collinear, same outward
+ * side, sharing > tol. */
+static int same_side_overlap(const us_Body *a, int e, us_Vec2 na, const us_Body *b, int f,
+                             double tol) {
+  us_Vec2 nb = edge_normal(b, f);
   if (us_v2_dot(na, nb) < US_CONTACT_NORMAL_COS) return 0;
   us_Vec2 p0 = us_poly_vertex(a->verts, a->nvert, e);
-  us_Vec2 q0 = us_poly_vertex(b->verts, b->nvert, f), q1 = us_poly_vertex(b->verts, b->nvert, f + 1);
+  us_Vec2 q0 = us_poly_vertex(b->verts, b->nvert, f),
+          q1 = us_poly_vertex(b->verts, b->nvert, f + 1);
   if (fabs(us_v2_dot(us_v2_sub(q0, p0), na)) > tol || fabs(us_v2_dot(us_v2_sub(q1, p0), na)) > tol)
     return 0;
   us_Vec2 dir = us_v2(-na.y, na.x); /* along edge e */
@@ -128,13 +132,15 @@ static int same_side_overlap(const us_Body *a, int e, const us_Body *b, int f, d
 
 static us_Status coincident(const us_Structure *s, int i, int j, double tol, us_Error *err) {
   const us_Body *a = &s->bodies[i], *b = &s->bodies[j];
-  for (int e = 0; e < a->nvert; e++)
+  for (int e = 0; e < a->nvert; e++) {
+    us_Vec2 na = edge_normal(a, e);
     for (int f = 0; f < b->nvert; f++)
-      if (same_side_overlap(a, e, b, f, tol))
+      if (same_side_overlap(a, e, na, b, f, tol))
         return us_error_set(err, US_ERR_INPUT,
                             "bodies '%s' and '%s' overlap (edge %d of '%s' lies on edge %d of "
                             "'%s' with both bodies on the same side)",
                             a->id, b->id, e, a->id, f, b->id);
+  }
   return US_OK;
 }
 

@@ -48,7 +48,8 @@ static double follow_depth(us_Vec2 v, us_Vec2 w, us_Vec2 p0, us_Vec2 dir, us_Vec
 /* Does vertex k of B touch edge e of A? Fills the outward normal. */
 static int vertex_on_edge(const us_Body *A, int e, const us_Body *B, int k, double tol,
                           us_Vec2 *n) {
-  us_Vec2 p0 = us_poly_vertex(A->verts, A->nvert, e), p1 = us_poly_vertex(A->verts, A->nvert, e + 1);
+  us_Vec2 p0 = us_poly_vertex(A->verts, A->nvert, e),
+          p1 = us_poly_vertex(A->verts, A->nvert, e + 1);
   us_Vec2 v = us_poly_vertex(B->verts, B->nvert, k);
   if (us_point_segment_dist(v, p0, p1, NULL) > tol) return 0;
   double len = us_v2_dist(p0, p1);

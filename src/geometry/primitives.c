@@ -10,8 +10,10 @@
 
 #include <math.h>
 
-double us_v2_norm(us_Vec2 a) { return hypot(a.x, a.y); }
-double us_v2_dist(us_Vec2 a, us_Vec2 b) { return hypot(a.x - b.x, a.y - b.y); }
+/* sqrt of the sum of squares rather than hypot: several times faster, and
+ * coordinates of real structures are far from overflowing when squared. */
+double us_v2_norm(us_Vec2 a) { return sqrt(a.x * a.x + a.y * a.y); }
+double us_v2_dist(us_Vec2 a, us_Vec2 b) { return us_v2_norm(us_v2_sub(a, b)); }
 
 double us_orient(us_Vec2 o, us_Vec2 a, us_Vec2 b) {
   return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
@@ -75,8 +77,8 @@ double us_point_boundary_dist(us_Vec2 p, const double *xy, int n, int *edge) {
   double best = INFINITY;
   int be = -1;
   for (int i = 0; i < n; i++) {
-    double d = us_point_segment_dist(p, us_poly_vertex(xy, n, i), us_poly_vertex(xy, n, i + 1),
-                                     NULL);
+    double d =
+        us_point_segment_dist(p, us_poly_vertex(xy, n, i), us_poly_vertex(xy, n, i + 1), NULL);
     if (d < best) {
       best = d;
       be = i;

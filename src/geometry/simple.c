@@ -28,8 +28,7 @@ static void set_pair(int *i, int *j, int a, int b) {
   if (j) *j = US_MAX(a, b);
 }
 
-static us_PolyDefect check_vertices(const double *xy, int n, double tol, Span *sp, int *i,
-                                    int *j) {
+static us_PolyDefect check_vertices(const double *xy, int n, double tol, Span *sp, int *i, int *j) {
   for (int k = 0; k < n; k++) sp[k] = (Span){xy[2 * k], xy[2 * k], k};
   qsort(sp, (size_t)n, sizeof *sp, span_cmp);
   for (int a = 0; a < n; a++)
@@ -51,8 +50,7 @@ static int edges_fold(const double *xy, int n, int e, double tol) {
   return us_point_segment_dist(a, b, c, NULL) <= tol || us_point_segment_dist(c, a, b, NULL) <= tol;
 }
 
-static us_PolyDefect edge_pair(const double *xy, int n, int e, int f, double tol, int *i,
-                               int *j) {
+static us_PolyDefect edge_pair(const double *xy, int n, int e, int f, double tol, int *i, int *j) {
   set_pair(i, j, e, f);
   if ((e + 1) % n == f) return edges_fold(xy, n, e, tol) ? US_POLY_EDGES_FOLD : US_POLY_SIMPLE;
   if ((f + 1) % n == e) return edges_fold(xy, n, f, tol) ? US_POLY_EDGES_FOLD : US_POLY_SIMPLE;
