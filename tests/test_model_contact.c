@@ -208,6 +208,70 @@ static void triangle_apex(void) {
   us_structure_free(s);
 }
 
+/* Does direction n (from body i into body j, at vertex vi of i and vj of
+ * j) separate the two corners: i's edges there point against n, j's along? */
+static int separates(const us_Structure *s, int i, int vi, int j, int vj, us_Vec2 n) {
+  const us_Body *bi = &s->bodies[i], *bj = &s->bodies[j];
+  for (int d = -1; d <= 1; d += 2) {
+    us_Vec2 ei = us_v2_sub(us_poly_vertex(bi->verts, bi->nvert, vi + d),
+                           us_poly_vertex(bi->verts, bi->nvert, vi));
+    us_Vec2 ej = us_v2_sub(us_poly_vertex(bj->verts, bj->nvert, vj + d),
+                           us_poly_vertex(bj->verts, bj->nvert, vj));
+    if (us_v2_dot(ei, n) > 1e-12 || us_v2_dot(ej, n) < -1e-12) return 0;
+  }
+  return 1;
+}
+
+/* A triangle standing on its apex exactly on a block's corner: the
+ * documented corner-on-corner rule keeps the edge normals that separate
+ * the two corners (the block's top face and the triangle's left face),
+ * but not the block's side normal (the triangle's left side slopes into
+ * the half-plane beyond that side). */
+static void apex_on_corner(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  double tri[6] = {3, 1, 3.5, 2, 2.5, 2};
+  CHECK(add_box(s, "block", 0, 0, 3, 1, &err) == 0);
+  CHECK(add_poly(s, "tri", 3, tri, &err) == 1);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_INT(count_pair(s, 0, 1), ==, 2);
+  int up = 0;
+  for (int k = 0; k < s->ncontact; k++) {
+    if (s->contacts[k].a == US_GROUND) continue;
+    us_Vec2 n = normal_from(s, k, 0);
+    CHECK_NEAR(s->contacts[k].p[0], 3.0, 1e-12);
+    CHECK_NEAR(s->contacts[k].p[1], 1.0, 1e-12);
+    CHECK(separates(s, 0, 2, 1, 0, n)); /* block vertex 2 = (3,1), tri vertex 0 */
+    CHECK(fabs(n.x - 1.0) > 1e-9);      /* never the side normal (1, 0) */
+    up += fabs(n.y - 1.0) < 1e-12;
+  }
+  CHECK_INT(up, ==, 1);
+  us_structure_free(s);
+}
+
+/* A block tilted by a tiny slope on another: its low corner is 0.5 tol
+ * deep and its bottom edge is 0.75 tol deep where the lower block ends,
+ * but 2.5 tol deep at its far end (beyond the lower block). Still two
+ * contacts (its corner on the top face, the lower block's corner on its
+ * bottom face), no overlap: the edge is judged only where it lies over
+ * the other body's face. */
+static void tiny_tilt(void) {
+  us_Error err;
+  double tol = 1e-4, a = 5e-5; /* slope */
+  us_Structure *s = us_structure_new(2);
+  s->contact_tol = tol;
+  CHECK(add_box(s, "lo", 0, 0, 1, 1, &err) == 0);
+  double y0 = 1 - 0.5 * tol, L = 4.0;
+  double hi[8] = {0.5, y0, 0.5 + L, y0 - a * L, 0.5 + L + a, y0 - a * L + 1, 0.5 + a, y0 + 1};
+  CHECK(add_poly(s, "hi", 4, hi, &err) == 1);
+  s->bodies[1].fixed = 1; /* it overhangs; only the contacts matter */
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_INT(count_pair(s, 0, 1), ==, 2);
+  CHECK(find_at(s, 0, 1, 0.5, y0) >= 0);
+  CHECK(find_at(s, 0, 1, 1, 1) >= 0);
+  us_structure_free(s);
+}
+
 /* Corner to corner (diagonal boxes): documented to keep both edge
  * normals at the shared point, each pointing away from the lower box. */
 static void corner_to_corner(void) {
@@ -439,6 +503,6 @@ static void small_wall(void) {
 }
 
 US_TEST_MAIN(T(block_on_ground), T(stacked_aligned), T(running_bond), T(side_by_side),
-             T(leaning_slab), T(triangle_apex), T(corner_to_corner), T(box_in_l_notch),
-             T(block_in_u), T(friction_rule), T(fixed_bodies), T(tolerance), T(overlaps),
-             T(deterministic), T(small_wall))
+             T(leaning_slab), T(triangle_apex), T(apex_on_corner), T(tiny_tilt),
+             T(corner_to_corner), T(box_in_l_notch), T(block_in_u), T(friction_rule),
+             T(fixed_bodies), T(tolerance), T(overlaps), T(deterministic), T(small_wall))

@@ -11,6 +11,9 @@
  * direction (1e-3 rad): used to merge duplicates and spot coincident
  * edges. */
 #define US_CONTACT_NORMAL_COS 0.9999995
+/* sin of the largest angle by which an edge of a body may point into the
+ * other body's side at a corner-on-corner contact (1e-3 rad). */
+#define US_CONTACT_DIR_SIN 1e-3
 
 typedef struct us_BodyPair {
   int i, j; /* i < j */
