@@ -473,6 +473,54 @@ static void deterministic(void) {
   CHECK(same);
 }
 
+/* A semicircular arch of n voussoirs on the ground: two contacts per
+ * joint with normals along the arch (tangential), two under each foot. */
+static void arch(void) {
+  us_Error err;
+  int n = 9;
+  double r = 3.0, R = 4.0, pi = 3.14159265358979323846;
+  us_Structure *s = us_structure_new(2);
+  for (int k = 0; k < n; k++) {
+    double t0 = pi * k / n, t1 = pi * (k + 1) / n;
+    double xy[8] = {R * cos(t0), R * sin(t0), R * cos(t1), R * sin(t1),
+                    r * cos(t1), r * sin(t1), r * cos(t0), r * sin(t0)};
+    if (k == 0) xy[1] = xy[7] = 0.0; /* flat feet */
+    if (k == n - 1) xy[3] = xy[5] = 0.0;
+    char id[16];
+    snprintf(id, sizeof id, "v%d", k);
+    CHECK(add_poly(s, id, 4, xy, &err) == k);
+  }
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_INT(s->ncontact, ==, 4 + 2 * (n - 1));
+  for (int k = 0; k + 1 < n; k++) {
+    CHECK_INT(count_pair(s, k, k + 1), ==, 2);
+    double t = pi * (k + 1) / n; /* joint angle: normal from k into k+1 is the tangent */
+    for (int c = 0; c < s->ncontact; c++) {
+      const us_Contact *ct = &s->contacts[c];
+      if (!((ct->a == k && ct->b == k + 1) || (ct->a == k + 1 && ct->b == k))) continue;
+      us_Vec2 nn = normal_from(s, c, k);
+      CHECK_NEAR(nn.x, -sin(t), 1e-9);
+      CHECK_NEAR(nn.y, cos(t), 1e-9);
+    }
+  }
+  CHECK(contacts_sane(s));
+  us_structure_free(s);
+}
+
+/* Clockwise input to a direct call: outward normals are still right. */
+static void direct_call_clockwise(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  double cw[8] = {0, 0, 0, 1, 1, 1, 1, 0};
+  CHECK(add_poly(s, "cw", 4, cw, &err) == 0);
+  CHECK(add_box(s, "top", 0, 1, 1, 2, &err) == 1);
+  us_ContactSettings cs = {1e-6};
+  CHECK_OK(us_detect_contacts(s, &cs, &err), &err);
+  CHECK_INT(count_pair(s, 0, 1), ==, 2);
+  CHECK_NEAR(normal_from(s, find_at(s, 0, 1, 0, 1), 0).y, 1.0, 1e-12);
+  us_structure_free(s);
+}
+
 /* A running-bond wall of rows x cols bricks (odd rows shifted by half a
  * brick): the expected count from the layout is 2 per bottom brick, 2 per
  * pair of neighbours in a row and 2 per overlapping pair of bricks in
@@ -505,4 +553,5 @@ static void small_wall(void) {
 US_TEST_MAIN(T(block_on_ground), T(stacked_aligned), T(running_bond), T(side_by_side),
              T(leaning_slab), T(triangle_apex), T(apex_on_corner), T(tiny_tilt),
              T(corner_to_corner), T(box_in_l_notch), T(block_in_u), T(friction_rule),
-             T(fixed_bodies), T(tolerance), T(overlaps), T(deterministic), T(small_wall))
+             T(fixed_bodies), T(tolerance), T(overlaps), T(deterministic), T(arch),
+             T(direct_call_clockwise), T(small_wall))

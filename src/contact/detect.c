@@ -1,7 +1,8 @@
 /* Contact detection: replaces a structure's contacts by the vertex-on-edge
  * contacts of its polygons with each other and with the ground.
  *
- * Steps: the tolerance (settings, else 1e-6 * scale, at least 1e-9); ground
+ * Steps: polygons are made counter-clockwise in place (as validation
+ * does); the tolerance (settings, else 1e-6 * scale, at least 1e-9); ground
  * contacts (every vertex of a movable body with |y| <= tol, normal (0, 1),
  * a = US_GROUND), in body then vertex order; the broad phase (broadphase.c)
  * gives candidate pairs sorted by (i, j), never two fixed bodies; for each
@@ -71,6 +72,10 @@ static us_Status install(us_Structure *s, const us_CandList *l, us_Error *err) {
 
 us_Status us_detect_contacts(us_Structure *s, const us_ContactSettings *set, us_Error *err) {
   if (s->dim != 2) return us_error_set(err, US_ERR_INPUT, "contact detection needs dim 2");
+  /* outward normals assume counter-clockwise polygons (finalize already
+   * made them so; a direct call on a fresh structure may not have) */
+  for (int i = 0; i < s->nbody; i++)
+    if (s->bodies[i].nvert >= 3) us_poly_make_ccw(s->bodies[i].verts, s->bodies[i].nvert);
   double tol =
       set && set->tol > 0 ? set->tol : us_geom_tol(s->scale > 0 ? s->scale : polygon_scale(s));
   us_CandList l = {NULL, 0, 0};
