@@ -32,7 +32,7 @@ static int in_box(us_Vec2 p, const double bb[4], double tol) {
   return p.x >= bb[0] - tol && p.x <= bb[2] + tol && p.y >= bb[1] - tol && p.y <= bb[3] + tol;
 }
 
-/* Deepest vertex of body v inside body p: returns its index or -1. */
+/* First vertex of body v deeper than tol inside body p: index or -1. */
 static int deep_vertex(const us_Body *v, const us_Body *p, double tol, double *depth) {
   double bb[4];
   us_poly_bbox(p->verts, p->nvert, bb);
@@ -85,7 +85,7 @@ static double edge_depth(const us_Body *v, int f, const us_Body *p, double tol, 
   return worst;
 }
 
-/* Deepest edge of v passing inside p: index or -1. */
+/* First edge of v with a piece deeper than tol inside p: index or -1. */
 static int deep_edge(const us_Body *v, const us_Body *p, double tol, double *ts, double *depth) {
   double bb[4];
   us_poly_bbox(p->verts, p->nvert, bb);
