@@ -10,15 +10,6 @@
 
 #include <math.h>
 
-/* sqrt of the sum of squares rather than hypot: several times faster, and
- * coordinates of real structures are far from overflowing when squared. */
-double us_v2_norm(us_Vec2 a) { return sqrt(a.x * a.x + a.y * a.y); }
-double us_v2_dist(us_Vec2 a, us_Vec2 b) { return us_v2_norm(us_v2_sub(a, b)); }
-
-double us_orient(us_Vec2 o, us_Vec2 a, us_Vec2 b) {
-  return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
-}
-
 double us_point_segment_dist(us_Vec2 p, us_Vec2 a, us_Vec2 b, double *t) {
   us_Vec2 d = us_v2_sub(b, a);
   double l2 = us_v2_dot(d, d);
