@@ -68,11 +68,54 @@ typedef struct us_Backend {
                      const int *removed, int nremoved, int restart, us_Verdict *verdict,
                      double *f, us_StabilityInfo *info, char *note, size_t note_sz,
                      us_Error *err);
+  /* Optional (NULL: unknown). After an unstable verdict: the body the
+   * backend's evidence points at (e.g. largest virtual motion in a Farkas
+   * ray), else -1. */
+  int (*unstable_body)(void *ws);
 } us_Backend;
 
 extern const us_Backend us_backend_clp;     /* lp_clp.c */
 extern const us_Backend us_backend_lpsolve; /* lp_lpsolve.c */
 extern const us_Backend us_backend_lcp;     /* lcp_backend.c (from scratch) */
 extern const us_Backend us_backend_lcp_reuse;
+
+/* ---- additions by the LP helper ---- */
+
+/* A workspace on a given backend (tests, benchmarks); us_stability_new picks
+ * the backend from set->method. */
+us_Stability *us_stability_new_backend(const us_Structure *s, const us_StabilitySettings *set,
+                                       const us_Backend *be, us_Error *err);
+
+/* equilibrium.c: is contact c active in `present` (both sides present,
+ * ground and fixed bodies always are; at least one side movable)? */
+int us_contact_active(const us_Structure *s, const us_Bitset *present, int c);
+
+/* equilibrium.c: the 2D LP in cone-edge form, G l = rhs, l >= 0 (column-
+ * major, rows as in us_EqSystem). mu > 0: two columns per contact, (c, +1)
+ * = n + mu t and (c, -1) = n - mu t; mu = 0: one column (c, 0) = n. */
+typedef struct us_EqGen {
+  int nrow, ncol;
+  int *start;              /* [ncol + 1] */
+  int *row;                /* [start[ncol]] */
+  double *val;
+  int *col_contact;        /* [ncol] active-contact index */
+  signed char *col_sign;   /* [ncol] +1, -1 or 0 */
+  int cap_col, cap_nnz;
+} us_EqGen;
+/* 0, -1 on OOM, -2 if dim != 2. Reuses g's arrays (zero-init is valid). */
+int us_eq_generators(const us_EqSystem *e, us_EqGen *g);
+void us_eq_gen_free(us_EqGen *g);
+/* Edge multipliers l (ncol) to components f (2 * ncontact); l < 0 -> 0. */
+void us_eq_gen_forces(const us_EqSystem *e, const us_EqGen *g, const double *l, double *f);
+/* y (nrow, either sign) a Farkas ray of G l = rhs, l >= 0? Then the body
+ * with the largest virtual motion in y, else -1. */
+int us_eq_gen_farkas_body(const us_EqSystem *e, const us_EqGen *g, const double *y);
+
+/* certificate.c: us_certificate_check with caller scratch (acc: 6 * nbody
+ * doubles, seen: ncontact bytes), so that it cannot fail on memory.
+ * Returns 0, or -1 when the forces are malformed (out->ok = 0). */
+int us_certificate_check_buf(const us_Structure *s, const us_Bitset *present,
+                             const us_Forces *f, double tol, double *acc, unsigned char *seen,
+                             us_CertCheck *out);
 
 #endif

@@ -1,0 +1,311 @@
+/* The equilibrium system of one sub-assembly: the linear map from contact
+ * force components to the net wrench on every present movable body.
+ *
+ * Algorithm: one pass over the bodies numbers the row blocks (present
+ * movable bodies, in body-index order), one pass over the contacts keeps
+ * the active ones and writes, for each force component, the wrench it
+ * exerts on each of the contact's two bodies. Each build is
+ * O(#bodies + #contacts); arrays grow once and are reused between builds.
+ *
+ * Sign conventions (see stability.h): the unit component k of contact c
+ * (direction d = n for k = 0, d = t[k-1] otherwise) pushes body b with +d
+ * at p and body a with -d at p. A body's wrench rows are (force, torque
+ * about its centre of mass / length_scale), forces in units of the total
+ * weight W. rhs = minus the normalized gravity wrench, so A f = rhs is
+ * equilibrium. Gravity acts at the centre of mass: no torque about it.
+ */
+#include "stability.h"
+
+#include <math.h>
+#include <string.h>
+
+int us_eq_init(us_EqSystem *e, const us_Structure *s) {
+  memset(e, 0, sizeof *e);
+  e->s = s;
+  e->dim = s->dim;
+  e->nw = s->dim == 3 ? 6 : 3;
+  e->force_scale = s->weight > 0 ? s->weight : 1.0;
+  e->length_scale = s->scale > 0 ? s->scale : 1.0;
+  /* row_of_body has a fixed size: allocate it now */
+  e->row_of_body = us_malloc((size_t)(s->nbody > 0 ? s->nbody : 1) * sizeof(int));
+  return e->row_of_body ? 0 : -1;
+}
+
+void us_eq_free(us_EqSystem *e) {
+  us_free(e->body);
+  us_free(e->row_of_body);
+  us_free(e->contact);
+  us_free(e->blk);
+  us_free(e->w);
+  us_free(e->rhs);
+  us_free(e->mu);
+  memset(e, 0, sizeof *e);
+}
+
+/* Grow the body-indexed and contact-indexed arrays to hold nb bodies and nc
+ * contacts. Capacities only move once every array reached its size, so a
+ * failure leaves the system valid (with old capacities). */
+static int reserve(us_EqSystem *e, int nb, int nc) {
+  if (nb > e->cap_body) {
+    size_t n = (size_t)nb;
+    int *body = us_realloc(e->body, n * sizeof(int));
+    if (!body) return -1;
+    e->body = body;
+    double *rhs = us_realloc(e->rhs, n * (size_t)e->nw * sizeof(double));
+    if (!rhs) return -1;
+    e->rhs = rhs;
+    e->cap_body = nb;
+  }
+  if (nc > e->cap_contact) {
+    size_t n = (size_t)nc, cols = n * (size_t)e->dim;
+    int *contact = us_realloc(e->contact, n * sizeof(int));
+    if (!contact) return -1;
+    e->contact = contact;
+    double *mu = us_realloc(e->mu, n * sizeof(double));
+    if (!mu) return -1;
+    e->mu = mu;
+    int *blk = us_realloc(e->blk, 2 * cols * sizeof(int));
+    if (!blk) return -1;
+    e->blk = blk;
+    double *w = us_realloc(e->w, 2 * cols * (size_t)e->nw * sizeof(double));
+    if (!w) return -1;
+    e->w = w;
+    e->cap_contact = nc;
+  }
+  return 0;
+}
+
+/* Is body i (>= 0) present in the sub-assembly? Fixed bodies always are. */
+static int body_present(const us_Structure *s, const us_Bitset *present, int i) {
+  return s->bodies[i].fixed || us_bitset_get(present, i);
+}
+
+static int side_present(const us_Structure *s, const us_Bitset *present, int i) {
+  return i < 0 || body_present(s, present, i);
+}
+
+static int side_movable(const us_Structure *s, int i) { return i >= 0 && !s->bodies[i].fixed; }
+
+int us_contact_active(const us_Structure *s, const us_Bitset *present, int c) {
+  const us_Contact *k = &s->contacts[c];
+  if (!side_present(s, present, k->a) || !side_present(s, present, k->b)) return 0;
+  return side_movable(s, k->a) || side_movable(s, k->b);
+}
+
+/* Wrench (force d, torque (p - com) x d / L) of a unit push d at p on body
+ * `body`, times sign; written as nw values. 2D keeps (fx, fy, tz). */
+static void unit_wrench(const us_EqSystem *e, int body, const double *p, const double *d,
+                        double sign, double *out) {
+  const double *com = e->s->bodies[body].com;
+  double r[3] = {p[0] - com[0], p[1] - com[1], p[2] - com[2]};
+  double t[3] = {r[1] * d[2] - r[2] * d[1], r[2] * d[0] - r[0] * d[2],
+                 r[0] * d[1] - r[1] * d[0]};
+  double inv_l = 1.0 / e->length_scale;
+  if (e->nw == 3) {
+    out[0] = sign * d[0];
+    out[1] = sign * d[1];
+    out[2] = sign * t[2] * inv_l;
+    return;
+  }
+  for (int j = 0; j < 3; j++) {
+    out[j] = sign * d[j];
+    out[3 + j] = sign * t[j] * inv_l;
+  }
+}
+
+/* Columns of active contact number `ci` (structure contact c). */
+static void write_contact(us_EqSystem *e, int ci, int c) {
+  const us_Contact *k = &e->s->contacts[c];
+  int ends[2] = {k->a, k->b};
+  for (int comp = 0; comp < e->dim; comp++) {
+    const double *d = comp == 0 ? k->n : k->t[comp - 1];
+    size_t j = (size_t)ci * (size_t)e->dim + (size_t)comp;
+    for (int side = 0; side < 2; side++) {
+      int body = ends[side];
+      int blk = body >= 0 ? e->row_of_body[body] : -1;
+      double *w = e->w + (2 * j + (size_t)side) * (size_t)e->nw;
+      e->blk[2 * j + (size_t)side] = blk;
+      if (blk < 0)
+        memset(w, 0, (size_t)e->nw * sizeof(double));
+      else
+        unit_wrench(e, body, k->p, d, side == 0 ? -1.0 : 1.0, w);
+    }
+  }
+}
+
+/* Number the present movable bodies and write their gravity rows. */
+static void number_bodies(us_EqSystem *e, const us_Bitset *present) {
+  const us_Structure *s = e->s;
+  double inv_w = 1.0 / e->force_scale;
+  e->nbody = 0;
+  for (int i = 0; i < s->nbody; i++) {
+    const us_Body *b = &s->bodies[i];
+    if (b->fixed || !us_bitset_get(present, i)) {
+      e->row_of_body[i] = -1;
+      continue;
+    }
+    int r = e->nbody++;
+    e->row_of_body[i] = r;
+    e->body[r] = i;
+    double *rhs = e->rhs + (size_t)r * (size_t)e->nw;
+    memset(rhs, 0, (size_t)e->nw * sizeof(double));
+    for (int j = 0; j < e->dim; j++) rhs[j] = -b->mass * s->gravity[j] * inv_w;
+  }
+}
+
+int us_eq_build(us_EqSystem *e, const us_Bitset *present) {
+  const us_Structure *s = e->s;
+  /* sizes first (counting is cheap) so that an OOM leaves nothing half-built */
+  int nb = 0, nc = 0;
+  for (int i = 0; i < s->nbody; i++) nb += !s->bodies[i].fixed && us_bitset_get(present, i);
+  for (int c = 0; c < s->ncontact; c++) nc += us_contact_active(s, present, c);
+  if (reserve(e, nb, nc)) return -1;
+  number_bodies(e, present);
+  e->ncontact = 0;
+  for (int c = 0; c < s->ncontact; c++) {
+    if (!us_contact_active(s, present, c)) continue;
+    int ci = e->ncontact++;
+    e->contact[ci] = c;
+    e->mu[ci] = s->contacts[c].mu;
+    write_contact(e, ci, c);
+  }
+  return 0;
+}
+
+void us_eq_mult(const us_EqSystem *e, const double *x, double *y) {
+  size_t rows = (size_t)e->nbody * (size_t)e->nw;
+  memset(y, 0, rows * sizeof(double));
+  size_t cols = (size_t)e->ncontact * (size_t)e->dim;
+  for (size_t j = 0; j < cols; j++) {
+    if (x[j] == 0.0) continue;
+    for (size_t side = 0; side < 2; side++) {
+      int blk = e->blk[2 * j + side];
+      if (blk < 0) continue;
+      const double *w = e->w + (2 * j + side) * (size_t)e->nw;
+      double *yb = y + (size_t)blk * (size_t)e->nw;
+      for (int r = 0; r < e->nw; r++) yb[r] += w[r] * x[j];
+    }
+  }
+}
+
+/* ---- the 2D friction cone by its two edges (shared by the LP backends) ----
+ *
+ * In 2D the cone {f_n >= 0, |f_t| <= mu f_n} is exactly the set of
+ * l1 (n + mu t) + l2 (n - mu t) with l1, l2 >= 0, so the feasibility LP
+ * becomes G l = rhs, l >= 0 with only equality rows. Generator column
+ * (c, +) = column (c, 0) + mu column (c, 1) of A, (c, -) likewise with
+ * -mu; a frictionless contact (mu = 0) gets one column, n. Back to
+ * components: f_n = l1 + l2, f_t = mu (l1 - l2). */
+
+void us_eq_gen_free(us_EqGen *g) {
+  us_free(g->start);
+  us_free(g->row);
+  us_free(g->val);
+  us_free(g->col_contact);
+  us_free(g->col_sign);
+  memset(g, 0, sizeof *g);
+}
+
+static int gen_reserve(us_EqGen *g, int ncol, int nnz) {
+  if (ncol + 1 > g->cap_col) {
+    size_t n = (size_t)ncol + 1;
+    int *start = us_realloc(g->start, n * sizeof(int));
+    if (!start) return -1;
+    g->start = start;
+    int *cc = us_realloc(g->col_contact, n * sizeof(int));
+    if (!cc) return -1;
+    g->col_contact = cc;
+    signed char *cs = us_realloc(g->col_sign, n);
+    if (!cs) return -1;
+    g->col_sign = cs;
+    g->cap_col = ncol + 1;
+  }
+  if (nnz > g->cap_nnz) {
+    int *row = us_realloc(g->row, (size_t)nnz * sizeof(int));
+    if (!row) return -1;
+    g->row = row;
+    double *val = us_realloc(g->val, (size_t)nnz * sizeof(double));
+    if (!val) return -1;
+    g->val = val;
+    g->cap_nnz = nnz;
+  }
+  return 0;
+}
+
+/* Append generator column of active contact ci with sign sg (0: n only). */
+static void gen_column(const us_EqSystem *e, us_EqGen *g, int ci, int sg) {
+  size_t jn = (size_t)ci * 2, jt = jn + 1;
+  double m = (double)sg * e->mu[ci];
+  int nnz = g->start[g->ncol];
+  for (size_t side = 0; side < 2; side++) {
+    int blk = e->blk[2 * jn + side];
+    if (blk < 0) continue;
+    const double *wn = e->w + (2 * jn + side) * 3, *wt = e->w + (2 * jt + side) * 3;
+    for (int r = 0; r < 3; r++) {
+      double v = wn[r] + m * wt[r];
+      if (v == 0.0) continue; /* exact zeros only: keeps the matrix honest */
+      g->row[nnz] = blk * 3 + r;
+      g->val[nnz++] = v;
+    }
+  }
+  g->col_contact[g->ncol] = ci;
+  g->col_sign[g->ncol] = (signed char)sg;
+  g->start[++g->ncol] = nnz;
+}
+
+int us_eq_generators(const us_EqSystem *e, us_EqGen *g) {
+  if (e->dim != 2) return -2;
+  int ncol = 0;
+  for (int c = 0; c < e->ncontact; c++) ncol += e->mu[c] > 0 ? 2 : 1;
+  if (gen_reserve(g, ncol, ncol * 6)) return -1;
+  g->ncol = 0;
+  g->nrow = e->nbody * 3;
+  g->start[0] = 0;
+  for (int c = 0; c < e->ncontact; c++) {
+    if (e->mu[c] > 0) {
+      gen_column(e, g, c, 1);
+      gen_column(e, g, c, -1);
+    } else {
+      gen_column(e, g, c, 0);
+    }
+  }
+  return 0;
+}
+
+void us_eq_gen_forces(const us_EqSystem *e, const us_EqGen *g, const double *l, double *f) {
+  memset(f, 0, (size_t)e->ncontact * 2 * sizeof(double));
+  for (int j = 0; j < g->ncol; j++) {
+    int c = g->col_contact[j];
+    double x = l[j] > 0 ? l[j] : 0.0; /* solver round-off below the bound */
+    f[2 * c] += x;
+    f[2 * c + 1] += (double)g->col_sign[j] * e->mu[c] * x;
+  }
+}
+
+int us_eq_gen_farkas_body(const us_EqSystem *e, const us_EqGen *g, const double *y) {
+  double by = 0.0, ymax = 0.0;
+  int nrow = e->nbody * 3;
+  for (int r = 0; r < nrow; r++) {
+    by += e->rhs[r] * y[r];
+    ymax = US_MAX(ymax, fabs(y[r]));
+  }
+  if (!(ymax > 0) || !isfinite(by) || by == 0.0) return -1;
+  /* orient y so that b.y < 0; then every column must have g.y >= 0 */
+  double sg = by < 0 ? 1.0 : -1.0, slack = 1e-9 * fabs(by);
+  for (int j = 0; j < g->ncol; j++) {
+    double gy = 0.0;
+    for (int k = g->start[j]; k < g->start[j + 1]; k++) gy += g->val[k] * y[g->row[k]];
+    if (sg * gy < -slack) return -1;
+  }
+  int best = -1;
+  double bn = -1.0;
+  for (int i = 0; i < e->nbody; i++) {
+    const double *yb = y + 3 * (size_t)i;
+    double n = yb[0] * yb[0] + yb[1] * yb[1] + yb[2] * yb[2];
+    if (n > bn) {
+      bn = n;
+      best = e->body[i];
+    }
+  }
+  return best;
+}

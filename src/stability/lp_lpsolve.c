@@ -1,0 +1,132 @@
+/* The reference stability backend: the same statics feasibility LP as
+ * lp_clp.c, solved by lp_solve 5.5, from scratch for every test.
+ *
+ * Formulation: the cone-edge form of equilibrium.c (G l = rhs, l >= 0,
+ * zero objective; exact in 2D, mu = 0 gives one column n per contact).
+ * lp_solve's default bounds are exactly l in [0, inf), so no variable needs
+ * set_unbounded. The model is built column by column (add_columnex, which
+ * suits our column-major G) after sizing it once with resize_lp; rows are
+ * then made equalities with their right-hand sides.
+ *
+ * Memory: the lprec and everything it returns belong to lp_solve
+ * (delete_lp); solutions are copied out with get_variables into our own
+ * buffer. lp_solve reports OOM as NOMEMORY (or a NULL lprec).
+ */
+#include "stability.h"
+
+#include <lp_lib.h>
+#include <stdio.h>
+#include <string.h>
+
+typedef struct LpsWs {
+  us_EqGen gen;
+  double *col;      /* [1 + 6] one column with the objective entry first */
+  int *rowno;
+  double *sol;      /* [ncol] */
+  int cap_col;
+} LpsWs;
+
+static void *lps_create(const us_Structure *s, const us_StabilitySettings *set, us_Error *err) {
+  US_UNUSED(set);
+  if (s->dim != 2) {
+    us_error_set(err, US_ERR_USAGE, "the LP backends support 2D structures only");
+    return NULL;
+  }
+  LpsWs *w = us_calloc(1, sizeof *w);
+  if (w) w->col = us_malloc(8 * sizeof(double));
+  if (w) w->rowno = us_malloc(8 * sizeof(int));
+  if (!w || !w->col || !w->rowno) {
+    if (w) us_free(w->col), us_free(w->rowno);
+    us_free(w);
+    us_error_set(err, US_ERR_NOMEM, "out of memory creating the lp_solve workspace");
+    return NULL;
+  }
+  return w;
+}
+
+static void lps_destroy(void *ws) {
+  LpsWs *w = ws;
+  if (!w) return;
+  us_eq_gen_free(&w->gen);
+  us_free(w->col);
+  us_free(w->rowno);
+  us_free(w->sol);
+  us_free(w);
+}
+
+/* Build the lprec of G l = rhs. NULL when lp_solve runs out of memory. */
+static lprec *lps_load(LpsWs *w, const us_EqSystem *sys) {
+  const us_EqGen *g = &w->gen;
+  lprec *lp = make_lp(g->nrow, 0);
+  if (!lp) return NULL;
+  set_verbose(lp, NEUTRAL);
+  if (!resize_lp(lp, g->nrow, g->ncol)) goto fail;
+  for (int j = 0; j < g->ncol; j++) {
+    int n = 0;
+    for (int k = g->start[j]; k < g->start[j + 1]; k++, n++) {
+      w->rowno[n] = g->row[k] + 1; /* lp_solve rows are 1-based, 0 = objective */
+      w->col[n] = g->val[k];
+    }
+    if (!add_columnex(lp, n, w->col, w->rowno)) goto fail;
+  }
+  for (int r = 0; r < g->nrow; r++)
+    if (!set_constr_type(lp, r + 1, EQ) || !set_rh(lp, r + 1, sys->rhs[r])) goto fail;
+  return lp;
+fail:
+  delete_lp(lp);
+  return NULL;
+}
+
+/* No column at all (no active contact can carry load): the bodies stand
+ * only if nothing pushes them, i.e. rhs = 0. Solvers disagree on empty
+ * models (lp_solve does not run them), so this is decided here. */
+static us_Verdict no_columns_verdict(const us_EqSystem *sys) {
+  for (int r = 0; r < sys->nbody * sys->nw; r++)
+    if (sys->rhs[r] != 0.0) return US_UNSTABLE;
+  return US_STABLE;
+}
+
+static us_Status lps_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
+                           const int *removed, int nremoved, int restart, us_Verdict *verdict,
+                           double *f, us_StabilityInfo *info, char *note, size_t note_sz,
+                           us_Error *err) {
+  US_UNUSED(added), US_UNUSED(nadded), US_UNUSED(removed), US_UNUSED(nremoved);
+  US_UNUSED(restart), US_UNUSED(info);
+  LpsWs *w = ws;
+  int r = us_eq_generators(sys, &w->gen);
+  if (r == -2) return us_error_set(err, US_ERR_USAGE, "the LP backends support 2D only");
+  if (r || US_GROW(w->sol, w->cap_col, w->gen.ncol + 1))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory building the LP");
+  if (w->gen.ncol == 0) {
+    *verdict = no_columns_verdict(sys);
+    snprintf(note, note_sz, "no active contact");
+    return US_OK;
+  }
+  lprec *lp = lps_load(w, sys);
+  if (!lp) return us_error_set(err, US_ERR_NOMEM, "lp_solve could not build the model");
+  int ret = solve(lp);
+  us_Status st = US_OK;
+  if (ret == OPTIMAL) {
+    get_variables(lp, w->sol);
+    us_eq_gen_forces(sys, &w->gen, w->sol, f);
+    *verdict = US_STABLE;
+    snprintf(note, note_sz, "lp_solve: feasible");
+  } else if (ret == INFEASIBLE) {
+    *verdict = US_UNSTABLE;
+    snprintf(note, note_sz, "lp_solve: infeasible");
+  } else if (ret == NOMEMORY) {
+    st = us_error_set(err, US_ERR_NOMEM, "lp_solve ran out of memory");
+  } else {
+    st = us_error_set(err, US_ERR_SOLVER, "lp_solve stopped with status %d", ret);
+  }
+  delete_lp(lp);
+  return st;
+}
+
+const us_Backend us_backend_lpsolve = {
+    .name = "lpsolve",
+    .create = lps_create,
+    .destroy = lps_destroy,
+    .solve = lps_solve,
+    .unstable_body = NULL,
+};

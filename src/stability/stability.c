@@ -1,0 +1,319 @@
+/* The stability front end: the public workspace API that decides whether a
+ * sub-assembly stands, whatever backend does the work.
+ *
+ * Algorithm of one test: keep only the movable bits of `present` (fixed
+ * bodies always stand), compare them with the last sub-assembly the backend
+ * solved to list the bodies added and removed (word-wise XOR, so the cost is
+ * O(words + changes)), build the equilibrium system, call the backend, scale
+ * its normalized forces by the total weight W back to newtons, and re-check
+ * them with the independent certificate check.
+ *
+ * Invariants: a STABLE verdict is only ever returned with a certificate
+ * that passed at settings.cert_tol; a backend claim that fails the check
+ * becomes UNDECIDED (the rejected forces stay in res->forces for
+ * diagnosis). An empty sub-assembly (no movable body) is stable with no
+ * forces and never reaches the backend. After a backend error the
+ * workspace forgets its last sub-assembly, so the next call restarts the
+ * backend. us_StabilityResult arrays are reused across calls.
+ */
+#include "stability.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+struct us_Stability {
+  const us_Structure *s;
+  us_StabilitySettings set;
+  const us_Backend *be;
+  void *bws;               /* backend state */
+  us_EqSystem eq;
+  us_Bitset movable;       /* mask of movable bodies */
+  us_Bitset cur;           /* movable bits of the sub-assembly under test */
+  us_Bitset last;          /* ... of the last one the backend solved */
+  int have_last;
+  int *added, *removed;    /* [nbody] */
+  double *f;               /* normalized forces from the backend */
+  int cap_f;
+  double *acc;             /* certificate scratch: 6 * nbody */
+  unsigned char *seen;     /* certificate scratch: ncontact */
+  us_StabilityInfo info;
+};
+
+/* ------------------------------------------------------------ small API */
+
+static const char *const method_names[US_METHOD_COUNT] = {"lp", "lpsolve", "lcp", "lcp-reuse"};
+
+const char *us_method_name(us_Method m) {
+  if ((int)m < 0 || m >= US_METHOD_COUNT) return "unknown";
+  return method_names[m];
+}
+
+int us_method_parse(const char *name, us_Method *out) {
+  if (!name) return -1;
+  for (int m = 0; m < US_METHOD_COUNT; m++) {
+    if (strcmp(name, method_names[m]) == 0) {
+      if (out) *out = (us_Method)m;
+      return 0;
+    }
+  }
+  return -1;
+}
+
+const char *us_verdict_name(us_Verdict v) {
+  switch (v) {
+  case US_STABLE: return "stable";
+  case US_UNSTABLE: return "unstable";
+  case US_UNDECIDED: return "undecided";
+  }
+  return "unknown";
+}
+
+us_StabilitySettings us_stability_default_settings(void) {
+  us_StabilitySettings s;
+  memset(&s, 0, sizeof s);
+  s.method = US_METHOD_LP;
+  s.cert_tol = 1e-6;
+  s.max_pivots = 0;
+  s.verbose = 0;
+  return s;
+}
+
+void us_forces_free(us_Forces *f) {
+  if (!f) return;
+  us_free(f->contact);
+  us_free(f->f);
+  memset(f, 0, sizeof *f);
+}
+
+void us_stability_result_free(us_StabilityResult *r) {
+  if (!r) return;
+  us_forces_free(&r->forces);
+  memset(r, 0, sizeof *r);
+}
+
+int us_active_contacts(const us_Structure *s, const us_Bitset *present, int *idx) {
+  int n = 0;
+  for (int c = 0; c < s->ncontact; c++)
+    if (us_contact_active(s, present, c)) idx[n++] = c;
+  return n;
+}
+
+const us_StabilityInfo *us_stability_info(const us_Stability *w) { return &w->info; }
+
+/* ------------------------------------------------------------ workspace */
+
+static const us_Backend *backend_of(us_Method m) {
+  switch (m) {
+  case US_METHOD_LP: return &us_backend_clp;
+  case US_METHOD_LPSOLVE: return &us_backend_lpsolve;
+  /* LCP backends: enabled once lcp_backend.c is in the tree */
+  default: return NULL;
+  }
+}
+
+void us_stability_free(us_Stability *w) {
+  if (!w) return;
+  if (w->bws) w->be->destroy(w->bws);
+  us_eq_free(&w->eq);
+  us_bitset_free(&w->movable);
+  us_bitset_free(&w->cur);
+  us_bitset_free(&w->last);
+  us_free(w->added);
+  us_free(w->removed);
+  us_free(w->f);
+  us_free(w->acc);
+  us_free(w->seen);
+  us_free(w);
+}
+
+static us_Status check_settings(const us_Structure *s, const us_StabilitySettings *set,
+                                us_Error *err) {
+  if (!s || !s->finalized)
+    return us_error_set(err, US_ERR_USAGE, "stability: the structure is not finalized");
+  if (!(set->cert_tol > 0) || !isfinite(set->cert_tol))
+    return us_error_set(err, US_ERR_USAGE, "stability: cert_tol must be positive (got %g)",
+                        set->cert_tol);
+  return US_OK;
+}
+
+/* Every array of the workspace except the backend's. 0 or -1 on OOM. */
+static int alloc_arrays(us_Stability *w) {
+  const us_Structure *s = w->s;
+  size_t nb = (size_t)(s->nbody > 0 ? s->nbody : 1);
+  size_t nc = (size_t)(s->ncontact > 0 ? s->ncontact : 1);
+  if (us_eq_init(&w->eq, s) || us_bitset_init(&w->movable, s->nbody) ||
+      us_bitset_init(&w->cur, s->nbody) || us_bitset_init(&w->last, s->nbody))
+    return -1;
+  w->added = us_malloc(nb * sizeof(int));
+  w->removed = us_malloc(nb * sizeof(int));
+  w->acc = us_malloc(6 * nb * sizeof(double));
+  w->seen = us_malloc(nc);
+  if (!w->added || !w->removed || !w->acc || !w->seen) return -1;
+  for (int i = 0; i < s->nbody; i++)
+    if (!s->bodies[i].fixed) us_bitset_set(&w->movable, i);
+  return 0;
+}
+
+us_Stability *us_stability_new_backend(const us_Structure *s, const us_StabilitySettings *set,
+                                       const us_Backend *be, us_Error *err) {
+  us_StabilitySettings def = us_stability_default_settings();
+  if (!set) set = &def;
+  if (check_settings(s, set, err)) return NULL;
+  if (!be) {
+    us_error_set(err, US_ERR_USAGE, "stability: no backend for method %d", (int)set->method);
+    return NULL;
+  }
+  us_Stability *w = us_calloc(1, sizeof *w);
+  if (!w) {
+    us_error_set(err, US_ERR_NOMEM, "out of memory creating a stability workspace");
+    return NULL;
+  }
+  w->s = s;
+  w->set = *set;
+  w->be = be;
+  if (alloc_arrays(w)) {
+    us_stability_free(w);
+    us_error_set(err, US_ERR_NOMEM, "out of memory creating a stability workspace");
+    return NULL;
+  }
+  w->bws = be->create(s, set, err);
+  if (!w->bws) {
+    us_stability_free(w);
+    return NULL;
+  }
+  return w;
+}
+
+us_Stability *us_stability_new(const us_Structure *s, const us_StabilitySettings *set,
+                               us_Error *err) {
+  us_StabilitySettings def = us_stability_default_settings();
+  if (!set) set = &def;
+  if ((int)set->method < 0 || set->method >= US_METHOD_COUNT) {
+    us_error_set(err, US_ERR_USAGE, "stability: unknown method %d", (int)set->method);
+    return NULL;
+  }
+  return us_stability_new_backend(s, set, backend_of(set->method), err);
+}
+
+/* ----------------------------------------------------------------- test */
+
+/* Bodies in cur but not in last (added) and the reverse (removed). */
+static void diff_last(us_Stability *w, int *nadded, int *nremoved) {
+  *nadded = *nremoved = 0;
+  for (int k = 0; k < w->cur.nwords; k++) {
+    uint64_t x = w->cur.w[k] ^ w->last.w[k];
+    while (x) {
+      int bit = __builtin_ctzll(x);
+      x &= x - 1;
+      int i = k * 64 + bit;
+      if (us_bitset_get(&w->cur, i))
+        w->added[(*nadded)++] = i;
+      else
+        w->removed[(*nremoved)++] = i;
+    }
+  }
+}
+
+/* Room for n forces of dim components in r->forces. */
+static int forces_reserve(us_Forces *f, int n, int dim) {
+  if (n <= f->cap) return 0;
+  int cap = US_MAX(n, 8);
+  int *c = us_realloc(f->contact, (size_t)cap * sizeof(int));
+  if (!c) return -1;
+  f->contact = c;
+  double *v = us_realloc(f->f, (size_t)cap * (size_t)dim * sizeof(double));
+  if (!v) return -1;
+  f->f = v;
+  f->cap = cap;
+  return 0;
+}
+
+static void reset_result(us_StabilityResult *res) {
+  res->verdict = US_UNDECIDED;
+  res->forces.ncontact = 0;
+  memset(&res->check, 0, sizeof res->check);
+  res->check.worst_body = res->check.worst_contact = -1;
+  res->unstable_body = -1;
+  res->note[0] = '\0';
+}
+
+/* Run the backend on w->eq; on success remember cur as its last state. */
+static us_Status run_backend(us_Stability *w, us_StabilityResult *res, us_Error *err) {
+  int nadd = 0, nrem = 0, restart = !w->have_last;
+  if (!restart) diff_last(w, &nadd, &nrem);
+  int need = w->eq.ncontact * w->eq.dim + 1;
+  if (US_GROW(w->f, w->cap_f, need))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory testing stability");
+  memset(w->f, 0, (size_t)need * sizeof(double));
+  w->have_last = 0; /* until the backend succeeds, its state is unknown */
+  double t0 = us_now();
+  us_Status st = w->be->solve(w->bws, &w->eq, w->added, nadd, w->removed, nrem, restart,
+                              &res->verdict, w->f, &w->info, res->note, sizeof res->note, err);
+  w->info.solve_time += us_now() - t0;
+  if (st) return st;
+  memcpy(w->last.w, w->cur.w, (size_t)w->cur.nwords * sizeof(uint64_t));
+  w->have_last = 1;
+  return US_OK;
+}
+
+/* Forces of a stable claim into res (newtons), then the certificate. */
+static us_Status certify(us_Stability *w, us_StabilityResult *res, us_Error *err) {
+  const us_EqSystem *e = &w->eq;
+  int dim = w->s->dim;
+  if (forces_reserve(&res->forces, e->ncontact, dim))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory storing contact forces");
+  res->forces.ncontact = e->ncontact;
+  for (int c = 0; c < e->ncontact; c++) res->forces.contact[c] = e->contact[c];
+  for (int j = 0; j < e->ncontact * dim; j++) res->forces.f[j] = w->f[j] * e->force_scale;
+  double t0 = us_now();
+  us_certificate_check_buf(w->s, &w->cur, &res->forces, w->set.cert_tol, w->acc, w->seen,
+                           &res->check);
+  w->info.check_time += us_now() - t0;
+  if (!res->check.ok) {
+    res->verdict = US_UNDECIDED;
+    snprintf(res->note, sizeof res->note,
+             "%s claimed stable, certificate failed (force %.2g torque %.2g cone %.2g sign %.2g)",
+             w->be->name, res->check.max_force_residual, res->check.max_torque_residual,
+             res->check.max_cone_violation, res->check.max_sign_violation);
+  }
+  return US_OK;
+}
+
+static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err) {
+  if (us_bitset_count(&w->cur) == 0) { /* nothing can fall */
+    res->verdict = US_STABLE;
+    snprintf(res->note, sizeof res->note, "no movable body present");
+    w->eq.ncontact = 0;
+    return certify(w, res, err);
+  }
+  if (us_eq_build(&w->eq, &w->cur))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory building the equilibrium system");
+  us_Status st = run_backend(w, res, err);
+  if (st) return st;
+  if (res->verdict == US_STABLE) return certify(w, res, err);
+  if (res->verdict == US_UNSTABLE && w->be->unstable_body)
+    res->unstable_body = w->be->unstable_body(w->bws);
+  return US_OK;
+}
+
+us_Status us_stability_test(us_Stability *w, const us_Bitset *present, us_StabilityResult *res,
+                            us_Error *err) {
+  if (!w || !present || !res)
+    return us_error_set(err, US_ERR_USAGE, "us_stability_test: NULL argument");
+  if (present->nbits != w->s->nbody || !present->w)
+    return us_error_set(err, US_ERR_USAGE, "us_stability_test: sub-assembly has %d bits, "
+                        "the structure %d bodies", present->nbits, w->s->nbody);
+  reset_result(res);
+  for (int k = 0; k < w->cur.nwords; k++) w->cur.w[k] = present->w[k] & w->movable.w[k];
+  us_Status st = decide(w, res, err);
+  if (st) {
+    reset_result(res);
+    return st;
+  }
+  w->info.tests++;
+  if (w->set.verbose > 1)
+    fprintf(stderr, "stability: %d bodies: %s (%s)\n", w->eq.nbody, us_verdict_name(res->verdict),
+            res->note);
+  return US_OK;
+}
