@@ -521,6 +521,76 @@ static void direct_call_clockwise(void) {
   us_structure_free(s);
 }
 
+/* Random rows of boxes of integer widths 1..3 packed side by side (so
+ * joints line up across rows, giving aligned and diagonal corners). The
+ * expected count comes from the layout: 2 per bottom box on the ground, 2
+ * per neighbours in a row, 2 per pair of boxes in consecutive rows whose
+ * x-ranges overlap or touch at a corner (the documented diagonal rule).
+ * The count must not change when the scene is mirrored, moved far from
+ * the origin, or its bodies are added in reverse order. */
+enum { SCENE_ROWS = 6, SCENE_MAX = 12 };
+typedef struct Scene {
+  int n[SCENE_ROWS];
+  double x[SCENE_ROWS][SCENE_MAX + 1]; /* joints of each row */
+} Scene;
+
+static void scene_make(Scene *sc, unsigned seed) {
+  for (int r = 0; r < SCENE_ROWS; r++) {
+    sc->n[r] = 0;
+    sc->x[r][0] = (double)(seed % 2);
+    while (sc->n[r] < SCENE_MAX && sc->x[r][sc->n[r]] < 10) {
+      seed = seed * 1103515245u + 12345u;
+      sc->x[r][sc->n[r] + 1] = sc->x[r][sc->n[r]] + 1 + (double)((seed >> 16) % 3);
+      sc->n[r]++;
+    }
+  }
+}
+
+static int scene_expect(const Scene *sc) {
+  int e = 2 * sc->n[0];
+  for (int r = 0; r < SCENE_ROWS; r++) e += 2 * (sc->n[r] - 1);
+  for (int r = 0; r + 1 < SCENE_ROWS; r++)
+    for (int a = 0; a < sc->n[r]; a++)
+      for (int b = 0; b < sc->n[r + 1]; b++) {
+        double lo = fmax(sc->x[r][a], sc->x[r + 1][b]);
+        double hi = fmin(sc->x[r][a + 1], sc->x[r + 1][b + 1]);
+        e += hi >= lo ? 2 : 0;
+      }
+  return e;
+}
+
+/* Build the scene mirrored (sx = -1 or 1), shifted by dx, in forward or
+ * reverse order; returns the contact count or -1. */
+static int scene_count(const Scene *sc, double sx, double dx, int reverse) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  int total = 0, ok = 1;
+  for (int r = 0; r < SCENE_ROWS; r++) total += sc->n[r];
+  for (int q = 0; q < total && ok; q++) {
+    int k = reverse ? total - 1 - q : q, r = 0;
+    while (k >= sc->n[r]) k -= sc->n[r++];
+    double x0 = sx * sc->x[r][k] + dx, x1 = sx * sc->x[r][k + 1] + dx;
+    char id[32];
+    snprintf(id, sizeof id, "r%dk%d", r, k);
+    ok = add_box(s, id, fmin(x0, x1), r, fmax(x0, x1), r + 1, &err) >= 0;
+  }
+  int n = ok && us_structure_finalize(s, &err) == US_OK && contacts_sane(s) ? s->ncontact : -1;
+  if (n < 0) fprintf(stderr, "  scene failed: %s\n", err.msg);
+  us_structure_free(s);
+  return n;
+}
+
+static void random_rows(void) {
+  for (unsigned seed = 1; seed <= 12; seed++) {
+    Scene sc;
+    scene_make(&sc, seed);
+    int e = scene_expect(&sc);
+    CHECK_INT(scene_count(&sc, 1, 0, 0), ==, e);
+    CHECK_INT(scene_count(&sc, -1, 0, 0), ==, e);
+    CHECK_INT(scene_count(&sc, 1, 1000, 1), ==, e);
+  }
+}
+
 /* A running-bond wall of rows x cols bricks (odd rows shifted by half a
  * brick): the expected count from the layout is 2 per bottom brick, 2 per
  * pair of neighbours in a row and 2 per overlapping pair of bricks in
@@ -554,4 +624,4 @@ US_TEST_MAIN(T(block_on_ground), T(stacked_aligned), T(running_bond), T(side_by_
              T(leaning_slab), T(triangle_apex), T(apex_on_corner), T(tiny_tilt),
              T(corner_to_corner), T(box_in_l_notch), T(block_in_u), T(friction_rule),
              T(fixed_bodies), T(tolerance), T(overlaps), T(deterministic), T(arch),
-             T(direct_call_clockwise), T(small_wall))
+             T(direct_call_clockwise), T(small_wall), T(random_rows))
