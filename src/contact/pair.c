@@ -25,9 +25,10 @@
  * vertices of i on edges of j, each in vertex then edge order; a candidate
  * within tol of an earlier one with the same normal (same a) or the
  * opposite normal (swapped a and b) is a duplicate and dropped. Corner on
- * corner (diagonal boxes) keeps both edge normals at that point: both are
- * valid separating directions and together they span the possible forces
- * of a frictionless corner touch. */
+ * corner (diagonal boxes, an apex on a block's corner) keeps every edge
+ * normal at that point that separates the two corners (for diagonal boxes
+ * both the vertical and the horizontal one): the contact normal of two
+ * corners is not defined, and each kept normal is an admissible one. */
 #include "contact.h"
 
 #include <math.h>
