@@ -1,0 +1,33 @@
+/* Private helpers shared by the structure generators (src/gen): settings
+ * checks, building blocks with generated ids, and sealing a structure. */
+#ifndef US_GEN_H
+#define US_GEN_H
+
+#include "core/core.h"
+
+/* Upper bound on the bodies one generator call may create (memory guard). */
+#define US_GEN_MAX_BODIES 10000000L
+
+/* Check the settings every generator reads (g not NULL, friction finite and
+ * >= 0, density finite and > 0). `what` names the generator in messages. */
+us_Status us_gen_check_common(const us_GenSettings *g, const char *what, us_Error *err);
+
+/* Check that v is finite and > 0; message "<what>: <name> must be ...". */
+us_Status us_gen_check_positive(double v, const char *what, const char *name, us_Error *err);
+
+/* A new empty 2D structure on the ground with the settings' friction. */
+us_Structure *us_gen_begin(const us_GenSettings *g, us_Error *err);
+
+/* Add polygon number `k` (0-based) with id "b<k+1>", density g->density,
+ * movable, default friction. 0 or an error status. */
+us_Status us_gen_add(us_Structure *s, const us_GenSettings *g, int k, int nvert,
+                     const double *xy, us_Error *err);
+
+/* Axis-aligned box [x0, x1] x [y0, y1] as polygon number k. */
+us_Status us_gen_add_box(us_Structure *s, const us_GenSettings *g, int k, double x0, double y0,
+                         double x1, double y1, us_Error *err);
+
+/* Finalize s; on error free it and return NULL (err set). */
+us_Structure *us_gen_finish(us_Structure *s, us_Error *err);
+
+#endif
