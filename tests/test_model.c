@@ -196,6 +196,19 @@ static void point_bodies(void) {
   CHECK(s->explicit_contacts);
   us_structure_free(s);
 
+  /* no contacts at all: the inertia comes from the structure's scale */
+  s = us_structure_new(2);
+  s->explicit_contacts = 1;
+  double c2[2] = {3, 5};
+  CHECK(us_structure_add_point_body(s, "lone", 2.0, c, 0, &err) == 0);
+  CHECK(us_structure_add_point_body(s, "far", 1.0, c2, 0, &err) == 1);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  double d = hypot(3.0, 4.0); /* bbox diagonal of the two centres */
+  CHECK_NEAR(s->scale, d, 1e-12);
+  CHECK_NEAR(s->bodies[0].inertia, 2.0 * d * d / 3.0, 1e-12);
+  CHECK_INT(s->ncontact, ==, 0);
+  us_structure_free(s);
+
   s = us_structure_new(2);
   CHECK(us_structure_add_point_body(s, "q", 0.0, c, 0, &err) == 0);
   CHECK(us_structure_add_contact(s, US_GROUND, 0, p, n, -1, &err) == 0);
