@@ -332,12 +332,13 @@ static void bad_settings(void) {
 }
 
 /* Fail the k-th allocation for every k until a generator succeeds: each
- * failure is US_ERR_NOMEM (leaks are checked by the harness). */
+ * failure is US_ERR_NOMEM (leaks are checked by the harness). The random
+ * stacker also goes through the stability workspace and its tests. */
 static void out_of_memory(void) {
-  GenFn all[] = {us_gen_column, us_gen_pyramid, us_gen_wall, us_gen_arch};
+  GenFn all[] = {us_gen_column, us_gen_pyramid, us_gen_wall, us_gen_arch, us_gen_random};
   us_GenSettings g = us_gen_default_settings();
-  g.n = 4, g.rows = 3, g.cols = 3;
-  for (int f = 0; f < 4; f++) {
+  g.n = 4, g.rows = 3, g.cols = 3, g.width = 2.5;
+  for (int f = 0; f < 5; f++) {
     int done = 0;
     for (long k = 0; k < 10000 && !done; k++) {
       us_Error err;

@@ -219,7 +219,11 @@ static void errors(void) {
   r.width_px = 300;
   snprintf(bad, sizeof bad, "%s/no_such_dir/x.svg", g_dir);
   us_Status st5 = us_render_svg(s, &r, bad, &err);
-  int bad_exists = exists(bad);
+  int bad_exists = exists(bad), io_msg = strstr(err.msg, "no_such_dir") != NULL;
+  s->dim = 3;
+  us_Status st7 = us_render_svg(s, NULL, path, &err);
+  int wrote3d = exists(path);
+  s->dim = 2;
   us_Status st6 = us_render_svg(s, NULL, path, &err); /* NULL: defaults */
   us_structure_free(s);
   CHECK_INT(st1, ==, US_ERR_USAGE);
@@ -229,8 +233,10 @@ static void errors(void) {
   CHECK_INT(st4, ==, US_ERR_USAGE);
   CHECK(!wrote);
   CHECK_INT(st5, ==, US_ERR_IO);
-  CHECK(strstr(err.msg, "no_such_dir") != NULL);
+  CHECK(io_msg);
   CHECK(!bad_exists);
+  CHECK_INT(st7, ==, US_ERR_USAGE);
+  CHECK(!wrote3d);
   CHECK_INT(st6, ==, US_OK);
   CHECK(exists(path));
   remove(path);

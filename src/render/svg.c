@@ -116,6 +116,9 @@ static double label_size(const View *v, const us_Body *b) {
  * the order). */
 static us_Status check_settings(const us_Structure *s, const us_RenderSettings *r, int *step,
                                 us_Error *err) {
+  if (s->dim != 2)
+    return us_error_set(err, US_ERR_USAGE, "render: only 2D structures can be drawn (dim %d)",
+                        s->dim);
   if (!(r->width_px > 0) || !isfinite(r->width_px) || r->width_px > 1e6)
     return us_error_set(err, US_ERR_USAGE, "render: width_px must be in (0, 1e6], got %g",
                         r->width_px);
@@ -369,7 +372,7 @@ us_Status us_render_svg(const us_Structure *s, const us_RenderSettings *r, const
   if (!r) r = &def;
   int *step = us_calloc((size_t)(s->nbody > 0 ? s->nbody : 1), sizeof *step);
   if (!step) return us_error_set(err, US_ERR_NOMEM, "render: out of memory");
-  View v;
+  View v = {0};
   us_Status st = check_settings(s, r, step, err);
   if (!st) st = make_view(s, r->width_px, &v, err);
   us_AtomicFile *af = st ? NULL : us_atomic_open(path, err);
