@@ -16,7 +16,10 @@
  * dots (show_contacts); r->forces as arrows from each contact point along
  * the force on body b of the contact (f_n n + f_t t), the longest 12% of
  * the view's larger side. Every body has a <title> with its id (XML-escaped)
- * so viewers show it on hover.
+ * so viewers show it on hover; labels and numbers are sized to fit their
+ * body and left out when they would be too small to read, and contact dots
+ * and outlines thin out with the typical body size, so a wall of a
+ * thousand bricks stays legible.
  *
  * Errors: bad settings (order or force indices out of range, repeated
  * bodies in the order, non-positive width) are US_ERR_USAGE and are found
@@ -35,6 +38,8 @@ typedef struct View {
   double m;        /* pixel margin */
   double w, h;     /* drawing size in pixels (without the legend) */
   double span;     /* larger side of the world view */
+  double dot;      /* contact dot radius, pixels */
+  double stroke;   /* body outline width, pixels */
 } View;
 
 /* ------------------------------------------------------------- colours */
@@ -96,18 +101,44 @@ static void label_point(const us_Structure *s, int i, double *x, double *y) {
   *y /= (double)b->nvert;
 }
 
-/* Font size for a body's label: a fraction of its smaller side, clamped. */
-static double label_size(const View *v, const us_Body *b) {
-  if (b->nvert == 0) return 9.0;
+/* Width and height in pixels of body b's bounding box (0 without
+ * geometry). */
+static void body_extent(const View *v, const us_Body *b, double *w, double *h) {
   double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
   for (int k = 0; k < b->nvert; k++)
     for (int d = 0; d < 2; d++) {
       lo[d] = US_MIN(lo[d], b->verts[2 * k + d]);
       hi[d] = US_MAX(hi[d], b->verts[2 * k + d]);
     }
-  double side = US_MIN(hi[0] - lo[0], hi[1] - lo[1]) * v->k;
-  double fs = 0.45 * side;
-  return fs < 6.0 ? 6.0 : (fs > 16.0 ? 16.0 : fs);
+  *w = b->nvert ? (hi[0] - lo[0]) * v->k : 0.0;
+  *h = b->nvert ? (hi[1] - lo[1]) * v->k : 0.0;
+}
+
+/* Font size for a label of `len` characters on body b: 45% of the box's
+ * height, at most 16 px, shrunk so the text (about 0.6 em per character)
+ * fits the box's width; 0 when that would be under 5 px (too small to
+ * read: the label is left out, the <title> still names the body). Point
+ * bodies get 9 px. */
+static double label_size(const View *v, const us_Body *b, size_t len) {
+  if (b->nvert == 0) return 9.0;
+  double w, h;
+  body_extent(v, b, &w, &h);
+  double fs = US_MIN(0.45 * h, 16.0);
+  fs = US_MIN(fs, 0.9 * w / (0.6 * (double)(len ? len : 1)));
+  return fs < 5.0 ? 0.0 : fs;
+}
+
+/* Size of the contact dots and body outlines: from the median body's
+ * smaller side in pixels, so that dense scenes stay readable. */
+static double typical_side(const View *v, const us_Structure *s) {
+  double sum = 0.0;
+  int n = 0;
+  for (int i = 0; i < s->nbody; i++) {
+    double w, h;
+    body_extent(v, &s->bodies[i], &w, &h);
+    if (s->bodies[i].nvert) sum += US_MIN(w, h), n++;
+  }
+  return n ? sum / n : 40.0;
 }
 
 /* --------------------------------------------------------------- checks */
@@ -175,6 +206,9 @@ static us_Status make_view(const us_Structure *s, double width_px, View *v, us_E
   v->k = width_px / (bb[2] - bb[0] + 2 * pad);
   v->w = width_px;
   v->h = (bb[3] - bb[1] + 2 * pad) * v->k;
+  double side = typical_side(v, s);
+  v->dot = side * 0.06 < 0.6 ? 0.6 : (side * 0.06 > 2.0 ? 2.0 : side * 0.06);
+  v->stroke = side * 0.03 < 0.3 ? 0.3 : (side * 0.03 > 1.0 ? 1.0 : side * 0.03);
   return US_OK;
 }
 
@@ -236,27 +270,27 @@ static void put_shape(FILE *fp, const View *v, const us_Body *b, const char *fil
   for (int k = 0; k < b->nvert; k++)
     fprintf(fp, "%s%.2f,%.2f", k ? " " : "", px_x(v, b->verts[2 * k]),
             px_y(v, b->verts[2 * k + 1]));
-  fprintf(fp, "\" fill=\"%s\" stroke=\"black\" stroke-width=\"1\"/>", fill);
+  fprintf(fp, "\" fill=\"%s\" stroke=\"black\" stroke-width=\"%.2f\"/>", fill, v->stroke);
 }
 
-/* Step number (with an order) or id (labels, no order) at the body. */
+/* Step number (with an order) or id (labels, no order) at the body, when
+ * it fits (label_size). */
 static void put_label(FILE *fp, const View *v, const us_Structure *s,
                       const us_RenderSettings *r, const int *step, int i) {
   const us_Body *b = &s->bodies[i];
-  double x, y;
+  int numbered = r->norder > 0 && step[i];
+  if (!numbered && !(r->norder == 0 && r->show_labels)) return;
+  char num[16];
+  snprintf(num, sizeof num, "%d", step[i]);
+  double fs = label_size(v, b, strlen(numbered ? num : b->id)), x, y;
+  if (fs <= 0) return;
   label_point(s, i, &x, &y);
-  double fs = label_size(v, b);
-  int dark = r->norder > 0 && step[i] && step_t(step[i], r->norder) < 0.6;
-  if (r->norder > 0 && step[i]) {
-    fprintf(fp, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"%.1f\" text-anchor=\"middle\" "
-            "dominant-baseline=\"central\" fill=\"%s\">%d</text>", px_x(v, x), px_y(v, y), fs,
-            dark ? "white" : "black", step[i]);
-  } else if (r->norder == 0 && r->show_labels) {
-    fprintf(fp, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"%.1f\" text-anchor=\"middle\" "
-            "dominant-baseline=\"central\">", px_x(v, x), px_y(v, y), fs);
-    put_escaped(fp, b->id);
-    fputs("</text>", fp);
-  }
+  int dark = numbered && step_t(step[i], r->norder) < 0.6;
+  fprintf(fp, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"%.1f\" text-anchor=\"middle\" "
+          "dominant-baseline=\"central\" fill=\"%s\">", px_x(v, x), px_y(v, y), fs,
+          dark ? "white" : "black");
+  put_escaped(fp, numbered ? num : b->id);
+  fputs("</text>", fp);
 }
 
 static void put_bodies(FILE *fp, const View *v, const us_Structure *s,
@@ -279,8 +313,8 @@ static void put_bodies(FILE *fp, const View *v, const us_Structure *s,
 static void put_contacts(FILE *fp, const View *v, const us_Structure *s) {
   fputs("<g class=\"contacts\" fill=\"#222\">\n", fp);
   for (int c = 0; c < s->ncontact; c++)
-    fprintf(fp, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"2\"/>\n", px_x(v, s->contacts[c].p[0]),
-            px_y(v, s->contacts[c].p[1]));
+    fprintf(fp, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\"/>\n", px_x(v, s->contacts[c].p[0]),
+            px_y(v, s->contacts[c].p[1]), v->dot);
   fputs("</g>\n", fp);
 }
 
