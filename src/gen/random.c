@@ -27,9 +27,10 @@
  *
  * Cost: an attempt that passes the quick checks rebuilds the structure from
  * scratch: finalize (contact detection, O(k log k) for k blocks) plus one
- * LP over k bodies. The quick checks are O(k). This is fine for the
- * hundreds of blocks of tests and benchmarks; larger runs would want an
- * incremental structure. */
+ * LP over k bodies; the LP dominates. The quick checks are O(k). Measured
+ * (Release, seed 1): W 6 x 10 rows, 29 blocks in 0.01 s; W 10 x 20 rows,
+ * 126 blocks in 0.5 s; W 20 x 30 rows, 373 blocks in 9 s. Larger runs would
+ * want an incremental structure and a workspace that can grow. */
 #include "gen.h"
 
 #include <math.h>
