@@ -268,6 +268,25 @@ static void point_bodies(void) {
   remove(path);
 }
 
+/* An empty structure still gives a valid picture (ground and legend). */
+static void empty(void) {
+  us_Error err;
+  char path[128];
+  us_Structure *s = us_structure_new(2);
+  CHECK(s != NULL);
+  us_Status st = tmp_path("empty.svg", path, sizeof path) ? us_render_svg(s, NULL, path, &err)
+                                                          : US_ERR_IO;
+  us_structure_free(s);
+  CHECK_OK(st, &err);
+  char *svg = slurp(path);
+  CHECK(svg != NULL);
+  int ok = well_formed(svg) && !strstr(svg, "<polygon") && strstr(svg, "0 bodies (0 fixed)") &&
+           !strstr(svg, "nan") && !strstr(svg, "inf");
+  us_free(svg);
+  CHECK(ok);
+  remove(path);
+}
+
 /* The checker itself rejects broken documents. */
 static void checker(void) {
   CHECK(well_formed("<a><b/></a>"));
@@ -281,5 +300,5 @@ static void cleanup(void) {
   if (g_dir[0]) CHECK(rmdir(g_dir) == 0);
 }
 
-US_TEST_MAIN(T(checker), T(plain), T(with_order), T(with_forces), T(errors), T(point_bodies),
+US_TEST_MAIN(T(checker), T(plain), T(with_order), T(with_forces), T(errors), T(point_bodies), T(empty),
              T(cleanup))
