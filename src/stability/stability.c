@@ -107,7 +107,8 @@ static const us_Backend *backend_of(us_Method m) {
   switch (m) {
   case US_METHOD_LP: return &us_backend_clp;
   case US_METHOD_LPSOLVE: return &us_backend_lpsolve;
-  /* LCP backends: enabled once lcp_backend.c is in the tree */
+  case US_METHOD_LCP: return &us_backend_lcp;
+  case US_METHOD_LCP_REUSE: return &us_backend_lcp_reuse;
   default: return NULL;
   }
 }
