@@ -307,11 +307,55 @@ static void unstable_evidence(void) {
     CHECK_OK(us_stability_test(w, &p, &res, &err), &err);
     CHECK_INT(res.verdict, ==, US_UNSTABLE);
     CHECK(res.unstable_body == -1 || res.unstable_body == 0 || res.unstable_body == 1);
+    /* CLP's Farkas ray is checked and used (lp_solve gives none) */
+    if (lp_methods[mi] == US_METHOD_LP) CHECK(res.unstable_body >= 0);
     CHECK(res.note[0] != '\0');
     us_stability_result_free(&res);
     us_bitset_free(&p);
     us_stability_free(w);
   }
+  us_structure_free(s);
+}
+
+/* A backend that claims stable with made-up forces: the front end must
+ * not pass that on as stable. */
+static us_Status liar_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
+                            const int *removed, int nremoved, int restart, us_Verdict *verdict,
+                            double *f, us_StabilityInfo *info, char *note, size_t note_sz,
+                            us_Error *err) {
+  US_UNUSED(ws), US_UNUSED(added), US_UNUSED(nadded), US_UNUSED(removed), US_UNUSED(nremoved);
+  US_UNUSED(restart), US_UNUSED(info), US_UNUSED(note), US_UNUSED(note_sz), US_UNUSED(err);
+  for (int j = 0; j < sys->ncontact * sys->dim; j++) f[j] = j % 2 ? 0.0 : 0.01;
+  *verdict = US_STABLE;
+  return US_OK;
+}
+
+static void *liar_create(const us_Structure *s, const us_StabilitySettings *set,
+                         us_Error *err) {
+  return us_backend_clp.create(s, set, err);
+}
+
+static void liar_destroy(void *ws) { us_backend_clp.destroy(ws); }
+
+static const us_Backend liar_backend = {"liar", liar_create, liar_destroy, liar_solve, NULL};
+
+static void never_stable_without_certificate(void) {
+  us_Structure *s = two_blocks(0.0);
+  CHECK(s);
+  us_Error err;
+  us_Stability *w = us_stability_new_backend(s, NULL, &liar_backend, &err);
+  CHECK(w);
+  us_Bitset p;
+  CHECK(us_bitset_init(&p, s->nbody) == 0);
+  us_bitset_fill(&p);
+  us_StabilityResult res = {0};
+  CHECK_OK(us_stability_test(w, &p, &res, &err), &err);
+  CHECK_INT(res.verdict, ==, US_UNDECIDED);
+  CHECK(!res.check.ok);
+  CHECK(strstr(res.note, "certificate") != NULL);
+  us_stability_result_free(&res);
+  us_bitset_free(&p);
+  us_stability_free(w);
   us_structure_free(s);
 }
 
@@ -491,5 +535,5 @@ static void result_reuse(void) {
 
 US_TEST_MAIN(T(names_and_defaults), T(point_body_support), T(single_block), T(overhanging_body),
              T(two_block_column), T(cantilever), T(inverted_v), T(sub_assemblies),
-             T(empty_and_active), T(floating_and_usage), T(unstable_evidence),
+             T(empty_and_active), T(floating_and_usage), T(unstable_evidence), T(never_stable_without_certificate),
              T(order_independence), T(out_of_memory), T(result_reuse))
