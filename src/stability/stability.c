@@ -216,14 +216,16 @@ static void diff_last(us_Stability *w, int *nadded, int *nremoved) {
   }
 }
 
-/* Room for n forces of dim components in r->forces. */
-static int forces_reserve(us_Forces *f, int n, int dim) {
+/* Room for n forces in r->forces. Three components per force whatever the
+ * dimension, so that a result reused across 2D and 3D structures stays
+ * large enough. */
+static int forces_reserve(us_Forces *f, int n) {
   if (n <= f->cap) return 0;
   int cap = US_MAX(n, 8);
   int *c = us_realloc(f->contact, (size_t)cap * sizeof(int));
   if (!c) return -1;
   f->contact = c;
-  double *v = us_realloc(f->f, (size_t)cap * (size_t)dim * sizeof(double));
+  double *v = us_realloc(f->f, (size_t)cap * 3 * sizeof(double));
   if (!v) return -1;
   f->f = v;
   f->cap = cap;
@@ -262,7 +264,7 @@ static us_Status run_backend(us_Stability *w, us_StabilityResult *res, us_Error 
 static us_Status certify(us_Stability *w, us_StabilityResult *res, us_Error *err) {
   const us_EqSystem *e = &w->eq;
   int dim = w->s->dim;
-  if (forces_reserve(&res->forces, e->ncontact, dim))
+  if (forces_reserve(&res->forces, e->ncontact))
     return us_error_set(err, US_ERR_NOMEM, "out of memory storing contact forces");
   res->forces.ncontact = e->ncontact;
   for (int c = 0; c < e->ncontact; c++) res->forces.contact[c] = e->contact[c];
@@ -314,7 +316,7 @@ us_Status us_stability_test(us_Stability *w, const us_Bitset *present, us_Stabil
   }
   w->info.tests++;
   if (w->set.verbose > 1)
-    fprintf(stderr, "stability: %d bodies: %s (%s)\n", w->eq.nbody, us_verdict_name(res->verdict),
-            res->note);
+    fprintf(stderr, "stability: %d bodies: %s (%s)\n", us_bitset_count(&w->cur),
+            us_verdict_name(res->verdict), res->note);
   return US_OK;
 }
