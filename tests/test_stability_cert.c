@@ -47,6 +47,7 @@ static void accepts_hand_solution(void) {
   us_CertCheck c = us_certificate_check(s, &p, &f, 1e-9);
   CHECK(c.ok);
   CHECK(c.max_force_residual <= 1e-12 && c.max_torque_residual <= 1e-12);
+  CHECK_INT(c.worst_contact, ==, -1); /* nothing violated */
   /* swapped: the total is right, the torque is not */
   double t = fv[0];
   fv[0] = fv[2];
@@ -87,6 +88,7 @@ static void cone_and_sign(void) {
   c = us_certificate_check(s, &p, &f, 1e-6);
   CHECK(!c.ok);
   CHECK(c.max_cone_violation > 0.05); /* (0.5 - 0.3) * W / 2 / W = 0.1 */
+  CHECK(c.worst_contact == 0 || c.worst_contact == 1);
   CHECK(c.max_force_residual <= 1e-12);
   /* a pulling contact balanced by a bigger push: sign violation */
   hand_forces(&f, 1.0, 0.0, -0.5, 0.5);

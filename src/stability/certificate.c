@@ -78,7 +78,7 @@ static us_CertCheck failed_check(void) {
  * or -1 (r->worst_contact set) for an unusable contact or bad value. */
 static int add_forces(const us_Structure *s, const us_Bitset *present, const us_Forces *f,
                       double *acc, unsigned char *seen, us_CertCheck *r) {
-  double inv_w = 1.0 / s->weight, worst = -1.0;
+  double inv_w = 1.0 / s->weight, worst = 0.0; /* -1 unless something is violated */
   for (int i = 0; i < f->ncontact; i++) {
     int c = f->contact[i];
     if (!usable(s, present, c) || seen[c]) {
