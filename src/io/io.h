@@ -1,0 +1,85 @@
+/* Private helpers of the file formats (structure and plan JSON): error
+ * messages that name the file and the JSON path, typed field readers on
+ * jansson values, a hash map from body ids to indices, a small streaming
+ * JSON writer with shortest round-trip numbers, and the name tables of the
+ * enums written to plan files. */
+#ifndef US_IO_H
+#define US_IO_H
+
+#include "core/core.h"
+
+#include <jansson.h>
+#include <stdio.h>
+
+/* Where a reader is: the file name for messages and the error sink. */
+typedef struct us_IoCtx {
+  const char *name; /* file name (or the caller's label) for messages */
+  us_Error *err;
+} us_IoCtx;
+
+/* Set US_ERR_INPUT with "NAME: WHERE: message"; returns US_ERR_INPUT. */
+us_Status us_io_bad(const us_IoCtx *c, const char *where, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* Parse text (len bytes) as JSON; on a syntax error set US_ERR_PARSE with
+ * "NAME:LINE:COLUMN: text" and return NULL. */
+json_t *us_io_parse_json(const us_IoCtx *c, const char *text, size_t len);
+/* Read a whole file into a NUL-terminated buffer (us_free it). */
+char *us_io_slurp(const char *path, size_t *len, us_Error *err);
+
+/* Every key of obj must be in `allowed` (NULL-terminated) or start with
+ * '_' (comments); otherwise "unknown field 'KEY'". */
+us_Status us_io_check_keys(const us_IoCtx *c, const char *where, json_t *obj,
+                           const char *const *allowed);
+/* A finite number. */
+us_Status us_io_number(const us_IoCtx *c, const char *where, const char *field, json_t *v,
+                       double *out);
+/* A finite number > 0 (positive != 0) or >= 0 (positive == 0). */
+us_Status us_io_sign_number(const us_IoCtx *c, const char *where, const char *field, json_t *v,
+                            int positive, double *out);
+/* [x, y]: an array of exactly two finite numbers. */
+us_Status us_io_vec2(const us_IoCtx *c, const char *where, const char *field, json_t *v,
+                     double out[2]);
+us_Status us_io_bool(const us_IoCtx *c, const char *where, const char *field, json_t *v,
+                     int *out);
+
+/* Open-addressing hash map from strings (not copied: they must outlive the
+ * map) to non-negative ints. */
+typedef struct us_IdMap {
+  size_t cap;          /* power of two, at least twice the count */
+  const char **keys;   /* NULL = empty slot */
+  int *vals;
+} us_IdMap;
+int us_idmap_init(us_IdMap *m, int expected); /* 0 or -1 on OOM */
+void us_idmap_free(us_IdMap *m);
+int us_idmap_get(const us_IdMap *m, const char *key); /* value or -1 */
+/* Insert key -> val; returns -1 if the key exists (nothing changed). The
+ * map never grows: init with the maximal count. */
+int us_idmap_put(us_IdMap *m, const char *key, int val);
+/* A map over the body ids of s (-1 on OOM). */
+int us_idmap_bodies(us_IdMap *m, const us_Structure *s);
+
+/* Streaming JSON output: numbers with the fewest digits (15..17) that read
+ * back to the same double; strings escaped. `bad` records a non-finite
+ * number (JSON cannot hold it), which makes the writer fail. */
+typedef struct us_JsonOut {
+  FILE *fp;
+  int bad;
+} us_JsonOut;
+void us_jo_number(us_JsonOut *o, double x);
+void us_jo_string(us_JsonOut *o, const char *s);
+void us_jo_vec2(us_JsonOut *o, const double *v); /* [x, y] */
+void us_jo_raw(us_JsonOut *o, const char *s);
+
+/* Name tables (file format words, independent of other modules). */
+const char *us_io_plan_status_word(us_PlanStatus s);
+int us_io_plan_status_parse(const char *w, us_PlanStatus *out); /* 0 or -1 */
+const char *us_io_method_word(us_Method m);
+const char *us_io_search_word(us_Search s);
+const char *us_io_order_word(us_Order o);
+const char *us_io_direction_word(us_Direction d);
+
+#endif

@@ -1,0 +1,300 @@
+/* Reading structure files (docs/format.md): JSON text -> a finalized
+ * us_Structure, with messages that name the file and the JSON path.
+ *
+ * Order of work: parse the JSON (syntax errors carry file:line:column), read
+ * the top-level settings, then every body (ids go into a hash map so that
+ * duplicate ids and the ids used by explicit contacts are found in O(1)),
+ * then the explicit contacts if there are any, and finally
+ * us_structure_finalize, whose geometric messages (they name body ids) are
+ * prefixed with the file name. Type and range checks happen here, before
+ * the structure builder sees a value, because the builder gives some
+ * values a meaning (mass <= 0: "use the density") that a file must not
+ * reach by accident. Unknown keys are errors unless they start with '_'. */
+#include "io.h"
+
+#include <limits.h>
+#include <math.h>
+#include <string.h>
+
+#define MAX_VERTS 10000000 /* far beyond any real polygon; keeps int sizes safe */
+
+static const char *const top_keys[] = {"dimension", "gravity", "friction", "ground",
+                                       "bodies",    "contacts", NULL};
+static const char *const body_keys[] = {"id",    "polygon", "density", "mass",
+                                        "fixed", "friction", "center", "inertia", NULL};
+static const char *const contact_keys[] = {"a", "b", "point", "normal", "friction", NULL};
+
+/* Reader state: the structure under construction and the id -> index map. */
+typedef struct Reader {
+  us_IoCtx c;
+  us_Structure *s;
+  us_IdMap ids;
+  int explicit_contacts;
+} Reader;
+
+static us_Status read_globals(Reader *r, json_t *root) {
+  us_Status st = us_io_check_keys(&r->c, "", root, top_keys);
+  json_t *v;
+  if (!st && (v = json_object_get(root, "dimension"))) {
+    double d = 0;
+    st = us_io_number(&r->c, "", "dimension", v, &d);
+    if (!st && d != 2)
+      st = us_io_bad(&r->c, "", "dimension: only dimension 2 is supported (got %g)", d);
+  }
+  if (!st && (v = json_object_get(root, "gravity")))
+    st = us_io_vec2(&r->c, "", "gravity", v, r->s->gravity);
+  if (!st && (v = json_object_get(root, "friction")))
+    st = us_io_sign_number(&r->c, "", "friction", v, 0, &r->s->friction);
+  if (!st && (v = json_object_get(root, "ground"))) st = us_io_bool(&r->c, "", "ground", v, &r->s->ground);
+  return st;
+}
+
+/* The polygon of a body: an array of at least 3 [x, y] pairs. */
+static us_Status read_polygon(Reader *r, const char *where, json_t *v, double **xy, int *n) {
+  if (!json_is_array(v))
+    return us_io_bad(&r->c, where, "polygon: expected an array of [x, y] vertices");
+  size_t nv = json_array_size(v);
+  if (nv < 3) return us_io_bad(&r->c, where, "polygon: needs at least 3 vertices (got %zu)", nv);
+  if (nv > MAX_VERTS) return us_io_bad(&r->c, where, "polygon: too many vertices (%zu)", nv);
+  *xy = us_malloc(2 * nv * sizeof(double));
+  if (!*xy) return us_error_set(r->c.err, US_ERR_NOMEM, "%s: out of memory", r->c.name);
+  for (size_t k = 0; k < nv; k++) {
+    char field[32];
+    snprintf(field, sizeof field, "polygon[%zu]", k);
+    us_Status st = us_io_vec2(&r->c, where, field, json_array_get(v, k), *xy + 2 * k);
+    if (st) return st;
+  }
+  *n = (int)nv;
+  return US_OK;
+}
+
+/* Material fields shared by both kinds of body. */
+typedef struct BodyFields {
+  double density, mass, friction, inertia, center[2];
+  int fixed;
+} BodyFields;
+
+static us_Status read_material(Reader *r, const char *where, json_t *b, BodyFields *f) {
+  json_t *v;
+  us_Status st = US_OK;
+  f->density = 0, f->mass = 0, f->friction = -1, f->inertia = 0, f->fixed = 0;
+  if (json_object_get(b, "density") && json_object_get(b, "mass"))
+    return us_io_bad(&r->c, where, "give either 'density' or 'mass', not both");
+  if ((v = json_object_get(b, "density"))) st = us_io_sign_number(&r->c, where, "density", v, 1, &f->density);
+  if (!st && (v = json_object_get(b, "mass"))) st = us_io_sign_number(&r->c, where, "mass", v, 1, &f->mass);
+  if (!st && (v = json_object_get(b, "friction")))
+    st = us_io_sign_number(&r->c, where, "friction", v, 0, &f->friction);
+  if (!st && (v = json_object_get(b, "fixed"))) st = us_io_bool(&r->c, where, "fixed", v, &f->fixed);
+  if (!st && (v = json_object_get(b, "inertia")))
+    st = us_io_sign_number(&r->c, where, "inertia", v, 1, &f->inertia);
+  return st;
+}
+
+/* A body without geometry: only with explicit contacts; needs a centre and
+ * (unless fixed) a mass. */
+static us_Status add_point_body(Reader *r, const char *where, const char *id, json_t *b,
+                                const BodyFields *f) {
+  BodyFields g = *f;
+  json_t *v = json_object_get(b, "center");
+  if (!r->explicit_contacts)
+    return us_io_bad(&r->c, where,
+                     "missing field 'polygon' (bodies without a polygon need explicit contacts)");
+  if (!v) return us_io_bad(&r->c, where, "missing field 'center' (a body without a polygon)");
+  us_Status st = us_io_vec2(&r->c, where, "center", v, g.center);
+  if (st) return st;
+  if (json_object_get(b, "density"))
+    return us_io_bad(&r->c, where, "'density' needs a polygon (give 'mass')");
+  if (!g.fixed && !json_object_get(b, "mass"))
+    return us_io_bad(&r->c, where, "missing field 'mass' (a body without a polygon)");
+  int i = us_structure_add_point_body(r->s, id, g.mass, g.center, g.fixed, r->c.err);
+  if (i < 0) return r->c.err->code;
+  r->s->bodies[i].friction = g.friction;
+  r->s->bodies[i].inertia = g.inertia;
+  return US_OK;
+}
+
+static us_Status add_polygon_body(Reader *r, const char *where, const char *id, json_t *b,
+                                  const BodyFields *f) {
+  if (json_object_get(b, "center") || json_object_get(b, "inertia"))
+    return us_io_bad(&r->c, where,
+                     "'center' and 'inertia' are only for bodies without a polygon");
+  double *xy = NULL;
+  int n = 0;
+  us_Status st = read_polygon(r, where, json_object_get(b, "polygon"), &xy, &n);
+  if (!st && us_structure_add_polygon(r->s, id, n, xy, f->density, f->mass, f->fixed,
+                                      f->friction, r->c.err) < 0)
+    st = r->c.err->code;
+  us_free(xy);
+  return st;
+}
+
+/* The id of body k: a unique non-empty string other than "ground". */
+static us_Status read_id(Reader *r, const char *where, json_t *b, const char **id) {
+  json_t *v = json_object_get(b, "id");
+  if (!v) return us_io_bad(&r->c, where, "missing field 'id'");
+  if (!json_is_string(v)) return us_io_bad(&r->c, where, "id: expected a string");
+  *id = json_string_value(v);
+  if (!**id) return us_io_bad(&r->c, where, "id: must not be empty");
+  if (!strcmp(*id, "ground"))
+    return us_io_bad(&r->c, where, "id 'ground' is reserved for the ground");
+  int other = us_idmap_get(&r->ids, *id);
+  if (other >= 0)
+    return us_io_bad(&r->c, where, "duplicate id '%.80s' (also bodies[%d])", *id, other);
+  return US_OK;
+}
+
+static us_Status read_body(Reader *r, int k, json_t *b) {
+  char where[160];
+  snprintf(where, sizeof where, "bodies[%d]", k);
+  if (!json_is_object(b)) return us_io_bad(&r->c, where, "expected an object");
+  const char *id = NULL;
+  us_Status st = read_id(r, where, b, &id);
+  if (st) return st;
+  snprintf(where, sizeof where, "bodies[%d] (id '%.80s')", k, id);
+  BodyFields f;
+  st = us_io_check_keys(&r->c, where, b, body_keys);
+  if (!st) st = read_material(r, where, b, &f);
+  if (st) return st;
+  if (json_object_get(b, "polygon"))
+    st = add_polygon_body(r, where, id, b, &f);
+  else
+    st = add_point_body(r, where, id, b, &f);
+  if (!st) us_idmap_put(&r->ids, r->s->bodies[r->s->nbody - 1].id, k);
+  return st;
+}
+
+static us_Status read_bodies(Reader *r, json_t *root) {
+  json_t *arr = json_object_get(root, "bodies");
+  if (!arr) return us_io_bad(&r->c, "", "missing field 'bodies'");
+  if (!json_is_array(arr)) return us_io_bad(&r->c, "", "bodies: expected an array");
+  if (json_array_size(arr) > (size_t)INT_MAX / 4)
+    return us_io_bad(&r->c, "", "bodies: too many bodies");
+  if (us_idmap_init(&r->ids, (int)json_array_size(arr)))
+    return us_error_set(r->c.err, US_ERR_NOMEM, "%s: out of memory", r->c.name);
+  for (size_t k = 0; k < json_array_size(arr); k++) {
+    us_Status st = read_body(r, (int)k, json_array_get(arr, k));
+    if (st) return st;
+  }
+  return US_OK;
+}
+
+/* One side of an explicit contact: a body id, or "ground" for side a. */
+static us_Status read_side(Reader *r, const char *where, json_t *c, const char *field,
+                           int *out) {
+  json_t *v = json_object_get(c, field);
+  if (!v) return us_io_bad(&r->c, where, "missing field '%s'", field);
+  if (!json_is_string(v)) return us_io_bad(&r->c, where, "%s: expected a body id (string)", field);
+  const char *id = json_string_value(v);
+  if (!strcmp(id, "ground")) {
+    if (field[0] == 'b')
+      return us_io_bad(&r->c, where, "b: must be a body, not the ground (put the ground in 'a')");
+    if (!r->s->ground)
+      return us_io_bad(&r->c, where, "a: 'ground' used but the structure has \"ground\": false");
+    *out = US_GROUND;
+    return US_OK;
+  }
+  *out = us_idmap_get(&r->ids, id);
+  if (*out < 0) return us_io_bad(&r->c, where, "%s: unknown body id '%.80s'", field, id);
+  return US_OK;
+}
+
+/* The contact normal: unit length (within 1e-3, then normalized). */
+static us_Status read_normal(Reader *r, const char *where, json_t *c, double n[3]) {
+  json_t *v = json_object_get(c, "normal");
+  if (!v) return us_io_bad(&r->c, where, "missing field 'normal'");
+  us_Status st = us_io_vec2(&r->c, where, "normal", v, n);
+  if (st) return st;
+  double len = hypot(n[0], n[1]);
+  if (!(len > 1e-12)) return us_io_bad(&r->c, where, "normal: must not be zero");
+  if (fabs(len - 1.0) > 1e-3)
+    return us_io_bad(&r->c, where, "normal: must be a unit vector (length %g)", len);
+  n[0] /= len, n[1] /= len, n[2] = 0.0;
+  return US_OK;
+}
+
+static us_Status read_contact(Reader *r, int k, json_t *c) {
+  char where[48];
+  snprintf(where, sizeof where, "contacts[%d]", k);
+  if (!json_is_object(c)) return us_io_bad(&r->c, where, "expected an object");
+  int a = 0, b = 0;
+  double p[3] = {0, 0, 0}, n[3] = {0, 0, 0}, mu = -1.0;
+  json_t *v;
+  us_Status st = us_io_check_keys(&r->c, where, c, contact_keys);
+  if (!st) st = read_side(r, where, c, "a", &a);
+  if (!st) st = read_side(r, where, c, "b", &b);
+  if (!st && a == b) st = us_io_bad(&r->c, where, "a and b are the same body");
+  if (!st && !(v = json_object_get(c, "point"))) st = us_io_bad(&r->c, where, "missing field 'point'");
+  if (!st) st = us_io_vec2(&r->c, where, "point", v, p);
+  if (!st) st = read_normal(r, where, c, n);
+  if (!st && (v = json_object_get(c, "friction"))) st = us_io_sign_number(&r->c, where, "friction", v, 0, &mu);
+  if (!st && us_structure_add_contact(r->s, a, b, p, n, mu, r->c.err) < 0) st = r->c.err->code;
+  return st;
+}
+
+static us_Status read_contacts(Reader *r, json_t *arr) {
+  if (!json_is_array(arr)) return us_io_bad(&r->c, "", "contacts: expected an array");
+  for (size_t k = 0; k < json_array_size(arr); k++) {
+    us_Status st = read_contact(r, (int)k, json_array_get(arr, k));
+    if (st) return st;
+  }
+  r->s->explicit_contacts = 1;
+  return US_OK;
+}
+
+/* Messages from the builder and finalize name bodies but not the file. */
+static us_Status prefix_file(const us_IoCtx *c, us_Status st) {
+  char msg[sizeof c->err->msg];
+  memcpy(msg, c->err->msg, sizeof msg);
+  return us_error_set(c->err, st, "%s: %s", c->name, msg);
+}
+
+/* Build s from the parsed document; returns a status, err set. */
+static us_Status read_document(Reader *r, json_t *root, double contact_tol) {
+  if (!json_is_object(root)) return us_io_bad(&r->c, "", "expected a JSON object at the top level");
+  json_t *contacts = json_object_get(root, "contacts");
+  r->explicit_contacts = contacts != NULL;
+  us_Status st = read_globals(r, root);
+  if (!st) st = read_bodies(r, root);
+  if (!st && contacts) st = read_contacts(r, contacts);
+  if (st) return st;
+  r->s->explicit_contacts = r->explicit_contacts;
+  if (contact_tol > 0) r->s->contact_tol = contact_tol;
+  st = us_structure_finalize(r->s, r->c.err);
+  return st ? prefix_file(&r->c, st) : US_OK;
+}
+
+us_Structure *us_structure_parse(const char *text, const char *name, double contact_tol,
+                                 us_Error *err) {
+  us_Error local;
+  us_error_clear(&local);
+  Reader r = {{name ? name : "<input>", &local}, NULL, {0, NULL, NULL}, 0};
+  json_t *root = us_io_parse_json(&r.c, text, strlen(text));
+  us_Status st = root ? US_OK : local.code;
+  if (!st) {
+    r.s = us_structure_new(2);
+    if (!r.s) st = us_error_set(&local, US_ERR_NOMEM, "%s: out of memory", r.c.name);
+  }
+  if (!st) st = read_document(&r, root, contact_tol);
+  us_idmap_free(&r.ids);
+  json_decref(root);
+  if (st) {
+    us_structure_free(r.s);
+    if (err) *err = local;
+    return NULL;
+  }
+  return r.s;
+}
+
+us_Structure *us_structure_read(const char *path, double contact_tol, us_Error *err) {
+  size_t len = 0;
+  char *text = us_io_slurp(path, &len, err);
+  if (!text) return NULL;
+  if (strlen(text) != len) {
+    us_free(text);
+    us_error_set(err, US_ERR_PARSE, "%s: contains a NUL byte (not a JSON text file)", path);
+    return NULL;
+  }
+  us_Structure *s = us_structure_parse(text, path, contact_tol, err);
+  us_free(text);
+  return s;
+}

@@ -1,0 +1,120 @@
+/* Reading helpers shared by the structure and plan readers: whole-file
+ * input, JSON parsing with file:line:column syntax errors, and typed field
+ * readers whose messages name the file, the JSON path and the field.
+ *
+ * Numbers: documents are parsed with JSON_DECODE_INT_AS_REAL, so every
+ * number is a double; jansson itself rejects NaN, Infinity and numbers that
+ * overflow a double, as syntax errors with a position. Duplicate keys in an
+ * object are syntax errors too (JSON_REJECT_DUPLICATES). */
+#include "io.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <string.h>
+
+us_Status us_io_bad(const us_IoCtx *c, const char *where, const char *fmt, ...) {
+  char detail[400];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(detail, sizeof detail, fmt, ap);
+  va_end(ap);
+  if (where && *where)
+    return us_error_set(c->err, US_ERR_INPUT, "%s: %s: %s", c->name, where, detail);
+  return us_error_set(c->err, US_ERR_INPUT, "%s: %s", c->name, detail);
+}
+
+json_t *us_io_parse_json(const us_IoCtx *c, const char *text, size_t len) {
+  json_error_t je;
+  json_t *root = json_loadb(text, len, JSON_DECODE_INT_AS_REAL | JSON_REJECT_DUPLICATES, &je);
+  if (root) return root;
+  if (je.line > 0)
+    us_error_set(c->err, US_ERR_PARSE, "%s:%d:%d: %s", c->name, je.line, je.column, je.text);
+  else
+    us_error_set(c->err, US_ERR_PARSE, "%s: %s", c->name, je.text);
+  return NULL;
+}
+
+char *us_io_slurp(const char *path, size_t *len, us_Error *err) {
+  FILE *fp = fopen(path, "rb");
+  if (!fp) {
+    us_error_set(err, US_ERR_IO, "%s: cannot open: %s", path, strerror(errno));
+    return NULL;
+  }
+  size_t n = 0, cap = 1 << 16;
+  char *buf = us_malloc(cap);
+  while (buf) {
+    n += fread(buf + n, 1, cap - 1 - n, fp);
+    if (n < cap - 1) break; /* end of file or an error, told apart below */
+    char *bigger = us_realloc(buf, cap * 2);
+    if (!bigger) us_free(buf);
+    buf = bigger;
+    cap *= 2;
+  }
+  int bad = buf ? ferror(fp) : 0;
+  int e = errno;
+  fclose(fp);
+  if (!buf) {
+    us_error_set(err, US_ERR_NOMEM, "%s: out of memory reading the file", path);
+    return NULL;
+  }
+  if (bad) {
+    us_free(buf);
+    us_error_set(err, US_ERR_IO, "%s: cannot read: %s", path, strerror(e));
+    return NULL;
+  }
+  buf[n] = '\0';
+  *len = n;
+  return buf;
+}
+
+us_Status us_io_check_keys(const us_IoCtx *c, const char *where, json_t *obj,
+                           const char *const *allowed) {
+  const char *key;
+  json_t *v;
+  json_object_foreach(obj, key, v) {
+    if (key[0] == '_') continue;
+    int known = 0;
+    for (int i = 0; allowed[i] && !known; i++) known = strcmp(key, allowed[i]) == 0;
+    if (!known) return us_io_bad(c, where, "unknown field '%.60s'", key);
+  }
+  return US_OK;
+}
+
+us_Status us_io_number(const us_IoCtx *c, const char *where, const char *field, json_t *v,
+                       double *out) {
+  if (!json_is_number(v)) return us_io_bad(c, where, "%s: expected a number", field);
+  double x = json_number_value(v);
+  if (!isfinite(x)) return us_io_bad(c, where, "%s: number is not finite", field);
+  *out = x;
+  return US_OK;
+}
+
+us_Status us_io_sign_number(const us_IoCtx *c, const char *where, const char *field, json_t *v,
+                            int positive, double *out) {
+  us_Status st = us_io_number(c, where, field, v, out);
+  if (st) return st;
+  if (positive && !(*out > 0)) return us_io_bad(c, where, "%s: must be > 0 (got %g)", field, *out);
+  if (!positive && !(*out >= 0))
+    return us_io_bad(c, where, "%s: must be >= 0 (got %g)", field, *out);
+  return US_OK;
+}
+
+us_Status us_io_vec2(const us_IoCtx *c, const char *where, const char *field, json_t *v,
+                     double out[2]) {
+  if (!json_is_array(v) || json_array_size(v) != 2 || !json_is_number(json_array_get(v, 0)) ||
+      !json_is_number(json_array_get(v, 1)))
+    return us_io_bad(c, where, "%s: expected [x, y] with 2 numbers", field);
+  out[0] = json_number_value(json_array_get(v, 0));
+  out[1] = json_number_value(json_array_get(v, 1));
+  if (!isfinite(out[0]) || !isfinite(out[1]))
+    return us_io_bad(c, where, "%s: number is not finite", field);
+  return US_OK;
+}
+
+us_Status us_io_bool(const us_IoCtx *c, const char *where, const char *field, json_t *v,
+                     int *out) {
+  if (!json_is_boolean(v)) return us_io_bad(c, where, "%s: expected true or false", field);
+  *out = json_is_true(v);
+  return US_OK;
+}
