@@ -1,33 +1,280 @@
-/* The LCP stability backends (Baraff 1994 / Dantzig principal pivoting),
- * from scratch (us_backend_lcp) and with computation reuse
- * (us_backend_lcp_reuse).
+/* The LCP stability backends: the sub-assembly stands iff the contact LCP
+ * (Baraff 1994) has a solution with zero body accelerations; us_backend_lcp
+ * solves every test from scratch, us_backend_lcp_reuse starts from the
+ * previous sub-assembly's solution.
  *
- * Placeholder: both backends are declared so that the library links; their
- * solve reports that the LCP backend is not finished yet.
+ * Algorithm of one test: map the sub-assembly onto the structure-wide LCP
+ * of lcp_sys.c (index 2c normal, 2c + 1 friction of structure contact c,
+ * live when the contact is active), solve it (lcp.c), and decide:
+ *   - net wrench of every body ~ 0 (|E f + F| <= 1e-9 W): STABLE, with
+ *     these forces (the front end re-checks them);
+ *   - frictionless (every active mu = 0): the body accelerations of a
+ *     PSD LCP are unique, so a clear non-zero wrench (>= 1e-6 W) is
+ *     UNSTABLE, exactly;
+ *   - otherwise (friction: the LCP may have found a sliding solution
+ *     although a static one exists; the gray zone between the thresholds;
+ *     a pivot limit or a degenerate run) the LP decides: the CLP backend,
+ *     created lazily inside this workspace, counted in info->lp_fallbacks.
+ * Reuse: the workspace keeps forces, index sets and the factorized clamped
+ * system. Removed bodies: their contacts' rows leave the factorization and
+ * their forces are faded to zero along a line while every other index
+ * keeps its conditions (pivoting where one would break), which repairs the
+ * solution locally. Added bodies: their contacts join with zero force and
+ * only they are driven. Old contacts keep their forces in both cases.
+ * After a failed run the state is dropped and the next test restarts.
  */
+#include "lcp.h"
 #include "stability.h"
 
-static void *lcp_stub_create(const us_Structure *s, const us_StabilitySettings *set,
-                             us_Error *err) {
-  US_UNUSED(s), US_UNUSED(set);
-  void *w = us_calloc(1, 1);
-  if (!w) us_error_set(err, US_ERR_NOMEM, "out of memory creating the LCP workspace");
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#define EQ_TOL 1e-9      /* stable: net wrench below this (units of W) */
+#define UNSTABLE_TOL 1e-6 /* frictionless unstable: net wrench above this */
+
+typedef struct LcpWs {
+  const us_Structure *s;
+  us_StabilitySettings set;
+  int reuse;         /* the reuse backend */
+  int valid;         /* lcp holds the solution of the last sub-assembly */
+  us_LcpSys sys;
+  us_Lcp lcp;
+  int *idx;          /* [2 ncontact + 1] */
+  void *lpws;        /* CLP workspace, created on the first fallback */
+  int last_body;
+} LcpWs;
+
+static void lcp_destroy(void *ws) {
+  LcpWs *w = ws;
+  if (!w) return;
+  us_lcp_free(&w->lcp);
+  us_lcp_sys_free(&w->sys);
+  if (w->lpws) us_backend_clp.destroy(w->lpws);
+  us_free(w->idx);
+  us_free(w);
+}
+
+static int lcp_setup(LcpWs *w, const us_Structure *s) {
+  if (us_lcp_sys_init(&w->sys, s)) return -1;
+  us_LcpOps ops = us_lcp_sys_ops(&w->sys);
+  if (us_lcp_init(&w->lcp, 2 * s->ncontact, &ops)) return -1;
+  for (int c = 0; c < s->ncontact; c++)
+    if (s->contacts[c].mu > 0) us_lcp_set_friction(&w->lcp, 2 * c + 1, 2 * c, s->contacts[c].mu);
+  w->lcp.max_pivots = w->set.max_pivots;
+  w->idx = us_malloc((size_t)(2 * s->ncontact + 1) * sizeof(int));
+  return w->idx ? 0 : -1;
+}
+
+static void *create(const us_Structure *s, const us_StabilitySettings *set, int reuse,
+                    us_Error *err) {
+  if (s->dim != 2) {
+    us_error_set(err, US_ERR_USAGE, "the LCP backends support 2D structures only");
+    return NULL;
+  }
+  LcpWs *w = us_calloc(1, sizeof *w);
+  if (w) {
+    w->s = s;
+    w->set = *set;
+    w->reuse = reuse;
+    w->last_body = -1;
+  }
+  if (!w || lcp_setup(w, s)) {
+    lcp_destroy(w);
+    us_error_set(err, US_ERR_NOMEM, "out of memory creating the LCP workspace");
+    return NULL;
+  }
   return w;
 }
 
-static void lcp_stub_destroy(void *ws) { us_free(ws); }
-
-static us_Status lcp_stub_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
-                                const int *removed, int nremoved, int restart,
-                                us_Verdict *verdict, double *f, us_StabilityInfo *info,
-                                char *note, size_t note_sz, us_Error *err) {
-  US_UNUSED(ws), US_UNUSED(sys), US_UNUSED(added), US_UNUSED(nadded), US_UNUSED(removed);
-  US_UNUSED(nremoved), US_UNUSED(restart), US_UNUSED(verdict), US_UNUSED(f), US_UNUSED(info);
-  US_UNUSED(note), US_UNUSED(note_sz);
-  return us_error_set(err, US_ERR_SOLVER, "LCP backend not finished");
+static void *create_scratch(const us_Structure *s, const us_StabilitySettings *set,
+                            us_Error *err) {
+  return create(s, set, 0, err);
 }
 
-const us_Backend us_backend_lcp = {"lcp", lcp_stub_create, lcp_stub_destroy, lcp_stub_solve,
-                                   NULL};
-const us_Backend us_backend_lcp_reuse = {"lcp-reuse", lcp_stub_create, lcp_stub_destroy,
-                                         lcp_stub_solve, NULL};
+static void *create_reuse(const us_Structure *s, const us_StabilitySettings *set,
+                          us_Error *err) {
+  return create(s, set, 1, err);
+}
+
+/* ------------------------------------------------------ mapping the test */
+
+/* Present flags and external forces of the bodies of sys. */
+static void load_bodies(LcpWs *w, const us_EqSystem *sys) {
+  for (int r = 0; r < sys->nbody; r++) {
+    int b = sys->body[r];
+    w->sys.present[b] = 1;
+    for (int k = 0; k < 3; k++) w->sys.fext[3 * (size_t)b + (size_t)k] = -sys->rhs[3 * r + k];
+  }
+}
+
+/* The LCP indices of structure contact c. */
+static int contact_indices(const LcpWs *w, int c, int *out) {
+  out[0] = 2 * c;
+  if (w->lcp.kind[2 * c + 1] != US_LCP_FRICTION) return 1;
+  out[1] = 2 * c + 1;
+  return 2;
+}
+
+static void start_scratch(LcpWs *w, const us_EqSystem *sys) {
+  us_lcp_reset(&w->lcp);
+  memset(w->sys.present, 0, (size_t)w->sys.nbody);
+  load_bodies(w, sys);
+  int k = 0;
+  for (int ci = 0; ci < sys->ncontact; ci++) k += contact_indices(w, sys->contact[ci], w->idx + k);
+  us_lcp_add(&w->lcp, w->idx, k);
+}
+
+/* Removed bodies leave; their live contacts are faded out. */
+static us_LcpResult remove_bodies(LcpWs *w, const int *removed, int nremoved) {
+  us_LcpSys *y = &w->sys;
+  int k = 0;
+  for (int j = 0; j < nremoved; j++) {
+    int b = removed[j];
+    y->present[b] = 0;
+    for (int q = y->adj_start[b]; q < y->adj_start[b + 1]; q++) {
+      int c = y->adj[q];
+      if (!w->lcp.live[2 * c] || y->cmark[c]) continue;
+      y->cmark[c] = 1;
+      k += contact_indices(w, c, w->idx + k);
+    }
+  }
+  for (int j = 0; j < k; j++) y->cmark[w->idx[j] >> 1] = 0;
+  return k ? us_lcp_fade(&w->lcp, w->idx, k) : US_LCP_SOLVED;
+}
+
+/* Added bodies arrive; contacts of sys that are not live join with f = 0.
+ * Returns -1 if the live set then differs from sys (restart instead). */
+static int add_bodies(LcpWs *w, const us_EqSystem *sys) {
+  load_bodies(w, sys);
+  int k = 0, live = 0;
+  for (int ci = 0; ci < sys->ncontact; ci++) {
+    int c = sys->contact[ci];
+    if (!w->lcp.live[2 * c]) k += contact_indices(w, c, w->idx + k);
+  }
+  us_lcp_add(&w->lcp, w->idx, k);
+  for (int c = 0; c < w->sys.ncontact; c++) live += w->lcp.live[2 * c];
+  int present = 0;
+  for (int b = 0; b < w->sys.nbody; b++) present += w->sys.present[b];
+  return live == sys->ncontact && present == sys->nbody ? 0 : -1;
+}
+
+/* Set up the LCP of sys, reusing the last state if allowed. 1 if reused,
+ * 0 if started from scratch. */
+static int prepare(LcpWs *w, const us_EqSystem *sys, const int *removed, int nremoved,
+                   int restart) {
+  if (w->reuse && w->valid && !restart) {
+    if (remove_bodies(w, removed, nremoved) == US_LCP_SOLVED && add_bodies(w, sys) == 0)
+      return 1;
+  }
+  start_scratch(w, sys);
+  return 0;
+}
+
+/* --------------------------------------------------------------- verdict */
+
+/* Clip round-off: normal forces >= 0, frictions inside their cones. */
+static void clip_forces(LcpWs *w, const us_EqSystem *sys) {
+  double *f = w->lcp.f;
+  for (int ci = 0; ci < sys->ncontact; ci++) {
+    int c = sys->contact[ci];
+    if (f[2 * c] < 0) f[2 * c] = 0.0;
+    double lim = sys->mu[ci] * f[2 * c];
+    if (w->lcp.kind[2 * c + 1] != US_LCP_FRICTION) f[2 * c + 1] = 0.0;
+    f[2 * c + 1] = US_MAX(-lim, US_MIN(lim, f[2 * c + 1]));
+  }
+}
+
+static void write_forces(const LcpWs *w, const us_EqSystem *sys, double *f) {
+  for (int ci = 0; ci < sys->ncontact; ci++) {
+    int c = sys->contact[ci];
+    f[2 * ci] = w->lcp.f[2 * c];
+    f[2 * ci + 1] = w->lcp.f[2 * c + 1];
+  }
+}
+
+static int frictionless(const us_EqSystem *sys) {
+  for (int ci = 0; ci < sys->ncontact; ci++)
+    if (sys->mu[ci] > 0) return 0;
+  return 1;
+}
+
+/* The LP decides (CLP backend, lazily created). */
+static us_Status fallback(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, double *f,
+                          us_StabilityInfo *info, const char *why, char *note, size_t note_sz,
+                          us_Error *err) {
+  if (!w->lpws) {
+    w->lpws = us_backend_clp.create(w->s, &w->set, err);
+    if (!w->lpws) return err ? err->code : US_ERR_NOMEM;
+  }
+  char sub[96] = "";
+  us_Status st = us_backend_clp.solve(w->lpws, sys, NULL, 0, NULL, 0, 1, verdict, f, info, sub,
+                                      sizeof sub, err);
+  if (st) return st;
+  info->lp_fallbacks++;
+  if (*verdict == US_UNSTABLE && us_backend_clp.unstable_body)
+    w->last_body = us_backend_clp.unstable_body(w->lpws);
+  snprintf(note, note_sz, "LCP %s; LP: %s", why, sub);
+  return US_OK;
+}
+
+static const char *result_name(us_LcpResult r) {
+  switch (r) {
+  case US_LCP_SOLVED: return "solved";
+  case US_LCP_LIMIT: return "hit the pivot limit";
+  case US_LCP_DEGENERATE: return "degenerate";
+  case US_LCP_NOMEM: return "out of memory";
+  }
+  return "?";
+}
+
+static us_Status decide(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, double *f,
+                        us_StabilityInfo *info, char *note, size_t note_sz, us_Error *err) {
+  clip_forces(w, sys);
+  int worst = -1;
+  double res = us_lcp_sys_residual(&w->sys, w->lcp.f, &worst);
+  if (res <= EQ_TOL) {
+    *verdict = US_STABLE;
+    write_forces(w, sys, f);
+    snprintf(note, note_sz, "LCP: equilibrium (residual %.1e)", res);
+    return US_OK;
+  }
+  if (frictionless(sys) && res >= UNSTABLE_TOL) {
+    *verdict = US_UNSTABLE;
+    w->last_body = worst;
+    snprintf(note, note_sz, "LCP: bodies accelerate (net wrench %.2g W on '%s')", res,
+             w->s->bodies[worst].id);
+    return US_OK;
+  }
+  char why[64];
+  snprintf(why, sizeof why, "%s (net wrench %.2g W)",
+           frictionless(sys) ? "residual in the gray zone" : "sliding solution", res);
+  return fallback(w, sys, verdict, f, info, why, note, note_sz, err);
+}
+
+static us_Status lcp_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
+                           const int *removed, int nremoved, int restart, us_Verdict *verdict,
+                           double *f, us_StabilityInfo *info, char *note, size_t note_sz,
+                           us_Error *err) {
+  US_UNUSED(added), US_UNUSED(nadded);
+  LcpWs *w = ws;
+  w->last_body = -1;
+  if (sys->dim != 2) return us_error_set(err, US_ERR_USAGE, "the LCP backends support 2D only");
+  long piv0 = w->lcp.pivots;
+  int reused = prepare(w, sys, removed, nremoved, restart);
+  us_LcpResult r = us_lcp_run(&w->lcp);
+  info->pivots += w->lcp.pivots - piv0;
+  info->reused += reused;
+  w->valid = r == US_LCP_SOLVED;
+  if (r == US_LCP_NOMEM) return us_error_set(err, US_ERR_NOMEM, "out of memory in the LCP");
+  if (r != US_LCP_SOLVED)
+    return fallback(w, sys, verdict, f, info, result_name(r), note, note_sz, err);
+  return decide(w, sys, verdict, f, info, note, note_sz, err);
+}
+
+static int lcp_unstable_body(void *ws) { return ((LcpWs *)ws)->last_body; }
+
+const us_Backend us_backend_lcp = {"lcp", create_scratch, lcp_destroy, lcp_solve,
+                                   lcp_unstable_body};
+const us_Backend us_backend_lcp_reuse = {"lcp-reuse", create_reuse, lcp_destroy, lcp_solve,
+                                         lcp_unstable_body};

@@ -1,0 +1,543 @@
+/* The LCP solver of the LCP stability backends: Baraff's contact-force
+ * algorithm (1994), i.e. Dantzig's principal pivoting driven one index at a
+ * time, with 2D static friction whose bound moves with the normal force.
+ *
+ * Algorithm. Live indices are in one of the sets of lcp.h. A drive takes
+ * one violated index d and moves its force f_d in the direction that
+ * brings a_d towards 0 (normals: up from 0 when a_d < 0; frictions:
+ * -sign(a_t)), while every member of the clamped system keeps its row
+ * satisfied: the members' increments solve K df = -(A_{.,d} dd) with the
+ * dense inverse of K (lcp_inverse.c). The step is the smallest of
+ *   the driven a_d reaching 0 (d joins the system),
+ *   the driven friction reaching its bound +-mu f_n (joins as a bound row),
+ *   a clamped normal force reaching 0 (C -> NC),
+ *   a non-clamped normal acceleration reaching 0 (NC -> C),
+ *   a sticking friction reaching its bound (C -> BND),
+ *   a friction at its bound whose a_t changes sign (BND -> C);
+ * then the sets change and the drive goes on until d is settled. A fade
+ * (computation reuse, removed contacts) drives a set of forces to zero
+ * along a line with the same ratio test.
+ *
+ * Invariants between pivots: members satisfy their rows (clamped a_i = 0,
+ * bound f_t = s mu f_n), clamped normal forces >= 0, NC normals have
+ * f = 0 and a >= 0, a friction whose normal is not clamped has f_t = 0 and
+ * state OFF, every friction satisfies |f_t| <= mu f_n. Pending indices may
+ * violate their conditions; they keep their force until driven.
+ * Degeneracy: a tiny pivot where an index must join (redundant contact)
+ * either defers the index (a_i ~ 0 already) or ends the run as
+ * DEGENERATE; zero-length steps are counted and too many in a row is
+ * cycling; the pivot limit ends the run as LIMIT. The caller then settles
+ * the question another way (the LP).
+ * Sign conventions: a = A f + b; a_t f_t <= 0 (friction opposes sliding).
+ */
+#include "lcp.h"
+
+#include <math.h>
+#include <string.h>
+
+/* ------------------------------------------------------------ life cycle */
+
+int us_lcp_init(us_Lcp *p, int n, const us_LcpOps *ops) {
+  memset(p, 0, sizeof *p);
+  p->n = n;
+  p->ops = *ops;
+  size_t m = (size_t)(n > 0 ? n : 1);
+  p->kind = us_calloc(m, 1);
+  p->partner = us_malloc(m * sizeof(int));
+  p->mu = us_calloc(m, sizeof(double));
+  p->live = us_calloc(m, 1);
+  p->state = us_calloc(m, 1);
+  p->bsign = us_calloc(m, 1);
+  p->f = us_calloc(m, sizeof(double));
+  p->a = us_calloc(m, sizeof(double));
+  p->pos = us_malloc(m * sizeof(int));
+  p->queue = us_malloc(m * sizeof(int));
+  p->inq = us_calloc(m, 1);
+  p->da = us_calloc(m, sizeof(double));
+  p->out = us_malloc(m * sizeof(int));
+  p->didx = us_malloc(2 * m * sizeof(int));
+  p->dval = us_malloc(2 * m * sizeof(double));
+  if (!p->kind || !p->partner || !p->mu || !p->live || !p->state || !p->bsign || !p->f ||
+      !p->a || !p->pos || !p->queue || !p->inq || !p->da || !p->out || !p->didx || !p->dval)
+    return -1;
+  for (int i = 0; i < n; i++) p->partner[i] = p->pos[i] = -1;
+  p->tol_a = 1e-9;
+  p->tol_f = 1e-12;
+  p->tol_piv = 1e-9;
+  return us_lcp_inv_reserve(p, 8);
+}
+
+void us_lcp_free(us_Lcp *p) {
+  void *arrs[] = {p->kind, p->partner, p->mu,  p->live, p->state, p->bsign, p->f,
+                  p->a,    p->pos,     p->queue, p->inq, p->da,    p->out,   p->didx,
+                  p->dval, p->H,       p->mem, p->dfm,  p->r,     p->y,     p->z, p->e};
+  for (size_t i = 0; i < sizeof arrs / sizeof arrs[0]; i++) us_free(arrs[i]);
+  memset(p, 0, sizeof *p);
+}
+
+void us_lcp_set_friction(us_Lcp *p, int t, int n, double mu) {
+  p->kind[t] = US_LCP_FRICTION;
+  p->partner[t] = n;
+  p->partner[n] = t;
+  p->mu[t] = mu;
+}
+
+void us_lcp_reset(us_Lcp *p) {
+  for (int i = 0; i < p->n; i++) {
+    p->f[i] = p->a[i] = 0.0;
+    p->live[i] = p->inq[i] = 0;
+    p->state[i] = US_LCP_OFF;
+    p->pos[i] = -1;
+  }
+  p->k = 0;
+  p->qhead = p->qlen = 0;
+}
+
+static void push(us_Lcp *p, int i) {
+  p->state[i] = US_LCP_PEND;
+  if (p->inq[i]) return;
+  p->queue[(p->qhead + p->qlen) % p->n] = i;
+  p->qlen++;
+  p->inq[i] = 1;
+}
+
+static int pop(us_Lcp *p) {
+  int i = p->queue[p->qhead];
+  p->qhead = (p->qhead + 1) % p->n;
+  p->qlen--;
+  p->inq[i] = 0;
+  return i;
+}
+
+void us_lcp_add(us_Lcp *p, const int *idx, int k) {
+  for (int j = 0; j < k; j++) {
+    int i = idx[j];
+    p->live[i] = 1;
+    p->f[i] = 0.0;
+    p->state[i] = US_LCP_OFF;
+  }
+  for (int j = 0; j < k; j++)
+    if (p->kind[idx[j]] == US_LCP_NORMAL) push(p, idx[j]);
+}
+
+void us_lcp_refresh(us_Lcp *p) { p->ops.full(p->ops.ctx, p->f, p->live, p->a); }
+
+/* --------------------------------------------------------- the system K */
+
+static double entry(const us_Lcp *p, int i, int j) { return p->ops.entry(p->ops.ctx, i, j); }
+
+/* Index i joins as a clamped row (a_i = 0). 0, 1 tiny pivot, -1 OOM. */
+static int append_clamp(us_Lcp *p, int i) {
+  if (us_lcp_inv_reserve(p, p->k + 1)) return -1;
+  for (int s = 0; s < p->k; s++) {
+    int m = p->mem[s];
+    p->r[s] = p->state[m] == US_LCP_C ? entry(p, m, i) : 0.0; /* column of K */
+    p->e[s] = entry(p, i, m);                                 /* row of K */
+  }
+  double alpha = entry(p, i, i);
+  int r = us_lcp_inv_append(p, i, p->r, p->e, alpha, p->tol_piv * US_MAX(fabs(alpha), 1e-300));
+  if (r == 0) p->state[i] = US_LCP_C;
+  return r;
+}
+
+/* Friction t joins as the bound row f_t - s mu f_n = 0. */
+static int append_bound(us_Lcp *p, int t, int sign) {
+  if (us_lcp_inv_reserve(p, p->k + 1)) return -1;
+  int n = p->partner[t];
+  for (int s = 0; s < p->k; s++) {
+    int m = p->mem[s];
+    p->r[s] = p->state[m] == US_LCP_C ? entry(p, m, t) : 0.0;
+    p->e[s] = m == n ? -(double)sign * p->mu[t] : 0.0;
+  }
+  int r = us_lcp_inv_append(p, t, p->r, p->e, 1.0, p->tol_piv);
+  if (r == 0) {
+    p->state[t] = US_LCP_BND;
+    p->bsign[t] = (signed char)sign;
+  }
+  return r;
+}
+
+/* Remove member i from the system. 0, or 1 if the rest looks singular. */
+static int remove_member(us_Lcp *p, int i) { return us_lcp_inv_delete(p, p->pos[i]); }
+
+/* --------------------------------------------------------------- a step */
+
+typedef struct Ev {
+  double lam;
+  int kind, idx, sign;
+} Ev;
+
+static void consider(Ev *ev, double lam, int kind, int idx, int sign) {
+  if (lam < 0) lam = 0;
+  if (lam < ev->lam) {
+    ev->lam = lam;
+    ev->kind = kind;
+    ev->idx = idx;
+    ev->sign = sign;
+  }
+}
+
+/* Member increments df = -H (A_{members, D} dD) for the driven set D
+ * (didx/dval, nd entries), then da = A (df, dD) for the touched indices.
+ * Returns the number of listed indices in p->out. */
+static int direction(us_Lcp *p, int nd) {
+  for (int s = 0; s < p->k; s++) {
+    int m = p->mem[s];
+    double r = 0.0;
+    if (p->state[m] == US_LCP_C)
+      for (int d = 0; d < nd; d++) r += entry(p, m, p->didx[d]) * p->dval[d];
+    p->r[s] = -r;
+  }
+  us_lcp_inv_mult(p, p->r, p->dfm);
+  for (int s = 0; s < p->k; s++) {
+    p->didx[nd + s] = p->mem[s];
+    p->dval[nd + s] = p->dfm[s];
+  }
+  return p->ops.apply(p->ops.ctx, p->didx, p->dval, nd + p->k, p->da, p->out);
+}
+
+static double member_df(const us_Lcp *p, int i) { return p->pos[i] >= 0 ? p->dfm[p->pos[i]] : 0.0; }
+
+/* Ratio test over the members and the listed non-members. */
+static void ratio_members(const us_Lcp *p, int nout, double thr_f, double thr_a, Ev *ev) {
+  for (int s = 0; s < p->k; s++) {
+    int i = p->mem[s];
+    double df = p->dfm[s];
+    if (p->state[i] == US_LCP_C && p->kind[i] == US_LCP_NORMAL) {
+      if (df < -thr_f) consider(ev, p->f[i] / -df, US_LCP_EV_C_NC, i, 0);
+    } else if (p->state[i] == US_LCP_C) { /* sticking friction: both bounds */
+      int n = p->partner[i];
+      double dfn = member_df(p, n);
+      for (int sg = -1; sg <= 1; sg += 2) {
+        double h0 = sg * p->f[i] - p->mu[i] * p->f[n], h1 = sg * df - p->mu[i] * dfn;
+        if (h1 > thr_f) consider(ev, -h0 / h1, US_LCP_EV_C_BND, i, sg);
+      }
+    }
+  }
+  for (int j = 0; j < nout; j++) {
+    int i = p->out[j];
+    if (!p->live[i]) continue;
+    double da = p->da[i];
+    if (p->state[i] == US_LCP_NC && da < -thr_a) consider(ev, p->a[i] / -da, US_LCP_EV_NC_C, i, 0);
+    if (p->state[i] == US_LCP_BND && p->bsign[i] * da > thr_a)
+      consider(ev, -p->bsign[i] * p->a[i] / (p->bsign[i] * da), US_LCP_EV_BND_C, i, 0);
+  }
+}
+
+/* The driven index's own events (single drive, direction dir). */
+static void ratio_driven(const us_Lcp *p, int d, double dir, double thr_f, double thr_a, Ev *ev) {
+  double da = p->da[d];
+  if (dir * da > thr_a && p->a[d] * dir < 0) consider(ev, -p->a[d] / da, US_LCP_EV_DONE, d, 0);
+  if (p->kind[d] == US_LCP_NORMAL) {
+    if (dir < 0) consider(ev, p->f[d], US_LCP_EV_ZERO, d, 0);
+    return;
+  }
+  int n = p->partner[d];
+  double h0 = dir * p->f[d] - p->mu[d] * p->f[n], h1 = 1.0 - p->mu[d] * member_df(p, n);
+  if (h1 > thr_f) consider(ev, -h0 / h1, US_LCP_EV_BOUND, d, (int)dir);
+}
+
+/* Largest magnitude of the listed da and of the member increments. */
+static void scales(const us_Lcp *p, int nout, double *fs, double *as) {
+  double f = 1.0, a = 1.0;
+  for (int s = 0; s < p->k; s++) f = US_MAX(f, fabs(p->dfm[s]));
+  for (int j = 0; j < nout; j++) a = US_MAX(a, fabs(p->da[p->out[j]]));
+  *fs = f;
+  *as = a;
+}
+
+/* Move by lam along the current direction (nd driven entries). */
+static void advance(us_Lcp *p, int nd, int nout, double lam) {
+  for (int j = 0; j < nd + p->k; j++) p->f[p->didx[j]] += lam * p->dval[j];
+  for (int j = 0; j < nout; j++) {
+    int i = p->out[j];
+    if (p->live[i]) p->a[i] += lam * p->da[i];
+  }
+}
+
+static void clear_da(us_Lcp *p, int nout) {
+  for (int j = 0; j < nout; j++) p->da[p->out[j]] = 0.0;
+}
+
+/* ------------------------------------------------------------ the events */
+
+/* The friction of a normal that left the system: force 0, no condition. */
+static int friction_off(us_Lcp *p, int n) {
+  int t = p->partner[n];
+  if (t < 0 || !p->live[t] || p->state[t] == US_LCP_DRV) return 0;
+  int bad = 0;
+  if (p->pos[t] >= 0) bad = remove_member(p, t);
+  p->state[t] = US_LCP_OFF;
+  p->f[t] = 0.0;
+  return bad;
+}
+
+/* A normal joined the system: its friction (if any) waits for a drive. */
+static void friction_on(us_Lcp *p, int n) {
+  int t = p->partner[n];
+  if (t >= 0 && p->live[t] && p->state[t] == US_LCP_OFF) push(p, t);
+}
+
+static us_LcpResult join_clamp(us_Lcp *p, int i) {
+  int r = append_clamp(p, i);
+  if (r < 0) return US_LCP_NOMEM;
+  if (r > 0) return US_LCP_DEGENERATE;
+  if (p->kind[i] == US_LCP_NORMAL) friction_on(p, i);
+  return US_LCP_SOLVED;
+}
+
+/* The driven a reached 0. A tiny pivot means d is redundant with the
+ * system: a normal with no force stays out (NC), a friction is deferred. */
+static us_LcpResult ev_done(us_Lcp *p, int d) {
+  p->a[d] = 0.0;
+  int r = append_clamp(p, d);
+  if (r < 0) return US_LCP_NOMEM;
+  if (r == 0) {
+    if (p->kind[d] == US_LCP_NORMAL) friction_on(p, d);
+    return US_LCP_SOLVED;
+  }
+  p->deferred++;
+  if (p->kind[d] == US_LCP_FRICTION) {
+    p->state[d] = US_LCP_FREE;
+    return US_LCP_SOLVED;
+  }
+  if (p->f[d] > p->tol_f) return US_LCP_DEGENERATE;
+  p->f[d] = 0.0;
+  p->state[d] = US_LCP_NC;
+  return US_LCP_SOLVED;
+}
+
+static us_LcpResult ev_bound(us_Lcp *p, int t, int sign, int was_member) {
+  p->f[t] = sign * p->mu[t] * p->f[p->partner[t]];
+  if (was_member && remove_member(p, t)) return US_LCP_DEGENERATE;
+  int r = append_bound(p, t, sign);
+  return r < 0 ? US_LCP_NOMEM : r > 0 ? US_LCP_DEGENERATE : US_LCP_SOLVED;
+}
+
+static us_LcpResult apply_event(us_Lcp *p, const Ev *ev) {
+  int i = ev->idx;
+  switch (ev->kind) {
+  case US_LCP_EV_DONE: return ev_done(p, i);
+  case US_LCP_EV_ZERO:
+    p->f[i] = 0.0;
+    p->state[i] = US_LCP_NC;
+    return US_LCP_SOLVED;
+  case US_LCP_EV_BOUND: return ev_bound(p, i, ev->sign, 0);
+  case US_LCP_EV_C_NC:
+    p->f[i] = 0.0;
+    if (remove_member(p, i)) return US_LCP_DEGENERATE;
+    p->state[i] = US_LCP_NC;
+    return friction_off(p, i) ? US_LCP_DEGENERATE : US_LCP_SOLVED;
+  case US_LCP_EV_NC_C: p->a[i] = 0.0; return join_clamp(p, i);
+  case US_LCP_EV_C_BND: return ev_bound(p, i, ev->sign, 1);
+  case US_LCP_EV_BND_C:
+    p->a[i] = 0.0;
+    if (remove_member(p, i)) return US_LCP_DEGENERATE;
+    {
+      int r = append_clamp(p, i);
+      if (r < 0) return US_LCP_NOMEM;
+      if (r > 0) { /* redundant: keep its force, re-checked at the end */
+        p->state[i] = US_LCP_FREE;
+        p->deferred++;
+      }
+    }
+    return US_LCP_SOLVED;
+  }
+  return US_LCP_SOLVED;
+}
+
+/* ------------------------------------------------------------ the drives */
+
+typedef struct Run {
+  long pivots, limit;
+  int zero_steps;
+} Run;
+
+/* One pivot of a drive of nd driven entries (single: nd == 1, driven
+ * direction dir; fade: lam_max bounds the step). */
+static us_LcpResult pivot(us_Lcp *p, Run *run, int nd, int single, double dir, double lam_max,
+                          double *lam_out) {
+  int nout = direction(p, nd);
+  double fs, as;
+  scales(p, nout, &fs, &as);
+  double thr_f = 1e-11 * fs, thr_a = 1e-11 * as;
+  Ev ev = {INFINITY, -1, -1, 0};
+  if (single) ratio_driven(p, p->didx[0], dir, thr_f, thr_a, &ev);
+  else consider(&ev, lam_max, US_LCP_EV_FADED, -1, 0);
+  ratio_members(p, nout, thr_f, thr_a, &ev);
+  if (!isfinite(ev.lam)) {
+    clear_da(p, nout);
+    return US_LCP_DEGENERATE; /* unbounded drive */
+  }
+  advance(p, nd, nout, ev.lam);
+  clear_da(p, nout);
+  *lam_out = ev.lam;
+  run->zero_steps = ev.lam <= 1e-14 ? run->zero_steps + 1 : 0;
+  us_LcpResult r = ev.kind == US_LCP_EV_FADED ? US_LCP_SOLVED : apply_event(p, &ev);
+  p->pivots++;
+  if (p->trace) {
+    us_LcpStep st = {single ? p->didx[0] : -1, ev.lam, ev.kind, ev.idx, p->f, p->a};
+    p->trace(p->trace_ud, &st);
+  }
+  if (r) return r;
+  if (++run->pivots > run->limit) return US_LCP_LIMIT;
+  if (run->zero_steps > 2 * p->n + 20) return US_LCP_DEGENERATE;
+  return US_LCP_SOLVED;
+}
+
+/* Settle an index whose a is already ~0 (no motion needed). */
+static us_LcpResult settle_in_place(us_Lcp *p, int d) {
+  if (p->kind[d] == US_LCP_NORMAL && p->f[d] <= p->tol_f) {
+    p->f[d] = 0.0;
+    p->state[d] = US_LCP_NC;
+    return US_LCP_SOLVED;
+  }
+  return ev_done(p, d);
+}
+
+/* Direction of a drive of d, or 0 if d is settled without moving. */
+static double drive_dir(const us_Lcp *p, int d) {
+  double a = p->a[d];
+  if (p->kind[d] == US_LCP_NORMAL) {
+    if (a < -p->tol_a) return 1.0;
+    return a > p->tol_a && p->f[d] > p->tol_f ? -1.0 : 0.0;
+  }
+  return a > p->tol_a ? -1.0 : a < -p->tol_a ? 1.0 : 0.0;
+}
+
+static us_LcpResult drive(us_Lcp *p, Run *run, int d) {
+  if (p->kind[d] == US_LCP_FRICTION && p->state[p->partner[d]] != US_LCP_C) {
+    p->state[d] = US_LCP_OFF; /* unloaded contact: no friction */
+    p->f[d] = 0.0;
+    return US_LCP_SOLVED;
+  }
+  double dir = drive_dir(p, d);
+  if (dir == 0.0) return settle_in_place(p, d);
+  if (p->kind[d] == US_LCP_FRICTION &&
+      dir * p->f[d] >= p->mu[d] * p->f[p->partner[d]] - p->tol_f)
+    return ev_bound(p, d, (int)dir, 0); /* already at the bound it moves to */
+  p->state[d] = US_LCP_DRV;
+  while (p->state[d] == US_LCP_DRV) {
+    p->didx[0] = d;
+    p->dval[0] = dir;
+    double lam;
+    us_LcpResult r = pivot(p, run, 1, 1, dir, 0.0, &lam);
+    if (r) return r;
+  }
+  return US_LCP_SOLVED;
+}
+
+static long run_limit(const us_Lcp *p) {
+  return p->max_pivots > 0 ? p->max_pivots : 50L * p->n + 100;
+}
+
+us_LcpResult us_lcp_fade(us_Lcp *p, const int *idx, int k) {
+  Run run = {0, run_limit(p), 0};
+  for (int j = 0; j < k; j++) {
+    int i = idx[j];
+    if (p->pos[i] >= 0 && remove_member(p, i)) return US_LCP_DEGENERATE;
+    p->state[i] = US_LCP_DRV; /* a stale queue entry is skipped by its state */
+  }
+  double left = 1.0;
+  while (left > 0) {
+    int nd = 0;
+    for (int j = 0; j < k; j++) {
+      p->didx[nd] = idx[j];
+      p->dval[nd++] = -p->f[idx[j]] / left; /* reach 0 when left is used up */
+    }
+    double lam;
+    us_LcpResult r = pivot(p, &run, nd, 0, 0.0, left, &lam);
+    if (r) return r;
+    left = lam >= left ? 0.0 : left - lam;
+  }
+  for (int j = 0; j < k; j++) {
+    p->f[idx[j]] = p->a[idx[j]] = 0.0;
+    p->live[idx[j]] = 0;
+    p->state[idx[j]] = US_LCP_OFF;
+  }
+  return US_LCP_SOLVED;
+}
+
+/* ------------------------------------------------------ the final check */
+
+/* One Newton correction of the members from fresh accelerations: the rows
+ * drift by round-off over many pivots. Then a is recomputed. */
+static void polish(us_Lcp *p) {
+  if (p->k == 0) return;
+  for (int s = 0; s < p->k; s++) {
+    int m = p->mem[s];
+    if (p->state[m] == US_LCP_C)
+      p->r[s] = p->a[m];
+    else
+      p->r[s] = p->f[m] - p->bsign[m] * p->mu[m] * p->f[p->partner[m]];
+  }
+  us_lcp_inv_mult(p, p->r, p->dfm);
+  for (int s = 0; s < p->k; s++) p->f[p->mem[s]] -= p->dfm[s];
+  us_lcp_refresh(p);
+}
+
+/* Conditions of friction i (live) after a run; queue the violated ones. */
+static us_LcpResult check_friction(us_Lcp *p, int i) {
+  int n = p->partner[i];
+  double a = p->a[i], lim = p->mu[i] * p->f[n] + 10 * p->tol_f;
+  switch (p->state[i]) {
+  case US_LCP_OFF:
+    if (p->state[n] == US_LCP_C) push(p, i);
+    return US_LCP_SOLVED;
+  case US_LCP_C:
+    return fabs(a) > p->tol_a || fabs(p->f[i]) > lim ? US_LCP_DEGENERATE : US_LCP_SOLVED;
+  case US_LCP_BND:
+    if (p->bsign[i] * a > p->tol_a) { /* sliding the wrong way: drive back */
+      if (remove_member(p, i)) return US_LCP_DEGENERATE;
+      push(p, i);
+    }
+    return US_LCP_SOLVED;
+  default: /* FREE or left pending */
+    if (fabs(p->f[i]) > lim) return US_LCP_DEGENERATE;
+    if (fabs(a) > p->tol_a) push(p, i);
+    return US_LCP_SOLVED;
+  }
+}
+
+static us_LcpResult check_normal(us_Lcp *p, int i) {
+  switch (p->state[i]) {
+  case US_LCP_C:
+    return p->f[i] < -1e3 * p->tol_f || fabs(p->a[i]) > p->tol_a ? US_LCP_DEGENERATE
+                                                                   : US_LCP_SOLVED;
+  case US_LCP_NC:
+    if (p->a[i] < -p->tol_a) push(p, i);
+    return US_LCP_SOLVED;
+  default:
+    push(p, i);
+    return US_LCP_SOLVED;
+  }
+}
+
+/* Fresh a, polish, then every live index against its conditions. */
+static us_LcpResult final_check(us_Lcp *p) {
+  us_lcp_refresh(p);
+  polish(p);
+  for (int i = 0; i < p->n; i++) {
+    if (!p->live[i]) continue;
+    us_LcpResult r = p->kind[i] == US_LCP_NORMAL ? check_normal(p, i) : check_friction(p, i);
+    if (r) return r;
+  }
+  return US_LCP_SOLVED;
+}
+
+us_LcpResult us_lcp_run(us_Lcp *p) {
+  Run run = {0, run_limit(p), 0};
+  us_lcp_refresh(p);
+  for (int pass = 0; pass < 50; pass++) {
+    while (p->qlen > 0) {
+      int i = pop(p);
+      if (!p->live[i] || p->state[i] != US_LCP_PEND) continue;
+      us_LcpResult r = drive(p, &run, i);
+      if (r) return r;
+    }
+    us_LcpResult r = final_check(p);
+    if (r) return r;
+    if (p->qlen == 0) return US_LCP_SOLVED;
+  }
+  return US_LCP_DEGENERATE;
+}

@@ -1,0 +1,177 @@
+/* Private interface of the LCP solver (Baraff 1994, Dantzig's principal
+ * pivoting) used by the LCP stability backends, exposed so that the solver
+ * can be tested on raw (A, b) problems.
+ *
+ * The problem: indices i = 0..n-1 of two kinds.
+ *   normal   i: f_i >= 0, a_i >= 0, f_i a_i = 0;
+ *   friction t (partner normal n, coefficient mu > 0): |f_t| <= mu f_n,
+ *              a_t (mu f_n - |f_t|) = 0, a_t f_t <= 0 (2D static friction,
+ *              the bound moves with f_n);
+ * with a = A f + b. A is reached only through callbacks (an entry on
+ * demand, a sparse product, a full recomputation of a), so a caller can
+ * keep A implicit (A = J M^-1 J^T through the bodies, lcp_sys.c).
+ *
+ * Only `live` indices take part; the others keep f = 0 and are ignored.
+ * The solver keeps its state (forces, index sets, the factorized clamped
+ * system) between runs, which is what computation reuse builds on:
+ * us_lcp_add (new indices, driven from zero) and us_lcp_fade (indices whose
+ * forces are driven to zero and which then leave).
+ */
+#ifndef US_LCP_H
+#define US_LCP_H
+
+#include "core/core.h"
+
+typedef struct us_LcpOps {
+  void *ctx;
+  /* A_ij */
+  double (*entry)(void *ctx, int i, int j);
+  /* y = A x for x non-zero only at idx[0..k) (values x[0..k)): writes y[i]
+   * for every index i it lists in out[] (returns the count; out holds n).
+   * Unlisted indices have y_i = 0. May list non-live indices. */
+  int (*apply)(void *ctx, const int *idx, const double *x, int k, double *y, int *out);
+  /* a = A f + b for every index with live[i] != 0 (others untouched). */
+  void (*full)(void *ctx, const double *f, const unsigned char *live, double *a);
+} us_LcpOps;
+
+enum { US_LCP_NORMAL = 0, US_LCP_FRICTION = 1 };
+
+/* Index states. OFF: friction whose normal is not clamped (f_t = 0, no
+ * condition) or a non-live index. PEND: queued for a drive. NC: normal with
+ * f = 0, a >= 0. C: clamped (a = 0), a row of the factorized system. BND:
+ * friction at its bound f_t = s mu f_n (row f_t - s mu f_n = 0 of the
+ * system). FREE: friction that could not join the system (redundant,
+ * a_t ~ 0), re-checked at the end of every run. DRV: being driven. */
+enum { US_LCP_OFF = 0, US_LCP_PEND, US_LCP_NC, US_LCP_C, US_LCP_BND, US_LCP_FREE, US_LCP_DRV };
+
+/* Outcome of a run. */
+typedef enum us_LcpResult {
+  US_LCP_SOLVED = 0,   /* every live index satisfies its conditions */
+  US_LCP_LIMIT,        /* pivot limit reached */
+  US_LCP_DEGENERATE,   /* tiny pivot where one is needed, unbounded drive,
+                          cycling, or conditions not restored */
+  US_LCP_NOMEM
+} us_LcpResult;
+
+/* One pivot, reported to an optional trace callback. */
+typedef struct us_LcpStep {
+  int driven;          /* driven index, -1 for a fade */
+  double lambda;       /* step length (in units of the driven force) */
+  int event;           /* US_LCP_EV_* */
+  int index;           /* index that changed set */
+  const double *f;     /* forces after the step (n) */
+  const double *a;     /* accelerations after the step (n, live only) */
+} us_LcpStep;
+
+enum {
+  US_LCP_EV_DONE = 0,  /* the driven a reached 0: it is clamped */
+  US_LCP_EV_ZERO,      /* the driven normal force reached 0: NC */
+  US_LCP_EV_BOUND,     /* the driven friction reached its bound */
+  US_LCP_EV_C_NC,      /* a clamped normal force reached 0 */
+  US_LCP_EV_NC_C,      /* a non-clamped normal a reached 0 */
+  US_LCP_EV_C_BND,     /* a sticking friction reached its bound */
+  US_LCP_EV_BND_C,     /* a friction at its bound stopped sliding */
+  US_LCP_EV_FADED      /* a fade finished */
+};
+
+typedef struct us_Lcp {
+  int n;
+  us_LcpOps ops;
+  signed char *kind;     /* US_LCP_NORMAL / FRICTION */
+  int *partner;          /* normal: its friction or -1; friction: its normal */
+  double *mu;            /* friction coefficient of a friction index */
+  unsigned char *live;
+  signed char *state;
+  signed char *bsign;    /* BND: the sign s of f_t = s mu f_n */
+  double *f, *a;
+  /* clamped system: members mem[0..k), pos[i] = member slot or -1, dense
+   * inverse H (k x k, leading dimension cap) of the system matrix K */
+  int k, cap;
+  int *mem, *pos;
+  double *H;
+  /* drive queue (FIFO ring of n), inq[i] = queued */
+  int *queue, qhead, qlen;
+  unsigned char *inq;
+  /* scratch */
+  double *dfm;           /* member force increments [cap] */
+  double *r, *y, *z, *e; /* [cap] */
+  double *da;            /* [n] */
+  int *out, *didx;       /* [n] */
+  double *dval;          /* [n] driven direction values */
+  /* settings and counters */
+  long max_pivots;       /* per run; <= 0: 50 * n + 100 */
+  long pivots;           /* total */
+  long deferred;         /* redundant indices left out of the system */
+  double tol_a, tol_f, tol_piv;
+  void (*trace)(void *ud, const us_LcpStep *st);
+  void *trace_ud;
+} us_Lcp;
+
+/* n indices, all normals, none live. 0 or -1 on OOM. */
+int us_lcp_init(us_Lcp *p, int n, const us_LcpOps *ops);
+void us_lcp_free(us_Lcp *p);
+/* Make friction index t the friction of normal n with coefficient mu > 0. */
+void us_lcp_set_friction(us_Lcp *p, int t, int n, double mu);
+/* Forget everything: f = 0, nothing live, empty system. */
+void us_lcp_reset(us_Lcp *p);
+/* Make indices live with f = 0; normals are queued for a drive (their
+ * frictions are queued once the normal is clamped). */
+void us_lcp_add(us_Lcp *p, const int *idx, int k);
+/* Drive the forces of live indices idx[0..k) to zero along a straight line
+ * while every other live index keeps its conditions (pivoting as needed),
+ * then make them non-live. The caller must have changed A so that these
+ * indices no longer couple with the rest only after this call. */
+us_LcpResult us_lcp_fade(us_Lcp *p, const int *idx, int k);
+/* Drive every queued index, then re-check all live indices (fresh a) and
+ * drive the violated ones until none is left. */
+us_LcpResult us_lcp_run(us_Lcp *p);
+/* Recompute a from f for the live indices. */
+void us_lcp_refresh(us_Lcp *p);
+
+/* lcp_inverse.c: the dense inverse of the clamped system, updated by
+ * bordering (append) and Schur complement (delete), O(k^2) each. */
+/* Room for `need` members (H and the member scratch arrays). 0 or -1. */
+int us_lcp_inv_reserve(us_Lcp *p, int need);
+/* Append a member (room reserved first): u = K[old rows, new], v = K[new, old cols], alpha =
+ * K[new, new]. Returns 0, 1 if the pivot is tiny (|sigma| <= tol), -1 OOM. */
+int us_lcp_inv_append(us_Lcp *p, int idx, const double *u, const double *v, double alpha,
+                      double tol);
+/* Delete the member in slot s (the last member moves into s). Returns 1 if
+ * the remaining system looks singular (H_ss ~ 0), else 0. */
+int us_lcp_inv_delete(us_Lcp *p, int s);
+/* x = H r (k entries). */
+void us_lcp_inv_mult(const us_Lcp *p, const double *r, double *x);
+
+/* ------------------------------------------------- lcp_sys.c: A = J M^-1 J^T
+ *
+ * The operator of a 2D structure: LCP index 2c is the normal of structure
+ * contact c, 2c + 1 its friction. Per body, generalized coordinates
+ * (x, y, angle * L) with masses (m, m, I / L^2) / m_total, forces in units
+ * of the weight W, torques / (W L): the normalization of us_EqSystem. */
+typedef struct us_LcpSys {
+  const us_Structure *s;
+  int nbody, ncontact;
+  double *minv;          /* [3 nbody] inverse masses (normalized) */
+  double *fext;          /* [3 nbody] external force (normalized), present only */
+  unsigned char *present;/* [nbody] movable and in the sub-assembly */
+  int *cb;               /* [2 ncontact] the bodies of a contact (-1: fixed/ground) */
+  double *w;             /* [12 ncontact]: (index 2c+k, side) -> 3 wrench rows */
+  int *adj_start, *adj;  /* contacts of each body */
+  double *u;             /* [3 nbody] scratch, kept zero */
+  int *touched;          /* [nbody] */
+  unsigned char *bmark;  /* [nbody] */
+  unsigned char *cmark;  /* [ncontact] */
+} us_LcpSys;
+
+int us_lcp_sys_init(us_LcpSys *y, const us_Structure *s);
+void us_lcp_sys_free(us_LcpSys *y);
+us_LcpOps us_lcp_sys_ops(us_LcpSys *y);
+/* Per-index wrench on body side `side` of LCP index i (3 values). */
+static inline const double *us_lcp_sys_w(const us_LcpSys *y, int i, int side) {
+  return y->w + ((size_t)i * 2 + (size_t)side) * 3;
+}
+/* Net normalized wrench E f + F_ext on every present body; returns the
+ * largest component magnitude and the body (index) where it occurs. */
+double us_lcp_sys_residual(us_LcpSys *y, const double *f, int *worst_body);
+
+#endif

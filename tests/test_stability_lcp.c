@@ -1,0 +1,553 @@
+/* Tests of the LCP solver (lcp.c) and the LCP stability backends
+ * (lcp_backend.c): the source's worked example step by step, warm starts
+ * of the raw solver (adding and fading indices), degenerate structures,
+ * counters, the pivot-limit fallback, out-of-memory paths, and a
+ * differential test: on 1,000+ random structures (frictionless and with
+ * friction), walking sequences of sub-assemblies that differ by one body,
+ * lcp, lcp-reuse and the LP (CLP) give the same verdict every time. */
+#include "stability/lcp.h"
+#include "stability/stability.h"
+#include "test.h"
+
+/* ------------------------------------------------------- raw dense LCPs */
+
+typedef struct Dense {
+  int n;
+  const double *A, *b;
+} Dense;
+
+static double d_entry(void *ctx, int i, int j) {
+  const Dense *d = ctx;
+  return d->A[i * d->n + j];
+}
+
+static int d_apply(void *ctx, const int *idx, const double *x, int k, double *y, int *out) {
+  const Dense *d = ctx;
+  for (int i = 0; i < d->n; i++) {
+    y[i] = 0.0;
+    for (int j = 0; j < k; j++) y[i] += d->A[i * d->n + idx[j]] * x[j];
+    out[i] = i;
+  }
+  return d->n;
+}
+
+static void d_full(void *ctx, const double *f, const unsigned char *live, double *a) {
+  const Dense *d = ctx;
+  for (int i = 0; i < d->n; i++) {
+    if (!live[i]) continue;
+    a[i] = d->b[i];
+    for (int j = 0; j < d->n; j++) a[i] += d->A[i * d->n + j] * f[j];
+  }
+}
+
+static us_LcpOps dense_ops(Dense *d) {
+  us_LcpOps o = {d, d_entry, d_apply, d_full};
+  return o;
+}
+
+/* A recorded trace: driven index, step length, event and forces. */
+typedef struct Trace {
+  int n, count;
+  int driven[16], event[16];
+  double lambda[16], f[16][4];
+} Trace;
+
+static void record(void *ud, const us_LcpStep *st) {
+  Trace *t = ud;
+  if (t->count >= 16) return;
+  t->driven[t->count] = st->driven;
+  t->event[t->count] = st->event;
+  t->lambda[t->count] = st->lambda;
+  for (int i = 0; i < t->n && i < 4; i++) t->f[t->count][i] = st->f[i];
+  t->count++;
+}
+
+/* A = J M^-1 J^T, b = J M^-1 F for 2D bodies with M = diag(m, m, I):
+ * rows J[c] hold 3 entries per body (nb bodies). */
+static void assemble(int nc, int nb, const double *J, const double *m, const double *I,
+                     const double *F, double *A, double *b) {
+  for (int i = 0; i < nc; i++) {
+    b[i] = 0.0;
+    for (int k = 0; k < nb; k++)
+      for (int r = 0; r < 3; r++)
+        b[i] += J[i * 3 * nb + 3 * k + r] * F[3 * k + r] / (r == 2 ? I[k] : m[k]);
+    for (int j = 0; j < nc; j++) {
+      double s = 0.0;
+      for (int k = 0; k < nb; k++)
+        for (int r = 0; r < 3; r++)
+          s += J[i * 3 * nb + 3 * k + r] * J[j * 3 * nb + 3 * k + r] / (r == 2 ? I[k] : m[k]);
+      A[i * nc + j] = s;
+    }
+  }
+}
+
+/* The source's example: one block (m = I = 1, g = 9.8) on two frictionless
+ * contacts at x = -0.51 and +0.51 from its centre; contact rows
+ * J = (0, 1, -+0.51). Two drives: s = 7.7772 to f = (7.7772, 0), then
+ * f = (4.9, 4.9). */
+static void worked_example(void) {
+  double J[6] = {0, 1, -0.51, 0, 1, 0.51}, m = 1, I = 1, F[3] = {0, -9.8, 0};
+  double A[4], b[2];
+  assemble(2, 1, J, &m, &I, F, A, b);
+  CHECK_NEAR(A[0], 1.2601, 1e-12);
+  CHECK_NEAR(A[1], 0.7399, 1e-12);
+  CHECK_NEAR(A[3], 1.2601, 1e-12);
+  CHECK_NEAR(b[0], -9.8, 1e-12);
+  Dense d = {2, A, b};
+  us_LcpOps ops = dense_ops(&d);
+  us_Lcp p;
+  CHECK(us_lcp_init(&p, 2, &ops) == 0);
+  Trace tr = {.n = 2};
+  p.trace = record;
+  p.trace_ud = &tr;
+  int all[2] = {0, 1};
+  us_lcp_add(&p, all, 2);
+  int r = us_lcp_run(&p);
+  CHECK_INT(tr.count, ==, 2);
+  CHECK_INT(tr.driven[0], ==, 0);
+  CHECK_INT(tr.event[0], ==, US_LCP_EV_DONE);
+  CHECK_NEAR(tr.lambda[0], 7.7772, 5e-5);
+  CHECK_NEAR(tr.f[0][0], 7.7772, 5e-5);
+  CHECK_NEAR(tr.f[0][1], 0.0, 0.0);
+  CHECK_INT(tr.driven[1], ==, 1);
+  CHECK_NEAR(tr.f[1][0], 4.9, 1e-9);
+  CHECK_NEAR(tr.f[1][1], 4.9, 1e-9);
+  CHECK_INT(r, ==, US_LCP_SOLVED);
+  CHECK_NEAR(p.f[0], 4.9, 1e-9);
+  CHECK_NEAR(p.f[1], 4.9, 1e-9);
+  us_lcp_free(&p);
+}
+
+/* Two unit blocks in a column, contacts at x = +-0.51 (0, 1: ground to
+ * block 1; 2, 3: block 1 to block 2). */
+static void column_system(double *A, double *b) {
+  double J[24] = {0, 1, -0.51, 0,  0, 0,     0, 1, 0.51,  0, 0, 0,
+                  0, -1, 0.51, 0,  1, -0.51, 0, -1, -0.51, 0, 1, 0.51};
+  double m[2] = {1, 1}, I[2] = {1, 1}, F[6] = {0, -9.8, 0, 0, -9.8, 0};
+  assemble(4, 2, J, m, I, F, A, b);
+}
+
+static double max_abs_a(const us_Lcp *p) {
+  double x = 0.0;
+  for (int i = 0; i < p->n; i++)
+    if (p->live[i]) x = US_MAX(x, fabs(p->a[i]));
+  return x;
+}
+
+/* Reuse when adding the second block: the 4x4 LCP started from the
+ * one-block solution [4.9, 4.9, 0, 0]; only the new contacts are driven
+ * and the column reaches equilibrium. Then fading the new contacts out
+ * brings back the one-block equilibrium. */
+static void column_reuse(void) {
+  double A[16], b[4];
+  column_system(A, b);
+  Dense d = {4, A, b};
+  us_LcpOps ops = dense_ops(&d);
+  us_Lcp p;
+  CHECK(us_lcp_init(&p, 4, &ops) == 0);
+  int first[2] = {0, 1}, second[2] = {2, 3};
+  us_lcp_add(&p, first, 2);
+  CHECK_INT(us_lcp_run(&p), ==, US_LCP_SOLVED);
+  CHECK_NEAR(p.f[0], 4.9, 1e-9);
+  CHECK_NEAR(p.f[1], 4.9, 1e-9);
+  Trace tr = {.n = 4};
+  p.trace = record;
+  p.trace_ud = &tr;
+  us_lcp_add(&p, second, 2);
+  CHECK_INT(us_lcp_run(&p), ==, US_LCP_SOLVED);
+  CHECK(tr.count >= 1);
+  CHECK_INT(tr.driven[0], ==, 2); /* started from the old forces */
+  CHECK(max_abs_a(&p) < 1e-9);    /* equilibrium: every a = 0 */
+  for (int i = 0; i < 4; i++) CHECK(p.f[i] > 0);
+  CHECK_INT(us_lcp_fade(&p, second, 2), ==, US_LCP_SOLVED);
+  CHECK_INT(us_lcp_run(&p), ==, US_LCP_SOLVED);
+  CHECK(!p.live[2] && !p.live[3]);
+  CHECK(max_abs_a(&p) < 1e-9);
+  CHECK_NEAR(p.f[0] + p.f[1], 9.8, 1e-9); /* one block's weight again */
+  us_lcp_free(&p);
+}
+
+/* A tiny pivot limit ends the run as LIMIT, not as a wrong answer. */
+static void raw_pivot_limit(void) {
+  double A[16], b[4];
+  column_system(A, b);
+  Dense d = {4, A, b};
+  us_LcpOps ops = dense_ops(&d);
+  us_Lcp p;
+  CHECK(us_lcp_init(&p, 4, &ops) == 0);
+  p.max_pivots = 1;
+  int all[4] = {0, 1, 2, 3};
+  us_lcp_add(&p, all, 4);
+  CHECK_INT(us_lcp_run(&p), ==, US_LCP_LIMIT);
+  us_lcp_free(&p);
+}
+
+/* Friction on a raw problem: one block on one ground contact pushed
+ * sideways. Contact rows n = (0, 1, 0), t = (1, 0, 0) at the centre line;
+ * F = (Fx, -9.8). |Fx| <= mu * 9.8 sticks (a = 0), else it slides with
+ * f_t = -sign(Fx) mu f_n and a_t f_t <= 0. */
+static void raw_friction(void) {
+  for (int k = 0; k < 4; k++) {
+    double Fx = k < 2 ? 2.0 : 7.0, mu = 0.5;
+    if (k % 2) Fx = -Fx;
+    double J[6] = {0, 1, 0, 1, 0, 0}, m = 1, I = 1, F[3] = {Fx, -9.8, 0};
+    double A[4], b[2];
+    assemble(2, 1, J, &m, &I, F, A, b);
+    Dense d = {2, A, b};
+    us_LcpOps ops = dense_ops(&d);
+    us_Lcp p;
+    CHECK(us_lcp_init(&p, 2, &ops) == 0);
+    us_lcp_set_friction(&p, 1, 0, mu);
+    int all[2] = {0, 1};
+    us_lcp_add(&p, all, 2);
+    CHECK_INT(us_lcp_run(&p), ==, US_LCP_SOLVED);
+    CHECK_NEAR(p.a[0], 0.0, 1e-9);
+    CHECK(fabs(p.f[1]) <= mu * p.f[0] + 1e-12);
+    CHECK(p.a[1] * p.f[1] <= 1e-12);
+    if (fabs(Fx) <= mu * 9.8)
+      CHECK_NEAR(p.a[1], 0.0, 1e-9); /* sticks */
+    else
+      CHECK(fabs(p.a[1]) > 1.0 && p.state[1] == US_LCP_BND); /* slides */
+    us_lcp_free(&p);
+  }
+}
+
+/* ------------------------------------------------------ structure tests */
+
+static const us_Method methods[3] = {US_METHOD_LP, US_METHOD_LCP, US_METHOD_LCP_REUSE};
+
+/* A workspace for method m through the public constructor (falling back to
+ * the backend table while the front end does not list the LCP methods). */
+static us_Stability *open_ws(const us_Structure *s, us_Method m, int max_pivots) {
+  us_StabilitySettings set = us_stability_default_settings();
+  set.method = m;
+  set.max_pivots = max_pivots;
+  us_Error err;
+  us_Stability *w = us_stability_new(s, &set, &err);
+  if (!w && m != US_METHOD_LP)
+    w = us_stability_new_backend(s, &set, m == US_METHOD_LCP ? &us_backend_lcp
+                                                             : &us_backend_lcp_reuse, &err);
+  if (!w) fprintf(stderr, "stability_new: %s\n", err.msg);
+  return w;
+}
+
+/* Verdict of `present` on workspace w; -1 error, -2 stable without a
+ * passing certificate. */
+static int test_on(us_Stability *w, const us_Bitset *present) {
+  us_StabilityResult res = {0};
+  us_Error err;
+  int v = -1;
+  if (us_stability_test(w, present, &res, &err) == US_OK)
+    v = (int)res.verdict;
+  else
+    fprintf(stderr, "test: %s\n", err.msg);
+  if (v == US_STABLE && !res.check.ok) v = -2;
+  us_stability_result_free(&res);
+  return v;
+}
+
+static int add_box(us_Structure *s, double x0, double y0, double w, double h) {
+  char id[32];
+  snprintf(id, sizeof id, "b%d", s->nbody);
+  double xy[8] = {x0, y0, x0 + w, y0, x0 + w, y0 + h, x0, y0 + h};
+  us_Error err;
+  return us_structure_add_polygon(s, id, 4, xy, 1.0, 0.0, 0, -1.0, &err);
+}
+
+static us_Structure *sealed(us_Structure *s) {
+  us_Error err;
+  if (us_structure_finalize(s, &err) != US_OK) {
+    fprintf(stderr, "finalize: %s\n", err.msg);
+    us_structure_free(s);
+    return NULL;
+  }
+  return s;
+}
+
+/* The three methods on the full structure; all verdicts must equal. */
+static int agree_full(const us_Structure *s, int *verdict) {
+  us_Bitset all;
+  if (us_bitset_init(&all, s->nbody)) return -1;
+  us_bitset_fill(&all);
+  int v[3];
+  for (int k = 0; k < 3; k++) {
+    us_Stability *w = open_ws(s, methods[k], 0);
+    v[k] = w ? test_on(w, &all) : -1;
+    us_stability_free(w);
+  }
+  us_bitset_free(&all);
+  *verdict = v[0];
+  return v[0] >= 0 && v[0] == v[1] && v[0] == v[2] ? 0 : -1;
+}
+
+/* A block resting on two coplanar blocks: four contacts on the top block,
+ * two of them redundant (A_CC would be singular). Stable with and without
+ * friction; also with the top block shifted off the gap's centre. */
+static void redundant_contacts(void) {
+  for (int k = 0; k < 4; k++) {
+    us_Structure *s = us_structure_new(2);
+    s->friction = k % 2 ? 0.6 : 0.0;
+    add_box(s, 0, 0, 1, 1);
+    add_box(s, 1.5, 0, 1, 1);
+    add_box(s, k < 2 ? 0.25 : 0.6, 1, 2.0, 0.5);
+    s = sealed(s);
+    CHECK(s);
+    int v;
+    CHECK(agree_full(s, &v) == 0);
+    CHECK_INT(v, ==, US_STABLE);
+    us_structure_free(s);
+  }
+}
+
+/* Coincident contacts: a point body on two identical ground contacts plus
+ * a third one (explicit contacts). Stable when the centre lies between
+ * the supports, unstable outside; LCP and LP agree. */
+static void coincident_contacts(void) {
+  for (int k = 0; k < 4; k++) {
+    us_Structure *s = us_structure_new(2);
+    us_Error err;
+    s->friction = k % 2 ? 0.5 : 0.0;
+    double c[2] = {k < 2 ? 0.3 : 1.4, 0.5}, up[2] = {0, 1}, p0[2] = {0, 0}, p1[2] = {1, 0};
+    int b = us_structure_add_point_body(s, "p", 1.0, c, 0, &err);
+    CHECK(b >= 0);
+    CHECK(us_structure_add_contact(s, US_GROUND, b, p0, up, -1, &err) >= 0);
+    CHECK(us_structure_add_contact(s, US_GROUND, b, p0, up, -1, &err) >= 0);
+    CHECK(us_structure_add_contact(s, US_GROUND, b, p1, up, -1, &err) >= 0);
+    s->explicit_contacts = 1;
+    s = sealed(s);
+    CHECK(s);
+    int v;
+    CHECK(agree_full(s, &v) == 0);
+    CHECK_INT(v, ==, k < 2 ? US_STABLE : US_UNSTABLE);
+    us_structure_free(s);
+  }
+}
+
+/* Zero-mass bodies never reach the backends: validation rejects them. */
+static void zero_mass_rejected(void) {
+  us_Structure *s = us_structure_new(2);
+  us_Error err;
+  double c[2] = {0, 0.5}, up[2] = {0, 1}, p0[2] = {-0.5, 0}, p1[2] = {0.5, 0};
+  int b = us_structure_add_point_body(s, "light", 0.0, c, 0, &err);
+  if (b >= 0) {
+    us_structure_add_contact(s, US_GROUND, b, p0, up, -1, &err);
+    us_structure_add_contact(s, US_GROUND, b, p1, up, -1, &err);
+    s->explicit_contacts = 1;
+    us_Status st = us_structure_finalize(s, &err);
+    CHECK_INT(st, ==, US_ERR_INPUT);
+    CHECK(strstr(err.msg, "light") != NULL);
+  }
+  us_structure_free(s);
+}
+
+/* A column of n unit boxes, taken down from the top with lcp-reuse: every
+ * test after the first reuses, the frictionless ones never need the LP. */
+static void column_counters(void) {
+  for (int fr = 0; fr < 2; fr++) {
+    us_Structure *s = us_structure_new(2);
+    s->friction = fr ? 0.5 : 0.0;
+    for (int i = 0; i < 6; i++) add_box(s, 0.05 * (i % 2), i, 1, 1);
+    s = sealed(s);
+    CHECK(s);
+    us_Stability *w = open_ws(s, US_METHOD_LCP_REUSE, 0);
+    CHECK(w);
+    us_Bitset sub;
+    CHECK(us_bitset_init(&sub, s->nbody) == 0);
+    us_bitset_fill(&sub);
+    for (int i = s->nbody - 1; i >= 0; i--) {
+      CHECK_INT(test_on(w, &sub), ==, US_STABLE);
+      us_bitset_clear(&sub, i);
+    }
+    const us_StabilityInfo *info = us_stability_info(w);
+    CHECK_INT(info->tests, ==, 6);
+    CHECK_INT(info->reused, ==, 5);
+    CHECK(info->pivots >= 2);
+    if (!fr) CHECK_INT(info->lp_fallbacks, ==, 0);
+    us_bitset_free(&sub);
+    us_stability_free(w);
+    us_structure_free(s);
+  }
+}
+
+/* With max_pivots = 1 the LCP cannot finish: the LP settles every verdict
+ * (counted) and the answers stay right. */
+static void pivot_limit_falls_back(void) {
+  us_Structure *s = us_structure_new(2);
+  s->friction = 0.0;
+  for (int i = 0; i < 3; i++) add_box(s, 0, i, 1, 1);
+  add_box(s, 0.7, 3, 1, 1); /* overhangs by 0.7: the top block falls */
+  s = sealed(s);
+  CHECK(s);
+  us_Bitset sub;
+  CHECK(us_bitset_init(&sub, s->nbody) == 0);
+  for (int k = 1; k < 3; k++) {
+    us_Stability *w = open_ws(s, methods[k], 1);
+    CHECK(w);
+    us_bitset_fill(&sub);
+    CHECK_INT(test_on(w, &sub), ==, US_UNSTABLE);
+    us_bitset_clear(&sub, 3);
+    CHECK_INT(test_on(w, &sub), ==, US_STABLE);
+    CHECK(us_stability_info(w)->lp_fallbacks >= 1);
+    us_stability_free(w);
+  }
+  us_bitset_free(&sub);
+  us_structure_free(s);
+}
+
+/* Out of memory anywhere in creating and using an LCP workspace: an error,
+ * never a crash or a leak (the harness checks leaks). */
+static void out_of_memory(void) {
+  us_Structure *s = us_structure_new(2);
+  for (int i = 0; i < 3; i++) add_box(s, 0.1 * i, i, 1, 1);
+  s = sealed(s);
+  CHECK(s);
+  us_Bitset sub;
+  CHECK(us_bitset_init(&sub, s->nbody) == 0);
+  for (long n = 0; n < 200; n++) {
+    us_alloc_fail_after(n);
+    us_Stability *w = open_ws(s, US_METHOD_LCP_REUSE, 0);
+    if (w) {
+      us_bitset_fill(&sub);
+      test_on(w, &sub);
+      us_bitset_clear(&sub, 2);
+      test_on(w, &sub);
+      us_stability_free(w);
+    }
+    us_alloc_fail_after(-1);
+  }
+  us_bitset_free(&sub);
+  us_structure_free(s);
+}
+
+/* ------------------------------------------------- differential testing */
+
+static unsigned long long rng = 0x9e3779b97f4a7c15ULL;
+static double rnd(void) {
+  rng ^= rng << 13;
+  rng ^= rng >> 7;
+  rng ^= rng << 17;
+  return (double)(rng >> 11) * (1.0 / 9007199254740992.0);
+}
+static double uniform(double a, double b) { return a + (b - a) * rnd(); }
+
+/* Rows of boxes with random widths, gaps (some zero: touching) and
+ * offsets: stacks, overhangs, floating pieces. */
+static void random_box_rows(us_Structure *s) {
+  int rows = 1 + (int)(rnd() * 4);
+  double y = 0;
+  for (int r = 0; r < rows; r++) {
+    int nb = 1 + (int)(rnd() * 3);
+    double h = uniform(0.3, 1.0), x = uniform(-0.8, 0.8);
+    for (int k = 0; k < nb; k++) {
+      double w = uniform(0.4, 1.5);
+      add_box(s, x, y, w, h);
+      x += w + (rnd() < 0.4 ? 0.0 : uniform(0.05, 0.6));
+    }
+    y += h;
+  }
+}
+
+/* A row of quadrilaterals between slanted cuts x = x_k + slope_k (y - y0)
+ * on a base slab: alternately narrow-top and wide-top pieces that wedge
+ * against each other, held by friction or not (arch-like). */
+static void random_wedges(us_Structure *s) {
+  us_Error err;
+  int n = 3 + (int)(rnd() * 3);
+  double h = uniform(0.5, 1.2), base = uniform(0.2, 0.5), width = uniform(0.8, 1.3);
+  add_box(s, -0.5, 0, n * width + 1.0, base);
+  if (rnd() < 0.3) add_box(s, -0.5, base, 0.4, h); /* abutments */
+  double x[8], sl[8];
+  for (int k = 0; k <= n; k++) {
+    x[k] = k * width + uniform(-0.1, 0.1);
+    sl[k] = (k % 2 ? 1 : -1) * uniform(0.05, 0.35);
+    if (k == 0 || k == n) sl[k] = 0; /* vertical ends */
+  }
+  for (int k = 0; k < n; k++) {
+    double y0 = base, y1 = base + h;
+    double xy[8] = {x[k],     y0, x[k + 1],     y0, x[k + 1] + sl[k + 1] * h, y1,
+                    x[k] + sl[k] * h, y1};
+    char id[32];
+    snprintf(id, sizeof id, "w%d", s->nbody);
+    us_structure_add_polygon(s, id, 4, xy, uniform(0.5, 2.0), 0.0, 0, -1.0, &err);
+  }
+  if (rnd() < 0.5) add_box(s, uniform(0, n * width - 1.5), base + h, 1.5, uniform(0.2, 0.5));
+}
+
+static us_Structure *random_scene(int frictional) {
+  us_Structure *s = us_structure_new(2);
+  s->friction = frictional ? uniform(0.1, 0.9) : 0.0;
+  if (rnd() < 0.5)
+    random_box_rows(s);
+  else
+    random_wedges(s);
+  us_Error err;
+  if (us_structure_finalize(s, &err) != US_OK) {
+    us_structure_free(s);
+    return NULL;
+  }
+  return s;
+}
+
+/* Walk of sub-assemblies: remove random bodies one at a time until a few
+ * are left, then add some back, each step tested on all three methods
+ * (persistent workspaces, so lcp-reuse reuses both ways). Returns the
+ * number of disagreements; counts verdicts. */
+static int walk(const us_Structure *s, us_Stability **ws, long *counts) {
+  us_Bitset sub;
+  if (us_bitset_init(&sub, s->nbody)) return 1;
+  us_bitset_fill(&sub);
+  int bad = 0, steps = 2 * s->nbody;
+  for (int step = 0; step < steps; step++) {
+    int v[3];
+    for (int k = 0; k < 3; k++) v[k] = test_on(ws[k], &sub);
+    if (v[0] < 0 || v[0] != v[1] || v[0] != v[2]) {
+      fprintf(stderr, "disagreement: lp %d lcp %d lcp-reuse %d (%d bodies, mu %.2f)\n", v[0],
+              v[1], v[2], us_bitset_count(&sub), s->friction);
+      bad++;
+    } else {
+      counts[v[0]]++;
+    }
+    int i = (int)(rnd() * s->nbody), left = us_bitset_count(&sub);
+    int removing = step < steps / 2 ? left > 1 : left == s->nbody;
+    if (removing)
+      while (!us_bitset_get(&sub, i)) i = (i + 1) % s->nbody;
+    else
+      while (us_bitset_get(&sub, i) && left < s->nbody) i = (i + 1) % s->nbody;
+    if (removing)
+      us_bitset_clear(&sub, i);
+    else
+      us_bitset_set(&sub, i);
+  }
+  us_bitset_free(&sub);
+  return bad;
+}
+
+static void differential(void) {
+  long counts[3] = {0, 0, 0}, fallbacks = 0, reused = 0, tests = 0;
+  int structures = 0, bad = 0;
+  for (int t = 0; t < 1100; t++) {
+    us_Structure *s = random_scene(t % 2);
+    if (!s) continue;
+    structures++;
+    us_Stability *ws[3];
+    for (int k = 0; k < 3; k++) ws[k] = open_ws(s, methods[k], 0);
+    CHECK(ws[0] && ws[1] && ws[2]);
+    bad += walk(s, ws, counts);
+    fallbacks += us_stability_info(ws[1])->lp_fallbacks + us_stability_info(ws[2])->lp_fallbacks;
+    reused += us_stability_info(ws[2])->reused;
+    tests += us_stability_info(ws[2])->tests;
+    for (int k = 0; k < 3; k++) us_stability_free(ws[k]);
+    us_structure_free(s);
+  }
+  printf("differential: %d structures, %ld tests (stable %ld, unstable %ld), lcp-reuse reused "
+         "%ld, LP fallbacks (both LCP methods) %ld\n",
+         structures, tests, counts[0], counts[1], reused, fallbacks);
+  CHECK_INT(bad, ==, 0);
+  CHECK(structures >= 1000);
+  CHECK(counts[US_STABLE] > 500 && counts[US_UNSTABLE] > 500);
+  CHECK(reused > tests / 2);
+}
+
+US_TEST_MAIN(T(worked_example), T(column_reuse), T(raw_pivot_limit), T(raw_friction),
+             T(redundant_contacts), T(coincident_contacts), T(zero_mass_rejected),
+             T(column_counters), T(pivot_limit_falls_back), T(out_of_memory), T(differential))
