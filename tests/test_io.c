@@ -36,6 +36,7 @@ static const char *tmp_path(char *buf, size_t n, const char *name) {
 }
 
 static const char *data_path(char *buf, size_t n, const char *name) {
+  if (strlen(name) + strlen(US_TEST_DATA) + 2 > n) return "";
   snprintf(buf, n, "%s/%s", US_TEST_DATA, name);
   return buf;
 }
@@ -264,7 +265,7 @@ static void round_trip_awkward(void) {
   us_Error err;
   const char *text =
       "{\"gravity\": [0.1, -9.80665], \"friction\": 0.3, \"ground\": false, \"bodies\": ["
-      "{\"id\": \"fix\", \"fixed\": true, \"polygon\": [[-1, -1], [3, -1], [3, 0], [-1, 0]]},"
+      "{\"id\": \"fix\", \"fixed\": true, \"mass\": 100, \"polygon\": [[-1, -1], [3, -1], [3, 0], [-1, 0]]},"
       "{\"id\": \"q\\\"u\\\\o\\nte \\u00e9\", \"density\": 2.5, \"friction\": 0.7,"
       " \"polygon\": [[0, 0], [0.1, 0], [0.30000000000000004, 0.2], [0, 0.2]]},"
       "{\"id\": \"m\", \"mass\": 1e-7, \"polygon\": [[0, 0.2], [0.1, 0.2], [0.1, 0.3333333333333333]]}]}";
@@ -279,6 +280,7 @@ static void round_trip_awkward(void) {
   CHECK(t);
   CHECK(same_structure(s, t));
   CHECK(t->bodies[1].density == 2.5 && t->bodies[2].mass_given && !t->ground);
+  CHECK(t->bodies[0].fixed && t->bodies[0].mass == 100.0);
   char *written = read_text(out);
   CHECK(written && strstr(written, "0.30000000000000004") && strstr(written, "[0.1, -9.80665]"));
   free(written);
@@ -289,7 +291,7 @@ static void round_trip_awkward(void) {
 
 /* Every file in tests/data/bad fails with its README fragment. */
 static void bad_files(void) {
-  char p[512], line[512];
+  char p[1024], line[512];
   FILE *fp = fopen(data_path(p, sizeof p, "bad/README"), "r");
   CHECK(fp);
   int n = 0, failed = 0;
@@ -570,6 +572,46 @@ static void fuzz_mutations(void) {
   CHECK(accepted > 0 && accepted < total);
 }
 
+/* Mutations of a written plan file: an answer or an error, no crash. */
+static void fuzz_plan(void) {
+  us_Error err;
+  us_Structure *s = read_data("column3.json", &err);
+  CHECK(s);
+  us_Plan p;
+  CHECK_INT(make_column_plan(s, &p), ==, 0);
+  char path[256];
+  tmp_path(path, sizeof path, "fuzzplan.json");
+  us_Status st = us_plan_write(s, &p, NULL, path, &err);
+  free_column_plan(&p);
+  CHECK_OK(st, &err);
+  char *orig = read_text(path);
+  CHECK(orig);
+  size_t olen = strlen(orig), cap = olen + 256;
+  char *t = malloc(cap);
+  int accepted = 0;
+  for (int round = 0; round < 1000; round++) {
+    memcpy(t, orig, olen + 1);
+    size_t len = olen;
+    for (int e = 0, edits = 1 + (int)rnd(3); e < edits; e++) mutate(t, &len, cap);
+    write_text(path, t);
+    us_PlanFile pf;
+    st = us_plan_read(s, path, &pf, &err);
+    if (st == US_OK) {
+      accepted++;
+      for (int k = 0; k < pf.n; k++) CHECK(pf.order[k] >= 0 && pf.order[k] < s->nbody);
+    } else {
+      CHECK(strstr(err.msg, path) != NULL);
+    }
+    us_plan_file_free(&pf);
+  }
+  printf("plan fuzz: %d of 1000 mutated plans accepted\n", accepted);
+  free(t);
+  free(orig);
+  remove(path);
+  us_structure_free(s);
+  CHECK(accepted > 0 && accepted < 1000);
+}
+
 /* Out of memory at every allocation: an error, never a leak or crash. */
 static void out_of_memory(void) {
   char p[512];
@@ -639,5 +681,5 @@ static void large_wall(void) {
 US_TEST_MAIN(T(read_examples), T(defaults_and_fields), T(explicit_contacts),
              T(contact_tol_override), T(examples_physics), T(round_trip), T(round_trip_awkward),
              T(bad_files), T(read_errors), T(failed_write_leaves_no_file), T(plan_round_trip),
-             T(plan_without_certificates), T(plan_read_errors), T(fuzz_mutations),
+             T(plan_without_certificates), T(plan_read_errors), T(fuzz_mutations), T(fuzz_plan),
              T(out_of_memory), T(large_wall))
