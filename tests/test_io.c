@@ -4,15 +4,14 @@
  * thousands of random mutations of valid files neither crash nor leak. */
 #define _POSIX_C_SOURCE 200809L /* mkdtemp */
 
-#include "test.h"
-
 #include <dirent.h>
 #include <jansson.h>
 #include <unistd.h>
 
-static const char *const good_files[] = {"column3.json",  "cantilever.json",
-                                         "leaning.json",  "explicit.json",
-                                         "lean_wall.json", "lean_wall_mu0.json"};
+#include "test.h"
+
+static const char *const good_files[] = {"column3.json",  "cantilever.json", "leaning.json",
+                                         "explicit.json", "lean_wall.json",  "lean_wall_mu0.json"};
 #define NGOOD ((int)(sizeof good_files / sizeof good_files[0]))
 
 /* ----------------------------------------------------------------- helpers */
@@ -89,8 +88,7 @@ static int count_files_with_prefix(const char *prefix) {
   DIR *d = opendir(tmpdir);
   int n = 0;
   struct dirent *e;
-  while (d && (e = readdir(d)))
-    n += strncmp(e->d_name, prefix, strlen(prefix)) == 0;
+  while (d && (e = readdir(d))) n += strncmp(e->d_name, prefix, strlen(prefix)) == 0;
   if (d) closedir(d);
   return n;
 }
@@ -112,8 +110,8 @@ static void read_examples(void) {
 static void defaults_and_fields(void) {
   us_Error err;
   us_Structure *s = us_structure_parse(
-      "{\"bodies\": [{\"id\": \"a\", \"polygon\": [[0,0],[0,1],[1,1],[1,0]]}], \"_c\": 1}", "t",
-      0, &err);
+      "{\"bodies\": [{\"id\": \"a\", \"polygon\": [[0,0],[0,1],[1,1],[1,0]]}], \"_c\": 1}", "t", 0,
+      &err);
   CHECK(s != NULL);
   CHECK_INT(s->dim, ==, 2);
   CHECK(s->gravity[0] == 0.0 && s->gravity[1] == -9.81);
@@ -150,10 +148,11 @@ static void explicit_contacts(void) {
   CHECK(s->bodies[1].com[0] == 0.1 && s->bodies[1].mass == 1.0);
   us_structure_free(s);
   /* a nearly unit normal is normalized; a given inertia is kept */
-  s = us_structure_parse("{\"bodies\": [{\"id\": \"p\", \"mass\": 2, \"center\": [0, 1],"
-                         " \"inertia\": 0.25}], \"contacts\": [{\"a\": \"ground\", \"b\": \"p\","
-                         " \"point\": [0, 0], \"normal\": [0, 1.0004]}]}",
-                         "t", 0, &err);
+  s = us_structure_parse(
+      "{\"bodies\": [{\"id\": \"p\", \"mass\": 2, \"center\": [0, 1],"
+      " \"inertia\": 0.25}], \"contacts\": [{\"a\": \"ground\", \"b\": \"p\","
+      " \"point\": [0, 0], \"normal\": [0, 1.0004]}]}",
+      "t", 0, &err);
   CHECK(s != NULL);
   CHECK(s->contacts[0].n[1] == 1.0 && s->bodies[0].inertia == 0.25);
   us_structure_free(s);
@@ -225,9 +224,8 @@ static int same_structure(const us_Structure *a, const us_Structure *b) {
   for (int i = 0; i < a->nbody; i++) {
     const us_Body *p = &a->bodies[i], *q = &b->bodies[i];
     if (strcmp(p->id, q->id) || p->nvert != q->nvert || p->fixed != q->fixed ||
-        p->friction != q->friction || p->mass_given != q->mass_given ||
-        p->com[0] != q->com[0] || p->com[1] != q->com[1] ||
-        (!p->fixed && (p->mass != q->mass || p->inertia != q->inertia)))
+        p->friction != q->friction || p->mass_given != q->mass_given || p->com[0] != q->com[0] ||
+        p->com[1] != q->com[1] || (!p->fixed && (p->mass != q->mass || p->inertia != q->inertia)))
       return 0;
     for (int k = 0; k < 2 * p->nvert; k++)
       if (p->verts[k] != q->verts[k]) return 0;
@@ -265,10 +263,12 @@ static void round_trip_awkward(void) {
   us_Error err;
   const char *text =
       "{\"gravity\": [0.1, -9.80665], \"friction\": 0.3, \"ground\": false, \"bodies\": ["
-      "{\"id\": \"fix\", \"fixed\": true, \"mass\": 100, \"polygon\": [[-1, -1], [3, -1], [3, 0], [-1, 0]]},"
+      "{\"id\": \"fix\", \"fixed\": true, \"mass\": 100, \"polygon\": [[-1, -1], [3, -1], [3, 0], "
+      "[-1, 0]]},"
       "{\"id\": \"q\\\"u\\\\o\\nte \\u00e9\", \"density\": 2.5, \"friction\": 0.7,"
       " \"polygon\": [[0, 0], [0.1, 0], [0.30000000000000004, 0.2], [0, 0.2]]},"
-      "{\"id\": \"m\", \"mass\": 1e-7, \"polygon\": [[0, 0.2], [0.1, 0.2], [0.1, 0.3333333333333333]]}]}";
+      "{\"id\": \"m\", \"mass\": 1e-7, \"polygon\": [[0, 0.2], [0.1, 0.2], [0.1, "
+      "0.3333333333333333]]}]}";
   us_Structure *s = us_structure_parse(text, "awkward", 0, &err);
   if (!s) fprintf(stderr, "%s\n", err.msg);
   CHECK(s);
@@ -413,7 +413,8 @@ static void plan_round_trip(void) {
   CHECK_OK(us_plan_read(s, out, &pf, &err), &err);
   CHECK_INT(pf.status, ==, US_PLAN_FOUND);
   CHECK_INT(pf.n, ==, 3);
-  CHECK(pf.order[0] == us_structure_find_body(s, "b3") && pf.order[2] == us_structure_find_body(s, "b1"));
+  CHECK(pf.order[0] == us_structure_find_body(s, "b3") &&
+        pf.order[2] == us_structure_find_body(s, "b1"));
   us_plan_file_free(&pf);
   /* the document itself: names, one step per removal, checks that pass */
   json_error_t je;
@@ -425,7 +426,8 @@ static void plan_round_trip(void) {
            !strcmp(json_string_value(json_object_get(root, "search")), "bfs") &&
            !strcmp(json_string_value(json_object_get(root, "order_heuristic")), "input") &&
            !strcmp(json_string_value(json_object_get(root, "direction")), "up") &&
-           json_number_value(json_object_get(json_object_get(root, "statistics"), "time_total")) == 0.125;
+           json_number_value(json_object_get(json_object_get(root, "statistics"), "time_total")) ==
+               0.125;
   for (size_t k = 0; ok && k < 3; k++) {
     json_t *cert = json_object_get(json_array_get(steps, k), "certificate");
     ok = json_is_true(json_object_get(json_object_get(cert, "check"), "ok")) &&
@@ -473,12 +475,10 @@ static void plan_read_errors(void) {
       {"{\"status\": \"found\", \"order\": [\"nope\"]}", "order[0]: unknown body id 'nope'",
        US_ERR_INPUT},
       {"{\"status\": \"found\", \"order\": [\"wall\"]}", "'wall' is fixed", US_ERR_INPUT},
-      {"{\"status\": \"found\", \"order\": [\"slab\", \"slab\"]}", "appears twice",
-       US_ERR_INPUT},
+      {"{\"status\": \"found\", \"order\": [\"slab\", \"slab\"]}", "appears twice", US_ERR_INPUT},
       {"{\"format\": \"svg\", \"status\": \"found\", \"order\": []}", "format:", US_ERR_INPUT},
       {"{\"version\": 2, \"status\": \"found\", \"order\": []}", "version", US_ERR_INPUT},
-      {"{\"status\": \"found\", \"order\": [], \"oder\": 1}", "unknown field 'oder'",
-       US_ERR_INPUT},
+      {"{\"status\": \"found\", \"order\": [], \"oder\": 1}", "unknown field 'oder'", US_ERR_INPUT},
       {"[]", "expected a JSON object", US_ERR_INPUT},
   };
   us_Error err;
@@ -500,7 +500,8 @@ static void plan_read_errors(void) {
   write_text(path, "{\"status\": \"limit\", \"order\": [\"slab\"], \"_by\": \"hand\"}");
   us_PlanFile pf;
   CHECK_OK(us_plan_read(s, path, &pf, &err), &err);
-  CHECK(pf.status == US_PLAN_LIMIT && pf.n == 1 && pf.order[0] == us_structure_find_body(s, "slab"));
+  CHECK(pf.status == US_PLAN_LIMIT && pf.n == 1 &&
+        pf.order[0] == us_structure_find_body(s, "slab"));
   us_plan_file_free(&pf);
   remove(path);
   CHECK_INT(us_plan_read(s, path, &pf, &err), ==, US_ERR_IO);
@@ -556,7 +557,8 @@ static void fuzz_mutations(void) {
       us_Error err;
       us_error_clear(&err);
       us_Structure *s = us_structure_parse(t, "fuzz", 0, &err);
-      if (s) accepted++;
+      if (s)
+        accepted++;
       else if (err.code == US_OK || !strstr(err.msg, "fuzz")) {
         fprintf(stderr, "no message for:\n%s\n", t);
         free(t), free(orig);
@@ -626,7 +628,8 @@ static void out_of_memory(void) {
       us_error_clear(&err);
       us_Structure *s = us_structure_parse(text, files[f], 0, &err);
       us_alloc_fail_after(-1);
-      if (s) done = 1;
+      if (s)
+        done = 1;
       else if (err.code != US_ERR_NOMEM) {
         fprintf(stderr, "n=%ld: [%s] %s\n", n, us_status_name(err.code), err.msg);
         free(text);
@@ -648,10 +651,10 @@ static void large_wall(void) {
   for (int r = 0; r < rows; r++)
     for (int c = 0; c < cols; c++) {
       double x0 = c + (r % 2) * 0.5, y0 = r * 0.5;
-      n += (size_t)snprintf(t + n, cap - n,
-                            "%s{\"id\": \"r%dc%d\", \"polygon\": [[%g, %g], [%g, %g], [%g, %g], [%g, %g]]}",
-                            r || c ? ",\n" : "", r, c, x0, y0, x0 + 1, y0, x0 + 1, y0 + 0.5, x0,
-                            y0 + 0.5);
+      n += (size_t)snprintf(
+          t + n, cap - n,
+          "%s{\"id\": \"r%dc%d\", \"polygon\": [[%g, %g], [%g, %g], [%g, %g], [%g, %g]]}",
+          r || c ? ",\n" : "", r, c, x0, y0, x0 + 1, y0, x0 + 1, y0 + 0.5, x0, y0 + 0.5);
     }
   snprintf(t + n, cap - n, "]}\n");
   us_Error err;
@@ -670,8 +673,8 @@ static void large_wall(void) {
   double t4 = us_now();
   CHECK(back);
   CHECK(same_structure(s, back));
-  printf("10,000 bricks: parse+finalize %.3f s, write %.3f s, read back %.3f s\n", t1 - t0,
-         t3 - t2, t4 - t3);
+  printf("10,000 bricks: parse+finalize %.3f s, write %.3f s, read back %.3f s\n", t1 - t0, t3 - t2,
+         t4 - t3);
   CHECK(t3 - t2 < 5.0 && t4 - t3 < 20.0);
   us_structure_free(s);
   us_structure_free(back);

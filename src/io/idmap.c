@@ -5,9 +5,9 @@
  * Open addressing with linear probing, FNV-1a hashes, capacity a power of
  * two at least twice the expected count (load <= 1/2, so probes are short
  * and a free slot always exists). Keys are borrowed, never copied. */
-#include "io.h"
-
 #include <string.h>
+
+#include "io.h"
 
 static size_t hash_str(const char *s) {
   uint64_t h = 1469598103934665603ull;

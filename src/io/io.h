@@ -6,10 +6,10 @@
 #ifndef US_IO_H
 #define US_IO_H
 
-#include "core/core.h"
-
 #include <jansson.h>
 #include <stdio.h>
+
+#include "core/core.h"
 
 /* Where a reader is: the file name for messages and the error sink. */
 typedef struct us_IoCtx {
@@ -43,14 +43,13 @@ us_Status us_io_sign_number(const us_IoCtx *c, const char *where, const char *fi
 /* [x, y]: an array of exactly two finite numbers. */
 us_Status us_io_vec2(const us_IoCtx *c, const char *where, const char *field, json_t *v,
                      double out[2]);
-us_Status us_io_bool(const us_IoCtx *c, const char *where, const char *field, json_t *v,
-                     int *out);
+us_Status us_io_bool(const us_IoCtx *c, const char *where, const char *field, json_t *v, int *out);
 
 /* Open-addressing hash map from strings (not copied: they must outlive the
  * map) to non-negative ints. */
 typedef struct us_IdMap {
-  size_t cap;          /* power of two, at least twice the count */
-  const char **keys;   /* NULL = empty slot */
+  size_t cap;        /* power of two, at least twice the count */
+  const char **keys; /* NULL = empty slot */
   int *vals;
 } us_IdMap;
 int us_idmap_init(us_IdMap *m, int expected); /* 0 or -1 on OOM */

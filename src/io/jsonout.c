@@ -7,11 +7,11 @@
  * NaN or infinity: such a number sets `bad` and prints null, and the caller
  * then abandons the file. Strings are escaped per RFC 8259 (quote,
  * backslash, control characters); other bytes pass through as UTF-8. */
-#include "io.h"
-
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "io.h"
 
 void us_jo_number(us_JsonOut *o, double x) {
   if (!isfinite(x)) {

@@ -11,13 +11,13 @@
  * order matter, and every id in the order must name a distinct movable
  * body of the structure. Completeness of the order is for verification to
  * judge, not the reader. */
-#include "io.h"
-
 #include <string.h>
 
-static const char *const plan_keys[] = {"format", "version",   "status",          "order",
-                                        "method", "search",    "order_heuristic", "direction",
-                                        "steps",  "statistics", NULL};
+#include "io.h"
+
+static const char *const plan_keys[] = {
+    "format",          "version",   "status", "order",      "method", "search",
+    "order_heuristic", "direction", "steps",  "statistics", NULL};
 
 /* ------------------------------------------------------------------ write */
 
@@ -54,8 +54,7 @@ static void write_stats(us_JsonOut *o, const us_PlanStats *st) {
   us_jo_raw(o, "    }\n  }\n");
 }
 
-static void write_cert_contact(us_JsonOut *o, const us_Structure *s, const us_Forces *f,
-                               int j) {
+static void write_cert_contact(us_JsonOut *o, const us_Structure *s, const us_Forces *f, int j) {
   const us_Contact *c = &s->contacts[f->contact[j]];
   us_jo_raw(o, "          {\"a\": ");
   us_jo_string(o, c->a == US_GROUND ? "ground" : s->bodies[c->a].id);
@@ -100,8 +99,7 @@ static void write_step(us_JsonOut *o, const us_Structure *s, const us_Plan *p, i
   us_jo_raw(o, "      }}");
 }
 
-static us_Status write_steps(us_JsonOut *o, const us_Structure *s, const us_Plan *p,
-                             double tol) {
+static us_Status write_steps(us_JsonOut *o, const us_Structure *s, const us_Plan *p, double tol) {
   us_Bitset present;
   if (us_bitset_init(&present, s->nbody > 0 ? s->nbody : 1)) return US_ERR_NOMEM;
   for (int i = 0; i < s->nbody; i++) us_bitset_set(&present, i);
@@ -120,8 +118,8 @@ static void write_header(us_JsonOut *o, const us_Structure *s, const us_Plan *p,
   us_jo_raw(o, "{\n  \"format\": \"unstack-plan\",\n  \"version\": 1,\n  \"status\": ");
   us_jo_string(o, us_io_plan_status_word(p->status));
   if (set) {
-    fprintf(o->fp, ",\n  \"method\": \"%s\",\n  \"search\": \"%s\",\n", us_io_method_word(set->stability.method),
-            us_io_search_word(set->search));
+    fprintf(o->fp, ",\n  \"method\": \"%s\",\n  \"search\": \"%s\",\n",
+            us_io_method_word(set->stability.method), us_io_search_word(set->search));
     fprintf(o->fp, "  \"order_heuristic\": \"%s\",\n  \"direction\": \"%s\"",
             us_io_order_word(set->order), us_io_direction_word(set->direction));
   }
@@ -232,7 +230,8 @@ us_Status us_plan_read(const us_Structure *s, const char *path, us_PlanFile *out
   char *text = us_io_slurp(path, &len, &local);
   json_t *root = text ? us_io_parse_json(&c, text, len) : NULL;
   us_Status st = root ? US_OK : local.code;
-  if (!st && !json_is_object(root)) st = us_io_bad(&c, "", "expected a JSON object at the top level");
+  if (!st && !json_is_object(root))
+    st = us_io_bad(&c, "", "expected a JSON object at the top level");
   if (!st) st = read_header(&c, root, &out->status);
   if (!st) st = read_order(&c, s, json_object_get(root, "order"), out);
   json_decref(root);

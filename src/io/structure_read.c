@@ -10,18 +10,18 @@
  * the structure builder sees a value, because the builder gives some
  * values a meaning (mass <= 0: "use the density") that a file must not
  * reach by accident. Unknown keys are errors unless they start with '_'. */
-#include "io.h"
-
 #include <limits.h>
 #include <math.h>
 #include <string.h>
 
+#include "io.h"
+
 #define MAX_VERTS 10000000 /* far beyond any real polygon; keeps int sizes safe */
 
-static const char *const top_keys[] = {"dimension", "gravity", "friction", "ground",
+static const char *const top_keys[] = {"dimension", "gravity",  "friction", "ground",
                                        "bodies",    "contacts", NULL};
-static const char *const body_keys[] = {"id",    "polygon", "density", "mass",
-                                        "fixed", "friction", "center", "inertia", NULL};
+static const char *const body_keys[] = {"id",       "polygon", "density", "mass", "fixed",
+                                        "friction", "center",  "inertia", NULL};
 static const char *const contact_keys[] = {"a", "b", "point", "normal", "friction", NULL};
 
 /* Reader state: the structure under construction and the id -> index map. */
@@ -45,7 +45,8 @@ static us_Status read_globals(Reader *r, json_t *root) {
     st = us_io_vec2(&r->c, "", "gravity", v, r->s->gravity);
   if (!st && (v = json_object_get(root, "friction")))
     st = us_io_sign_number(&r->c, "", "friction", v, 0, &r->s->friction);
-  if (!st && (v = json_object_get(root, "ground"))) st = us_io_bool(&r->c, "", "ground", v, &r->s->ground);
+  if (!st && (v = json_object_get(root, "ground")))
+    st = us_io_bool(&r->c, "", "ground", v, &r->s->ground);
   return st;
 }
 
@@ -80,11 +81,14 @@ static us_Status read_material(Reader *r, const char *where, json_t *b, BodyFiel
   f->density = 0, f->mass = 0, f->friction = -1, f->inertia = 0, f->fixed = 0;
   if (json_object_get(b, "density") && json_object_get(b, "mass"))
     return us_io_bad(&r->c, where, "give either 'density' or 'mass', not both");
-  if ((v = json_object_get(b, "density"))) st = us_io_sign_number(&r->c, where, "density", v, 1, &f->density);
-  if (!st && (v = json_object_get(b, "mass"))) st = us_io_sign_number(&r->c, where, "mass", v, 1, &f->mass);
+  if ((v = json_object_get(b, "density")))
+    st = us_io_sign_number(&r->c, where, "density", v, 1, &f->density);
+  if (!st && (v = json_object_get(b, "mass")))
+    st = us_io_sign_number(&r->c, where, "mass", v, 1, &f->mass);
   if (!st && (v = json_object_get(b, "friction")))
     st = us_io_sign_number(&r->c, where, "friction", v, 0, &f->friction);
-  if (!st && (v = json_object_get(b, "fixed"))) st = us_io_bool(&r->c, where, "fixed", v, &f->fixed);
+  if (!st && (v = json_object_get(b, "fixed")))
+    st = us_io_bool(&r->c, where, "fixed", v, &f->fixed);
   if (!st && (v = json_object_get(b, "inertia")))
     st = us_io_sign_number(&r->c, where, "inertia", v, 1, &f->inertia);
   return st;
@@ -116,13 +120,12 @@ static us_Status add_point_body(Reader *r, const char *where, const char *id, js
 static us_Status add_polygon_body(Reader *r, const char *where, const char *id, json_t *b,
                                   const BodyFields *f) {
   if (json_object_get(b, "center") || json_object_get(b, "inertia"))
-    return us_io_bad(&r->c, where,
-                     "'center' and 'inertia' are only for bodies without a polygon");
+    return us_io_bad(&r->c, where, "'center' and 'inertia' are only for bodies without a polygon");
   double *xy = NULL;
   int n = 0;
   us_Status st = read_polygon(r, where, json_object_get(b, "polygon"), &xy, &n);
-  if (!st && us_structure_add_polygon(r->s, id, n, xy, f->density, f->mass, f->fixed,
-                                      f->friction, r->c.err) < 0)
+  if (!st && us_structure_add_polygon(r->s, id, n, xy, f->density, f->mass, f->fixed, f->friction,
+                                      r->c.err) < 0)
     st = r->c.err->code;
   us_free(xy);
   return st;
@@ -179,8 +182,7 @@ static us_Status read_bodies(Reader *r, json_t *root) {
 }
 
 /* One side of an explicit contact: a body id, or "ground" for side a. */
-static us_Status read_side(Reader *r, const char *where, json_t *c, const char *field,
-                           int *out) {
+static us_Status read_side(Reader *r, const char *where, json_t *c, const char *field, int *out) {
   json_t *v = json_object_get(c, field);
   if (!v) return us_io_bad(&r->c, where, "missing field '%s'", field);
   if (!json_is_string(v)) return us_io_bad(&r->c, where, "%s: expected a body id (string)", field);
@@ -223,10 +225,12 @@ static us_Status read_contact(Reader *r, int k, json_t *c) {
   if (!st) st = read_side(r, where, c, "a", &a);
   if (!st) st = read_side(r, where, c, "b", &b);
   if (!st && a == b) st = us_io_bad(&r->c, where, "a and b are the same body");
-  if (!st && !(v = json_object_get(c, "point"))) st = us_io_bad(&r->c, where, "missing field 'point'");
+  if (!st && !(v = json_object_get(c, "point")))
+    st = us_io_bad(&r->c, where, "missing field 'point'");
   if (!st) st = us_io_vec2(&r->c, where, "point", v, p);
   if (!st) st = read_normal(r, where, c, n);
-  if (!st && (v = json_object_get(c, "friction"))) st = us_io_sign_number(&r->c, where, "friction", v, 0, &mu);
+  if (!st && (v = json_object_get(c, "friction")))
+    st = us_io_sign_number(&r->c, where, "friction", v, 0, &mu);
   if (!st && us_structure_add_contact(r->s, a, b, p, n, mu, r->c.err) < 0) st = r->c.err->code;
   return st;
 }

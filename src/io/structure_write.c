@@ -9,9 +9,9 @@
  * reader needs is written: density when it is not the default 1, mass when
  * it was given, friction when the body has its own, and the contacts only
  * when they were explicit (detected contacts are re-detected on reading). */
-#include "io.h"
-
 #include <math.h>
+
+#include "io.h"
 
 static void write_material(us_JsonOut *o, const us_Body *b) {
   if (b->mass_given && b->mass > 0) {
@@ -69,7 +69,8 @@ static void write_structure(us_JsonOut *o, const us_Structure *s) {
   us_jo_vec2(o, s->gravity);
   us_jo_raw(o, ",\n  \"friction\": ");
   us_jo_number(o, s->friction);
-  us_jo_raw(o, s->ground ? ",\n  \"ground\": true,\n  \"bodies\": [" : ",\n  \"ground\": false,\n  \"bodies\": [");
+  us_jo_raw(o, s->ground ? ",\n  \"ground\": true,\n  \"bodies\": ["
+                         : ",\n  \"ground\": false,\n  \"bodies\": [");
   for (int i = 0; i < s->nbody; i++) {
     us_jo_raw(o, i ? ",\n" : "\n");
     write_body(o, &s->bodies[i]);
@@ -87,8 +88,10 @@ static void write_structure(us_JsonOut *o, const us_Structure *s) {
 }
 
 us_Status us_structure_write(const us_Structure *s, const char *path, us_Error *err) {
-  if (!s || !path) return us_error_set(err, US_ERR_USAGE, "us_structure_write: no structure or path");
-  if (s->dim != 2) return us_error_set(err, US_ERR_INPUT, "%s: only dimension 2 can be written", path);
+  if (!s || !path)
+    return us_error_set(err, US_ERR_USAGE, "us_structure_write: no structure or path");
+  if (s->dim != 2)
+    return us_error_set(err, US_ERR_INPUT, "%s: only dimension 2 can be written", path);
   us_AtomicFile *af = us_atomic_open(path, err);
   if (!af) return err ? err->code : US_ERR_IO;
   us_JsonOut o = {us_atomic_stream(af), 0};

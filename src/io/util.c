@@ -6,12 +6,12 @@
  * number is a double; jansson itself rejects NaN, Infinity and numbers that
  * overflow a double, as syntax errors with a position. Duplicate keys in an
  * object are syntax errors too (JSON_REJECT_DUPLICATES). */
-#include "io.h"
-
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <string.h>
+
+#include "io.h"
 
 us_Status us_io_bad(const us_IoCtx *c, const char *where, const char *fmt, ...) {
   char detail[400];
@@ -112,8 +112,7 @@ us_Status us_io_vec2(const us_IoCtx *c, const char *where, const char *field, js
   return US_OK;
 }
 
-us_Status us_io_bool(const us_IoCtx *c, const char *where, const char *field, json_t *v,
-                     int *out) {
+us_Status us_io_bool(const us_IoCtx *c, const char *where, const char *field, json_t *v, int *out) {
   if (!json_is_boolean(v)) return us_io_bad(c, where, "%s: expected true or false", field);
   *out = json_is_true(v);
   return US_OK;
