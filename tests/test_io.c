@@ -120,6 +120,15 @@ static void defaults_and_fields(void) {
   CHECK_NEAR(s->bodies[0].mass, 1.0, 1e-12);
   us_structure_free(s);
 
+  /* '_' keys are comments at every level */
+  s = us_structure_parse(
+      "{\"_a\": [1], \"bodies\": [{\"id\": \"p\", \"_b\": {}, \"mass\": 1, \"center\": [0, 1]}],"
+      " \"contacts\": [{\"_c\": null, \"a\": \"ground\", \"b\": \"p\", \"point\": [0, 0],"
+      " \"normal\": [0, 1]}]}",
+      "t", 0, &err);
+  CHECK(s != NULL);
+  us_structure_free(s);
+
   s = read_data("lean_wall.json", &err);
   CHECK(s != NULL);
   CHECK(s->bodies[us_structure_find_body(s, "wall")].fixed);
@@ -346,6 +355,25 @@ static void failed_write_leaves_no_file(void) {
   CHECK(strstr(err.msg, out));
   CHECK(access(out, F_OK) != 0);
   CHECK_INT(count_files_with_prefix("nan.json"), ==, 0);
+  /* an existing file survives a failed rewrite untouched */
+  write_text(out, "old");
+  CHECK_INT(us_structure_write(s, out, &err), ==, US_ERR_INPUT);
+  char *kept = read_text(out);
+  int same = kept && !strcmp(kept, "old");
+  free(kept);
+  CHECK(same);
+  CHECK_INT(count_files_with_prefix("nan.json"), ==, 1);
+  /* plans too */
+  us_Plan p;
+  memset(&p, 0, sizeof p);
+  p.stats.time_total = NAN;
+  CHECK_INT(us_plan_write(s, &p, NULL, out, &err), ==, US_ERR_INPUT);
+  kept = read_text(out);
+  same = kept && !strcmp(kept, "old");
+  free(kept);
+  CHECK(same);
+  CHECK_INT(count_files_with_prefix("nan.json"), ==, 1);
+  remove(out);
   us_structure_free(s);
 }
 
