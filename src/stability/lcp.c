@@ -167,9 +167,20 @@ typedef struct Ev {
   int kind, idx, sign;
 } Ev;
 
+/* Keep the smallest step. Ties (degenerate steps) go to the driven
+ * index's own events, then to the smallest index (Bland-like, against
+ * cycling). */
+static int driven_event(int kind) {
+  return kind == US_LCP_EV_DONE || kind == US_LCP_EV_ZERO || kind == US_LCP_EV_BOUND ||
+         kind == US_LCP_EV_FADED;
+}
+
 static void consider(Ev *ev, double lam, int kind, int idx, int sign) {
   if (lam < 0) lam = 0;
-  if (lam < ev->lam) {
+  int better = lam < ev->lam;
+  if (!better && isfinite(ev->lam) && lam <= ev->lam + 1e-13 * (1.0 + ev->lam))
+    better = !driven_event(ev->kind) && (driven_event(kind) || idx < ev->idx);
+  if (better) {
     ev->lam = lam;
     ev->kind = kind;
     ev->idx = idx;
@@ -227,7 +238,10 @@ static void ratio_members(const us_Lcp *p, int nout, double thr_f, double thr_a,
 /* The driven index's own events (single drive, direction dir). */
 static void ratio_driven(const us_Lcp *p, int d, double dir, double thr_f, double thr_a, Ev *ev) {
   double da = p->da[d];
-  if (dir * da > thr_a && p->a[d] * dir < 0) consider(ev, -p->a[d] / da, US_LCP_EV_DONE, d, 0);
+  if (p->a[d] * dir >= -p->tol_a) /* reached 0 already (a tie in the last step) */
+    consider(ev, 0.0, US_LCP_EV_DONE, d, 0);
+  else if (dir * da > thr_a)
+    consider(ev, -p->a[d] / da, US_LCP_EV_DONE, d, 0);
   if (p->kind[d] == US_LCP_NORMAL) {
     if (dir < 0) consider(ev, p->f[d], US_LCP_EV_ZERO, d, 0);
     return;
@@ -278,34 +292,26 @@ static void friction_on(us_Lcp *p, int n) {
   if (t >= 0 && p->live[t] && p->state[t] == US_LCP_OFF) push(p, t);
 }
 
+/* Index i has a_i = 0 and joins the system. A tiny pivot means i is
+ * redundant with the system (its row is a combination of the members'):
+ * it is deferred instead, keeping its force (a normal without force is
+ * simply NC); deferred indices are re-checked at the end of the run. */
 static us_LcpResult join_clamp(us_Lcp *p, int i) {
+  p->a[i] = 0.0;
   int r = append_clamp(p, i);
   if (r < 0) return US_LCP_NOMEM;
-  if (r > 0) return US_LCP_DEGENERATE;
-  if (p->kind[i] == US_LCP_NORMAL) friction_on(p, i);
+  if (r == 0) {
+    if (p->kind[i] == US_LCP_NORMAL) friction_on(p, i);
+    return US_LCP_SOLVED;
+  }
+  /* deferred, unwatched by ratio tests (an NC one blocking at a = 0
+   * would block again at once: a zero-step cycle) */
+  p->deferred++;
+  p->state[i] = US_LCP_FREE;
   return US_LCP_SOLVED;
 }
 
-/* The driven a reached 0. A tiny pivot means d is redundant with the
- * system: a normal with no force stays out (NC), a friction is deferred. */
-static us_LcpResult ev_done(us_Lcp *p, int d) {
-  p->a[d] = 0.0;
-  int r = append_clamp(p, d);
-  if (r < 0) return US_LCP_NOMEM;
-  if (r == 0) {
-    if (p->kind[d] == US_LCP_NORMAL) friction_on(p, d);
-    return US_LCP_SOLVED;
-  }
-  p->deferred++;
-  if (p->kind[d] == US_LCP_FRICTION) {
-    p->state[d] = US_LCP_FREE;
-    return US_LCP_SOLVED;
-  }
-  if (p->f[d] > p->tol_f) return US_LCP_DEGENERATE;
-  p->f[d] = 0.0;
-  p->state[d] = US_LCP_NC;
-  return US_LCP_SOLVED;
-}
+static us_LcpResult ev_done(us_Lcp *p, int d) { return join_clamp(p, d); }
 
 static us_LcpResult ev_bound(us_Lcp *p, int t, int sign, int was_member) {
   p->f[t] = sign * p->mu[t] * p->f[p->partner[t]];
@@ -328,20 +334,11 @@ static us_LcpResult apply_event(us_Lcp *p, const Ev *ev) {
     if (remove_member(p, i)) return US_LCP_DEGENERATE;
     p->state[i] = US_LCP_NC;
     return friction_off(p, i) ? US_LCP_DEGENERATE : US_LCP_SOLVED;
-  case US_LCP_EV_NC_C: p->a[i] = 0.0; return join_clamp(p, i);
+  case US_LCP_EV_NC_C: return join_clamp(p, i);
   case US_LCP_EV_C_BND: return ev_bound(p, i, ev->sign, 1);
   case US_LCP_EV_BND_C:
-    p->a[i] = 0.0;
     if (remove_member(p, i)) return US_LCP_DEGENERATE;
-    {
-      int r = append_clamp(p, i);
-      if (r < 0) return US_LCP_NOMEM;
-      if (r > 0) { /* redundant: keep its force, re-checked at the end */
-        p->state[i] = US_LCP_FREE;
-        p->deferred++;
-      }
-    }
-    return US_LCP_SOLVED;
+    return join_clamp(p, i);
   }
   return US_LCP_SOLVED;
 }
@@ -506,6 +503,14 @@ static us_LcpResult check_normal(us_Lcp *p, int i) {
                                                                    : US_LCP_SOLVED;
   case US_LCP_NC:
     if (p->a[i] < -p->tol_a) push(p, i);
+    return US_LCP_SOLVED;
+  case US_LCP_FREE: /* deferred: without force it is NC, else a must be ~0 */
+    if (p->f[i] <= p->tol_f && p->a[i] >= -p->tol_a) {
+      p->f[i] = 0.0;
+      p->state[i] = US_LCP_NC;
+    } else if (fabs(p->a[i]) > p->tol_a) {
+      push(p, i);
+    }
     return US_LCP_SOLVED;
   default:
     push(p, i);

@@ -170,8 +170,9 @@ us_LcpOps us_lcp_sys_ops(us_LcpSys *y);
 static inline const double *us_lcp_sys_w(const us_LcpSys *y, int i, int side) {
   return y->w + ((size_t)i * 2 + (size_t)side) * 3;
 }
-/* Net normalized wrench E f + F_ext on every present body; returns the
- * largest component magnitude and the body (index) where it occurs. */
-double us_lcp_sys_residual(us_LcpSys *y, const double *f, int *worst_body);
+/* Net normalized wrench r = E f + F_ext on every present body; returns the
+ * largest component magnitude and the body (index) where it occurs, and
+ * (energy not NULL) v^T M v = sum r^T M^-1 r with v the accelerations. */
+double us_lcp_sys_residual(us_LcpSys *y, const double *f, int *worst_body, double *energy);
 
 #endif

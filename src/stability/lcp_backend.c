@@ -11,6 +11,8 @@
  *   - frictionless (every active mu = 0): the body accelerations of a
  *     PSD LCP are unique, so a clear non-zero wrench (>= 1e-6 W) is
  *     UNSTABLE, exactly;
+ *   - with friction, the same when the contact accelerations prove that
+ *     no static solution exists (dual_cone_proof: toppling, lifting off);
  *   - otherwise (friction: the LCP may have found a sliding solution
  *     although a static one exists; the gray zone between the thresholds;
  *     a pivot limit or a degenerate run) the LP decides: the CLP backend,
@@ -228,27 +230,58 @@ static const char *result_name(us_LcpResult r) {
   return "?";
 }
 
+/* Exact instability with friction (the LCP solution need not be unique):
+ * let f* be any static solution (J^T f* + F = 0, f* in the cones). With
+ * a = A f + b = J v and v = M^-1 J^T (f - f*),
+ *   v^T M v = (f - f*)^T a = f^T a - sum_c f*_c^T a_c.
+ * If every contact's a_c lies in the dual cone (a_n >= mu |a_t|), each
+ * f*_c^T a_c >= 0, so v^T M v <= f^T a (which is <= 0 for an LCP
+ * solution: f_n a_n = 0, f_t a_t <= 0). A clearly positive v^T M v above
+ * f^T a therefore proves that no static solution exists. (Self-stresses
+ * s with J^T s = 0 add s^T J v = 0, so the round-off slack on the dual
+ * cone test is not multiplied by arbitrarily large internal forces.)
+ * This covers toppling and lifting off; sliding (a_n = 0, a_t != 0) does
+ * not pass and goes to the LP. */
+static int dual_cone_proof(LcpWs *w, const us_EqSystem *sys, double energy) {
+  us_Lcp *p = &w->lcp;
+  us_lcp_refresh(p);
+  double fa = 0.0;
+  for (int ci = 0; ci < sys->ncontact; ci++) {
+    int c = sys->contact[ci];
+    double an = p->a[2 * c], at = 0.0;
+    fa += p->f[2 * c] * an;
+    if (p->kind[2 * c + 1] == US_LCP_FRICTION) {
+      at = p->a[2 * c + 1];
+      fa += p->f[2 * c + 1] * at;
+    }
+    if (an < sys->mu[ci] * fabs(at) - 1e-12) return 0;
+  }
+  return energy > US_MAX(fa, 0.0) + 1e-10;
+}
+
 static us_Status decide(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, double *f,
                         us_StabilityInfo *info, char *note, size_t note_sz, us_Error *err) {
   clip_forces(w, sys);
   int worst = -1;
-  double res = us_lcp_sys_residual(&w->sys, w->lcp.f, &worst);
+  double energy = 0.0;
+  double res = us_lcp_sys_residual(&w->sys, w->lcp.f, &worst, &energy);
   if (res <= EQ_TOL) {
     *verdict = US_STABLE;
     write_forces(w, sys, f);
     snprintf(note, note_sz, "LCP: equilibrium (residual %.1e)", res);
     return US_OK;
   }
-  if (frictionless(sys) && res >= UNSTABLE_TOL) {
+  int fl = frictionless(sys);
+  if (res >= UNSTABLE_TOL && (fl || dual_cone_proof(w, sys, energy))) {
     *verdict = US_UNSTABLE;
     w->last_body = worst;
-    snprintf(note, note_sz, "LCP: bodies accelerate (net wrench %.2g W on '%s')", res,
-             w->s->bodies[worst].id);
+    snprintf(note, note_sz, "LCP: bodies accelerate (net wrench %.2g W on '%s'%s)", res,
+             w->s->bodies[worst].id, fl ? "" : ", dual-cone proof");
     return US_OK;
   }
   char why[64];
   snprintf(why, sizeof why, "%s (net wrench %.2g W)",
-           frictionless(sys) ? "residual in the gray zone" : "sliding solution", res);
+           fl ? "residual in the gray zone" : "sliding solution", res);
   return fallback(w, sys, verdict, f, info, why, note, note_sz, err);
 }
 

@@ -219,14 +219,15 @@ static void sys_full(void *ctx, const double *f, const unsigned char *live, doub
   memset(y->u, 0, 3 * (size_t)y->nbody * sizeof(double));
 }
 
-double us_lcp_sys_residual(us_LcpSys *y, const double *f, int *worst_body) {
+double us_lcp_sys_residual(us_LcpSys *y, const double *f, int *worst_body, double *energy) {
   net_wrench(y, f);
-  double worst = 0.0;
+  double worst = 0.0, q = 0.0;
   *worst_body = -1;
   for (int b = 0; b < y->nbody; b++) {
     if (!y->present[b]) continue;
-    const double *u = y->u + 3 * (size_t)b;
+    const double *u = y->u + 3 * (size_t)b, *mi = y->minv + 3 * (size_t)b;
     for (int r = 0; r < 3; r++) {
+      q += u[r] * mi[r] * u[r];
       if (fabs(u[r]) > worst) {
         worst = fabs(u[r]);
         *worst_body = b;
@@ -234,6 +235,7 @@ double us_lcp_sys_residual(us_LcpSys *y, const double *f, int *worst_body) {
     }
   }
   memset(y->u, 0, 3 * (size_t)y->nbody * sizeof(double));
+  if (energy) *energy = q;
   return worst;
 }
 
