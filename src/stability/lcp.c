@@ -473,42 +473,57 @@ static void polish(us_Lcp *p) {
   us_lcp_refresh(p);
 }
 
+/* Round-off scale of the final check: a_i carries errors of order
+ * eps * sum_j |A_ij f_j| <= eps * n * max A_jj * max |f_j| (PSD), so the
+ * tolerances on a and f grow with the largest force and diagonal. */
+typedef struct Scale {
+  double ta, tf;
+} Scale;
+
+static Scale check_scale(const us_Lcp *p) {
+  double fmax = 0.0, dmax = 0.0;
+  for (int i = 0; i < p->n; i++)
+    if (p->live[i]) fmax = US_MAX(fmax, fabs(p->f[i]));
+  for (int s = 0; s < p->k; s++) dmax = US_MAX(dmax, fabs(entry(p, p->mem[s], p->mem[s])));
+  Scale sc = {p->tol_a * (1.0 + fmax * dmax), 1e3 * p->tol_f * (1.0 + fmax)};
+  return sc;
+}
+
 /* Conditions of friction i (live) after a run; queue the violated ones. */
-static us_LcpResult check_friction(us_Lcp *p, int i) {
+static us_LcpResult check_friction(us_Lcp *p, int i, Scale sc) {
   int n = p->partner[i];
-  double a = p->a[i], lim = p->mu[i] * p->f[n] + 10 * p->tol_f;
+  double a = p->a[i], lim = p->mu[i] * p->f[n] + sc.tf;
   switch (p->state[i]) {
   case US_LCP_OFF:
     if (p->state[n] == US_LCP_C) push(p, i);
     return US_LCP_SOLVED;
   case US_LCP_C:
-    return fabs(a) > p->tol_a || fabs(p->f[i]) > lim ? US_LCP_DEGENERATE : US_LCP_SOLVED;
+    return fabs(a) > sc.ta || fabs(p->f[i]) > lim ? US_LCP_DEGENERATE : US_LCP_SOLVED;
   case US_LCP_BND:
-    if (p->bsign[i] * a > p->tol_a) { /* sliding the wrong way: drive back */
+    if (p->bsign[i] * a > sc.ta) { /* sliding the wrong way: drive back */
       if (remove_member(p, i)) return US_LCP_DEGENERATE;
       push(p, i);
     }
     return US_LCP_SOLVED;
   default: /* FREE or left pending */
     if (fabs(p->f[i]) > lim) return US_LCP_DEGENERATE;
-    if (fabs(a) > p->tol_a) push(p, i);
+    if (fabs(a) > sc.ta) push(p, i);
     return US_LCP_SOLVED;
   }
 }
 
-static us_LcpResult check_normal(us_Lcp *p, int i) {
+static us_LcpResult check_normal(us_Lcp *p, int i, Scale sc) {
   switch (p->state[i]) {
   case US_LCP_C:
-    return p->f[i] < -1e3 * p->tol_f || fabs(p->a[i]) > p->tol_a ? US_LCP_DEGENERATE
-                                                                   : US_LCP_SOLVED;
+    return p->f[i] < -sc.tf || fabs(p->a[i]) > sc.ta ? US_LCP_DEGENERATE : US_LCP_SOLVED;
   case US_LCP_NC:
-    if (p->a[i] < -p->tol_a) push(p, i);
+    if (p->a[i] < -sc.ta) push(p, i);
     return US_LCP_SOLVED;
   case US_LCP_FREE: /* deferred: without force it is NC, else a must be ~0 */
-    if (p->f[i] <= p->tol_f && p->a[i] >= -p->tol_a) {
+    if (p->f[i] <= p->tol_f && p->a[i] >= -sc.ta) {
       p->f[i] = 0.0;
       p->state[i] = US_LCP_NC;
-    } else if (fabs(p->a[i]) > p->tol_a) {
+    } else if (fabs(p->a[i]) > sc.ta) {
       push(p, i);
     }
     return US_LCP_SOLVED;
@@ -522,9 +537,11 @@ static us_LcpResult check_normal(us_Lcp *p, int i) {
 static us_LcpResult final_check(us_Lcp *p) {
   us_lcp_refresh(p);
   polish(p);
+  Scale sc = check_scale(p);
   for (int i = 0; i < p->n; i++) {
     if (!p->live[i]) continue;
-    us_LcpResult r = p->kind[i] == US_LCP_NORMAL ? check_normal(p, i) : check_friction(p, i);
+    us_LcpResult r =
+        p->kind[i] == US_LCP_NORMAL ? check_normal(p, i, sc) : check_friction(p, i, sc);
     if (r) return r;
   }
   return US_LCP_SOLVED;
