@@ -1,0 +1,16 @@
+# The hand-made example structures: verdicts a user expects.
+. "$(dirname "$0")/lib.sh"
+expect 0 "column3 plan" -- "$CLI" plan "$DATA/column3.json" -o "$T/p.json"
+expect 0 "cantilever plan found" -- "$CLI" plan "$DATA/cantilever.json" --stats -o "$T/cant.json"
+expect 0 "cantilever plan verifies" -- "$CLI" verify "$DATA/cantilever.json" "$T/cant.json"
+expect 1 "leaning slabs: no order" -- "$CLI" plan "$DATA/leaning.json" -o "$T/lean.json"
+contains "$T/lean.json" '"none"' "leaning: status none"
+expect 0 "slab on a wall stands with friction" -- "$CLI" check "$DATA/lean_wall.json"
+expect 1 "slab on a wall falls without friction" -- "$CLI" check "$DATA/lean_wall_mu0.json"
+expect 0 "explicit contacts stand" -- "$CLI" check "$DATA/explicit.json"
+expect 0 "explicit contacts plan" -- "$CLI" plan "$DATA/explicit.json" -o "$T/ex.json"
+for m in lp lpsolve lcp lcp-reuse; do
+  expect 0 "cantilever with $m" -- "$CLI" plan "$DATA/cantilever.json" --method $m
+  expect 1 "leaning with $m" -- "$CLI" plan "$DATA/leaning.json" --method $m
+done
+finish
