@@ -14,12 +14,14 @@ static const char help[] =
     "  wall     --rows R --cols C             running bond with half bricks at the ends\n"
     "  arch     --voussoirs N --radius R --thickness T\n"
     "                                         semicircular, radial joints, on the ground\n"
-    "  random   --rows R --width W --seed S   the random stacker: blocks dropped at random\n"
-    "                                         rows and offsets, kept only if all still stands\n"
+    "  random   --rows R --width W --seed S   the random stacker: blocks 1 wide dropped at\n"
+    "                                         random rows and offsets (quarter blocks) in a\n"
+    "                                         width of W blocks (default 5), kept only if all\n"
+    "                                         still stands, until row R is reached\n"
     "\n"
     "common options:\n"
     "  -o, --output FILE     structure file to write (required)\n"
-    "  --block-width X       block width (default 1)\n"
+    "  --block-width X       block width (default 1; not for random)\n"
     "  --block-height Y      block height (default 0.5)\n"
     "  --friction MU         Coulomb coefficient written to the file (default 0.5)\n"
     "  --density D           density of every block (default 1)\n"
@@ -94,7 +96,9 @@ int cmd_generate(int argc, char **argv) {
     if (!strcmp(argv[1], kinds[k].kind)) fn = kinds[k].fn;
   if (!fn) return cli_fail("generate", "unknown kind '%s' (column, pyramid, wall, arch, random)", argv[1]);
   us_GenSettings g = us_gen_default_settings();
-  double rand_width = 0;
+  int default_rows = g.rows;
+  g.rows = -1; /* to see whether --rows was given */
+  double rand_width = 0, block_width = g.width;
   const char *out = NULL;
   for (int i = 2; i < argc; i++) {
     if (cli_is_help(argv[i])) return fputs(help, stdout), CLI_EXIT_OK;
@@ -105,7 +109,15 @@ int cmd_generate(int argc, char **argv) {
     }
   }
   if (!out) return cli_fail("generate", "no output given: use -o FILE");
-  if (fn == us_gen_random && rand_width > 0) g.width = rand_width;
+  if (fn == us_gen_pyramid && g.rows > 0) g.n = g.rows;
+  if (g.rows < 0) g.rows = default_rows;
+  if (fn == us_gen_random) {
+    if (g.width != block_width)
+      return cli_fail("generate", "random: blocks are 1 wide; set the structure width with --width");
+    g.width = rand_width > 0 ? rand_width : 5.0;
+  } else if (rand_width > 0) {
+    return cli_fail("generate", "--width is for random (structure width in blocks); use --block-width");
+  }
   us_Error err;
   us_error_clear(&err);
   us_Structure *s = fn(&g, &err);

@@ -21,6 +21,7 @@ gen_plan_verify() { # NAME STATUS GENERATE-ARGS...
 gen_plan_verify column3 found column --blocks 3
 gen_plan_verify column100 found column --blocks 100
 gen_plan_verify pyramid found pyramid --rows 13
+"$CLI" generate pyramid --rows 13 -o "$T/p13.json" >"$T/gen.out"; contains "$T/gen.out" "91 bodies" "13 rows = the 91-block pyramid"
 gen_plan_verify wall found wall --rows 6 --cols 8
 gen_plan_verify arch none arch --voussoirs 9 --radius 3 --thickness 0.6
 gen_plan_verify random found random --rows 4 --width 5 --seed 7
