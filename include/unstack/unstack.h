@@ -141,6 +141,7 @@ typedef struct us_Structure {
   double weight;        /* total weight of movable bodies, |g| * sum m */
   int finalized;
   int cap_body, cap_contact;
+  void *id_index;       /* private: id -> body index hash map */
 } us_Structure;
 
 us_Structure *us_structure_new(int dim);
@@ -183,7 +184,8 @@ typedef struct us_ContactSettings {
 } us_ContactSettings;
 
 /* Detect vertex-on-edge contacts between all bodies and with the ground,
- * replacing s->contacts. Broad phase: sort and sweep on x. Reports
+ * replacing s->contacts. Broad phase: sort and sweep along the axis of
+ * larger spread. Reports
  * interpenetration beyond tol as US_ERR_INPUT naming both bodies. */
 us_Status us_detect_contacts(us_Structure *s, const us_ContactSettings *set, us_Error *err);
 

@@ -39,4 +39,18 @@ int us_bitset_set_contains(const us_BitsetSet *s, const us_Bitset *b);
 int us_bitset_set_add(us_BitsetSet *s, const us_Bitset *b);
 size_t us_bitset_set_bytes(const us_BitsetSet *s);
 
+/* Hash map from borrowed strings to non-negative ints (body ids to
+ * indices); grows as needed. A zeroed map is empty and valid. */
+typedef struct us_IdMap {
+  size_t cap;        /* power of two, at least twice the count; 0 = unset */
+  size_t count;
+  const char **keys; /* NULL = empty slot */
+  int *vals;
+} us_IdMap;
+int us_idmap_init(us_IdMap *m, int expected); /* 0 or -1 on OOM */
+void us_idmap_free(us_IdMap *m);
+int us_idmap_get(const us_IdMap *m, const char *key); /* value or -1 */
+/* Insert key -> val: 0 done, -1 the key exists (nothing changed), -2 OOM. */
+int us_idmap_put(us_IdMap *m, const char *key, int val);
+
 #endif

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 struct us_AtomicFile {
@@ -29,7 +30,13 @@ us_AtomicFile *us_atomic_open(const char *path, us_Error *err) {
   }
   snprintf(af->tmp, n + 16, "%s.tmp.XXXXXX", path);
   int fd = mkstemp(af->tmp);
-  if (fd >= 0) af->fp = fdopen(fd, "w");
+  if (fd >= 0) {
+    /* mkstemp creates 0600; output files get the usual 0666 less umask */
+    mode_t mask = umask(0);
+    umask(mask);
+    fchmod(fd, 0666 & ~mask);
+    af->fp = fdopen(fd, "w");
+  }
   if (!af->fp) {
     us_error_set(err, US_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
     if (fd >= 0) close(fd), remove(af->tmp);

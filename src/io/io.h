@@ -45,21 +45,6 @@ us_Status us_io_vec2(const us_IoCtx *c, const char *where, const char *field, js
                      double out[2]);
 us_Status us_io_bool(const us_IoCtx *c, const char *where, const char *field, json_t *v, int *out);
 
-/* Open-addressing hash map from strings (not copied: they must outlive the
- * map) to non-negative ints. */
-typedef struct us_IdMap {
-  size_t cap;        /* power of two, at least twice the count */
-  const char **keys; /* NULL = empty slot */
-  int *vals;
-} us_IdMap;
-int us_idmap_init(us_IdMap *m, int expected); /* 0 or -1 on OOM */
-void us_idmap_free(us_IdMap *m);
-int us_idmap_get(const us_IdMap *m, const char *key); /* value or -1 */
-/* Insert key -> val; returns -1 if the key exists (nothing changed). The
- * map never grows: init with the maximal count. */
-int us_idmap_put(us_IdMap *m, const char *key, int val);
-/* A map over the body ids of s (-1 on OOM). */
-int us_idmap_bodies(us_IdMap *m, const us_Structure *s);
 
 /* Streaming JSON output: numbers with the fewest digits (15..17) that read
  * back to the same double; strings escaped. `bad` records a non-finite

@@ -183,13 +183,13 @@ static us_Status read_header(const us_IoCtx *c, json_t *root, us_PlanStatus *sta
 
 /* Map order[k] to a body index: a known, movable body not seen before
  * (first[i] = position of body i in the order so far, or -1). */
-static us_Status read_order_entry(const us_IoCtx *c, const us_Structure *s, const us_IdMap *m,
-                                  json_t *v, int k, int *first, int *out) {
+static us_Status read_order_entry(const us_IoCtx *c, const us_Structure *s, json_t *v, int k,
+                                  int *first, int *out) {
   char where[32];
   snprintf(where, sizeof where, "order[%d]", k);
   if (!json_is_string(v)) return us_io_bad(c, where, "expected a body id (string)");
   const char *id = json_string_value(v);
-  int i = us_idmap_get(m, id);
+  int i = us_structure_find_body(s, id);
   if (i < 0) return us_io_bad(c, where, "unknown body id '%.80s'", id);
   if (s->bodies[i].fixed)
     return us_io_bad(c, where, "body '%.80s' is fixed and cannot be removed", id);
@@ -206,16 +206,14 @@ static us_Status read_order(const us_IoCtx *c, const us_Structure *s, json_t *ar
   if (!json_is_array(arr)) return us_io_bad(c, "", "order: expected an array of body ids");
   size_t n = json_array_size(arr);
   if (n > (size_t)s->nbody) return us_io_bad(c, "", "order: more entries (%zu) than bodies", n);
-  us_IdMap m = {0, NULL, NULL};
   int *first = us_malloc(((size_t)s->nbody + 1) * sizeof *first);
   out->order = us_malloc((n + 1) * sizeof *out->order);
   us_Status st = US_OK;
-  if (!first || !out->order || us_idmap_bodies(&m, s))
+  if (!first || !out->order)
     st = us_error_set(c->err, US_ERR_NOMEM, "%s: out of memory", c->name);
   for (int i = 0; !st && i < s->nbody; i++) first[i] = -1;
   for (size_t k = 0; !st && k < n; k++)
-    st = read_order_entry(c, s, &m, json_array_get(arr, k), (int)k, first, &out->order[k]);
-  us_idmap_free(&m);
+    st = read_order_entry(c, s, json_array_get(arr, k), (int)k, first, &out->order[k]);
   us_free(first);
   out->n = (int)n;
   return st;

@@ -2,7 +2,7 @@
  * us_Structure, with messages that name the file and the JSON path.
  *
  * Order of work: parse the JSON (syntax errors carry file:line:column), read
- * the top-level settings, then every body (ids go into a hash map so that
+ * the top-level settings, then every body (the structure's id index means
  * duplicate ids and the ids used by explicit contacts are found in O(1)),
  * then the explicit contacts if there are any, and finally
  * us_structure_finalize, whose geometric messages (they name body ids) are
@@ -24,11 +24,10 @@ static const char *const body_keys[] = {"id",       "polygon", "density", "mass"
                                         "friction", "center",  "inertia", NULL};
 static const char *const contact_keys[] = {"a", "b", "point", "normal", "friction", NULL};
 
-/* Reader state: the structure under construction and the id -> index map. */
+/* Reader state: the structure under construction. */
 typedef struct Reader {
   us_IoCtx c;
   us_Structure *s;
-  us_IdMap ids;
   int explicit_contacts;
 } Reader;
 
@@ -140,7 +139,7 @@ static us_Status read_id(Reader *r, const char *where, json_t *b, const char **i
   if (!**id) return us_io_bad(&r->c, where, "id: must not be empty");
   if (!strcmp(*id, "ground"))
     return us_io_bad(&r->c, where, "id 'ground' is reserved for the ground");
-  int other = us_idmap_get(&r->ids, *id);
+  int other = us_structure_find_body(r->s, *id);
   if (other >= 0)
     return us_io_bad(&r->c, where, "duplicate id '%.80s' (also bodies[%d])", *id, other);
   return US_OK;
@@ -162,7 +161,6 @@ static us_Status read_body(Reader *r, int k, json_t *b) {
     st = add_polygon_body(r, where, id, b, &f);
   else
     st = add_point_body(r, where, id, b, &f);
-  if (!st) us_idmap_put(&r->ids, r->s->bodies[r->s->nbody - 1].id, k);
   return st;
 }
 
@@ -172,8 +170,6 @@ static us_Status read_bodies(Reader *r, json_t *root) {
   if (!json_is_array(arr)) return us_io_bad(&r->c, "", "bodies: expected an array");
   if (json_array_size(arr) > (size_t)INT_MAX / 4)
     return us_io_bad(&r->c, "", "bodies: too many bodies");
-  if (us_idmap_init(&r->ids, (int)json_array_size(arr)))
-    return us_error_set(r->c.err, US_ERR_NOMEM, "%s: out of memory", r->c.name);
   for (size_t k = 0; k < json_array_size(arr); k++) {
     us_Status st = read_body(r, (int)k, json_array_get(arr, k));
     if (st) return st;
@@ -195,7 +191,7 @@ static us_Status read_side(Reader *r, const char *where, json_t *c, const char *
     *out = US_GROUND;
     return US_OK;
   }
-  *out = us_idmap_get(&r->ids, id);
+  *out = us_structure_find_body(r->s, id);
   if (*out < 0) return us_io_bad(&r->c, where, "%s: unknown body id '%.80s'", field, id);
   return US_OK;
 }
@@ -271,7 +267,7 @@ us_Structure *us_structure_parse(const char *text, const char *name, double cont
                                  us_Error *err) {
   us_Error local;
   us_error_clear(&local);
-  Reader r = {{name ? name : "<input>", &local}, NULL, {0, NULL, NULL}, 0};
+  Reader r = {{name ? name : "<input>", &local}, NULL, 0};
   json_t *root = us_io_parse_json(&r.c, text, strlen(text));
   us_Status st = root ? US_OK : local.code;
   if (!st) {
@@ -279,7 +275,6 @@ us_Structure *us_structure_parse(const char *text, const char *name, double cont
     if (!r.s) st = us_error_set(&local, US_ERR_NOMEM, "%s: out of memory", r.c.name);
   }
   if (!st) st = read_document(&r, root, contact_tol);
-  us_idmap_free(&r.ids);
   json_decref(root);
   if (st) {
     us_structure_free(r.s);

@@ -31,13 +31,19 @@ void us_structure_free(us_Structure *s) {
   }
   us_free(s->bodies);
   us_free(s->contacts);
+  if (s->id_index) us_idmap_free(s->id_index);
+  us_free(s->id_index);
   us_free(s);
 }
 
 int us_structure_find_body(const us_Structure *s, const char *id) {
-  for (int i = 0; i < s->nbody; i++)
-    if (strcmp(s->bodies[i].id, id) == 0) return i;
-  return -1;
+  return s->id_index ? us_idmap_get(s->id_index, id) : -1;
+}
+
+/* Register body i's id; -1 duplicate, -2 out of memory. */
+static int index_id(us_Structure *s, int i) {
+  if (!s->id_index && !(s->id_index = us_calloc(1, sizeof(us_IdMap)))) return -2;
+  return us_idmap_put(s->id_index, s->bodies[i].id, i);
 }
 
 /* Append a body with the given id; returns its index or -1. */
@@ -50,10 +56,6 @@ static int add_body(us_Structure *s, const char *id, us_Error *err) {
     us_error_set(err, US_ERR_INPUT, "body id 'ground' is reserved for the ground");
     return -1;
   }
-  if (us_structure_find_body(s, id) >= 0) {
-    us_error_set(err, US_ERR_INPUT, "duplicate body id '%s'", id);
-    return -1;
-  }
   if (US_GROW(s->bodies, s->cap_body, s->nbody + 1)) {
     us_error_set(err, US_ERR_NOMEM, "out of memory adding body '%s'", id);
     return -1;
@@ -61,8 +63,11 @@ static int add_body(us_Structure *s, const char *id, us_Error *err) {
   us_Body *b = &s->bodies[s->nbody];
   memset(b, 0, sizeof *b);
   b->id = us_strdup(id);
-  if (!b->id) {
-    us_error_set(err, US_ERR_NOMEM, "out of memory adding body '%s'", id);
+  int r = b->id ? index_id(s, s->nbody) : -2;
+  if (r < 0) {
+    us_free(b->id);
+    if (r == -1) us_error_set(err, US_ERR_INPUT, "duplicate body id '%s'", id);
+    else us_error_set(err, US_ERR_NOMEM, "out of memory adding body '%s'", id);
     return -1;
   }
   b->friction = -1.0;
