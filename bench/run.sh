@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Benchmarks (make bench): plan the source's structures and larger ones with
+# every backend and print a table of wall-clock times, tests and memory.
+# Timings live here, never in the tests. Usage: bench/run.sh BUILD_DIR [OUT.md]
+set -euo pipefail
+B=${1:-build}
+OUT=${2:-bench/results/latest.md}
+CLI=$B/unstack
+W=$(mktemp -d)
+trap 'rm -rf "$W"' EXIT
+LIMIT=${BENCH_TIME_LIMIT:-300}
+
+$CLI generate pyramid --rows 13 -o "$W/pyramid91.json" >/dev/null
+$CLI generate column --blocks 1000 -o "$W/column1000.json" >/dev/null
+$CLI generate wall --rows 25 --cols 40 -o "$W/wall1012.json" >/dev/null
+$CLI generate arch --voussoirs 15 -o "$W/arch15.json" >/dev/null
+
+row() { # STRUCTURE METHOD [extra plan args]
+  local name=$1 m=$2
+  shift 2
+  local line rss
+  line=$( { /usr/bin/time -f "RSS %M" "$CLI" plan "$W/$name.json" --method "$m" --time-limit "$LIMIT" \
+            --stats "$@" -o "$W/plan.json" || true; } 2>&1)
+  local summary tests solve total
+  summary=$(echo "$line" | head -1)
+  tests=$(echo "$line" | sed -n 's/^  tests \([0-9]*\).*/\1/p')
+  total=$(echo "$line" | sed -n 's/.*time: total \([0-9.]*\) s.*/\1/p')
+  solve=$(echo "$line" | sed -n 's/.*in solver \([0-9.]*\) s.*/\1/p')
+  rss=$(echo "$line" | sed -n 's/^RSS \([0-9]*\)/\1/p')
+  local per
+  per=$(awk -v s="$solve" -v t="$tests" 'BEGIN{ if (t > 0) printf "%.3f", 1000 * s / t; else print "-" }')
+  printf '| %s | %s %s | %s | %s | %s | %s | %s |\n' "$name" "$m" "$*" "${summary%%,*}" "$tests" "$total" "$per" \
+    "$((rss / 1024))" | tee -a "$OUT.tmp"
+}
+
+{
+  echo "# unstack benchmarks"
+  echo
+  echo "$(date -u +%Y-%m-%d), $(uname -m), $(nproc) cores; $(gcc --version | head -1); Release build."
+  echo
+  echo "| structure | method | result | tests | total s | solver ms/test | max RSS MiB |"
+  echo "|---|---|---|---|---|---|---|"
+} >"$OUT.tmp"
+cat "$OUT.tmp"
+for m in lpsolve lp lcp lcp-reuse; do row pyramid91 $m; done
+for m in lp lcp-reuse; do row pyramid91 $m --direction up; done
+for m in lp lcp lcp-reuse; do row column1000 $m; done
+for m in lp lcp-reuse; do row wall1012 $m; done
+for m in lp lcp-reuse; do row arch15 $m; done
+for b in "$B"/bench_*; do
+  [ -x "$b" ] || continue
+  printf '\n## %s\n\n```\n' "$(basename "$b")" >>"$OUT.tmp"
+  "$b" 2>&1 | tee -a "$OUT.tmp"
+  printf '```\n' >>"$OUT.tmp"
+done
+mv "$OUT.tmp" "$OUT"
+echo "wrote $OUT"
