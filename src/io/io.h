@@ -56,6 +56,8 @@ typedef struct us_JsonOut {
 void us_jo_number(us_JsonOut *o, double x);
 void us_jo_string(us_JsonOut *o, const char *s);
 void us_jo_vec2(us_JsonOut *o, const double *v); /* [x, y] */
+/* "a": id|"ground", "b": id, "point": [x, y], "normal": [nx, ny] of a contact. */
+void us_jo_contact_fields(us_JsonOut *o, const us_Structure *s, const us_Contact *c);
 void us_jo_raw(us_JsonOut *o, const char *s);
 
 /* Name tables (file format words, independent of other modules). */

@@ -76,3 +76,14 @@ int us_io_plan_status_parse(const char *w, us_PlanStatus *out) {
     }
   return -1;
 }
+
+void us_jo_contact_fields(us_JsonOut *o, const us_Structure *s, const us_Contact *c) {
+  us_jo_raw(o, "\"a\": ");
+  us_jo_string(o, c->a == US_GROUND ? "ground" : s->bodies[c->a].id);
+  us_jo_raw(o, ", \"b\": ");
+  us_jo_string(o, s->bodies[c->b].id);
+  us_jo_raw(o, ", \"point\": ");
+  us_jo_vec2(o, c->p);
+  us_jo_raw(o, ", \"normal\": ");
+  us_jo_vec2(o, c->n);
+}

@@ -56,14 +56,8 @@ static void write_stats(us_JsonOut *o, const us_PlanStats *st) {
 
 static void write_cert_contact(us_JsonOut *o, const us_Structure *s, const us_Forces *f, int j) {
   const us_Contact *c = &s->contacts[f->contact[j]];
-  us_jo_raw(o, "          {\"a\": ");
-  us_jo_string(o, c->a == US_GROUND ? "ground" : s->bodies[c->a].id);
-  us_jo_raw(o, ", \"b\": ");
-  us_jo_string(o, s->bodies[c->b].id);
-  us_jo_raw(o, ", \"point\": ");
-  us_jo_vec2(o, c->p);
-  us_jo_raw(o, ", \"normal\": ");
-  us_jo_vec2(o, c->n);
+  us_jo_raw(o, "          {");
+  us_jo_contact_fields(o, s, c);
   us_jo_raw(o, ", \"force\": ");
   us_jo_vec2(o, f->f + 2 * j);
   us_jo_raw(o, "}");

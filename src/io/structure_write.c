@@ -51,14 +51,8 @@ static void write_body(us_JsonOut *o, const us_Body *b) {
 }
 
 static void write_contact(us_JsonOut *o, const us_Structure *s, const us_Contact *c) {
-  us_jo_raw(o, "    {\"a\": ");
-  us_jo_string(o, c->a == US_GROUND ? "ground" : s->bodies[c->a].id);
-  us_jo_raw(o, ", \"b\": ");
-  us_jo_string(o, s->bodies[c->b].id);
-  us_jo_raw(o, ", \"point\": ");
-  us_jo_vec2(o, c->p);
-  us_jo_raw(o, ", \"normal\": ");
-  us_jo_vec2(o, c->n);
+  us_jo_raw(o, "    {");
+  us_jo_contact_fields(o, s, c);
   us_jo_raw(o, ", \"friction\": ");
   us_jo_number(o, c->mu);
   us_jo_raw(o, "}");
