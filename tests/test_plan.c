@@ -5,32 +5,17 @@
  * whether a stable path to the empty set exists; DFS, BFS and both
  * directions must agree with it, and every order they return must pass
  * us_verify_order. */
+#include "scenes.h"
 #include "test.h"
-
-static int add_box(us_Structure *s, const char *id, double x0, double y0, double x1, double y1,
-                   double density) {
-  double v[8] = {x0, y0, x1, y0, x1, y1, x0, y1};
-  return us_structure_add_polygon(s, id, 4, v, density, 0, 0, -1, NULL);
-}
-
-static us_Structure *finalize(us_Structure *s) {
-  us_Error err;
-  if (us_structure_finalize(s, &err) != US_OK) {
-    fprintf(stderr, "finalize: %s\n", err.msg);
-    us_structure_free(s);
-    return NULL;
-  }
-  return s;
-}
 
 static us_Structure *column(int n) {
   us_Structure *s = us_structure_new(2);
   char id[16];
   for (int i = 0; i < n; i++) {
     snprintf(id, sizeof id, "c%d", i);
-    add_box(s, id, 0, 0.5 * i, 1, 0.5 * (i + 1), 1);
+    scene_box(s, id, 0, 0.5 * i, 1, 0.5, 1);
   }
-  return finalize(s);
+  return scene_seal(s);
 }
 
 /* Pier P, spacer S and plank L on it, heavy counterweight C on S and the
@@ -38,11 +23,11 @@ static us_Structure *column(int n) {
  * the plank must go first. */
 static us_Structure *cantilever(void) {
   us_Structure *s = us_structure_new(2);
-  add_box(s, "P", 0, 0, 1, 1, 1);
-  add_box(s, "S", 0, 1, 0.6, 1.2, 1);
-  add_box(s, "L", 0.6, 1, 3.6, 1.2, 1);
-  add_box(s, "C", 0, 1.2, 1, 1.7, 10);
-  return finalize(s);
+  scene_box(s, "P", 0, 0, 1, 1, 1);
+  scene_box(s, "S", 0, 1, 0.6, 0.2, 1);
+  scene_box(s, "L", 0.6, 1, 3, 0.2, 1);
+  scene_box(s, "C", 0, 1.2, 1, 0.5, 10);
+  return scene_seal(s);
 }
 
 /* Two slabs leaning on each other (inverted V): each needs the other. */
@@ -53,7 +38,7 @@ static us_Structure *leaning(double mu) {
   double r[8] = {1.6, 0, 2.0, 0, 1.0, 2.0, 1.0, 1.5};
   us_structure_add_polygon(s, "left", 4, l, 1, 0, 0, -1, NULL);
   us_structure_add_polygon(s, "right", 4, r, 1, 0, 0, -1, NULL);
-  return finalize(s);
+  return scene_seal(s);
 }
 
 static us_Bitset all_movable(const us_Structure *s) {
@@ -263,7 +248,7 @@ static us_Structure *random_pile(int n) {
     for (int c = 0; c < 8; c++)
       if (c * 0.5 < x0 + w && (c + 1) * 0.5 > x0) top[c] = y + 0.4;
     snprintf(id, sizeof id, "r%d", i);
-    add_box(s, id, x0, y, x0 + w, y + 0.4, 1);
+    scene_box(s, id, x0, y, w, 0.4, 1);
   }
   us_Error err;
   if (us_structure_finalize(s, &err) != US_OK) {

@@ -5,29 +5,12 @@
  * and out-of-memory paths. Every STABLE verdict is checked to come with a
  * passing certificate; no test looks at particular force values. */
 #include "stability/stability.h"
+#include "scenes.h"
 #include "test.h"
 
 static const us_Method lp_methods[] = {US_METHOD_LP, US_METHOD_LPSOLVE};
 
 /* ---------------------------------------------------------------- helpers */
-
-static int add_box(us_Structure *s, const char *id, double x0, double y0, double w, double h,
-                   double density) {
-  double xy[8] = {x0, y0, x0 + w, y0, x0 + w, y0 + h, x0, y0 + h};
-  us_Error err;
-  return us_structure_add_polygon(s, id, 4, xy, density, 0.0, 0, -1.0, &err);
-}
-
-/* Finalize; NULL (and the structure freed) on error. */
-static us_Structure *sealed(us_Structure *s) {
-  us_Error err;
-  if (us_structure_finalize(s, &err) != US_OK) {
-    fprintf(stderr, "finalize: %s\n", err.msg);
-    us_structure_free(s);
-    return NULL;
-  }
-  return s;
-}
 
 /* Verdict of `present` (NULL: everything) with method m; -1 on error. A
  * STABLE verdict must carry an ok certificate (else -2). */
@@ -73,7 +56,7 @@ static us_Structure *point_on_ground(double cx, double xl, double xr) {
   us_structure_add_contact(s, US_GROUND, b, pl, up, -1, &err);
   us_structure_add_contact(s, US_GROUND, b, pr, up, -1, &err);
   s->explicit_contacts = 1;
-  return sealed(s);
+  return scene_seal(s);
 }
 
 /* ------------------------------------------------------------------ cases */
@@ -108,8 +91,8 @@ static void point_body_support(void) {
 
 static void single_block(void) {
   us_Structure *s = us_structure_new(2);
-  add_box(s, "a", 0, 0, 1, 1, 1);
-  CHECK(sealed(s));
+  scene_box(s, "a", 0, 0, 1, 1, 1);
+  CHECK(scene_seal(s));
   CHECK(s->ncontact >= 2);
   CHECK_VERDICT(s, NULL, US_STABLE);
   us_structure_free(s);
@@ -122,7 +105,7 @@ static void overhanging_body(void) {
   double xy[12] = {0, 0, 0.2, 0, 0.2, 0.2, 2, 0.2, 2, 0.4, 0, 0.4};
   us_Error err;
   CHECK(us_structure_add_polygon(s, "L", 6, xy, 1, 0, 0, -1, &err) == 0);
-  CHECK(sealed(s));
+  CHECK(scene_seal(s));
   CHECK(s->bodies[0].com[0] > 0.5);
   CHECK_VERDICT(s, NULL, US_UNSTABLE);
   us_structure_free(s);
@@ -132,9 +115,9 @@ static void overhanging_body(void) {
  * box's top face iff dx < 0.5. */
 static us_Structure *two_blocks(double dx) {
   us_Structure *s = us_structure_new(2);
-  add_box(s, "low", 0, 0, 1, 1, 1);
-  add_box(s, "top", dx, 1, 1, 1, 1);
-  return sealed(s);
+  scene_box(s, "low", 0, 0, 1, 1, 1);
+  scene_box(s, "top", dx, 1, 1, 1, 1);
+  return scene_seal(s);
 }
 
 static void two_block_column(void) {
@@ -158,10 +141,10 @@ static void two_block_column(void) {
 static void cantilever(void) {
   for (int cw = 0; cw < 2; cw++) {
     us_Structure *s = us_structure_new(2);
-    add_box(s, "base", 0, 0, 1, 1, 1);
-    add_box(s, "plank", 0, 1, 3, 0.2, 1);
-    if (cw) add_box(s, "weight", 0, 1.2, 0.5, 0.5, 10);
-    CHECK(sealed(s));
+    scene_box(s, "base", 0, 0, 1, 1, 1);
+    scene_box(s, "plank", 0, 1, 3, 0.2, 1);
+    if (cw) scene_box(s, "weight", 0, 1.2, 0.5, 0.5, 10);
+    CHECK(scene_seal(s));
     CHECK_VERDICT(s, NULL, cw ? US_STABLE : US_UNSTABLE);
     us_structure_free(s);
   }
@@ -181,7 +164,7 @@ static void inverted_v(void) {
     us_Error err;
     CHECK(us_structure_add_polygon(s, "left", 4, l, 1, 0, 0, -1, &err) == 0);
     CHECK(us_structure_add_polygon(s, "right", 4, r, 1, 0, 0, -1, &err) == 1);
-    CHECK(sealed(s));
+    CHECK(scene_seal(s));
     CHECK(s->bodies[0].com[0] > 0.3 && s->bodies[1].com[0] < 1.7);
     CHECK_VERDICT(s, NULL, k == 0 ? US_STABLE : US_UNSTABLE);
     us_structure_free(s);
@@ -194,10 +177,10 @@ static us_Structure *pier_column(void) {
   double pier[8] = {0, 0, 1, 0, 1, 1, 0, 1};
   us_Error err;
   us_structure_add_polygon(s, "pier", 4, pier, 1, 0, 1, -1, &err);
-  add_box(s, "b1", 0, 1, 1, 1, 1);
-  add_box(s, "b2", 0, 2, 1, 1, 1);
-  add_box(s, "b3", 0.2, 3, 1, 1, 1);
-  return sealed(s);
+  scene_box(s, "b1", 0, 1, 1, 1, 1);
+  scene_box(s, "b2", 0, 2, 1, 1, 1);
+  scene_box(s, "b3", 0.2, 3, 1, 1, 1);
+  return scene_seal(s);
 }
 
 static void sub_assemblies(void) {
@@ -269,7 +252,7 @@ static void floating_and_usage(void) {
   double c[2] = {0, 3};
   us_structure_add_point_body(s, "p", 1.0, c, 0, &err);
   s->explicit_contacts = 1;
-  CHECK(sealed(s));
+  CHECK(scene_seal(s));
   CHECK_VERDICT(s, NULL, US_UNSTABLE);
   us_Stability *w = us_stability_new(s, NULL, &err);
   CHECK(w);
@@ -418,9 +401,9 @@ static us_Structure *small_wall(void) {
   for (int r = 0; r < 3; r++)
     for (int c = 0; c < 3; c++) {
       snprintf(id, sizeof id, "b%d%d", r, c);
-      add_box(s, id, c + (r % 2) * 0.3, 0.5 + r * 0.6, 1, 0.6, 1);
+      scene_box(s, id, c + (r % 2) * 0.3, 0.5 + r * 0.6, 1, 0.6, 1);
     }
-  return sealed(s);
+  return scene_seal(s);
 }
 
 static void random_subset(us_Bitset *p) {
