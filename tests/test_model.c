@@ -2,6 +2,7 @@
  * src/model/massprops.c) through us_structure_finalize: every bad input is
  * rejected with US_ERR_INPUT and a message naming the body. */
 #include "model/model.h"
+#include "scenes.h"
 #include "test.h"
 
 static int add_box(us_Structure *s, const char *id, double x0, double y0, double x1, double y1,
@@ -268,7 +269,28 @@ static void out_of_memory(void) {
   CHECK(failures > 0);
 }
 
-US_TEST_MAIN(T(self_intersecting), T(zero_area), T(too_few_vertices), T(non_finite),
+/* Finalizing again after adding a body re-detects the contacts (they were
+ * detection's own, not the caller's), and ids stay unique. */
+static void finalize_again(void) {
+  us_Structure *s = us_structure_new(2);
+  scene_box(s, "a", 0, 0, 1, 1, 1);
+  scene_box(s, "b", 0, 1, 1, 1, 1);
+  us_Error err;
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_INT(s->ncontact, ==, 4);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_INT(s->ncontact, ==, 4);
+  scene_box(s, "c", 0, 2, 1, 1, 1);
+  CHECK_INT(scene_box(s, "c", 5, 0, 1, 1, 1), ==, -1);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK_INT(s->ncontact, ==, 6);
+  CHECK(!s->explicit_contacts);
+  CHECK_INT(us_structure_find_body(s, "c"), ==, 2);
+  CHECK_INT(us_structure_find_body(s, "zz"), ==, -1);
+  us_structure_free(s);
+}
+
+US_TEST_MAIN(T(finalize_again), T(self_intersecting), T(zero_area), T(too_few_vertices), T(non_finite),
              T(below_ground), T(duplicate_id), T(bad_materials), T(repeated_vertex),
              T(l_shape_body), T(made_ccw), T(mass_properties), T(point_bodies),
              T(empty_and_all_fixed), T(out_of_memory))

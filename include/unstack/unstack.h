@@ -136,6 +136,7 @@ typedef struct us_Structure {
   int ncontact;
   us_Contact *contacts;
   int explicit_contacts; /* contacts came from the user, not detection */
+  int contacts_detected; /* the contacts are detection's own output */
   double bbox[4];       /* xmin, ymin, xmax, ymax of all geometry and centres */
   double scale;         /* characteristic length: bbox diagonal (>0) */
   double weight;        /* total weight of movable bodies, |g| * sum m */

@@ -218,12 +218,14 @@ us_Status us_structure_finalize(us_Structure *s, us_Error *err) {
   st = us_model_mass_properties(s, err);
   if (st) return st;
   us_model_measure(s);
-  if (!s->explicit_contacts && s->ncontact == 0) {
+  /* contacts added by the caller are explicit; detected ones are redone,
+   * so finalizing again after adding bodies sees the new bodies */
+  if (s->ncontact > 0 && !s->contacts_detected) s->explicit_contacts = 1;
+  if (!s->explicit_contacts) {
     us_ContactSettings cs = {s->contact_tol};
     st = us_detect_contacts(s, &cs, err);
     if (st) return st;
-  } else {
-    s->explicit_contacts = 1;
+    s->contacts_detected = 1;
   }
   us_model_measure(s);
   s->finalized = 1;
