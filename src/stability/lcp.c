@@ -70,7 +70,7 @@ int us_lcp_init(us_Lcp *p, int n, const us_LcpOps *ops) {
 void us_lcp_free(us_Lcp *p) {
   void *arrs[] = {p->kind, p->partner, p->mu,  p->live, p->state, p->bsign, p->f,
                   p->a,    p->pos,     p->queue, p->inq, p->da,    p->out,   p->didx,
-                  p->dval, p->H,       p->mem, p->dfm,  p->r,     p->y,     p->z, p->e};
+                  p->dval, p->H,       p->mem, p->dfm,  p->r,     p->y,     p->z, p->e, p->nz};
   for (size_t i = 0; i < sizeof arrs / sizeof arrs[0]; i++) us_free(arrs[i]);
   memset(p, 0, sizeof *p);
 }
@@ -460,14 +460,16 @@ us_LcpResult us_lcp_fade(us_Lcp *p, const int *idx, int k) {
 /* One Newton correction of the members from fresh accelerations: the rows
  * drift by round-off over many pivots. Then a is recomputed. */
 static void polish(us_Lcp *p) {
-  if (p->k == 0) return;
+  double worst = 0.0;
   for (int s = 0; s < p->k; s++) {
     int m = p->mem[s];
     if (p->state[m] == US_LCP_C)
       p->r[s] = p->a[m];
     else
       p->r[s] = p->f[m] - p->bsign[m] * p->mu[m] * p->f[p->partner[m]];
+    worst = US_MAX(worst, fabs(p->r[s]));
   }
+  if (!(worst > 1e-3 * p->tol_a)) return; /* already accurate: save O(k^2) */
   us_lcp_inv_mult(p, p->r, p->dfm);
   for (int s = 0; s < p->k; s++) p->f[p->mem[s]] -= p->dfm[s];
   us_lcp_refresh(p);

@@ -88,6 +88,7 @@ typedef struct us_Lcp {
    * inverse H (k x k, leading dimension cap) of the system matrix K */
   int k, cap;
   int *mem, *pos;
+  int *nz;               /* [cap] scratch: non-zero positions of a vector */
   double *H;
   /* drive queue (FIFO ring of n), inq[i] = queued */
   int *queue, qhead, qlen;

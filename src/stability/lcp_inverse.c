@@ -47,17 +47,28 @@ int us_lcp_inv_reserve(us_Lcp *p, int need) {
     return -1;
   }
   p->mem = mem;
+  int *nz = us_realloc(p->nz, (size_t)cap * sizeof(int));
+  if (!nz) {
+    us_free(H);
+    return -1;
+  }
+  p->nz = nz;
   us_free(p->H);
   p->H = H;
   p->cap = cap;
   return 0;
 }
 
+/* x = H r. r is usually sparse (contacts couple only through shared
+ * bodies): the non-zeros are gathered first, so the cost is O(k nnz). */
 void us_lcp_inv_mult(const us_Lcp *p, const double *r, double *x) {
+  int nnz = 0;
+  for (int j = 0; j < p->k; j++)
+    if (r[j] != 0.0) p->nz[nnz++] = j;
   for (int i = 0; i < p->k; i++) {
     const double *h = p->H + (size_t)i * (size_t)p->cap;
     double s = 0.0;
-    for (int j = 0; j < p->k; j++) s += h[j] * r[j];
+    for (int t = 0; t < nnz; t++) s += h[p->nz[t]] * r[p->nz[t]];
     x[i] = s;
   }
 }
