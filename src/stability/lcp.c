@@ -165,6 +165,7 @@ static int remove_member(us_Lcp *p, int i) { return us_lcp_inv_delete(p, p->pos[
 typedef struct Ev {
   double lam;
   int kind, idx, sign;
+  int skip; /* index whose zero-length event would undo the last one */
 } Ev;
 
 /* Keep the smallest step. Ties (degenerate steps) go to the driven
@@ -177,6 +178,7 @@ static int driven_event(int kind) {
 
 static void consider(Ev *ev, double lam, int kind, int idx, int sign) {
   if (lam < 0) lam = 0;
+  if (idx >= 0 && idx == ev->skip && lam <= 1e-14) return;
   int better = lam < ev->lam;
   if (!better && isfinite(ev->lam) && lam <= ev->lam + 1e-13 * (1.0 + ev->lam))
     better = !driven_event(ev->kind) && (driven_event(kind) || idx < ev->idx);
@@ -348,7 +350,35 @@ static us_LcpResult apply_event(us_Lcp *p, const Ev *ev) {
 typedef struct Run {
   long pivots, limit;
   int zero_steps;
+  int tabu; /* index of the last zero-length event, or -1 */
 } Run;
+
+/* Rebuild the inverse from the members, in slot order (O(k^3)). The
+ * updates accumulate round-off; this runs after every 4k + 64 updates
+ * (amortized O(k^2) per update, like the updates themselves) and when a
+ * run of zero-length steps suggests that H has lost accuracy. A member
+ * that now shows a tiny pivot is (nearly) redundant: it is deferred like
+ * one refused on arrival. 0, or US_LCP_NOMEM. */
+static us_LcpResult rebuild(us_Lcp *p) {
+  int k = p->k;
+  for (int s = 0; s < k; s++) {
+    p->out[s] = p->mem[s];
+    p->pos[p->mem[s]] = -1;
+  }
+  p->k = 0;
+  p->updates = 0;
+  for (int s = 0; s < k; s++) {
+    int m = p->out[s];
+    int r = p->state[m] == US_LCP_C ? append_clamp(p, m) : append_bound(p, m, p->bsign[m]);
+    if (r < 0) return US_LCP_NOMEM;
+    if (r > 0) { /* (nearly) dependent on the earlier members: deferred */
+      p->state[m] = US_LCP_FREE;
+      p->deferred++;
+    }
+  }
+  p->rebuilds++;
+  return US_LCP_SOLVED;
+}
 
 /* One pivot of a drive of nd driven entries (single: nd == 1, driven
  * direction dir; fade: lam_max bounds the step). */
@@ -358,7 +388,7 @@ static us_LcpResult pivot(us_Lcp *p, Run *run, int nd, int single, double dir, d
   double fs, as;
   scales(p, nout, &fs, &as);
   double thr_f = 1e-11 * fs, thr_a = 1e-11 * as;
-  Ev ev = {INFINITY, -1, -1, 0};
+  Ev ev = {INFINITY, -1, -1, 0, run->tabu};
   if (single) ratio_driven(p, p->didx[0], dir, thr_f, thr_a, &ev);
   else consider(&ev, lam_max, US_LCP_EV_FADED, -1, 0);
   ratio_members(p, nout, thr_f, thr_a, &ev);
@@ -370,6 +400,7 @@ static us_LcpResult pivot(us_Lcp *p, Run *run, int nd, int single, double dir, d
   clear_da(p, nout);
   *lam_out = ev.lam;
   run->zero_steps = ev.lam <= 1e-14 ? run->zero_steps + 1 : 0;
+  run->tabu = run->zero_steps ? ev.idx : -1;
   us_LcpResult r = ev.kind == US_LCP_EV_FADED ? US_LCP_SOLVED : apply_event(p, &ev);
   p->pivots++;
   if (p->trace) {
@@ -379,6 +410,7 @@ static us_LcpResult pivot(us_Lcp *p, Run *run, int nd, int single, double dir, d
   if (r) return r;
   if (++run->pivots > run->limit) return US_LCP_LIMIT;
   if (run->zero_steps > 2 * p->n + 20) return US_LCP_DEGENERATE;
+  if (p->updates > 4L * p->k + 64 || run->zero_steps == 8) return rebuild(p);
   return US_LCP_SOLVED;
 }
 
@@ -429,7 +461,7 @@ static long run_limit(const us_Lcp *p) {
 }
 
 us_LcpResult us_lcp_fade(us_Lcp *p, const int *idx, int k) {
-  Run run = {0, run_limit(p), 0};
+  Run run = {0, run_limit(p), 0, -1};
   for (int j = 0; j < k; j++) {
     int i = idx[j];
     if (p->pos[i] >= 0 && remove_member(p, i)) return US_LCP_DEGENERATE;
@@ -550,7 +582,7 @@ static us_LcpResult final_check(us_Lcp *p) {
 }
 
 us_LcpResult us_lcp_run(us_Lcp *p) {
-  Run run = {0, run_limit(p), 0};
+  Run run = {0, run_limit(p), 0, -1};
   us_lcp_refresh(p);
   for (int pass = 0; pass < 50; pass++) {
     while (p->qlen > 0) {

@@ -103,6 +103,8 @@ typedef struct us_Lcp {
   long max_pivots;       /* per run; <= 0: 50 * n + 100 */
   long pivots;           /* total */
   long deferred;         /* redundant indices left out of the system */
+  long updates;          /* inverse updates since the last rebuild */
+  long rebuilds;         /* rebuilds of the inverse (total) */
   double tol_a, tol_f, tol_piv;
   void (*trace)(void *ud, const us_LcpStep *st);
   void *trace_ud;

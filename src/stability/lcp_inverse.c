@@ -108,6 +108,7 @@ int us_lcp_inv_append(us_Lcp *p, int idx, const double *u, const double *v, doub
   p->mem[k] = idx;
   p->pos[idx] = k;
   p->k = k + 1;
+  p->updates++;
   return 0;
 }
 
@@ -149,5 +150,6 @@ int us_lcp_inv_delete(us_Lcp *p, int s) {
   }
   p->pos[p->mem[L]] = -1;
   p->k = L;
+  p->updates++;
   return bad;
 }
