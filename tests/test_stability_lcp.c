@@ -216,18 +216,14 @@ static void raw_friction(void) {
 
 static const us_Method methods[3] = {US_METHOD_LP, US_METHOD_LCP, US_METHOD_LCP_REUSE};
 
-/* A workspace for method m through the public constructor (falling back to
- * the backend table while the front end does not list the LCP methods). */
+/* A workspace for method m through the public constructor. */
 static us_Stability *open_ws(const us_Structure *s, us_Method m, int max_pivots) {
   us_StabilitySettings set = us_stability_default_settings();
   set.method = m;
   set.max_pivots = max_pivots;
   us_Error err;
   us_Stability *w = us_stability_new(s, &set, &err);
-  if (!w && m != US_METHOD_LP)
-    w = us_stability_new_backend(s, &set, m == US_METHOD_LCP ? &us_backend_lcp
-                                                             : &us_backend_lcp_reuse, &err);
-  if (!w) fprintf(stderr, "stability_new: %s\n", err.msg);
+  if (!w && err.code != US_ERR_NOMEM) fprintf(stderr, "stability_new: %s\n", err.msg);
   return w;
 }
 
