@@ -56,9 +56,12 @@ int us_lcp_init(us_Lcp *p, int n, const us_LcpOps *ops) {
   p->da = us_calloc(m, sizeof(double));
   p->out = us_malloc(m * sizeof(int));
   p->didx = us_malloc(2 * m * sizeof(int));
+  p->zmark = us_calloc(m, 1);
+  p->zlist = us_malloc(m * sizeof(int));
   p->dval = us_malloc(2 * m * sizeof(double));
   if (!p->kind || !p->partner || !p->mu || !p->live || !p->state || !p->bsign || !p->f ||
-      !p->a || !p->pos || !p->queue || !p->inq || !p->da || !p->out || !p->didx || !p->dval)
+      !p->a || !p->pos || !p->queue || !p->inq || !p->da || !p->out || !p->didx || !p->dval ||
+      !p->zmark || !p->zlist)
     return -1;
   for (int i = 0; i < n; i++) p->partner[i] = p->pos[i] = -1;
   p->tol_a = 1e-9;
@@ -70,7 +73,7 @@ int us_lcp_init(us_Lcp *p, int n, const us_LcpOps *ops) {
 void us_lcp_free(us_Lcp *p) {
   void *arrs[] = {p->kind, p->partner, p->mu,  p->live, p->state, p->bsign, p->f,
                   p->a,    p->pos,     p->queue, p->inq, p->da,    p->out,   p->didx,
-                  p->dval, p->H,       p->mem, p->dfm,  p->r,     p->y,     p->z, p->e, p->nz};
+                  p->dval, p->H,       p->mem, p->dfm,  p->r,     p->y,     p->z, p->e, p->nz, p->zmark, p->zlist};
   for (size_t i = 0; i < sizeof arrs / sizeof arrs[0]; i++) us_free(arrs[i]);
   memset(p, 0, sizeof *p);
 }
@@ -165,12 +168,16 @@ static int remove_member(us_Lcp *p, int i) { return us_lcp_inv_delete(p, p->pos[
 typedef struct Ev {
   double lam;
   int kind, idx, sign;
-  int skip; /* index whose zero-length event would undo the last one */
+  const unsigned char *zmark; /* indices with a zero-length event in this streak */
 } Ev;
 
 /* Keep the smallest step. Ties (degenerate steps) go to the driven
- * index's own events, then to the smallest index (Bland-like, against
- * cycling). */
+ * index's own events, then to the smallest index. Against cycling among
+ * degenerate indices (f = 0 and a = 0 together, common in walls): during a
+ * streak of zero-length steps an index that already changed set may not
+ * rejoin the system at zero length, so a streak has at most 2n steps; an
+ * index skipped that way may end slightly violated and is then driven
+ * again after the final check. */
 static int driven_event(int kind) {
   return kind == US_LCP_EV_DONE || kind == US_LCP_EV_ZERO || kind == US_LCP_EV_BOUND ||
          kind == US_LCP_EV_FADED;
@@ -178,7 +185,9 @@ static int driven_event(int kind) {
 
 static void consider(Ev *ev, double lam, int kind, int idx, int sign) {
   if (lam < 0) lam = 0;
-  if (idx >= 0 && idx == ev->skip && lam <= 1e-14) return;
+  if (lam <= 1e-14 && idx >= 0 && ev->zmark[idx] &&
+      (kind == US_LCP_EV_NC_C || kind == US_LCP_EV_BND_C))
+    return;
   int better = lam < ev->lam;
   if (!better && isfinite(ev->lam) && lam <= ev->lam + 1e-13 * (1.0 + ev->lam))
     better = !driven_event(ev->kind) && (driven_event(kind) || idx < ev->idx);
@@ -350,8 +359,19 @@ static us_LcpResult apply_event(us_Lcp *p, const Ev *ev) {
 typedef struct Run {
   long pivots, limit;
   int zero_steps;
-  int tabu; /* index of the last zero-length event, or -1 */
+  int nz;   /* indices marked in p->zmark (listed in p->zlist) */
 } Run;
+
+/* Mark idx for the current zero-length streak, or clear all marks. */
+static void zero_mark(us_Lcp *p, Run *run, int idx, int zero) {
+  if (!zero) {
+    for (int j = 0; j < run->nz; j++) p->zmark[p->zlist[j]] = 0;
+    run->nz = 0;
+  } else if (idx >= 0 && !p->zmark[idx]) {
+    p->zmark[idx] = 1;
+    p->zlist[run->nz++] = idx;
+  }
+}
 
 /* Rebuild the inverse from the members, in slot order (O(k^3)). The
  * updates accumulate round-off; this runs after every 4k + 64 updates
@@ -388,7 +408,7 @@ static us_LcpResult pivot(us_Lcp *p, Run *run, int nd, int single, double dir, d
   double fs, as;
   scales(p, nout, &fs, &as);
   double thr_f = 1e-11 * fs, thr_a = 1e-11 * as;
-  Ev ev = {INFINITY, -1, -1, 0, run->tabu};
+  Ev ev = {INFINITY, -1, -1, 0, p->zmark};
   if (single) ratio_driven(p, p->didx[0], dir, thr_f, thr_a, &ev);
   else consider(&ev, lam_max, US_LCP_EV_FADED, -1, 0);
   ratio_members(p, nout, thr_f, thr_a, &ev);
@@ -400,7 +420,7 @@ static us_LcpResult pivot(us_Lcp *p, Run *run, int nd, int single, double dir, d
   clear_da(p, nout);
   *lam_out = ev.lam;
   run->zero_steps = ev.lam <= 1e-14 ? run->zero_steps + 1 : 0;
-  run->tabu = run->zero_steps ? ev.idx : -1;
+  zero_mark(p, run, ev.idx, run->zero_steps > 0);
   us_LcpResult r = ev.kind == US_LCP_EV_FADED ? US_LCP_SOLVED : apply_event(p, &ev);
   p->pivots++;
   if (p->trace) {
@@ -460,8 +480,7 @@ static long run_limit(const us_Lcp *p) {
   return p->max_pivots > 0 ? p->max_pivots : 50L * p->n + 100;
 }
 
-us_LcpResult us_lcp_fade(us_Lcp *p, const int *idx, int k) {
-  Run run = {0, run_limit(p), 0, -1};
+static us_LcpResult fade(us_Lcp *p, Run *run, const int *idx, int k) {
   for (int j = 0; j < k; j++) {
     int i = idx[j];
     if (p->pos[i] >= 0 && remove_member(p, i)) return US_LCP_DEGENERATE;
@@ -475,7 +494,7 @@ us_LcpResult us_lcp_fade(us_Lcp *p, const int *idx, int k) {
       p->dval[nd++] = -p->f[idx[j]] / left; /* reach 0 when left is used up */
     }
     double lam;
-    us_LcpResult r = pivot(p, &run, nd, 0, 0.0, left, &lam);
+    us_LcpResult r = pivot(p, run, nd, 0, 0.0, left, &lam);
     if (r) return r;
     left = lam >= left ? 0.0 : left - lam;
   }
@@ -581,14 +600,13 @@ static us_LcpResult final_check(us_Lcp *p) {
   return US_LCP_SOLVED;
 }
 
-us_LcpResult us_lcp_run(us_Lcp *p) {
-  Run run = {0, run_limit(p), 0, -1};
+static us_LcpResult run_queue(us_Lcp *p, Run *run) {
   us_lcp_refresh(p);
   for (int pass = 0; pass < 50; pass++) {
     while (p->qlen > 0) {
       int i = pop(p);
       if (!p->live[i] || p->state[i] != US_LCP_PEND) continue;
-      us_LcpResult r = drive(p, &run, i);
+      us_LcpResult r = drive(p, run, i);
       if (r) return r;
     }
     us_LcpResult r = final_check(p);
@@ -596,4 +614,19 @@ us_LcpResult us_lcp_run(us_Lcp *p) {
     if (p->qlen == 0) return US_LCP_SOLVED;
   }
   return US_LCP_DEGENERATE;
+}
+
+/* Both entry points leave no zero-streak marks behind, whatever the exit. */
+us_LcpResult us_lcp_fade(us_Lcp *p, const int *idx, int k) {
+  Run run = {0, run_limit(p), 0, 0};
+  us_LcpResult r = fade(p, &run, idx, k);
+  zero_mark(p, &run, -1, 0);
+  return r;
+}
+
+us_LcpResult us_lcp_run(us_Lcp *p) {
+  Run run = {0, run_limit(p), 0, 0};
+  us_LcpResult r = run_queue(p, &run);
+  zero_mark(p, &run, -1, 0);
+  return r;
 }

@@ -99,6 +99,8 @@ typedef struct us_Lcp {
   double *da;            /* [n] */
   int *out, *didx;       /* [n] */
   double *dval;          /* [n] driven direction values */
+  unsigned char *zmark;  /* [n] changed set during the current zero-step streak */
+  int *zlist;            /* [n] the marked indices */
   /* settings and counters */
   long max_pivots;       /* per run; <= 0: 50 * n + 100 */
   long pivots;           /* total */
