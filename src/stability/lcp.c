@@ -376,7 +376,8 @@ static void zero_mark(us_Lcp *p, Run *run, int idx, int zero) {
 /* Rebuild the inverse from the members, in slot order (O(k^3)). The
  * updates accumulate round-off; this runs after every 4k + 64 updates
  * (amortized O(k^2) per update, like the updates themselves) and when a
- * run of zero-length steps suggests that H has lost accuracy. A member
+ * run of zero-length steps suggests that H has lost accuracy (if it has
+ * been updated k / 2 + 16 times since the last rebuild). A member
  * that now shows a tiny pivot is (nearly) redundant: it is deferred like
  * one refused on arrival. 0, or US_LCP_NOMEM. */
 static us_LcpResult rebuild(us_Lcp *p) {
@@ -430,7 +431,8 @@ static us_LcpResult pivot(us_Lcp *p, Run *run, int nd, int single, double dir, d
   if (r) return r;
   if (++run->pivots > run->limit) return US_LCP_LIMIT;
   if (run->zero_steps > 2 * p->n + 20) return US_LCP_DEGENERATE;
-  if (p->updates > 4L * p->k + 64 || run->zero_steps == 8) return rebuild(p);
+  if (p->updates > 4L * p->k + 64 || (run->zero_steps == 8 && p->updates > p->k / 2 + 16))
+    return rebuild(p);
   return US_LCP_SOLVED;
 }
 
