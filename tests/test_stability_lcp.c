@@ -415,6 +415,56 @@ static void out_of_memory(void) {
   us_structure_free(s);
 }
 
+/* A running-bond wall (rows x cols bricks 1 x 0.5, odd rows shifted by
+ * half a brick with half bricks at the ends): many coincident corner
+ * contacts, redundant and degenerate (f = 0 and a = 0 together). Taken
+ * down from the top with the three methods: same verdicts; lcp-reuse
+ * reuses every test after the first; frictionless, no LP fallback. */
+static us_Structure *running_bond(int rows, int cols, double mu) {
+  us_Structure *s = us_structure_new(2);
+  s->friction = mu;
+  for (int r = 0; r < rows; r++) {
+    double y = 0.5 * r, x = 0.0;
+    if (r % 2) {
+      add_box(s, 0.0, y, 0.5, 0.5);
+      x = 0.5;
+    }
+    for (int c = 0; c < cols - (r % 2); c++, x += 1.0) add_box(s, x, y, 1.0, 0.5);
+    if (r % 2) add_box(s, x, y, 0.5, 0.5);
+  }
+  return sealed(s);
+}
+
+static void wall_takedown(void) {
+  for (int fr = 0; fr < 2; fr++) {
+    us_Structure *s = running_bond(7, 6, fr ? 0.6 : 0.0);
+    CHECK(s);
+    us_Stability *ws[3];
+    for (int k = 0; k < 3; k++) ws[k] = open_ws(s, methods[k], 0);
+    CHECK(ws[0] && ws[1] && ws[2]);
+    us_Bitset sub;
+    CHECK(us_bitset_init(&sub, s->nbody) == 0);
+    us_bitset_fill(&sub);
+    for (int i = s->nbody - 1; i >= 0; i--) { /* bodies were added bottom-up */
+      int v0 = test_on(ws[0], &sub);
+      CHECK_INT(v0, ==, US_STABLE);
+      CHECK_INT(test_on(ws[1], &sub), ==, v0);
+      CHECK_INT(test_on(ws[2], &sub), ==, v0);
+      us_bitset_clear(&sub, i);
+    }
+    const us_StabilityInfo *info = us_stability_info(ws[2]);
+    CHECK_INT(info->reused, ==, s->nbody - 1);
+    if (!fr) {
+      CHECK_INT(info->lp_fallbacks, ==, 0);
+      CHECK_INT(us_stability_info(ws[1])->lp_fallbacks, ==, 0);
+    }
+    CHECK(info->pivots < us_stability_info(ws[1])->pivots); /* reuse saves pivots */
+    us_bitset_free(&sub);
+    for (int k = 0; k < 3; k++) us_stability_free(ws[k]);
+    us_structure_free(s);
+  }
+}
+
 /* ------------------------------------------------- differential testing */
 
 static unsigned long long rng = 0x9e3779b97f4a7c15ULL;
@@ -546,4 +596,5 @@ static void differential(void) {
 
 US_TEST_MAIN(T(worked_example), T(column_reuse), T(raw_pivot_limit), T(raw_friction),
              T(redundant_contacts), T(coincident_contacts), T(zero_mass_rejected),
-             T(column_counters), T(pivot_limit_falls_back), T(out_of_memory), T(differential))
+             T(column_counters), T(pivot_limit_falls_back), T(out_of_memory), T(wall_takedown),
+             T(differential))
