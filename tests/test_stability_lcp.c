@@ -390,8 +390,9 @@ static void pivot_limit_falls_back(void) {
   us_structure_free(s);
 }
 
-/* Out of memory anywhere in creating and using an LCP workspace: an error,
- * never a crash or a leak (the harness checks leaks). */
+/* Out of memory anywhere in creating and using an LCP workspace, also on
+ * the LP fallback path (max_pivots = 1): an error, never a crash or a leak
+ * (the harness checks leaks). */
 static void out_of_memory(void) {
   us_Structure *s = us_structure_new(2);
   for (int i = 0; i < 3; i++) add_box(s, 0.1 * i, i, 1, 1);
@@ -399,9 +400,9 @@ static void out_of_memory(void) {
   CHECK(s);
   us_Bitset sub;
   CHECK(us_bitset_init(&sub, s->nbody) == 0);
-  for (long n = 0; n < 200; n++) {
-    us_alloc_fail_after(n);
-    us_Stability *w = open_ws(s, US_METHOD_LCP_REUSE, 0);
+  for (long n = 0; n < 400; n++) {
+    us_alloc_fail_after(n / 2);
+    us_Stability *w = open_ws(s, US_METHOD_LCP_REUSE, (int)(n % 2));
     if (w) {
       us_bitset_fill(&sub);
       test_on(w, &sub);
