@@ -23,11 +23,17 @@
  * f = 0 and a >= 0, a friction whose normal is not clamped has f_t = 0 and
  * state OFF, every friction satisfies |f_t| <= mu f_n. Pending indices may
  * violate their conditions; they keep their force until driven.
- * Degeneracy: a tiny pivot where an index must join (redundant contact)
- * either defers the index (a_i ~ 0 already) or ends the run as
- * DEGENERATE; zero-length steps are counted and too many in a row is
- * cycling; the pivot limit ends the run as LIMIT. The caller then settles
- * the question another way (the LP).
+ * A run drains the queue, then a final check recomputes a from f,
+ * polishes the members (one Newton step) and queues every violated index
+ * again, until none is left.
+ * Degeneracy: an index whose pivot is tiny when it must join the clamped
+ * system (a redundant contact) is deferred (FREE: unwatched, re-checked by
+ * the final check); a bound row with a tiny pivot ends the run as
+ * DEGENERATE. Zero-length steps: ties go to the driven index, then to the
+ * smallest index, and during a zero-length streak an index that changed
+ * set may not rejoin at zero length (no cycling); an unbounded drive or an
+ * endless streak is DEGENERATE, the pivot limit LIMIT. The caller then
+ * settles the question another way (the LP).
  * Sign conventions: a = A f + b; a_t f_t <= 0 (friction opposes sliding).
  */
 #include "lcp.h"
