@@ -40,8 +40,9 @@ enum { US_LCP_NORMAL = 0, US_LCP_FRICTION = 1 };
  * condition) or a non-live index. PEND: queued for a drive. NC: normal with
  * f = 0, a >= 0. C: clamped (a = 0), a row of the factorized system. BND:
  * friction at its bound f_t = s mu f_n (row f_t - s mu f_n = 0 of the
- * system). FREE: friction that could not join the system (redundant,
- * a_t ~ 0), re-checked at the end of every run. DRV: being driven. */
+ * system). FREE: an index that could not join the system (redundant,
+ * a ~ 0; keeps its force, unwatched by the ratio test), re-checked at the
+ * end of every run. DRV: being driven. */
 enum { US_LCP_OFF = 0, US_LCP_PEND, US_LCP_NC, US_LCP_C, US_LCP_BND, US_LCP_FREE, US_LCP_DRV };
 
 /* Outcome of a run. */
