@@ -8,9 +8,9 @@
  * a budget of BUDGET seconds per structure (tests beyond it are skipped
  * and the count is printed). Every verdict of the LCP methods is compared
  * with the LP's; a mismatch is reported and makes the exit status 1. */
+#include "core/core.h"
 #include "stability/lcp.h"
 #include "stability/stability.h"
-#include "core/core.h"
 #include "unstack/unstack.h"
 
 #include <stdio.h>
@@ -19,8 +19,8 @@
 #define BUDGET 10.0 /* seconds per method and structure: the rest is skipped */
 
 typedef struct Row {
-  double per_test;  /* seconds */
-  int tests;        /* run within the budget */
+  double per_test; /* seconds */
+  int tests;       /* run within the budget */
   long pivots, fallbacks, reused, stable;
 } Row;
 
@@ -97,8 +97,8 @@ static void dense_part(const us_Structure *s) {
     int r = us_lcp_run(&p);
     printf("  full wall from scratch: %s, %ld pivots, %.1f ms; clamped system %d of %d indices, "
            "dense inverse %.2f MB (capacity %d); operator %.2f MB\n",
-           r == US_LCP_SOLVED ? "solved" : "not solved", p.pivots, 1e3 * (us_now() - t0), p.k,
-           k, 8.0 * p.cap * p.cap / 1e6, p.cap,
+           r == US_LCP_SOLVED ? "solved" : "not solved", p.pivots, 1e3 * (us_now() - t0), p.k, k,
+           8.0 * p.cap * p.cap / 1e6, p.cap,
            (double)(12 * 8 * s->ncontact + 6 * 8 * s->nbody) / 1e6);
     us_free(idx);
   }

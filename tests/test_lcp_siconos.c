@@ -167,7 +167,8 @@ static int complementary(const Prob *p, const double *f, const double *w, double
   for (int i = 0; i < p->nc; i++) {
     double wi = p->b[i];
     for (int j = 0; j < p->nc; j++) wi += p->A[i * p->nc + j] * f[j];
-    if (fabs(wi - w[i]) > tol || f[i] < -tol || wi < -tol || fabs(f[i] * wi) > tol * (1 + fabs(f[i])))
+    if (fabs(wi - w[i]) > tol || f[i] < -tol || wi < -tol ||
+        fabs(f[i] * wi) > tol * (1 + fabs(f[i])))
       return 0;
   }
   return 1;
@@ -203,8 +204,8 @@ static void physical_problems(void) {
     for (int r = 0; r < 3 * p.nb; r++) CHECK_NEAR(v1[r], v2[r], 1e-6 * (1 + fabs(v2[r])));
     solved++;
   }
-  printf("physical: %d of 2000 problems solved by both, %d with an unreliable reference\n",
-         solved, unreliable);
+  printf("physical: %d of 2000 problems solved by both, %d with an unreliable reference\n", solved,
+         unreliable);
   CHECK(solved > 1500);
 }
 
@@ -234,7 +235,8 @@ static void arbitrary_b(void) {
     both++;
   }
   printf("arbitrary b: %d solved by both, %d by neither, %d only by us (reference error > "
-         "1e-8)\n", both, neither, unreliable);
+         "1e-8)\n",
+         both, neither, unreliable);
   CHECK(both > 200 && neither > 50);
   CHECK(unreliable < both / 10);
 }

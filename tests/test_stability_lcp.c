@@ -121,8 +121,8 @@ static void worked_example(void) {
 /* Two unit blocks in a column, contacts at x = +-0.51 (0, 1: ground to
  * block 1; 2, 3: block 1 to block 2). */
 static void column_system(double *A, double *b) {
-  double J[24] = {0, 1, -0.51, 0,  0, 0,     0, 1, 0.51,  0, 0, 0,
-                  0, -1, 0.51, 0,  1, -0.51, 0, -1, -0.51, 0, 1, 0.51};
+  double J[24] = {0, 1,  -0.51, 0, 0, 0,     0, 1,  0.51,  0, 0, 0,
+                  0, -1, 0.51,  0, 1, -0.51, 0, -1, -0.51, 0, 1, 0.51};
   double m[2] = {1, 1}, I[2] = {1, 1}, F[6] = {0, -9.8, 0, 0, -9.8, 0};
   assemble(4, 2, J, m, I, F, A, b);
 }
@@ -511,8 +511,7 @@ static void random_wedges(us_Structure *s) {
   }
   for (int k = 0; k < n; k++) {
     double y0 = base, y1 = base + h;
-    double xy[8] = {x[k],     y0, x[k + 1],     y0, x[k + 1] + sl[k + 1] * h, y1,
-                    x[k] + sl[k] * h, y1};
+    double xy[8] = {x[k], y0, x[k + 1], y0, x[k + 1] + sl[k + 1] * h, y1, x[k] + sl[k] * h, y1};
     char id[32];
     snprintf(id, sizeof id, "w%d", s->nbody);
     us_structure_add_polygon(s, id, 4, xy, uniform(0.5, 2.0), 0.0, 0, -1.0, &err);
@@ -548,8 +547,8 @@ static int walk(const us_Structure *s, us_Stability **ws, long *counts) {
     int v[3];
     for (int k = 0; k < 3; k++) v[k] = test_on(ws[k], &sub);
     if (v[0] < 0 || v[0] != v[1] || v[0] != v[2]) {
-      fprintf(stderr, "disagreement: lp %d lcp %d lcp-reuse %d (%d bodies, mu %.2f)\n", v[0],
-              v[1], v[2], us_bitset_count(&sub), s->friction);
+      fprintf(stderr, "disagreement: lp %d lcp %d lcp-reuse %d (%d bodies, mu %.2f)\n", v[0], v[1],
+              v[2], us_bitset_count(&sub), s->friction);
       bad++;
     } else {
       counts[v[0]]++;

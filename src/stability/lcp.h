@@ -47,49 +47,49 @@ enum { US_LCP_OFF = 0, US_LCP_PEND, US_LCP_NC, US_LCP_C, US_LCP_BND, US_LCP_FREE
 
 /* Outcome of a run. */
 typedef enum us_LcpResult {
-  US_LCP_SOLVED = 0,   /* every live index satisfies its conditions */
-  US_LCP_LIMIT,        /* pivot limit reached */
-  US_LCP_DEGENERATE,   /* tiny pivot where one is needed, unbounded drive,
-                          cycling, or conditions not restored */
+  US_LCP_SOLVED = 0, /* every live index satisfies its conditions */
+  US_LCP_LIMIT,      /* pivot limit reached */
+  US_LCP_DEGENERATE, /* tiny pivot where one is needed, unbounded drive,
+                        cycling, or conditions not restored */
   US_LCP_NOMEM
 } us_LcpResult;
 
 /* One pivot, reported to an optional trace callback. */
 typedef struct us_LcpStep {
-  int driven;          /* driven index, -1 for a fade */
-  double lambda;       /* step length (in units of the driven force) */
-  int event;           /* US_LCP_EV_* */
-  int index;           /* index that changed set */
-  const double *f;     /* forces after the step (n) */
-  const double *a;     /* accelerations after the step (n, live only) */
+  int driven;      /* driven index, -1 for a fade */
+  double lambda;   /* step length (in units of the driven force) */
+  int event;       /* US_LCP_EV_* */
+  int index;       /* index that changed set */
+  const double *f; /* forces after the step (n) */
+  const double *a; /* accelerations after the step (n, live only) */
 } us_LcpStep;
 
 enum {
-  US_LCP_EV_DONE = 0,  /* the driven a reached 0: it is clamped */
-  US_LCP_EV_ZERO,      /* the driven normal force reached 0: NC */
-  US_LCP_EV_BOUND,     /* the driven friction reached its bound */
-  US_LCP_EV_C_NC,      /* a clamped normal force reached 0 */
-  US_LCP_EV_NC_C,      /* a non-clamped normal a reached 0 */
-  US_LCP_EV_C_BND,     /* a sticking friction reached its bound */
-  US_LCP_EV_BND_C,     /* a friction at its bound stopped sliding */
-  US_LCP_EV_FADED      /* a fade finished */
+  US_LCP_EV_DONE = 0, /* the driven a reached 0: it is clamped */
+  US_LCP_EV_ZERO,     /* the driven normal force reached 0: NC */
+  US_LCP_EV_BOUND,    /* the driven friction reached its bound */
+  US_LCP_EV_C_NC,     /* a clamped normal force reached 0 */
+  US_LCP_EV_NC_C,     /* a non-clamped normal a reached 0 */
+  US_LCP_EV_C_BND,    /* a sticking friction reached its bound */
+  US_LCP_EV_BND_C,    /* a friction at its bound stopped sliding */
+  US_LCP_EV_FADED     /* a fade finished */
 };
 
 typedef struct us_Lcp {
   int n;
   us_LcpOps ops;
-  signed char *kind;     /* US_LCP_NORMAL / FRICTION */
-  int *partner;          /* normal: its friction or -1; friction: its normal */
-  double *mu;            /* friction coefficient of a friction index */
+  signed char *kind; /* US_LCP_NORMAL / FRICTION */
+  int *partner;      /* normal: its friction or -1; friction: its normal */
+  double *mu;        /* friction coefficient of a friction index */
   unsigned char *live;
   signed char *state;
-  signed char *bsign;    /* BND: the sign s of f_t = s mu f_n */
+  signed char *bsign; /* BND: the sign s of f_t = s mu f_n */
   double *f, *a;
   /* clamped system: members mem[0..k), pos[i] = member slot or -1, dense
    * inverse H (k x k, leading dimension cap) of the system matrix K */
   int k, cap;
   int *mem, *pos;
-  int *nz;               /* [cap] scratch: non-zero positions of a vector */
+  int *nz; /* [cap] scratch: non-zero positions of a vector */
   double *H;
   /* drive queue (FIFO ring of n), inq[i] = queued */
   int *queue, qhead, qlen;
@@ -103,11 +103,11 @@ typedef struct us_Lcp {
   unsigned char *zmark;  /* [n] changed set during the current zero-step streak */
   int *zlist;            /* [n] the marked indices */
   /* settings and counters */
-  long max_pivots;       /* per run; <= 0: 50 * n + 100 */
-  long pivots;           /* total */
-  long deferred;         /* redundant indices left out of the system */
-  long updates;          /* inverse updates since the last rebuild */
-  long rebuilds;         /* rebuilds of the inverse (total) */
+  long max_pivots; /* per run; <= 0: 50 * n + 100 */
+  long pivots;     /* total */
+  long deferred;   /* redundant indices left out of the system */
+  long updates;    /* inverse updates since the last rebuild */
+  long rebuilds;   /* rebuilds of the inverse (total) */
   double tol_a, tol_f, tol_piv;
   void (*trace)(void *ud, const us_LcpStep *st);
   void *trace_ud;
@@ -157,16 +157,16 @@ void us_lcp_inv_mult(const us_Lcp *p, const double *r, double *x);
 typedef struct us_LcpSys {
   const us_Structure *s;
   int nbody, ncontact;
-  double *minv;          /* [3 nbody] inverse masses (normalized) */
-  double *fext;          /* [3 nbody] external force (normalized), present only */
-  unsigned char *present;/* [nbody] movable and in the sub-assembly */
-  int *cb;               /* [2 ncontact] the bodies of a contact (-1: fixed/ground) */
-  double *w;             /* [12 ncontact]: (index 2c+k, side) -> 3 wrench rows */
-  int *adj_start, *adj;  /* contacts of each body */
-  double *u;             /* [3 nbody] scratch, kept zero */
-  int *touched;          /* [nbody] */
-  unsigned char *bmark;  /* [nbody] */
-  unsigned char *cmark;  /* [ncontact] */
+  double *minv;           /* [3 nbody] inverse masses (normalized) */
+  double *fext;           /* [3 nbody] external force (normalized), present only */
+  unsigned char *present; /* [nbody] movable and in the sub-assembly */
+  int *cb;                /* [2 ncontact] the bodies of a contact (-1: fixed/ground) */
+  double *w;              /* [12 ncontact]: (index 2c+k, side) -> 3 wrench rows */
+  int *adj_start, *adj;   /* contacts of each body */
+  double *u;              /* [3 nbody] scratch, kept zero */
+  int *touched;           /* [nbody] */
+  unsigned char *bmark;   /* [nbody] */
+  unsigned char *cmark;   /* [ncontact] */
 } us_LcpSys;
 
 int us_lcp_sys_init(us_LcpSys *y, const us_Structure *s);

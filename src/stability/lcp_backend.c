@@ -32,18 +32,18 @@
 #include <stdio.h>
 #include <string.h>
 
-#define EQ_TOL 1e-9      /* stable: net wrench below this (units of W) */
+#define EQ_TOL 1e-9       /* stable: net wrench below this (units of W) */
 #define UNSTABLE_TOL 1e-6 /* frictionless unstable: net wrench above this */
 
 typedef struct LcpWs {
   const us_Structure *s;
   us_StabilitySettings set;
-  int reuse;         /* the reuse backend */
-  int valid;         /* lcp holds the solution of the last sub-assembly */
+  int reuse; /* the reuse backend */
+  int valid; /* lcp holds the solution of the last sub-assembly */
   us_LcpSys sys;
   us_Lcp lcp;
-  int *idx;          /* [2 ncontact + 1] */
-  void *lpws;        /* CLP workspace, created on the first fallback */
+  int *idx;   /* [2 ncontact + 1] */
+  void *lpws; /* CLP workspace, created on the first fallback */
   int last_body;
 } LcpWs;
 
@@ -89,13 +89,11 @@ static void *create(const us_Structure *s, const us_StabilitySettings *set, int 
   return w;
 }
 
-static void *create_scratch(const us_Structure *s, const us_StabilitySettings *set,
-                            us_Error *err) {
+static void *create_scratch(const us_Structure *s, const us_StabilitySettings *set, us_Error *err) {
   return create(s, set, 0, err);
 }
 
-static void *create_reuse(const us_Structure *s, const us_StabilitySettings *set,
-                          us_Error *err) {
+static void *create_reuse(const us_Structure *s, const us_StabilitySettings *set, us_Error *err) {
   return create(s, set, 1, err);
 }
 
@@ -166,8 +164,7 @@ static int add_bodies(LcpWs *w, const us_EqSystem *sys) {
 static int prepare(LcpWs *w, const us_EqSystem *sys, const int *removed, int nremoved,
                    int restart) {
   if (w->reuse && w->valid && !restart) {
-    if (remove_bodies(w, removed, nremoved) == US_LCP_SOLVED && add_bodies(w, sys) == 0)
-      return 1;
+    if (remove_bodies(w, removed, nremoved) == US_LCP_SOLVED && add_bodies(w, sys) == 0) return 1;
   }
   start_scratch(w, sys);
   return 0;

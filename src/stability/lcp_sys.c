@@ -24,8 +24,8 @@
 #include <string.h>
 
 /* Wrench of a unit push along d at p on body `body`, sign +-1. */
-static void unit_wrench(const us_Structure *s, double L, int body, const double *p,
-                        const double *d, double sign, double *out) {
+static void unit_wrench(const us_Structure *s, double L, int body, const double *p, const double *d,
+                        double sign, double *out) {
   const double *com = s->bodies[body].com;
   double rx = p[0] - com[0], ry = p[1] - com[1];
   out[0] = sign * d[0];
@@ -50,8 +50,8 @@ static void fill_contacts(us_LcpSys *y) {
         if (ends[side] < 0)
           memset(w, 0, 3 * sizeof(double));
         else
-          unit_wrench(s, L, ends[side], k->p, comp == 0 ? k->n : k->t[0],
-                      side == 0 ? -1.0 : 1.0, w);
+          unit_wrench(s, L, ends[side], k->p, comp == 0 ? k->n : k->t[0], side == 0 ? -1.0 : 1.0,
+                      w);
       }
     }
   }
@@ -92,7 +92,8 @@ int us_lcp_sys_init(us_LcpSys *y, const us_Structure *s) {
   y->s = s;
   y->nbody = s->nbody;
   y->ncontact = s->ncontact;
-  size_t nb = (size_t)(s->nbody > 0 ? s->nbody : 1), nc = (size_t)(s->ncontact > 0 ? s->ncontact : 1);
+  size_t nb = (size_t)(s->nbody > 0 ? s->nbody : 1),
+         nc = (size_t)(s->ncontact > 0 ? s->ncontact : 1);
   y->minv = us_calloc(3 * nb, sizeof(double));
   y->fext = us_calloc(3 * nb, sizeof(double));
   y->present = us_calloc(nb, 1);
@@ -102,8 +103,8 @@ int us_lcp_sys_init(us_LcpSys *y, const us_Structure *s) {
   y->touched = us_malloc(nb * sizeof(int));
   y->bmark = us_calloc(nb, 1);
   y->cmark = us_calloc(nc, 1);
-  if (!y->minv || !y->fext || !y->present || !y->cb || !y->w || !y->u || !y->touched ||
-      !y->bmark || !y->cmark)
+  if (!y->minv || !y->fext || !y->present || !y->cb || !y->w || !y->u || !y->touched || !y->bmark ||
+      !y->cmark)
     return -1;
   fill_contacts(y);
   fill_masses(y);
@@ -111,8 +112,8 @@ int us_lcp_sys_init(us_LcpSys *y, const us_Structure *s) {
 }
 
 void us_lcp_sys_free(us_LcpSys *y) {
-  void *arrs[] = {y->minv, y->fext,    y->present, y->cb,    y->w,     y->adj_start,
-                  y->adj,  y->u,       y->touched, y->bmark, y->cmark};
+  void *arrs[] = {y->minv, y->fext, y->present, y->cb,    y->w,    y->adj_start,
+                  y->adj,  y->u,    y->touched, y->bmark, y->cmark};
   for (size_t i = 0; i < sizeof arrs / sizeof arrs[0]; i++) us_free(arrs[i]);
   memset(y, 0, sizeof *y);
 }
