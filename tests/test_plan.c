@@ -42,10 +42,8 @@ static us_Structure *leaning(double mu) {
 }
 
 static us_Bitset all_movable(const us_Structure *s) {
-  us_Bitset b;
-  us_bitset_init(&b, s->nbody);
-  for (int i = 0; i < s->nbody; i++)
-    if (!s->bodies[i].fixed) us_bitset_set(&b, i);
+  us_Bitset b = {0};
+  us_structure_movable_set(s, &b);
   return b;
 }
 

@@ -67,19 +67,13 @@ int cmd_check(int argc, char **argv) {
   if (!s) return CLI_EXIT_ERR;
   us_Error err;
   us_error_clear(&err);
-  us_Bitset all = {0};
   us_StabilityResult res;
   memset(&res, 0, sizeof res);
   us_Stability *w = us_stability_new(s, &c.stab, &err);
   int code = CLI_EXIT_ERR;
-  if (w && !us_bitset_init(&all, s->nbody)) {
-    for (int i = 0; i < s->nbody; i++)
-      if (!s->bodies[i].fixed) us_bitset_set(&all, i);
-    if (us_stability_test(w, &all, &res, &err) == US_OK) code = report(s, &res, forces);
-  }
+  if (w && us_stability_test_full(w, &res, &err) == US_OK) code = report(s, &res, forces);
   if (code == CLI_EXIT_ERR) cli_error("check", &err);
   us_stability_result_free(&res);
-  us_bitset_free(&all);
   us_stability_free(w);
   us_structure_free(s);
   return code;

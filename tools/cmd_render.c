@@ -68,16 +68,8 @@ static int parse(int argc, char **argv, CliCommon *c, RenderArgs *a) {
 static int full_forces(const us_Structure *s, const CliCommon *c, us_StabilityResult *res,
                        us_Error *err) {
   us_Stability *w = us_stability_new(s, &c->stab, err);
-  us_Bitset all = {0};
   int r = -1;
-  if (w && !us_bitset_init(&all, s->nbody)) {
-    for (int i = 0; i < s->nbody; i++)
-      if (!s->bodies[i].fixed) us_bitset_set(&all, i);
-    if (us_stability_test(w, &all, res, err) == US_OK) r = res->verdict != US_STABLE;
-  } else if (w) {
-    us_error_set(err, US_ERR_NOMEM, "out of memory");
-  }
-  us_bitset_free(&all);
+  if (w && us_stability_test_full(w, res, err) == US_OK) r = res->verdict != US_STABLE;
   us_stability_free(w);
   return r;
 }

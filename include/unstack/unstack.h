@@ -175,8 +175,11 @@ us_Status us_structure_finalize(us_Structure *s, us_Error *err);
  * defaulting to the structure's coefficient. */
 double us_structure_pair_friction(const us_Structure *s, int a, int b);
 
-/* Number of movable bodies; index maps. */
+/* Number of movable bodies. */
 int us_structure_movable_count(const us_Structure *s);
+/* Initialize `out` as the set of all movable bodies (the full structure).
+ * 0, or -1 when out of memory. */
+int us_structure_movable_set(const us_Structure *s, us_Bitset *out);
 
 /* ---------------------------------------------------------------- contacts */
 
@@ -267,6 +270,8 @@ void us_stability_free(us_Stability *w);
 us_Status us_stability_test(us_Stability *w, const us_Bitset *present, us_StabilityResult *res,
                             us_Error *err);
 const us_StabilityInfo *us_stability_info(const us_Stability *w);
+/* Test the whole structure (every movable body present). */
+us_Status us_stability_test_full(us_Stability *w, us_StabilityResult *res, us_Error *err);
 
 /* Independent re-check of forces for a sub-assembly, without any solver. */
 us_CertCheck us_certificate_check(const us_Structure *s, const us_Bitset *present,

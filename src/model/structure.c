@@ -185,6 +185,13 @@ int us_structure_movable_count(const us_Structure *s) {
   return n;
 }
 
+int us_structure_movable_set(const us_Structure *s, us_Bitset *out) {
+  if (us_bitset_init(out, s->nbody)) return -1;
+  for (int i = 0; i < s->nbody; i++)
+    if (!s->bodies[i].fixed) us_bitset_set(out, i);
+  return 0;
+}
+
 static void bbox_add(double *bb, double x, double y) {
   if (x < bb[0]) bb[0] = x;
   if (y < bb[1]) bb[1] = y;

@@ -92,12 +92,10 @@ static us_Status ctx_init(us_SearchCtx *ctx, const us_Structure *s, const us_Pla
   size_t n = (size_t)ctx->nmov + 1;
   ctx->cand = us_malloc(n * sizeof(int));
   ctx->path = us_malloc(n * sizeof(int));
-  int bad = !ctx->cand || !ctx->path || us_bitset_init(&ctx->full, s->nbody) ||
+  int bad = !ctx->cand || !ctx->path || us_structure_movable_set(s, &ctx->full) ||
             us_bitset_init(&ctx->cur, s->nbody) || us_bitset_set_init(&ctx->dead, s->nbody) ||
             us_plan_order_candidates(ctx);
   if (bad) return us_error_set(err, US_ERR_NOMEM, "out of memory setting up the search");
-  for (int i = 0; i < s->nbody; i++)
-    if (!s->bodies[i].fixed) us_bitset_set(&ctx->full, i);
   ctx->stab = us_stability_new(s, &set->stability, err);
   return ctx->stab ? US_OK : err->code;
 }

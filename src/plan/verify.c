@@ -61,13 +61,11 @@ us_Status us_verify_order(const us_Structure *s, const us_StabilitySettings *set
   rep->failed_step = -1;
   rep->unstable_body = -1;
   us_Bitset seen = {0}, node = {0};
-  if (us_bitset_init(&seen, s->nbody) || us_bitset_init(&node, s->nbody)) {
+  if (us_bitset_init(&seen, s->nbody) || us_structure_movable_set(s, &node)) {
     us_bitset_free(&seen);
     return us_error_set(err, US_ERR_NOMEM, "out of memory");
   }
   us_Status st = check_order(s, order, n, &seen, err);
-  for (int i = 0; i < s->nbody; i++)
-    if (!s->bodies[i].fixed) us_bitset_set(&node, i);
   us_Stability *w = st ? NULL : us_stability_new(s, set, err);
   if (!st && !w) st = err->code;
   us_StabilityResult res;

@@ -143,17 +143,14 @@ static int alloc_arrays(us_Stability *w) {
   const us_Structure *s = w->s;
   size_t nb = (size_t)(s->nbody > 0 ? s->nbody : 1);
   size_t nc = (size_t)(s->ncontact > 0 ? s->ncontact : 1);
-  if (us_eq_init(&w->eq, s) || us_bitset_init(&w->movable, s->nbody) ||
+  if (us_eq_init(&w->eq, s) || us_structure_movable_set(s, &w->movable) ||
       us_bitset_init(&w->cur, s->nbody) || us_bitset_init(&w->last, s->nbody))
     return -1;
   w->added = us_malloc(nb * sizeof(int));
   w->removed = us_malloc(nb * sizeof(int));
   w->acc = us_malloc(6 * nb * sizeof(double));
   w->seen = us_malloc(nc);
-  if (!w->added || !w->removed || !w->acc || !w->seen) return -1;
-  for (int i = 0; i < s->nbody; i++)
-    if (!s->bodies[i].fixed) us_bitset_set(&w->movable, i);
-  return 0;
+  return !w->added || !w->removed || !w->acc || !w->seen ? -1 : 0;
 }
 
 us_Stability *us_stability_new_backend(const us_Structure *s, const us_StabilitySettings *set,
@@ -319,4 +316,8 @@ us_Status us_stability_test(us_Stability *w, const us_Bitset *present, us_Stabil
     fprintf(stderr, "stability: %d bodies: %s (%s)\n", us_bitset_count(&w->cur),
             us_verdict_name(res->verdict), res->note);
   return US_OK;
+}
+
+us_Status us_stability_test_full(us_Stability *w, us_StabilityResult *res, us_Error *err) {
+  return us_stability_test(w, &w->movable, res, err);
 }
