@@ -13,6 +13,7 @@
  *     which lcp_compute_error exposes; that counts as no solution).
  * Forces f are never compared. */
 #include "stability/lcp.h"
+#include "lcp_dense.h"
 #include "test.h"
 
 #include <LCP_Solvers.h>
@@ -24,34 +25,6 @@
 #define MAXC 10
 #define MAXB 4
 
-typedef struct Dense {
-  int n;
-  const double *A, *b;
-} Dense;
-
-static double d_entry(void *ctx, int i, int j) {
-  const Dense *d = ctx;
-  return d->A[i * d->n + j];
-}
-
-static int d_apply(void *ctx, const int *idx, const double *x, int k, double *y, int *out) {
-  const Dense *d = ctx;
-  for (int i = 0; i < d->n; i++) {
-    y[i] = 0.0;
-    for (int j = 0; j < k; j++) y[i] += d->A[i * d->n + idx[j]] * x[j];
-    out[i] = i;
-  }
-  return d->n;
-}
-
-static void d_full(void *ctx, const double *f, const unsigned char *live, double *a) {
-  const Dense *d = ctx;
-  for (int i = 0; i < d->n; i++) {
-    if (!live[i]) continue;
-    a[i] = d->b[i];
-    for (int j = 0; j < d->n; j++) a[i] += d->A[i * d->n + j] * f[j];
-  }
-}
 
 static unsigned long long rng = 88172645463325252ULL;
 static double rnd(void) {
@@ -120,7 +93,7 @@ static void random_problem(Prob *p, int physical) {
 /* Our solver; 1 solved (f, w filled), 0 not. */
 static int ours(const Prob *p, double *f, double *w) {
   Dense d = {p->nc, p->A, p->b};
-  us_LcpOps ops = {&d, d_entry, d_apply, d_full};
+  us_LcpOps ops = dense_ops(&d);
   us_Lcp l;
   if (us_lcp_init(&l, p->nc, &ops)) {
     us_lcp_free(&l);

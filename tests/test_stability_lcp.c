@@ -7,43 +7,10 @@
  * lcp, lcp-reuse and the LP (CLP) give the same verdict every time. */
 #include "stability/lcp.h"
 #include "stability/stability.h"
+#include "lcp_dense.h"
 #include "test.h"
 
 /* ------------------------------------------------------- raw dense LCPs */
-
-typedef struct Dense {
-  int n;
-  const double *A, *b;
-} Dense;
-
-static double d_entry(void *ctx, int i, int j) {
-  const Dense *d = ctx;
-  return d->A[i * d->n + j];
-}
-
-static int d_apply(void *ctx, const int *idx, const double *x, int k, double *y, int *out) {
-  const Dense *d = ctx;
-  for (int i = 0; i < d->n; i++) {
-    y[i] = 0.0;
-    for (int j = 0; j < k; j++) y[i] += d->A[i * d->n + idx[j]] * x[j];
-    out[i] = i;
-  }
-  return d->n;
-}
-
-static void d_full(void *ctx, const double *f, const unsigned char *live, double *a) {
-  const Dense *d = ctx;
-  for (int i = 0; i < d->n; i++) {
-    if (!live[i]) continue;
-    a[i] = d->b[i];
-    for (int j = 0; j < d->n; j++) a[i] += d->A[i * d->n + j] * f[j];
-  }
-}
-
-static us_LcpOps dense_ops(Dense *d) {
-  us_LcpOps o = {d, d_entry, d_apply, d_full};
-  return o;
-}
 
 /* A recorded trace: driven index, step length, event and forces. */
 typedef struct Trace {
