@@ -5,6 +5,7 @@
 #define US_TEST_SCENES_H
 
 #include <stdio.h>
+#include <string.h>
 
 #include "unstack/unstack.h"
 
@@ -25,6 +26,17 @@ static inline us_Structure *scene_seal(us_Structure *s) {
     return NULL;
   }
   return s;
+}
+
+/* Finalize must fail with US_ERR_INPUT and a message containing both
+ * fragments (the second may be NULL). */
+static inline int scene_fails_with(us_Structure *s, const char *frag1, const char *frag2) {
+  us_Error err;
+  us_error_clear(&err);
+  us_Status st = us_structure_finalize(s, &err);
+  int ok = st == US_ERR_INPUT && strstr(err.msg, frag1) && (!frag2 || strstr(err.msg, frag2));
+  if (!ok) fprintf(stderr, "  status %s, message: %s\n", us_status_name(st), err.msg);
+  return ok;
 }
 
 #endif

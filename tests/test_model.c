@@ -11,16 +11,6 @@ static int add_box(us_Structure *s, const char *id, double x0, double y0, double
   return us_structure_add_polygon(s, id, 4, xy, 1.0, 0.0, 0, -1.0, err);
 }
 
-/* Finalize must fail with US_ERR_INPUT and a message containing both
- * fragments (the second may be NULL). */
-static int fails_with(us_Structure *s, const char *frag1, const char *frag2) {
-  us_Error err;
-  us_error_clear(&err);
-  us_Status st = us_structure_finalize(s, &err);
-  int ok = st == US_ERR_INPUT && strstr(err.msg, frag1) && (!frag2 || strstr(err.msg, frag2));
-  if (!ok) fprintf(stderr, "  status %s, message: %s\n", us_status_name(st), err.msg);
-  return ok;
-}
 
 static void self_intersecting(void) {
   us_Error err;
@@ -28,7 +18,7 @@ static void self_intersecting(void) {
   double bow[8] = {0, 0, 1, 1, 1, 0, 0, 1};
   CHECK(add_box(s, "ok", 2, 0, 3, 1, &err) >= 0);
   CHECK(us_structure_add_polygon(s, "b3", 4, bow, 1, 0, 0, -1, &err) >= 0);
-  CHECK(fails_with(s, "'b3'", "self-intersecting (edges 0 and 2 cross)"));
+  CHECK(scene_fails_with(s, "'b3'", "self-intersecting (edges 0 and 2 cross)"));
   us_structure_free(s);
 }
 
@@ -38,7 +28,7 @@ static void zero_area(void) {
   double flat[8] = {0, 0, 1, 0, 2, 0, 3, 1e-12};
   CHECK(add_box(s, "ok", 4, 0, 5, 1, &err) >= 0);
   CHECK(us_structure_add_polygon(s, "flat", 4, flat, 1, 0, 0, -1, &err) >= 0);
-  CHECK(fails_with(s, "'flat'", "zero area"));
+  CHECK(scene_fails_with(s, "'flat'", "zero area"));
   us_structure_free(s);
 }
 
@@ -47,7 +37,7 @@ static void too_few_vertices(void) {
   us_Structure *s = us_structure_new(2);
   double seg[4] = {0, 0, 1, 0};
   CHECK(us_structure_add_polygon(s, "seg", 2, seg, 1, 0, 0, -1, &err) >= 0);
-  CHECK(fails_with(s, "'seg'", "2 vertices"));
+  CHECK(scene_fails_with(s, "'seg'", "2 vertices"));
   us_structure_free(s);
 }
 
@@ -56,12 +46,12 @@ static void non_finite(void) {
   us_Structure *s = us_structure_new(2);
   double xy[8] = {0, 0, 1, 0, 1, NAN, 0, 1};
   CHECK(us_structure_add_polygon(s, "nan", 4, xy, 1, 0, 0, -1, &err) >= 0);
-  CHECK(fails_with(s, "'nan'", "vertex 2 has a non-finite"));
+  CHECK(scene_fails_with(s, "'nan'", "vertex 2 has a non-finite"));
   us_structure_free(s);
   s = us_structure_new(2);
   xy[5] = INFINITY;
   CHECK(us_structure_add_polygon(s, "inf", 4, xy, 1, 0, 0, -1, &err) >= 0);
-  CHECK(fails_with(s, "'inf'", "non-finite"));
+  CHECK(scene_fails_with(s, "'inf'", "non-finite"));
   us_structure_free(s);
 }
 
@@ -70,7 +60,7 @@ static void below_ground(void) {
   us_Structure *s = us_structure_new(2);
   CHECK(add_box(s, "b0", 0, 0, 1, 1, &err) >= 0);
   CHECK(add_box(s, "b3", 2, -0.2, 3, 1, &err) >= 0);
-  CHECK(fails_with(s, "body 'b3' is below the ground", "y = -0.2"));
+  CHECK(scene_fails_with(s, "body 'b3' is below the ground", "y = -0.2"));
   us_structure_free(s);
   /* without a ground the same structure is fine */
   s = us_structure_new(2);
@@ -96,22 +86,22 @@ static void bad_materials(void) {
   us_Structure *s = us_structure_new(2);
   CHECK(add_box(s, "d", 0, 0, 1, 1, &err) >= 0);
   s->bodies[0].density = -2.0;
-  CHECK(fails_with(s, "'d'", "density"));
+  CHECK(scene_fails_with(s, "'d'", "density"));
   s->bodies[0].density = 1.0;
   s->bodies[0].friction = NAN;
-  CHECK(fails_with(s, "'d'", "friction"));
+  CHECK(scene_fails_with(s, "'d'", "friction"));
   s->bodies[0].friction = INFINITY;
-  CHECK(fails_with(s, "'d'", "friction"));
+  CHECK(scene_fails_with(s, "'d'", "friction"));
   s->bodies[0].friction = 0.0; /* zero friction is allowed */
   s->bodies[0].mass_given = 1;
   s->bodies[0].mass = NAN;
-  CHECK(fails_with(s, "'d'", "mass"));
+  CHECK(scene_fails_with(s, "'d'", "mass"));
   s->bodies[0].mass = 2.0;
   s->friction = -1.0;
-  CHECK(fails_with(s, "default friction", NULL));
+  CHECK(scene_fails_with(s, "default friction", NULL));
   s->friction = 0.5;
   s->gravity[1] = NAN;
-  CHECK(fails_with(s, "gravity", NULL));
+  CHECK(scene_fails_with(s, "gravity", NULL));
   s->gravity[1] = -9.81;
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_NEAR(s->bodies[0].mass, 2.0, 0);
@@ -123,7 +113,7 @@ static void repeated_vertex(void) {
   us_Structure *s = us_structure_new(2);
   double xy[10] = {0, 0, 2, 0, 2, 2, 2, 2, 0, 2};
   CHECK(us_structure_add_polygon(s, "rep", 5, xy, 1, 0, 0, -1, &err) >= 0);
-  CHECK(fails_with(s, "'rep'", "vertices 2 and 3 coincide"));
+  CHECK(scene_fails_with(s, "'rep'", "vertices 2 and 3 coincide"));
   us_structure_free(s);
 }
 
@@ -187,7 +177,7 @@ static void point_bodies(void) {
   us_Structure *s = us_structure_new(2);
   double c[2] = {0, 1};
   CHECK(us_structure_add_point_body(s, "p", 2.0, c, 0, &err) == 0);
-  CHECK(fails_with(s, "'p'", "explicit contacts"));
+  CHECK(scene_fails_with(s, "'p'", "explicit contacts"));
   double p[3] = {0.5, 0, 0}, n[3] = {0, 1, 0};
   CHECK(us_structure_add_contact(s, US_GROUND, 0, p, n, -1, &err) == 0);
   CHECK_OK(us_structure_finalize(s, &err), &err);
@@ -213,10 +203,10 @@ static void point_bodies(void) {
   s = us_structure_new(2);
   CHECK(us_structure_add_point_body(s, "q", 0.0, c, 0, &err) == 0);
   CHECK(us_structure_add_contact(s, US_GROUND, 0, p, n, -1, &err) == 0);
-  CHECK(fails_with(s, "'q'", "mass"));
+  CHECK(scene_fails_with(s, "'q'", "mass"));
   s->bodies[0].mass = 1.0;
   s->bodies[0].com[0] = NAN;
-  CHECK(fails_with(s, "'q'", "centre"));
+  CHECK(scene_fails_with(s, "'q'", "centre"));
   us_structure_free(s);
 }
 

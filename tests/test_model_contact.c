@@ -6,6 +6,7 @@
  * (a step along it leaves a, a step against it leaves b). */
 #include "geometry/geometry.h"
 #include "model/model.h"
+#include "scenes.h"
 #include "test.h"
 
 static int add_poly(us_Structure *s, const char *id, int n, const double *xy, us_Error *err) {
@@ -77,15 +78,6 @@ static int contacts_sane(const us_Structure *s) {
   return 1;
 }
 
-/* Finalize must fail with US_ERR_INPUT, message containing both pieces. */
-static int fails_with(us_Structure *s, const char *frag1, const char *frag2) {
-  us_Error err;
-  us_error_clear(&err);
-  us_Status st = us_structure_finalize(s, &err);
-  int ok = st == US_ERR_INPUT && strstr(err.msg, frag1) && (!frag2 || strstr(err.msg, frag2));
-  if (!ok) fprintf(stderr, "  status %s, message: %s\n", us_status_name(st), err.msg);
-  return ok;
-}
 
 static void block_on_ground(void) {
   us_Error err;
@@ -390,7 +382,7 @@ static void tolerance(void) {
   s->contact_tol = tol;
   CHECK(add_box(s, "lo", 0, 0, 1, 1, &err) == 0);
   CHECK(add_box(s, "hi", 0.25, 1 - 2 * tol, 1.25, 2, &err) == 1);
-  CHECK(fails_with(s, "'lo' and 'hi' overlap", NULL));
+  CHECK(scene_fails_with(s, "'lo' and 'hi' overlap", NULL));
   us_structure_free(s);
 }
 
@@ -400,7 +392,7 @@ static void overlaps(void) {
   us_Structure *s = us_structure_new(2);
   CHECK(add_box(s, "a", 0, 0, 2, 1, &err) >= 0);
   CHECK(add_box(s, "b", 1.5, 0.5, 3, 1.5, &err) >= 0);
-  CHECK(fails_with(s, "bodies 'a' and 'b' overlap (vertex 0 of 'b' is 0.5 inside 'a')", NULL));
+  CHECK(scene_fails_with(s, "bodies 'a' and 'b' overlap (vertex 0 of 'b' is 0.5 inside 'a')", NULL));
   us_structure_free(s);
 
   /* two equal squares, one turned 45 degrees about the same centre */
@@ -409,21 +401,21 @@ static void overlaps(void) {
   double dia[8] = {cx, cy - r, cx + r, cy, cx, cy + r, cx - r, cy};
   CHECK(add_box(s, "sq", cx - h, cy - h, cx + h, cy + h, &err) >= 0);
   CHECK(add_poly(s, "diamond", 4, dia, &err) >= 0);
-  CHECK(fails_with(s, "bodies 'sq' and 'diamond' overlap", NULL));
+  CHECK(scene_fails_with(s, "bodies 'sq' and 'diamond' overlap", NULL));
   us_structure_free(s);
 
   /* a plus sign of two bars */
   s = us_structure_new(2);
   CHECK(add_box(s, "h", 0, 1.9, 4, 2.1, &err) >= 0);
   CHECK(add_box(s, "v", 1.9, 0, 2.1, 4, &err) >= 0);
-  CHECK(fails_with(s, "bodies 'h' and 'v' overlap", NULL));
+  CHECK(scene_fails_with(s, "bodies 'h' and 'v' overlap", NULL));
   us_structure_free(s);
 
   /* the same square twice */
   s = us_structure_new(2);
   CHECK(add_box(s, "one", 0, 0, 1, 1, &err) >= 0);
   CHECK(add_box(s, "two", 0, 0, 1, 1, &err) >= 0);
-  CHECK(fails_with(s, "bodies 'one' and 'two' overlap", NULL));
+  CHECK(scene_fails_with(s, "bodies 'one' and 'two' overlap", NULL));
   us_structure_free(s);
 
   /* a triangle inscribed in a square: its vertices on the square's edges */
@@ -431,7 +423,7 @@ static void overlaps(void) {
   double tri[6] = {1, 0, 2, 1, 0, 2};
   CHECK(add_box(s, "sq", 0, 0, 2, 2, &err) >= 0);
   CHECK(add_poly(s, "tri", 3, tri, &err) >= 0);
-  CHECK(fails_with(s, "bodies 'sq' and 'tri' overlap", NULL));
+  CHECK(scene_fails_with(s, "bodies 'sq' and 'tri' overlap", NULL));
   us_structure_free(s);
 
   /* a block pushed into the arm of a U (non-convex), no vertex of the U
@@ -440,14 +432,14 @@ static void overlaps(void) {
   double U[16] = {0, 0, 5, 0, 5, 3, 4, 3, 4, 1, 1, 1, 1, 3, 0, 3};
   CHECK(add_poly(s, "U", 8, U, &err) >= 0);
   CHECK(add_box(s, "in", 3.5, 1, 4.5, 2, &err) >= 0);
-  CHECK(fails_with(s, "bodies 'U' and 'in' overlap", NULL));
+  CHECK(scene_fails_with(s, "bodies 'U' and 'in' overlap", NULL));
   us_structure_free(s);
 
   /* a small box entirely inside a big one */
   s = us_structure_new(2);
   CHECK(add_box(s, "big", 0, 0, 4, 4, &err) >= 0);
   CHECK(add_box(s, "small", 1, 1, 2, 2, &err) >= 0);
-  CHECK(fails_with(s, "bodies 'big' and 'small' overlap", NULL));
+  CHECK(scene_fails_with(s, "bodies 'big' and 'small' overlap", NULL));
   us_structure_free(s);
 }
 

@@ -64,22 +64,20 @@ us_Vec2 us_poly_centroid(const double *xy, int n) {
 double us_poly_polar_moment(const double *xy, int n) {
   if (n < 3) return 0.0;
   us_Vec2 o = us_poly_vertex(xy, n, 0);
-  double a2 = 0.0, j12 = 0.0, cx = 0.0, cy = 0.0;
+  double a2 = 0.0, j12 = 0.0;
   for (int i = 0; i < n; i++) {
     us_Vec2 p = us_v2_sub(us_poly_vertex(xy, n, i), o);
     us_Vec2 q = us_v2_sub(us_poly_vertex(xy, n, i + 1), o);
     double c = us_v2_cross(p, q);
     a2 += c;
-    cx += (p.x + q.x) * c;
-    cy += (p.y + q.y) * c;
     /* triangle (0, p, q): integral of x^2 + y^2 is c/12 * (p.p + p.q + q.q) */
     j12 += c * (us_v2_dot(p, p) + us_v2_dot(p, q) + us_v2_dot(q, q));
   }
   if (a2 == 0.0) return 0.0;
   double area = 0.5 * a2;
-  double jo = j12 / 12.0;                              /* about vertex 0 */
-  us_Vec2 c = us_v2(cx / (3.0 * a2), cy / (3.0 * a2)); /* relative to vertex 0 */
-  double jc = jo - area * us_v2_dot(c, c);             /* parallel-axis theorem */
+  double jo = j12 / 12.0;                            /* about vertex 0 */
+  us_Vec2 c = us_v2_sub(us_poly_centroid(xy, n), o); /* relative to vertex 0 */
+  double jc = jo - area * us_v2_dot(c, c);           /* parallel-axis theorem */
   return fabs(jc);
 }
 
