@@ -7,7 +7,7 @@
  * brings a_d towards 0 (normals: up from 0 when a_d < 0; frictions:
  * -sign(a_t)), while every member of the clamped system keeps its row
  * satisfied: the members' increments solve K df = -(A_{.,d} dd) with the
- * dense inverse of K (lcp_inverse.c). The step is the smallest of
+ * factorized K (lcp_factor.c). The step is the smallest of
  *   the driven a_d reaching 0 (d joins the system),
  *   the driven friction reaching its bound +-mu f_n (joins as a bound row),
  *   a clamped normal force reaching 0 (C -> NC),
@@ -41,12 +41,6 @@
 #include <math.h>
 #include <string.h>
 
-/* Accuracy monitor of the inverse: after an append, once H has been
- * updated k + 8 times since its last rebuild, the newest column is checked
- * (K H e - e, one sparse product) and H is rebuilt if the error exceeds
- * this. Measured on walls: halves the pivots and removes LP fallbacks. */
-#define COLUMN_TOL 1e-9
-
 /* ------------------------------------------------------------ life cycle */
 
 int us_lcp_init(us_Lcp *p, int n, const us_LcpOps *ops) {
@@ -79,13 +73,15 @@ int us_lcp_init(us_Lcp *p, int n, const us_LcpOps *ops) {
   p->tol_a = 1e-9;
   p->tol_f = 1e-12;
   p->tol_piv = 1e-9;
-  return us_lcp_inv_reserve(p, 8);
+  if (us_lcp_fac_init(p)) return -1;
+  return us_lcp_fac_reserve(p, 8);
 }
 
 void us_lcp_free(us_Lcp *p) {
+  us_lcp_fac_free(p);
   void *arrs[] = {p->kind,  p->partner, p->mu, p->live, p->state, p->bsign, p->f,    p->a,   p->pos,
-                  p->queue, p->inq,     p->da, p->out,  p->didx,  p->dval,  p->H,    p->mem, p->dfm,
-                  p->r,     p->y,       p->z,  p->e,    p->nz,    p->zmark, p->zlist};
+                  p->queue, p->inq,     p->da, p->out,  p->didx,  p->dval,  p->mem,  p->dfm, p->r,
+                  p->e,     p->zmark,   p->zlist};
   for (size_t i = 0; i < sizeof arrs / sizeof arrs[0]; i++) us_free(arrs[i]);
   memset(p, 0, sizeof *p);
 }
@@ -104,7 +100,7 @@ void us_lcp_reset(us_Lcp *p) {
     p->state[i] = US_LCP_OFF;
     p->pos[i] = -1;
   }
-  p->k = 0;
+  us_lcp_fac_reset(p);
   p->qhead = p->qlen = 0;
 }
 
@@ -143,28 +139,28 @@ static double entry(const us_Lcp *p, int i, int j) { return p->ops.entry(p->ops.
 
 /* Index i joins as a clamped row (a_i = 0). 0, 1 tiny pivot, -1 OOM. */
 static int append_clamp(us_Lcp *p, int i) {
-  if (us_lcp_inv_reserve(p, p->k + 1)) return -1;
+  if (us_lcp_fac_reserve(p, p->k + 1)) return -1;
   for (int s = 0; s < p->k; s++) {
     int m = p->mem[s];
     p->r[s] = p->state[m] == US_LCP_C ? entry(p, m, i) : 0.0; /* column of K */
     p->e[s] = entry(p, i, m);                                 /* row of K */
   }
   double alpha = entry(p, i, i);
-  int r = us_lcp_inv_append(p, i, p->r, p->e, alpha, p->tol_piv * US_MAX(fabs(alpha), 1e-300));
+  int r = us_lcp_fac_append(p, i, p->r, p->e, alpha, p->tol_piv * US_MAX(fabs(alpha), 1e-300));
   if (r == 0) p->state[i] = US_LCP_C;
   return r;
 }
 
 /* Friction t joins as the bound row f_t - s mu f_n = 0. */
 static int append_bound(us_Lcp *p, int t, int sign) {
-  if (us_lcp_inv_reserve(p, p->k + 1)) return -1;
+  if (us_lcp_fac_reserve(p, p->k + 1)) return -1;
   int n = p->partner[t];
   for (int s = 0; s < p->k; s++) {
     int m = p->mem[s];
     p->r[s] = p->state[m] == US_LCP_C ? entry(p, m, t) : 0.0;
     p->e[s] = m == n ? -(double)sign * p->mu[t] : 0.0;
   }
-  int r = us_lcp_inv_append(p, t, p->r, p->e, 1.0, p->tol_piv);
+  int r = us_lcp_fac_append(p, t, p->r, p->e, 1.0, p->tol_piv);
   if (r == 0) {
     p->state[t] = US_LCP_BND;
     p->bsign[t] = (signed char)sign;
@@ -172,31 +168,9 @@ static int append_bound(us_Lcp *p, int t, int sign) {
   return r;
 }
 
-/* Remove member i from the system. 0, or 1 if the rest looks singular. */
-static int remove_member(us_Lcp *p, int i) { return us_lcp_inv_delete(p, p->pos[i]); }
-
-/* Accuracy of the newest column of H: || K H e_last - e_last ||_inf,
- * with K applied through the operator (sparse). Uses the drive scratch
- * (didx, dval, da, out), free between pivots. */
-static double last_column_error(us_Lcp *p) {
-  int k = p->k, last = k - 1;
-  size_t ld = (size_t)p->cap;
-  for (int s = 0; s < k; s++) {
-    p->didx[s] = p->mem[s];
-    p->dval[s] = p->H[(size_t)s * ld + (size_t)last];
-  }
-  int nout = p->ops.apply(p->ops.ctx, p->didx, p->dval, k, p->da, p->out);
-  double err = 0.0;
-  for (int s = 0; s < k; s++) {
-    int m = p->mem[s], pn = p->kind[m] == US_LCP_FRICTION ? p->pos[p->partner[m]] : -1;
-    double v = p->da[m];           /* clamped row: (A x)_m */
-    if (p->state[m] == US_LCP_BND) /* bound row: x_t - s mu x_n */
-      v = p->dval[s] - p->bsign[m] * p->mu[m] * (pn >= 0 ? p->dval[pn] : 0.0);
-    err = US_MAX(err, fabs(v - (s == last ? 1.0 : 0.0)));
-  }
-  for (int j = 0; j < nout; j++) p->da[p->out[j]] = 0.0;
-  return err;
-}
+/* Remove member i from the system. 0, 1 if the rest looked singular, -1
+ * OOM. */
+static int remove_member(us_Lcp *p, int i) { return us_lcp_fac_delete(p, p->pos[i]); }
 
 /* --------------------------------------------------------------- a step */
 
@@ -245,7 +219,7 @@ static int direction(us_Lcp *p, int nd) {
       for (int d = 0; d < nd; d++) r += entry(p, m, p->didx[d]) * p->dval[d];
     p->r[s] = -r;
   }
-  us_lcp_inv_mult(p, p->r, p->dfm);
+  us_lcp_fac_solve(p, p->r, p->dfm);
   for (int s = 0; s < p->k; s++) {
     p->didx[nd + s] = p->mem[s];
     p->dval[nd + s] = p->dfm[s];
@@ -342,21 +316,13 @@ static void friction_on(us_Lcp *p, int n) {
  * redundant with the system (its row is a combination of the members'):
  * it is deferred instead, keeping its force (a normal without force is
  * simply NC); deferred indices are re-checked at the end of the run. */
-static us_LcpResult rebuild(us_Lcp *p);
-
-/* After an append: rebuild H if its newest column is no longer accurate. */
-static us_LcpResult watch_accuracy(us_Lcp *p) {
-  if (p->updates <= p->k + 8) return US_LCP_SOLVED; /* amortizes the O(k^3) */
-  return last_column_error(p) > COLUMN_TOL ? rebuild(p) : US_LCP_SOLVED;
-}
-
 static us_LcpResult join_clamp(us_Lcp *p, int i) {
   p->a[i] = 0.0;
   int r = append_clamp(p, i);
   if (r < 0) return US_LCP_NOMEM;
   if (r == 0) {
     if (p->kind[i] == US_LCP_NORMAL) friction_on(p, i);
-    return watch_accuracy(p);
+    return US_LCP_SOLVED;
   }
   /* deferred, unwatched by ratio tests (an NC one blocking at a = 0
    * would block again at once: a zero-step cycle) */
@@ -371,7 +337,7 @@ static us_LcpResult ev_bound(us_Lcp *p, int t, int sign, int was_member) {
   p->f[t] = sign * p->mu[t] * p->f[p->partner[t]];
   if (was_member && remove_member(p, t)) return US_LCP_DEGENERATE;
   int r = append_bound(p, t, sign);
-  return r < 0 ? US_LCP_NOMEM : r > 0 ? US_LCP_DEGENERATE : watch_accuracy(p);
+  return r < 0 ? US_LCP_NOMEM : r > 0 ? US_LCP_DEGENERATE : US_LCP_SOLVED;
 }
 
 static us_LcpResult apply_event(us_Lcp *p, const Ev *ev) {
@@ -416,30 +382,12 @@ static void zero_mark(us_Lcp *p, Run *run, int idx, int zero) {
   }
 }
 
-/* Rebuild the inverse from the members, in slot order (O(k^3)). The
- * updates accumulate round-off; this runs after every 4k + 64 updates
- * (amortized O(k^2) per update, like the updates themselves) and when a
- * run of zero-length steps suggests that H has lost accuracy (if it has
- * been updated k / 2 + 16 times since the last rebuild). A member
- * that now shows a tiny pivot is (nearly) redundant: it is deferred like
- * one refused on arrival. 0, or US_LCP_NOMEM. */
+/* Refactorize the clamped system from the members (lcp_factor.c): when
+ * its border has outgrown its limit, and when a run of zero-length steps
+ * suggests lost accuracy. A member that now shows as dependent is
+ * deferred like one refused on arrival. 0, or US_LCP_NOMEM. */
 static us_LcpResult rebuild(us_Lcp *p) {
-  int k = p->k;
-  for (int s = 0; s < k; s++) {
-    p->out[s] = p->mem[s];
-    p->pos[p->mem[s]] = -1;
-  }
-  p->k = 0;
-  p->updates = 0;
-  for (int s = 0; s < k; s++) {
-    int m = p->out[s];
-    int r = p->state[m] == US_LCP_C ? append_clamp(p, m) : append_bound(p, m, p->bsign[m]);
-    if (r < 0) return US_LCP_NOMEM;
-    if (r > 0) { /* (nearly) dependent on the earlier members: deferred */
-      p->state[m] = US_LCP_FREE;
-      p->deferred++;
-    }
-  }
+  if (us_lcp_fac_rebuild(p)) return US_LCP_NOMEM;
   p->rebuilds++;
   return US_LCP_SOLVED;
 }
@@ -476,8 +424,7 @@ static us_LcpResult pivot(us_Lcp *p, Run *run, int nd, int single, double dir, d
   if (r) return r;
   if (++run->pivots > run->limit) return US_LCP_LIMIT;
   if (run->zero_steps > 2 * p->n + 20) return US_LCP_DEGENERATE;
-  if (p->updates > 4L * p->k + 64 || (run->zero_steps == 8 && p->updates > p->k / 2 + 16))
-    return rebuild(p);
+  if (us_lcp_fac_stale(p) || (run->zero_steps == 8 && p->fac.m > 16)) return rebuild(p);
   return US_LCP_SOLVED;
 }
 
@@ -566,8 +513,8 @@ static void polish(us_Lcp *p) {
       p->r[s] = p->f[m] - p->bsign[m] * p->mu[m] * p->f[p->partner[m]];
     worst = US_MAX(worst, fabs(p->r[s]));
   }
-  if (!(worst > 1e-3 * p->tol_a)) return; /* already accurate: save O(k^2) */
-  us_lcp_inv_mult(p, p->r, p->dfm);
+  if (!(worst > 1e-3 * p->tol_a)) return; /* already accurate: save a solve */
+  us_lcp_fac_solve(p, p->r, p->dfm);
   for (int s = 0; s < p->k; s++) p->f[p->mem[s]] -= p->dfm[s];
   us_lcp_refresh(p);
 }

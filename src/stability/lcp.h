@@ -75,6 +75,50 @@ enum {
   US_LCP_EV_FADED     /* a fade finished */
 };
 
+/* lcp_dense.c: a dense inverse H = K^-1 (k x k, leading dimension cap),
+ * updated by bordering (append) and Schur complement (delete), O(k^2)
+ * each. */
+typedef struct us_DenseInv {
+  int k, cap;
+  double *H;
+  double *y, *z; /* [cap] scratch */
+  int *nz;       /* [cap] scratch */
+} us_DenseInv;
+
+/* Room for `need` rows. 0 or -1. */
+int us_dinv_reserve(us_DenseInv *d, int need);
+void us_dinv_free(us_DenseInv *d);
+/* Border K with column u, row v, corner alpha. 0, 1 if the pivot is tiny
+ * (|sigma| <= tol: nothing changes), -1 OOM. */
+int us_dinv_append(us_DenseInv *d, const double *u, const double *v, double alpha, double tol);
+/* Delete row and column s (the last one moves into s). 1 if the rest
+ * looks singular, else 0. */
+int us_dinv_delete(us_DenseInv *d, int s);
+/* x = H r (x and r distinct). */
+void us_dinv_mult(const us_DenseInv *d, const double *r, double *x);
+
+/* lcp_factor.c: the clamped system as a block LU, a sparse LU (KLU) of a
+ * base K0 bordered by the changes since (see the file). */
+typedef struct us_LcpFactor {
+  int n0;             /* base size (0: no base, all members are border) */
+  int *bidx;          /* [n0] member index of each base slot */
+  unsigned char *gone; /* [n0] base member that left (has a DEL item) */
+  double *x0;         /* [n0] scratch */
+  void *klu;          /* KLU common, symbolic and numeric objects */
+  int m, mcap;        /* border items */
+  int *item;          /* [mcap] >= 0: ADD item (member index); -1 - j: DEL of base slot j */
+  double **y;         /* [mcap] K0^-1 u_b (n0 each, NULL when n0 == 0) */
+  int **vi;           /* [mcap] sparse base part of an ADD item's row */
+  double **vx;
+  int *vn;
+  us_DenseInv S;      /* inverse of the border's Schur complement */
+  int *bpos, *ipos;   /* [n] member -> base slot / border item, or -1 */
+  double *w, *uc, *vr; /* [mcap] scratch */
+  int limit;          /* refactorize when the border has more items */
+  long updates;       /* border changes since the last refactorization */
+  long refactors;
+} us_LcpFactor;
+
 typedef struct us_Lcp {
   int n;
   us_LcpOps ops;
@@ -85,18 +129,17 @@ typedef struct us_Lcp {
   signed char *state;
   signed char *bsign; /* BND: the sign s of f_t = s mu f_n */
   double *f, *a;
-  /* clamped system: members mem[0..k), pos[i] = member slot or -1, dense
-   * inverse H (k x k, leading dimension cap) of the system matrix K */
+  /* clamped system: members mem[0..k), pos[i] = member slot or -1, the
+   * system matrix K factorized in fac */
   int k, cap;
   int *mem, *pos;
-  int *nz; /* [cap] scratch: non-zero positions of a vector */
-  double *H;
+  us_LcpFactor fac;
   /* drive queue (FIFO ring of n), inq[i] = queued */
   int *queue, qhead, qlen;
   unsigned char *inq;
   /* scratch */
-  double *dfm;           /* member force increments [cap] */
-  double *r, *y, *z, *e; /* [cap] */
+  double *dfm;   /* member force increments [cap] */
+  double *r, *e; /* [cap] */
   double *da;            /* [n] */
   int *out, *didx;       /* [n] */
   double *dval;          /* [n] driven direction values */
@@ -106,8 +149,7 @@ typedef struct us_Lcp {
   long max_pivots; /* per run; <= 0: 50 * n + 100 */
   long pivots;     /* total */
   long deferred;   /* redundant indices left out of the system */
-  long updates;    /* inverse updates since the last rebuild */
-  long rebuilds;   /* rebuilds of the inverse (total) */
+  long rebuilds;   /* refactorizations of the clamped system (total) */
   double tol_a, tol_f, tol_piv;
   void (*trace)(void *ud, const us_LcpStep *st);
   void *trace_ud;
@@ -134,19 +176,29 @@ us_LcpResult us_lcp_run(us_Lcp *p);
 /* Recompute a from f for the live indices. */
 void us_lcp_refresh(us_Lcp *p);
 
-/* lcp_inverse.c: the dense inverse of the clamped system, updated by
- * bordering (append) and Schur complement (delete), O(k^2) each. */
-/* Room for `need` members (H and the member scratch arrays). 0 or -1. */
-int us_lcp_inv_reserve(us_Lcp *p, int need);
-/* Append a member (room reserved first): u = K[old rows, new], v = K[new, old cols], alpha =
- * K[new, new]. Returns 0, 1 if the pivot is tiny (|sigma| <= tol), -1 OOM. */
-int us_lcp_inv_append(us_Lcp *p, int idx, const double *u, const double *v, double alpha,
+/* lcp_factor.c: the clamped system K over the members (slot order). */
+int us_lcp_fac_init(us_Lcp *p);
+void us_lcp_fac_free(us_Lcp *p);
+/* Forget the members and the factorization. */
+void us_lcp_fac_reset(us_Lcp *p);
+/* Room for `need` members (mem and the slot scratch dfm, r, e). 0 or -1. */
+int us_lcp_fac_reserve(us_Lcp *p, int need);
+/* Member idx joins: u = K[members, idx], v = K[idx, members] (by slot),
+ * alpha = K[idx, idx]. 0, 1 if the pivot is tiny (|sigma| <= tol; nothing
+ * changes), -1 OOM. */
+int us_lcp_fac_append(us_Lcp *p, int idx, const double *u, const double *v, double alpha,
                       double tol);
-/* Delete the member in slot s (the last member moves into s). Returns 1 if
- * the remaining system looks singular (H_ss ~ 0), else 0. */
-int us_lcp_inv_delete(us_Lcp *p, int s);
-/* x = H r (k entries). */
-void us_lcp_inv_mult(const us_Lcp *p, const double *r, double *x);
+/* The member in slot s leaves (the last member moves into s). 0, 1 if the
+ * rest looked singular (it was refactorized, deferring dependent members),
+ * -1 OOM. */
+int us_lcp_fac_delete(us_Lcp *p, int s);
+/* x = K^-1 r (by slot; x and r distinct). */
+void us_lcp_fac_solve(us_Lcp *p, const double *r, double *x);
+/* Refactorize K from the members; a member found dependent is deferred
+ * (state FREE). 0 or -1 (OOM). Uses the scratch da / out. */
+int us_lcp_fac_rebuild(us_Lcp *p);
+/* The border has grown past its limit: time to rebuild. */
+int us_lcp_fac_stale(const us_Lcp *p);
 
 /* ------------------------------------------------- lcp_sys.c: A = J M^-1 J^T
  *

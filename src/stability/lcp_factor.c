@@ -1,0 +1,517 @@
+/* The clamped system of the LCP solver, kept factorized as a block LU:
+ * a sparse LU of a base matrix K0 (SuiteSparse's KLU) plus a small border
+ * whose Schur complement is a dense inverse (lcp_dense.c). Memory follows
+ * the non-zeros of the members' rows (contacts couple only through shared
+ * bodies) plus n0 x (border size), not k^2.
+ *
+ * The system. Members are the clamped indices (row a_i = 0, i.e. the row
+ * A_{i,members}) and the frictions at their bound (row f_t - s mu f_n = 0);
+ * the unknowns are the members' forces. Slots 0..k-1 order the members
+ * (p->mem, p->pos), as the solver sees them.
+ *
+ * Block LU (Gill, Murray, Saunders and Wright's bordering, as in block-LU
+ * updates of the simplex basis). At a refactorization the members become
+ * the base: K0 = K, factorized sparsely, border empty. Later changes border
+ * it, never refactorizing per pivot:
+ *   an index joins: an ADD item, border column u (its column of K over the
+ *     base rows), row v (its row over the base columns), corner entries;
+ *   a base member leaves: a DEL item, column e_i (a free slack absorbs row
+ *     i) and row e_i^T (forces x_i = 0), so K0 still serves;
+ *   an ADD item leaves: its row and column leave the border.
+ * The augmented matrix G = [K0 U; V^T D] is K up to those slacks, and with
+ * Y = K0^-1 U (a dense column y_b per item) the Schur complement is
+ * S = D - V^T Y, kept as the dense inverse S^-1 (bordering and Schur
+ * deletion). A solve K x = r is then one sparse solve with K0, O(n0 m) for
+ * the border and O(m^2) with S^-1. The Schur pivot of an append equals the
+ * pivot of K itself (alpha - v^T K^-1 u), so tiny-pivot refusals mean what
+ * they meant with a dense inverse.
+ * When the border grows past `limit` items the members are refactorized;
+ * while the base is empty every member is an ADD item and S^-1 = K^-1
+ * (small problems never refactorize).
+ * Invariants: bpos[i] >= 0 (base slot) or ipos[i] >= 0 (border item) for
+ * each member i, never both; a base slot whose member left is `gone` and
+ * has a DEL item; the dense inverse has one row per item, in item order.
+ */
+#include "lcp.h"
+
+#include <math.h>
+#include <string.h>
+#include <suitesparse/klu.h>
+
+typedef struct Klu {
+  klu_common c;
+  klu_symbolic *sym;
+  klu_numeric *num;
+} Klu;
+
+/* SuiteSparse allocates through our funnel (leak checks, OOM tests). */
+static void klu_allocator(void) {
+  SuiteSparse_config.malloc_func = us_malloc;
+  SuiteSparse_config.calloc_func = us_calloc;
+  SuiteSparse_config.realloc_func = us_realloc;
+  SuiteSparse_config.free_func = us_free;
+}
+
+/* ------------------------------------------------------------ life cycle */
+
+int us_lcp_fac_init(us_Lcp *p) {
+  us_LcpFactor *F = &p->fac;
+  memset(F, 0, sizeof *F);
+  klu_allocator();
+  size_t n = (size_t)(p->n > 0 ? p->n : 1);
+  F->bpos = us_malloc(n * sizeof(int));
+  F->ipos = us_malloc(n * sizeof(int));
+  Klu *K = us_calloc(1, sizeof *K);
+  F->klu = K;
+  if (!F->bpos || !F->ipos || !K) return -1;
+  for (int i = 0; i < p->n; i++) F->bpos[i] = F->ipos[i] = -1;
+  klu_defaults(&K->c);
+  F->limit = 64;
+  return 0;
+}
+
+static void free_base(us_LcpFactor *F) {
+  Klu *K = F->klu;
+  if (K) {
+    if (K->num) klu_free_numeric(&K->num, &K->c);
+    if (K->sym) klu_free_symbolic(&K->sym, &K->c);
+  }
+  us_free(F->bidx);
+  us_free(F->gone);
+  us_free(F->x0);
+  F->bidx = NULL;
+  F->gone = NULL;
+  F->x0 = NULL;
+  F->n0 = 0;
+}
+
+static void free_item(us_LcpFactor *F, int b) {
+  us_free(F->y[b]);
+  us_free(F->vi[b]);
+  us_free(F->vx[b]);
+  F->y[b] = NULL;
+  F->vi[b] = NULL;
+  F->vx[b] = NULL;
+  F->vn[b] = 0;
+}
+
+/* Empty the border and the base; the members stay (slots unchanged). */
+static void clear(us_Lcp *p) {
+  us_LcpFactor *F = &p->fac;
+  for (int b = 0; b < F->m; b++) {
+    if (F->item[b] >= 0) F->ipos[F->item[b]] = -1;
+    free_item(F, b);
+  }
+  for (int j = 0; j < F->n0; j++)
+    if (!F->gone[j]) F->bpos[F->bidx[j]] = -1;
+  F->m = 0;
+  F->S.k = 0;
+  F->updates = 0;
+  free_base(F);
+}
+
+void us_lcp_fac_free(us_Lcp *p) {
+  us_LcpFactor *F = &p->fac;
+  if (F->bpos && F->ipos) clear(p);
+  us_free(F->klu);
+  us_free(F->bpos);
+  us_free(F->ipos);
+  us_free(F->item);
+  us_free(F->y);
+  us_free(F->vi);
+  us_free(F->vx);
+  us_free(F->vn);
+  us_free(F->w);
+  us_free(F->uc);
+  us_free(F->vr);
+  us_dinv_free(&F->S);
+  memset(F, 0, sizeof *F);
+}
+
+void us_lcp_fac_reset(us_Lcp *p) {
+  clear(p);
+  p->k = 0;
+}
+
+/* Room for `need` members (slot arrays and the solver's slot scratch). */
+int us_lcp_fac_reserve(us_Lcp *p, int need) {
+  if (need <= p->cap) return 0;
+  int cap = US_MAX(US_MAX(need, 2 * p->cap), 8);
+  double **vecs[3] = {&p->dfm, &p->r, &p->e};
+  for (int v = 0; v < 3; v++) {
+    double *x = us_realloc(*vecs[v], (size_t)cap * sizeof(double));
+    if (!x) return -1;
+    *vecs[v] = x;
+  }
+  int *mem = us_realloc(p->mem, (size_t)cap * sizeof(int));
+  if (!mem) return -1;
+  p->mem = mem;
+  p->cap = cap;
+  return 0;
+}
+
+/* Room for one more border item. */
+static int reserve_item(us_LcpFactor *F) {
+  if (F->m < F->mcap) return 0;
+  int cap = US_MAX(2 * F->mcap, 16);
+  void **arrs[7] = {(void **)&F->item, (void **)&F->y, (void **)&F->vi, (void **)&F->vx,
+                    (void **)&F->vn, (void **)&F->w, (void **)&F->uc};
+  size_t sz[7] = {sizeof(int),    sizeof(double *), sizeof(int *), sizeof(double *),
+                  sizeof(int),    sizeof(double),   sizeof(double)};
+  for (int a = 0; a < 7; a++) {
+    void *x = us_realloc(*arrs[a], (size_t)cap * sz[a]);
+    if (!x) return -1;
+    *arrs[a] = x;
+  }
+  double *vr = us_realloc(F->vr, (size_t)cap * sizeof(double));
+  if (!vr) return -1;
+  F->vr = vr;
+  for (int b = F->mcap; b < cap; b++) {
+    F->y[b] = NULL;
+    F->vi[b] = NULL;
+    F->vx[b] = NULL;
+    F->vn[b] = 0;
+  }
+  F->mcap = cap;
+  return us_dinv_reserve(&F->S, cap);
+}
+
+/* ------------------------------------------------------------ base solves */
+
+/* x (n0) := K0^-1 x. 0, or -1 if KLU failed. */
+static int base_solve(us_LcpFactor *F, double *x) {
+  if (F->n0 == 0) return 0;
+  Klu *K = F->klu;
+  return klu_solve(K->sym, K->num, F->n0, 1, x, &K->c) ? 0 : -1;
+}
+
+/* A fresh n0-vector K0^-1 (sum over the given base entries), or NULL
+ * (n0 == 0 gives NULL too: nothing to store). *fail on OOM. */
+static double *base_column(us_LcpFactor *F, const int *idx, const double *val, int nnz,
+                           int *fail) {
+  *fail = 0;
+  if (F->n0 == 0) return NULL;
+  double *y = us_calloc((size_t)F->n0, sizeof(double));
+  if (!y) {
+    *fail = 1;
+    return NULL;
+  }
+  for (int t = 0; t < nnz; t++) y[idx[t]] += val[t];
+  if (base_solve(F, y)) {
+    us_free(y);
+    *fail = 1;
+    return NULL;
+  }
+  return y;
+}
+
+static double sparse_dot(const int *vi, const double *vx, int vn, const double *x) {
+  double s = 0.0;
+  for (int t = 0; t < vn; t++) s += vx[t] * x[vi[t]];
+  return s;
+}
+
+/* v_b^T x for border item b over the base (x has n0 entries). */
+static double item_row_dot(const us_LcpFactor *F, int b, const double *x) {
+  if (F->item[b] < 0) return x[-1 - F->item[b]];
+  return sparse_dot(F->vi[b], F->vx[b], F->vn[b], x);
+}
+
+/* ---------------------------------------------------------------- solves */
+
+void us_lcp_fac_solve(us_Lcp *p, const double *r, double *x) {
+  us_LcpFactor *F = &p->fac;
+  double *x0 = F->x0;
+  if (F->n0 > 0) {
+    memset(x0, 0, (size_t)F->n0 * sizeof(double));
+    for (int s = 0; s < p->k; s++) {
+      int c = p->mem[s];
+      if (F->bpos[c] >= 0) x0[F->bpos[c]] = r[s];
+    }
+    (void)base_solve(F, x0); /* cannot fail once factorized */
+  }
+  for (int b = 0; b < F->m; b++) {
+    double rb = F->item[b] >= 0 ? r[p->pos[F->item[b]]] : 0.0;
+    F->w[b] = rb - (F->n0 > 0 ? item_row_dot(F, b, x0) : 0.0);
+  }
+  us_dinv_mult(&F->S, F->w, F->uc);
+  for (int b = 0; b < F->m; b++) {
+    double xb = F->uc[b];
+    const double *y = F->y[b];
+    if (xb != 0.0 && y)
+      for (int j = 0; j < F->n0; j++) x0[j] -= xb * y[j];
+  }
+  for (int s = 0; s < p->k; s++) {
+    int c = p->mem[s];
+    x[s] = F->bpos[c] >= 0 ? x0[F->bpos[c]] : F->uc[F->ipos[c]];
+  }
+}
+
+/* --------------------------------------------------------------- updates */
+
+/* Border entries of a new item q with base column y_q and base row
+ * (qi, qx, qn) (NULL qi: the DEL row e_{qdel}); du / dv give the corner
+ * entries D(b, q) / D(q, b) of ADD items (NULL: zero). */
+static void border_entries(us_Lcp *p, const double *yq, const int *qi, const double *qx, int qn,
+                           int qdel, const double *du, const double *dv) {
+  us_LcpFactor *F = &p->fac;
+  for (int b = 0; b < F->m; b++) {
+    int add = F->item[b] >= 0, sb = add ? p->pos[F->item[b]] : -1;
+    double vb_yq = yq ? item_row_dot(F, b, yq) : 0.0;
+    double vq_yb = 0.0;
+    if (F->y[b]) vq_yb = qi ? sparse_dot(qi, qx, qn, F->y[b]) : F->y[b][qdel];
+    F->uc[b] = (add && du ? du[sb] : 0.0) - vb_yq;
+    F->vr[b] = (add && dv ? dv[sb] : 0.0) - vq_yb;
+  }
+}
+
+/* Push the prepared item (uc / vr hold its border entries). */
+static int push_item(us_LcpFactor *F, int code, double *yq, int *qi, double *qx, int qn,
+                     double alpha, double tol) {
+  int r = us_dinv_append(&F->S, F->uc, F->vr, alpha, tol);
+  if (r) {
+    us_free(yq);
+    us_free(qi);
+    us_free(qx);
+    return r;
+  }
+  int b = F->m++;
+  F->item[b] = code;
+  F->y[b] = yq;
+  F->vi[b] = qi;
+  F->vx[b] = qx;
+  F->vn[b] = qn;
+  if (code >= 0) F->ipos[code] = b;
+  F->updates++;
+  return 0;
+}
+
+int us_lcp_fac_append(us_Lcp *p, int idx, const double *u, const double *v, double alpha,
+                      double tol) {
+  us_LcpFactor *F = &p->fac;
+  if (us_lcp_fac_reserve(p, p->k + 1) || reserve_item(F)) return -1;
+  /* base parts of u (dense solve) and v (kept sparse) */
+  int nu = 0, nv = 0;
+  int *qi = NULL;
+  double *qx = NULL;
+  if (F->n0 > 0) {
+    qi = us_malloc((size_t)p->k * 2 * sizeof(int));
+    qx = us_malloc((size_t)p->k * 2 * sizeof(double));
+    if (!qi || !qx) {
+      us_free(qi);
+      us_free(qx);
+      return -1;
+    }
+    for (int s = 0; s < p->k; s++) { /* u entries first, at the back half */
+      int j = F->bpos[p->mem[s]];
+      if (j < 0) continue;
+      if (u[s] != 0.0) {
+        qi[p->k + nu] = j;
+        qx[p->k + nu++] = u[s];
+      }
+      if (v[s] != 0.0) {
+        qi[nv] = j;
+        qx[nv++] = v[s];
+      }
+    }
+  }
+  int fail;
+  double *yq = base_column(F, qi ? qi + p->k : NULL, qx ? qx + p->k : NULL, nu, &fail);
+  if (fail) {
+    us_free(qi);
+    us_free(qx);
+    return -1;
+  }
+  if (qi) { /* keep only the row part (a shrink cannot fail) */
+    int *ti = us_realloc(qi, (size_t)US_MAX(nv, 1) * sizeof(int));
+    if (ti) qi = ti;
+    double *tx = us_realloc(qx, (size_t)US_MAX(nv, 1) * sizeof(double));
+    if (tx) qx = tx;
+  }
+  border_entries(p, yq, qi, qx, nv, -1, u, v);
+  double a = alpha - (yq ? sparse_dot(qi, qx, nv, yq) : 0.0);
+  int r = push_item(F, idx, yq, qi, qx, nv, a, tol);
+  if (r) return r;
+  p->mem[p->k] = idx;
+  p->pos[idx] = p->k++;
+  return 0;
+}
+
+/* Drop slot s from the slot list (the last member moves into s). */
+static void drop_slot(us_Lcp *p, int s) {
+  int L = p->k - 1, c = p->mem[s];
+  p->mem[s] = p->mem[L];
+  p->pos[p->mem[s]] = s;
+  p->pos[c] = -1;
+  p->k = L;
+}
+
+/* A base member leaves: a DEL item. 0, 1 singular, -1 OOM. */
+static int delete_base(us_Lcp *p, int c) {
+  us_LcpFactor *F = &p->fac;
+  if (reserve_item(F)) return -1;
+  int i = F->bpos[c], fail;
+  double one = 1.0;
+  double *yq = base_column(F, &i, &one, 1, &fail);
+  if (fail) return -1;
+  border_entries(p, yq, NULL, NULL, 0, i, NULL, NULL);
+  int r = push_item(F, -1 - i, yq, NULL, NULL, 0, -yq[i], 1e-300);
+  if (r) return r;
+  F->gone[i] = 1;
+  F->bpos[c] = -1;
+  return 0;
+}
+
+/* An ADD item leaves the border. 0, or 1 if the rest looks singular. */
+static int delete_item(us_LcpFactor *F, int b) {
+  int L = F->m - 1, bad = us_dinv_delete(&F->S, b);
+  F->ipos[F->item[b]] = -1;
+  free_item(F, b);
+  if (b != L) {
+    F->item[b] = F->item[L];
+    F->y[b] = F->y[L];
+    F->vi[b] = F->vi[L];
+    F->vx[b] = F->vx[L];
+    F->vn[b] = F->vn[L];
+    F->y[L] = NULL;
+    F->vi[L] = NULL;
+    F->vx[L] = NULL;
+    F->vn[L] = 0;
+    if (F->item[b] >= 0) F->ipos[F->item[b]] = b;
+  }
+  F->m = L;
+  F->updates++;
+  return bad;
+}
+
+int us_lcp_fac_delete(us_Lcp *p, int s) {
+  us_LcpFactor *F = &p->fac;
+  int c = p->mem[s], r;
+  if (F->bpos[c] >= 0) {
+    r = delete_base(p, c);
+    if (r < 0) return -1;
+    if (r > 0) clear(p); /* refused: rebuilt below */
+  } else {
+    r = delete_item(F, F->ipos[c]);
+  }
+  drop_slot(p, s);
+  if (r > 0) /* the rest looks singular: refactorize it from the members */
+    return us_lcp_fac_rebuild(p) < 0 ? -1 : 1;
+  return r;
+}
+
+/* ------------------------------------------------------ refactorization */
+
+/* Column j of K (member c in slot j) into (ri, rx); returns the count.
+ * Clamped rows come from A's column through the operator. */
+static int k_column(us_Lcp *p, int c, int *ri, double *rx) {
+  double one = 1.0;
+  int nout = p->ops.apply(p->ops.ctx, &c, &one, 1, p->da, p->out), n = 0;
+  for (int t = 0; t < nout; t++) {
+    int i = p->out[t];
+    if (p->live[i] && p->pos[i] >= 0 && p->state[i] == US_LCP_C && p->da[i] != 0.0) {
+      ri[n] = p->pos[i];
+      rx[n++] = p->da[i];
+    }
+    p->da[i] = 0.0;
+  }
+  if (p->state[c] == US_LCP_BND) {
+    ri[n] = p->pos[c];
+    rx[n++] = 1.0;
+  }
+  int t = p->partner[c];
+  if (p->kind[c] == US_LCP_NORMAL && t >= 0 && p->pos[t] >= 0 && p->state[t] == US_LCP_BND) {
+    ri[n] = p->pos[t];
+    rx[n++] = -p->bsign[t] * p->mu[t];
+  }
+  for (int a = 1; a < n; a++) /* insertion sort by row: columns are short */
+    for (int b = a; b > 0 && ri[b - 1] > ri[b]; b--) {
+      int ti = ri[b];
+      ri[b] = ri[b - 1];
+      ri[b - 1] = ti;
+      double tx = rx[b];
+      rx[b] = rx[b - 1];
+      rx[b - 1] = tx;
+    }
+  return n;
+}
+
+/* K over the members in compressed columns. 0 or -1 (OOM). */
+static int assemble(us_Lcp *p, int **Ap, int **Ai, double **Ax) {
+  int k = p->k, cap = 8 * k + 8, nnz = 0;
+  *Ap = us_malloc((size_t)(k + 1) * sizeof(int));
+  *Ai = us_malloc((size_t)cap * sizeof(int));
+  *Ax = us_malloc((size_t)cap * sizeof(double));
+  if (!*Ap || !*Ai || !*Ax) return -1;
+  (*Ap)[0] = 0;
+  for (int j = 0; j < k; j++) {
+    int need = nnz + p->n + 2; /* a column lists at most n + 2 rows */
+    if (need > cap) {
+      cap = US_MAX(2 * cap, need);
+      int *ai = us_realloc(*Ai, (size_t)cap * sizeof(int));
+      if (ai) *Ai = ai;
+      double *ax = us_realloc(*Ax, (size_t)cap * sizeof(double));
+      if (ax) *Ax = ax;
+      if (!ai || !ax) return -1;
+    }
+    nnz += k_column(p, p->mem[j], *Ai + nnz, *Ax + nnz);
+    (*Ap)[j + 1] = nnz;
+  }
+  return 0;
+}
+
+/* Factorize K over the members as the new base. 0, -1 OOM, or 1 with
+ * *bad the slot of a column found singular. */
+static int factor(us_Lcp *p, int *bad) {
+  us_LcpFactor *F = &p->fac;
+  Klu *K = F->klu;
+  int k = p->k, *Ap = NULL, *Ai = NULL, r = -1;
+  double *Ax = NULL;
+  clear(p);
+  if (k == 0) return 0;
+  F->bidx = us_malloc((size_t)k * sizeof(int));
+  F->gone = us_calloc((size_t)k, 1);
+  F->x0 = us_malloc((size_t)k * sizeof(double));
+  if (!F->bidx || !F->gone || !F->x0 || assemble(p, &Ap, &Ai, &Ax)) goto done;
+  K->sym = klu_analyze(k, Ap, Ai, &K->c);
+  if (K->sym) K->num = klu_factor(Ap, Ai, Ax, K->sym, &K->c);
+  if (!K->num) {
+    if (K->c.status == KLU_SINGULAR) {
+      *bad = K->c.singular_col >= 0 && K->c.singular_col < k ? K->c.singular_col : k - 1;
+      r = 1;
+    }
+    goto done;
+  }
+  F->n0 = k;
+  for (int j = 0; j < k; j++) {
+    F->bidx[j] = p->mem[j];
+    F->bpos[p->mem[j]] = j;
+  }
+  F->refactors++;
+  r = 0;
+done:
+  us_free(Ap);
+  us_free(Ai);
+  us_free(Ax);
+  if (r) free_base(F);
+  return r;
+}
+
+int us_lcp_fac_rebuild(us_Lcp *p) {
+  for (;;) {
+    int bad = -1, r = factor(p, &bad);
+    if (r <= 0) return r;
+    /* a (nearly) dependent member: deferred, as one refused on arrival */
+    int c = p->mem[bad];
+    drop_slot(p, bad);
+    p->state[c] = US_LCP_FREE;
+    p->deferred++;
+  }
+}
+
+/* Stale: the border outgrew its limit, or (small systems, all border)
+ * the dense inverse took 4k + 64 updates since the last refactorization
+ * and has gathered round-off. */
+int us_lcp_fac_stale(const us_Lcp *p) {
+  return p->fac.m > p->fac.limit || p->fac.updates > 4L * p->k + 64;
+}
