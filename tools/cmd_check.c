@@ -37,6 +37,7 @@ static int report(const us_Structure *s, const us_StabilityResult *res, int forc
            "%.2e, cone violation %.2e (relative)\n",
            nmov, s->ncontact, res->check.max_force_residual, res->check.max_torque_residual,
            res->check.max_cone_violation);
+    if (res->note[0]) printf("solver: %s\n", res->note);
     if (forces) print_forces(s, &res->forces);
     return CLI_EXIT_OK;
   }

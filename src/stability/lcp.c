@@ -72,7 +72,7 @@ int us_lcp_init(us_Lcp *p, int n, const us_LcpOps *ops) {
   for (int i = 0; i < n; i++) p->partner[i] = p->pos[i] = -1;
   p->tol_a = 1e-9;
   p->tol_f = 1e-12;
-  p->tol_piv = 1e-9;
+  p->tol_piv = 1e-6;
   if (us_lcp_fac_init(p)) return -1;
   return us_lcp_fac_reserve(p, 8);
 }
@@ -137,14 +137,21 @@ void us_lcp_refresh(us_Lcp *p) { p->ops.full(p->ops.ctx, p->f, p->live, p->a); }
 
 static double entry(const us_Lcp *p, int i, int j) { return p->ops.entry(p->ops.ctx, i, j); }
 
+/* col[s] = (A x)_{mem[s]} for x non-zero at idx[0..nd) (values val): one
+ * sparse product instead of k entries. Uses the scratch da / out. */
+static void member_column(us_Lcp *p, const int *idx, const double *val, int nd, double *col) {
+  int nout = p->ops.apply(p->ops.ctx, idx, val, nd, p->da, p->out);
+  for (int s = 0; s < p->k; s++) col[s] = p->da[p->mem[s]];
+  for (int j = 0; j < nout; j++) p->da[p->out[j]] = 0.0;
+}
+
 /* Index i joins as a clamped row (a_i = 0). 0, 1 tiny pivot, -1 OOM. */
 static int append_clamp(us_Lcp *p, int i) {
   if (us_lcp_fac_reserve(p, p->k + 1)) return -1;
-  for (int s = 0; s < p->k; s++) {
-    int m = p->mem[s];
-    p->r[s] = p->state[m] == US_LCP_C ? entry(p, m, i) : 0.0; /* column of K */
-    p->e[s] = entry(p, i, m);                                 /* row of K */
-  }
+  double one = 1.0;
+  member_column(p, &i, &one, 1, p->e); /* row of K: A_{i, m} = A_{m, i} */
+  for (int s = 0; s < p->k; s++)        /* column of K: clamped rows only */
+    p->r[s] = p->state[p->mem[s]] == US_LCP_C ? p->e[s] : 0.0;
   double alpha = entry(p, i, i);
   int r = us_lcp_fac_append(p, i, p->r, p->e, alpha, p->tol_piv * US_MAX(fabs(alpha), 1e-300));
   if (r == 0) p->state[i] = US_LCP_C;
@@ -155,9 +162,11 @@ static int append_clamp(us_Lcp *p, int i) {
 static int append_bound(us_Lcp *p, int t, int sign) {
   if (us_lcp_fac_reserve(p, p->k + 1)) return -1;
   int n = p->partner[t];
+  double one = 1.0;
+  member_column(p, &t, &one, 1, p->r);
   for (int s = 0; s < p->k; s++) {
     int m = p->mem[s];
-    p->r[s] = p->state[m] == US_LCP_C ? entry(p, m, t) : 0.0;
+    if (p->state[m] != US_LCP_C) p->r[s] = 0.0;
     p->e[s] = m == n ? -(double)sign * p->mu[t] : 0.0;
   }
   int r = us_lcp_fac_append(p, t, p->r, p->e, 1.0, p->tol_piv);
@@ -187,6 +196,8 @@ typedef struct Ev {
  * rejoin the system at zero length, so a streak has at most 2n steps; an
  * index skipped that way may end slightly violated and is then driven
  * again after the final check. */
+#define ZERO_STEP 1e-14 /* a step this short counts as zero length */
+
 static int driven_event(int kind) {
   return kind == US_LCP_EV_DONE || kind == US_LCP_EV_ZERO || kind == US_LCP_EV_BOUND ||
          kind == US_LCP_EV_FADED;
@@ -194,7 +205,7 @@ static int driven_event(int kind) {
 
 static void consider(Ev *ev, double lam, int kind, int idx, int sign) {
   if (lam < 0) lam = 0;
-  if (lam <= 1e-14 && idx >= 0 && ev->zmark[idx] &&
+  if (lam <= ZERO_STEP && idx >= 0 && ev->zmark[idx] &&
       (kind == US_LCP_EV_NC_C || kind == US_LCP_EV_BND_C))
     return;
   int better = lam < ev->lam;
@@ -208,23 +219,47 @@ static void consider(Ev *ev, double lam, int kind, int idx, int sign) {
   }
 }
 
+/* Residual of the members' rows for the increments in dfm / da (res by
+ * slot); returns its largest magnitude and sets p->dscale = max(1, |dfm|). */
+static double row_residual(us_Lcp *p, double *res) {
+  double err = 0.0, sc = 1.0;
+  for (int s = 0; s < p->k; s++) {
+    int m = p->mem[s];
+    sc = US_MAX(sc, fabs(p->dfm[s]));
+    if (p->state[m] == US_LCP_C) {
+      res[s] = p->da[m];
+    } else {
+      int pn = p->pos[p->partner[m]];
+      res[s] = p->dfm[s] - p->bsign[m] * p->mu[m] * (pn >= 0 ? p->dfm[pn] : 0.0);
+    }
+    err = US_MAX(err, fabs(res[s]));
+  }
+  p->dscale = sc;
+  return err;
+}
+
 /* Member increments df = -H (A_{members, D} dD) for the driven set D
  * (didx/dval, nd entries), then da = A (df, dD) for the touched indices.
  * Returns the number of listed indices in p->out. */
 static int direction(us_Lcp *p, int nd) {
-  for (int s = 0; s < p->k; s++) {
-    int m = p->mem[s];
-    double r = 0.0;
-    if (p->state[m] == US_LCP_C)
-      for (int d = 0; d < nd; d++) r += entry(p, m, p->didx[d]) * p->dval[d];
-    p->r[s] = -r;
-  }
+  member_column(p, p->didx, p->dval, nd, p->r);
+  for (int s = 0; s < p->k; s++) p->r[s] = p->state[p->mem[s]] == US_LCP_C ? -p->r[s] : 0.0;
   us_lcp_fac_solve(p, p->r, p->dfm);
   for (int s = 0; s < p->k; s++) {
     p->didx[nd + s] = p->mem[s];
     p->dval[nd + s] = p->dfm[s];
   }
-  return p->ops.apply(p->ops.ctx, p->didx, p->dval, nd + p->k, p->da, p->out);
+  int nout = p->ops.apply(p->ops.ctx, p->didx, p->dval, nd + p->k, p->da, p->out);
+  for (int round = 0; round < 2; round++) { /* iterative refinement */
+    double err = row_residual(p, p->e);
+    if (!(err > 1e-12 * p->dscale)) break;
+    us_lcp_fac_solve(p, p->e, p->r);
+    for (int s = 0; s < p->k; s++) p->dval[nd + s] = p->dfm[s] -= p->r[s];
+    for (int j = 0; j < nout; j++) p->da[p->out[j]] = 0.0;
+    nout = p->ops.apply(p->ops.ctx, p->didx, p->dval, nd + p->k, p->da, p->out);
+    p->refined++;
+  }
+  return nout;
 }
 
 static double member_df(const us_Lcp *p, int i) { return p->pos[i] >= 0 ? p->dfm[p->pos[i]] : 0.0; }
@@ -295,6 +330,12 @@ static void clear_da(us_Lcp *p, int nout) {
 
 /* ------------------------------------------------------------ the events */
 
+/* A DEGENERATE end, with the reason kept for the caller's note. */
+static us_LcpResult degenerate(us_Lcp *p, const char *why) {
+  p->why = why;
+  return US_LCP_DEGENERATE;
+}
+
 /* The friction of a normal that left the system: force 0, no condition. */
 static int friction_off(us_Lcp *p, int n) {
   int t = p->partner[n];
@@ -335,9 +376,9 @@ static us_LcpResult ev_done(us_Lcp *p, int d) { return join_clamp(p, d); }
 
 static us_LcpResult ev_bound(us_Lcp *p, int t, int sign, int was_member) {
   p->f[t] = sign * p->mu[t] * p->f[p->partner[t]];
-  if (was_member && remove_member(p, t)) return US_LCP_DEGENERATE;
+  if (was_member && remove_member(p, t)) return degenerate(p, "singular after a friction left");
   int r = append_bound(p, t, sign);
-  return r < 0 ? US_LCP_NOMEM : r > 0 ? US_LCP_DEGENERATE : US_LCP_SOLVED;
+  return r < 0 ? US_LCP_NOMEM : r > 0 ? degenerate(p, "tiny pivot of a bound row") : US_LCP_SOLVED;
 }
 
 static us_LcpResult apply_event(us_Lcp *p, const Ev *ev) {
@@ -351,13 +392,13 @@ static us_LcpResult apply_event(us_Lcp *p, const Ev *ev) {
   case US_LCP_EV_BOUND: return ev_bound(p, i, ev->sign, 0);
   case US_LCP_EV_C_NC:
     p->f[i] = 0.0;
-    if (remove_member(p, i)) return US_LCP_DEGENERATE;
+    if (remove_member(p, i)) return degenerate(p, "singular after a contact left");
     p->state[i] = US_LCP_NC;
-    return friction_off(p, i) ? US_LCP_DEGENERATE : US_LCP_SOLVED;
+    return friction_off(p, i) ? degenerate(p, "singular after a friction left") : US_LCP_SOLVED;
   case US_LCP_EV_NC_C: return join_clamp(p, i);
   case US_LCP_EV_C_BND: return ev_bound(p, i, ev->sign, 1);
   case US_LCP_EV_BND_C:
-    if (remove_member(p, i)) return US_LCP_DEGENERATE;
+    if (remove_member(p, i)) return degenerate(p, "singular after a friction left");
     return join_clamp(p, i);
   }
   return US_LCP_SOLVED;
@@ -408,12 +449,12 @@ static us_LcpResult pivot(us_Lcp *p, Run *run, int nd, int single, double dir, d
   ratio_members(p, nout, thr_f, thr_a, &ev);
   if (!isfinite(ev.lam)) {
     clear_da(p, nout);
-    return US_LCP_DEGENERATE; /* unbounded drive */
+    return degenerate(p, "unbounded drive");
   }
   advance(p, nd, nout, ev.lam);
   clear_da(p, nout);
   *lam_out = ev.lam;
-  run->zero_steps = ev.lam <= 1e-14 ? run->zero_steps + 1 : 0;
+  run->zero_steps = ev.lam <= ZERO_STEP ? run->zero_steps + 1 : 0;
   zero_mark(p, run, ev.idx, run->zero_steps > 0);
   us_LcpResult r = ev.kind == US_LCP_EV_FADED ? US_LCP_SOLVED : apply_event(p, &ev);
   p->pivots++;
@@ -423,7 +464,7 @@ static us_LcpResult pivot(us_Lcp *p, Run *run, int nd, int single, double dir, d
   }
   if (r) return r;
   if (++run->pivots > run->limit) return US_LCP_LIMIT;
-  if (run->zero_steps > 2 * p->n + 20) return US_LCP_DEGENERATE;
+  if (run->zero_steps > 2 * p->n + 20) return degenerate(p, "endless zero-length steps");
   if (us_lcp_fac_stale(p) || (run->zero_steps == 8 && p->fac.m > 16)) return rebuild(p);
   return US_LCP_SOLVED;
 }
@@ -440,12 +481,12 @@ static us_LcpResult settle_in_place(us_Lcp *p, int d) {
 
 /* Direction of a drive of d, or 0 if d is settled without moving. */
 static double drive_dir(const us_Lcp *p, int d) {
-  double a = p->a[d];
+  double a = p->a[d], ta = US_MAX(p->tol_a, p->ta_run);
   if (p->kind[d] == US_LCP_NORMAL) {
-    if (a < -p->tol_a) return 1.0;
-    return a > p->tol_a && p->f[d] > p->tol_f ? -1.0 : 0.0;
+    if (a < -ta) return 1.0;
+    return a > ta && p->f[d] > p->tol_f ? -1.0 : 0.0;
   }
-  return a > p->tol_a ? -1.0 : a < -p->tol_a ? 1.0 : 0.0;
+  return a > ta ? -1.0 : a < -ta ? 1.0 : 0.0;
 }
 
 static us_LcpResult drive(us_Lcp *p, Run *run, int d) {
@@ -470,13 +511,13 @@ static us_LcpResult drive(us_Lcp *p, Run *run, int d) {
 }
 
 static long run_limit(const us_Lcp *p) {
-  return p->max_pivots > 0 ? p->max_pivots : 50L * p->n + 100;
+  return p->max_pivots > 0 ? p->max_pivots : 4L * p->n + 1000;
 }
 
 static us_LcpResult fade(us_Lcp *p, Run *run, const int *idx, int k) {
   for (int j = 0; j < k; j++) {
     int i = idx[j];
-    if (p->pos[i] >= 0 && remove_member(p, i)) return US_LCP_DEGENERATE;
+    if (p->pos[i] >= 0 && remove_member(p, i)) return degenerate(p, "singular after a fade");
     p->state[i] = US_LCP_DRV; /* a stale queue entry is skipped by its state */
   }
   double left = 1.0;
@@ -501,9 +542,12 @@ static us_LcpResult fade(us_Lcp *p, Run *run, const int *idx, int k) {
 
 /* ------------------------------------------------------ the final check */
 
-/* One Newton correction of the members from fresh accelerations: the rows
- * drift by round-off over many pivots. Then a is recomputed. */
-static void polish(us_Lcp *p) {
+/* Newton corrections of the members from fresh accelerations (iterative
+ * refinement: the rows drift by round-off over many pivots, and a nearly
+ * dependent clamped set amplifies it): up to three rounds, each followed
+ * by a fresh a; if the rows are still off, the system is refactorized and
+ * three more rounds run. 0, or US_LCP_NOMEM. */
+static double row_drift(us_Lcp *p) {
   double worst = 0.0;
   for (int s = 0; s < p->k; s++) {
     int m = p->mem[s];
@@ -513,25 +557,43 @@ static void polish(us_Lcp *p) {
       p->r[s] = p->f[m] - p->bsign[m] * p->mu[m] * p->f[p->partner[m]];
     worst = US_MAX(worst, fabs(p->r[s]));
   }
-  if (!(worst > 1e-3 * p->tol_a)) return; /* already accurate: save a solve */
-  us_lcp_fac_solve(p, p->r, p->dfm);
-  for (int s = 0; s < p->k; s++) p->f[p->mem[s]] -= p->dfm[s];
-  us_lcp_refresh(p);
+  return worst;
+}
+
+static us_LcpResult polish(us_Lcp *p) {
+  for (int round = 0; round < 6; round++) {
+    if (!(row_drift(p) > 1e-3 * p->tol_a)) return US_LCP_SOLVED;
+    if (round == 3) {
+      if (us_lcp_fac_rebuild(p)) return US_LCP_NOMEM;
+      p->rebuilds++;
+      (void)row_drift(p);
+    }
+    us_lcp_fac_solve(p, p->r, p->dfm);
+    for (int s = 0; s < p->k; s++) p->f[p->mem[s]] -= p->dfm[s];
+    us_lcp_refresh(p);
+  }
+  return US_LCP_SOLVED;
 }
 
 /* Round-off scale of the final check: a_i carries errors of order
  * eps * sum_j |A_ij f_j| <= eps * n * max A_jj * max |f_j| (PSD), so the
  * tolerances on a and f grow with the largest force and diagonal. */
 typedef struct Scale {
-  double ta, tf;
+  double ta, tf, fmax;
 } Scale;
+
+/* Forces beyond this (in the operator's units; the stability backends
+ * measure forces in units of the structure's weight) mean a drive that ran
+ * away along a nearly unbounded ray, not a solution: tolerances that scale
+ * with the forces would otherwise accept anything. */
+#define FORCE_LIMIT 1e12
 
 static Scale check_scale(const us_Lcp *p) {
   double fmax = 0.0, dmax = 0.0;
   for (int i = 0; i < p->n; i++)
     if (p->live[i]) fmax = US_MAX(fmax, fabs(p->f[i]));
   for (int s = 0; s < p->k; s++) dmax = US_MAX(dmax, fabs(entry(p, p->mem[s], p->mem[s])));
-  Scale sc = {p->tol_a * (1.0 + fmax * dmax), 1e3 * p->tol_f * (1.0 + fmax)};
+  Scale sc = {p->tol_a * (1.0 + fmax * dmax), 1e3 * p->tol_f * (1.0 + fmax), fmax};
   return sc;
 }
 
@@ -543,16 +605,29 @@ static us_LcpResult check_friction(us_Lcp *p, int i, Scale sc) {
   case US_LCP_OFF:
     if (p->state[n] == US_LCP_C) push(p, i);
     return US_LCP_SOLVED;
-  case US_LCP_C: return fabs(a) > sc.ta || fabs(p->f[i]) > lim ? US_LCP_DEGENERATE : US_LCP_SOLVED;
-  case US_LCP_BND:
-    if (p->bsign[i] * a > sc.ta) { /* sliding the wrong way: drive back */
-      if (remove_member(p, i)) return US_LCP_DEGENERATE;
+  case US_LCP_C:
+    if (fabs(a) > sc.ta) return degenerate(p, "sticking friction off its row");
+    if (fabs(p->f[i]) > lim) { /* drifted past its bound: back on it, driven again */
+      if (remove_member(p, i)) return degenerate(p, "singular after a friction left");
+      p->f[i] = (p->f[i] > 0 ? 1.0 : -1.0) * p->mu[i] * p->f[n];
+      p->repairs++;
       push(p, i);
     }
     return US_LCP_SOLVED;
-  default: /* FREE or left pending */
-    if (fabs(p->f[i]) > lim) return US_LCP_DEGENERATE;
-    if (fabs(a) > sc.ta) push(p, i);
+  case US_LCP_BND:
+    if (p->bsign[i] * a > sc.ta) { /* sliding the wrong way: drive back */
+      if (remove_member(p, i)) return degenerate(p, "singular after a friction left");
+      push(p, i);
+    }
+    return US_LCP_SOLVED;
+  default: /* FREE or left pending: unwatched while f_n moved */
+    if (fabs(p->f[i]) > lim) { /* back onto the cone, then driven again */
+      p->f[i] = (p->f[i] > 0 ? 1.0 : -1.0) * p->mu[i] * p->f[n];
+      p->repairs++;
+      push(p, i);
+    } else if (fabs(a) > sc.ta) {
+      push(p, i);
+    }
     return US_LCP_SOLVED;
   }
 }
@@ -560,7 +635,8 @@ static us_LcpResult check_friction(us_Lcp *p, int i, Scale sc) {
 static us_LcpResult check_normal(us_Lcp *p, int i, Scale sc) {
   switch (p->state[i]) {
   case US_LCP_C:
-    return p->f[i] < -sc.tf || fabs(p->a[i]) > sc.ta ? US_LCP_DEGENERATE : US_LCP_SOLVED;
+    return p->f[i] < -sc.tf || fabs(p->a[i]) > sc.ta ? degenerate(p, "clamped contact off its row")
+                                                      : US_LCP_SOLVED;
   case US_LCP_NC:
     if (p->a[i] < -sc.ta) push(p, i);
     return US_LCP_SOLVED;
@@ -579,8 +655,10 @@ static us_LcpResult check_normal(us_Lcp *p, int i, Scale sc) {
 /* Fresh a, polish, then every live index against its conditions. */
 static us_LcpResult final_check(us_Lcp *p) {
   us_lcp_refresh(p);
-  polish(p);
+  if (polish(p)) return US_LCP_NOMEM;
   Scale sc = check_scale(p);
+  p->ta_run = sc.ta;
+  if (!(sc.fmax <= FORCE_LIMIT)) return degenerate(p, "forces ran away");
   for (int i = 0; i < p->n; i++) {
     if (!p->live[i]) continue;
     us_LcpResult r =
@@ -603,7 +681,7 @@ static us_LcpResult run_queue(us_Lcp *p, Run *run) {
     if (r) return r;
     if (p->qlen == 0) return US_LCP_SOLVED;
   }
-  return US_LCP_DEGENERATE;
+  return degenerate(p, "no fixed point after 50 checks");
 }
 
 /* Both entry points leave no zero-streak marks behind, whatever the exit. */

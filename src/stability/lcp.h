@@ -7,7 +7,7 @@
  *   friction t (partner normal n, coefficient mu > 0): |f_t| <= mu f_n,
  *              a_t (mu f_n - |f_t|) = 0, a_t f_t <= 0 (2D static friction,
  *              the bound moves with f_n);
- * with a = A f + b. A is reached only through callbacks (an entry on
+ * with a = A f + b, A symmetric (J M^-1 J^T). A is reached only through callbacks (an entry on
  * demand, a sparse product, a full recomputation of a), so a caller can
  * keep A implicit (A = J M^-1 J^T through the bodies, lcp_sys.c).
  *
@@ -146,11 +146,16 @@ typedef struct us_Lcp {
   unsigned char *zmark;  /* [n] changed set during the current zero-step streak */
   int *zlist;            /* [n] the marked indices */
   /* settings and counters */
-  long max_pivots; /* per run; <= 0: 50 * n + 100 */
+  long max_pivots; /* per run; <= 0: 4 n + 1000 */
   long pivots;     /* total */
   long deferred;   /* redundant indices left out of the system */
   long rebuilds;   /* refactorizations of the clamped system (total) */
+  long refined;    /* iterative refinement steps of the drive directions */
+  long repairs;    /* unwatched frictions put back onto their cone */
+  double dscale;   /* scratch: size of the last member increments */
   double tol_a, tol_f, tol_piv;
+  double ta_run; /* round-off scale of a at the last final check: smaller |a| is settled */
+  const char *why; /* reason of the last DEGENERATE end (static string) */
   void (*trace)(void *ud, const us_LcpStep *st);
   void *trace_ud;
 } us_Lcp;

@@ -297,8 +297,12 @@ static us_Status lcp_solve(void *ws, const us_EqSystem *sys, const int *added, i
   info->reused += reused;
   w->valid = r == US_LCP_SOLVED;
   if (r == US_LCP_NOMEM) return us_error_set(err, US_ERR_NOMEM, "out of memory in the LCP");
-  if (r != US_LCP_SOLVED)
-    return fallback(w, sys, verdict, f, info, result_name(r), note, note_sz, err);
+  if (r != US_LCP_SOLVED) {
+    char why[96];
+    snprintf(why, sizeof why, "%s%s%s", result_name(r), r == US_LCP_DEGENERATE ? ": " : "",
+             r == US_LCP_DEGENERATE && w->lcp.why ? w->lcp.why : "");
+    return fallback(w, sys, verdict, f, info, why, note, note_sz, err);
+  }
   return decide(w, sys, verdict, f, info, note, note_sz, err);
 }
 

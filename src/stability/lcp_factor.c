@@ -38,6 +38,12 @@
 #include <string.h>
 #include <suitesparse/klu.h>
 
+/* A pivot of the fresh LU below this (rows scaled to max 1) marks its
+ * member as dependent on the others. Far below the solver's refusal
+ * threshold on arrival (tol_piv relative), so that a member accepted once
+ * is not deferred at the next refactorization and driven in again. */
+#define TINY_U 1e-6
+
 typedef struct Klu {
   klu_common c;
   klu_symbolic *sym;
@@ -460,8 +466,20 @@ static int assemble(us_Lcp *p, int **Ap, int **Ai, double **Ax) {
   return 0;
 }
 
-/* Factorize K over the members as the new base. 0, -1 OOM, or 1 with
- * *bad the slot of a column found singular. */
+/* Members whose pivot in the fresh factorization is tiny (|U_jj| of the
+ * row-scaled matrix <= tol; KLU keeps its column order, so U_jj belongs to
+ * column Q[j]): (nearly) dependent on the others, as a tiny Schur pivot
+ * would have shown on arrival. Their member indices go to out[]. */
+static int tiny_pivots(us_Lcp *p, Klu *K, double tol, int *out) {
+  const double *ud = K->num->Udiag;
+  int n = 0;
+  for (int j = 0; j < p->k; j++)
+    if (!(fabs(ud[j]) > tol)) out[n++] = p->mem[K->sym->Q[j]];
+  return n;
+}
+
+/* Factorize K over the members as the new base. 0, -1 OOM, or the number
+ * of members found (nearly) dependent, listed in bad[] (nothing kept). */
 static int factor(us_Lcp *p, int *bad) {
   us_LcpFactor *F = &p->fac;
   Klu *K = F->klu;
@@ -477,18 +495,20 @@ static int factor(us_Lcp *p, int *bad) {
   if (K->sym) K->num = klu_factor(Ap, Ai, Ax, K->sym, &K->c);
   if (!K->num) {
     if (K->c.status == KLU_SINGULAR) {
-      *bad = K->c.singular_col >= 0 && K->c.singular_col < k ? K->c.singular_col : k - 1;
+      int j = K->c.singular_col >= 0 && K->c.singular_col < k ? K->c.singular_col : k - 1;
+      bad[0] = p->mem[j];
       r = 1;
     }
     goto done;
   }
+  r = tiny_pivots(p, K, TINY_U, bad);
+  if (r) goto done;
   F->n0 = k;
   for (int j = 0; j < k; j++) {
     F->bidx[j] = p->mem[j];
     F->bpos[p->mem[j]] = j;
   }
   F->refactors++;
-  r = 0;
 done:
   us_free(Ap);
   us_free(Ai);
@@ -499,19 +519,18 @@ done:
 
 int us_lcp_fac_rebuild(us_Lcp *p) {
   for (;;) {
-    int bad = -1, r = factor(p, &bad);
-    if (r <= 0) return r;
-    /* a (nearly) dependent member: deferred, as one refused on arrival */
-    int c = p->mem[bad];
-    drop_slot(p, bad);
-    p->state[c] = US_LCP_FREE;
-    p->deferred++;
+    int nbad = factor(p, p->didx);
+    if (nbad <= 0) return nbad;
+    /* (nearly) dependent members: deferred, as if refused on arrival */
+    for (int j = 0; j < nbad; j++) {
+      int c = p->didx[j];
+      drop_slot(p, p->pos[c]);
+      p->state[c] = US_LCP_FREE;
+      p->deferred++;
+    }
   }
 }
 
-/* Stale: the border outgrew its limit, or (small systems, all border)
- * the dense inverse took 4k + 64 updates since the last refactorization
- * and has gathered round-off. */
 int us_lcp_fac_stale(const us_Lcp *p) {
   return p->fac.m > p->fac.limit || p->fac.updates > 4L * p->k + 64;
 }
