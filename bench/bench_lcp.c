@@ -72,7 +72,8 @@ static int run(const us_Structure *s, const int *order, int k, unsigned char *v,
 }
 
 /* The full structure's LCP from scratch: clamped-set size and the bytes of
- * its dense inverse, next to the implicit operator's memory. */
+ * its factorization (sparse LU of the base, border), next to the implicit
+ * operator's memory and to what a dense k x k inverse would take. */
 static void dense_part(const us_Structure *s) {
   us_LcpSys y;
   us_Lcp p;
@@ -95,10 +96,13 @@ static void dense_part(const us_Structure *s) {
     us_lcp_add(&p, idx, k);
     double t0 = us_now();
     int r = us_lcp_run(&p);
+    long nnz = 0;
+    double fb = us_lcp_fac_bytes(&p, &nnz);
     printf("  full wall from scratch: %s, %ld pivots, %.1f ms; clamped system %d of %d indices, "
-           "dense inverse %.2f MB (capacity %d); operator %.2f MB\n",
+           "factorization %.2f MB (LU entries %ld, border %d; a dense inverse: %.2f MB); "
+           "operator %.2f MB\n",
            r == US_LCP_SOLVED ? "solved" : "not solved", p.pivots, 1e3 * (us_now() - t0), p.k, k,
-           8.0 * p.cap * p.cap / 1e6, p.cap,
+           fb / 1e6, nnz, p.fac.m, 8.0 * p.k * p.k / 1e6,
            (double)(12 * 8 * s->ncontact + 6 * 8 * s->nbody) / 1e6);
     us_free(idx);
   }

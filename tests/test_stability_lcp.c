@@ -101,6 +101,40 @@ static double max_abs_a(const us_Lcp *p) {
   return x;
 }
 
+/* Seeding from given forces (what lcp-reuse does with the LP's forces
+ * after a fallback): the column's static solution is taken as it is, no
+ * pivot, every normal clamped; a seed that is not a solution (all the
+ * weight on one corner of each block) is repaired into one. */
+static void seed_from_forces(void) {
+  double A[16], b[4];
+  column_system(A, b);
+  Dense d = {4, A, b};
+  us_LcpOps ops = dense_ops(&d);
+  us_Lcp p;
+  CHECK(us_lcp_init(&p, 4, &ops) == 0);
+  double good[4] = {9.8, 9.8, 4.9, 4.9}, bad[4] = {19.6, 0.0, 9.8, 0.0};
+  for (int round = 0; round < 2; round++) {
+    const double *f0 = round == 0 ? good : bad;
+    for (int i = 0; i < 4; i++) {
+      p.live[i] = 1;
+      p.f[i] = f0[i];
+    }
+    long piv0 = p.pivots;
+    CHECK_INT(us_lcp_seed(&p), ==, US_LCP_SOLVED);
+    if (round == 0) {
+      CHECK_INT(p.pivots - piv0, ==, 0);
+      CHECK_INT(p.k, ==, 4); /* every contact carries force: all clamped */
+    } else {
+      CHECK(p.pivots - piv0 > 0);
+    }
+    us_lcp_refresh(&p);
+    CHECK(max_abs_a(&p) < 1e-9);
+    for (int i = 0; i < 4; i++) CHECK(p.f[i] >= -1e-12);
+    CHECK_NEAR(p.f[0] + p.f[1], 19.6, 1e-9); /* ground carries both */
+  }
+  us_lcp_free(&p);
+}
+
 /* Reuse when adding the second block: the 4x4 LCP started from the
  * one-block solution [4.9, 4.9, 0, 0]; only the new contacts are driven
  * and the column reaches equilibrium. Then fading the new contacts out
@@ -561,7 +595,7 @@ static void differential(void) {
   CHECK(reused > tests / 2);
 }
 
-US_TEST_MAIN(T(worked_example), T(column_reuse), T(raw_pivot_limit), T(raw_friction),
+US_TEST_MAIN(T(worked_example), T(column_reuse), T(seed_from_forces), T(raw_pivot_limit), T(raw_friction),
              T(redundant_contacts), T(coincident_contacts), T(zero_mass_rejected),
              T(column_counters), T(pivot_limit_falls_back), T(out_of_memory), T(wall_takedown),
              T(differential))

@@ -244,6 +244,7 @@ typedef struct us_StabilityInfo {
   long tests;            /* tests run by this workspace */
   long pivots;           /* LCP pivots (total) */
   long lp_fallbacks;     /* LCP verdicts settled by the LP */
+  long lcp_seeds;        /* lcp-reuse restarts from the LP's forces after a fallback */
   long reused;           /* tests that started from the previous solution */
   double solve_time;     /* seconds in the backend */
   double check_time;     /* seconds re-checking certificates */

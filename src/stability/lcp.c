@@ -481,12 +481,12 @@ static us_LcpResult settle_in_place(us_Lcp *p, int d) {
 
 /* Direction of a drive of d, or 0 if d is settled without moving. */
 static double drive_dir(const us_Lcp *p, int d) {
-  double a = p->a[d], ta = US_MAX(p->tol_a, p->ta_run);
+  double a = p->a[d];
   if (p->kind[d] == US_LCP_NORMAL) {
-    if (a < -ta) return 1.0;
-    return a > ta && p->f[d] > p->tol_f ? -1.0 : 0.0;
+    if (a < -p->tol_a) return 1.0;
+    return a > p->tol_a && p->f[d] > p->tol_f ? -1.0 : 0.0;
   }
-  return a > ta ? -1.0 : a < -ta ? 1.0 : 0.0;
+  return a > p->tol_a ? -1.0 : a < -p->tol_a ? 1.0 : 0.0;
 }
 
 static us_LcpResult drive(us_Lcp *p, Run *run, int d) {
@@ -657,7 +657,6 @@ static us_LcpResult final_check(us_Lcp *p) {
   us_lcp_refresh(p);
   if (polish(p)) return US_LCP_NOMEM;
   Scale sc = check_scale(p);
-  p->ta_run = sc.ta;
   if (!(sc.fmax <= FORCE_LIMIT)) return degenerate(p, "forces ran away");
   for (int i = 0; i < p->n; i++) {
     if (!p->live[i]) continue;
@@ -682,6 +681,51 @@ static us_LcpResult run_queue(us_Lcp *p, Run *run) {
     if (p->qlen == 0) return US_LCP_SOLVED;
   }
   return degenerate(p, "no fixed point after 50 checks");
+}
+
+/* Start from given forces f of the live indices, typically a static
+ * solution from the LP (then a = 0 everywhere and the forces satisfy every
+ * sign and cone condition): positive normals are clamped, frictions inside
+ * their cone sticking, on it at their bound; the system is factorized
+ * (dependent members deferred) and a run repairs whatever is left. */
+us_LcpResult us_lcp_seed(us_Lcp *p) {
+  us_lcp_fac_reset(p);
+  p->qhead = p->qlen = 0;
+  int count = 0;
+  for (int i = 0; i < p->n; i++) {
+    p->pos[i] = -1;
+    p->inq[i] = 0;
+    count += p->live[i];
+  }
+  if (us_lcp_fac_reserve(p, count)) return US_LCP_NOMEM;
+  for (int i = 0; i < p->n; i++) { /* normals first: frictions look at them */
+    if (!p->live[i] || p->kind[i] != US_LCP_NORMAL) continue;
+    p->state[i] = p->f[i] > p->tol_f ? US_LCP_C : US_LCP_NC;
+    if (p->state[i] == US_LCP_NC) p->f[i] = 0.0;
+  }
+  for (int i = 0; i < p->n; i++) {
+    if (!p->live[i]) continue;
+    if (p->kind[i] == US_LCP_FRICTION) {
+      int n = p->partner[i];
+      double lim = p->mu[i] * p->f[n];
+      if (p->state[n] != US_LCP_C) {
+        p->state[i] = US_LCP_OFF;
+        p->f[i] = 0.0;
+      } else if (fabs(p->f[i]) < lim * (1.0 - 1e-9)) {
+        p->state[i] = US_LCP_C;
+      } else {
+        p->state[i] = US_LCP_BND;
+        p->bsign[i] = (signed char)(p->f[i] < 0 ? -1 : 1);
+        p->f[i] = p->bsign[i] * lim;
+      }
+    }
+    if (p->state[i] == US_LCP_C || p->state[i] == US_LCP_BND) {
+      p->mem[p->k] = i;
+      p->pos[i] = p->k++;
+    }
+  }
+  if (us_lcp_fac_rebuild(p)) return US_LCP_NOMEM;
+  return us_lcp_run(p);
 }
 
 /* Both entry points leave no zero-streak marks behind, whatever the exit. */

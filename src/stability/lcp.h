@@ -154,7 +154,6 @@ typedef struct us_Lcp {
   long repairs;    /* unwatched frictions put back onto their cone */
   double dscale;   /* scratch: size of the last member increments */
   double tol_a, tol_f, tol_piv;
-  double ta_run; /* round-off scale of a at the last final check: smaller |a| is settled */
   const char *why; /* reason of the last DEGENERATE end (static string) */
   void (*trace)(void *ud, const us_LcpStep *st);
   void *trace_ud;
@@ -178,6 +177,10 @@ us_LcpResult us_lcp_fade(us_Lcp *p, const int *idx, int k);
 /* Drive every queued index, then re-check all live indices (fresh a) and
  * drive the violated ones until none is left. */
 us_LcpResult us_lcp_run(us_Lcp *p);
+/* Start from the forces in f (live indices; e.g. the LP's static
+ * solution): index sets from the forces, a fresh factorization, then a run
+ * that repairs any violated condition. */
+us_LcpResult us_lcp_seed(us_Lcp *p);
 /* Recompute a from f for the live indices. */
 void us_lcp_refresh(us_Lcp *p);
 
@@ -204,6 +207,8 @@ void us_lcp_fac_solve(us_Lcp *p, const double *r, double *x);
 int us_lcp_fac_rebuild(us_Lcp *p);
 /* The border has grown past its limit: time to rebuild. */
 int us_lcp_fac_stale(const us_Lcp *p);
+/* Bytes held by the factorization; *lu_nnz (if not NULL) the LU entries. */
+double us_lcp_fac_bytes(const us_Lcp *p, long *lu_nnz);
 
 /* ------------------------------------------------- lcp_sys.c: A = J M^-1 J^T
  *

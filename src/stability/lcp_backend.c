@@ -213,7 +213,20 @@ static us_Status fallback(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict,
   info->lp_fallbacks++;
   if (*verdict == US_UNSTABLE && us_backend_clp.unstable_body)
     w->last_body = us_backend_clp.unstable_body(w->lpws);
-  snprintf(note, note_sz, "LCP %s; LP: %s", why, sub);
+  const char *seeded = "";
+  if (w->reuse && !w->valid && *verdict == US_STABLE) { /* reuse goes on from the LP's forces */
+    for (int ci = 0; ci < sys->ncontact; ci++) {
+      int c = sys->contact[ci];
+      w->lcp.f[2 * c] = f[2 * ci];
+      if (w->lcp.kind[2 * c + 1] == US_LCP_FRICTION) w->lcp.f[2 * c + 1] = f[2 * ci + 1];
+    }
+    us_LcpResult r = us_lcp_seed(&w->lcp);
+    if (r == US_LCP_NOMEM) return us_error_set(err, US_ERR_NOMEM, "out of memory in the LCP");
+    w->valid = r == US_LCP_SOLVED;
+    info->lcp_seeds += w->valid;
+    seeded = w->valid ? "; LCP re-seeded from it" : "";
+  }
+  snprintf(note, note_sz, "LCP %s; LP: %s%s", why, sub, seeded);
   return US_OK;
 }
 

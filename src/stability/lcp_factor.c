@@ -42,7 +42,7 @@
  * member as dependent on the others. Far below the solver's refusal
  * threshold on arrival (tol_piv relative), so that a member accepted once
  * is not deferred at the next refactorization and driven in again. */
-#define TINY_U 1e-6
+#define TINY_U 1e-9
 
 typedef struct Klu {
   klu_common c;
@@ -533,4 +533,18 @@ int us_lcp_fac_rebuild(us_Lcp *p) {
 
 int us_lcp_fac_stale(const us_Lcp *p) {
   return p->fac.m > p->fac.limit || p->fac.updates > 4L * p->k + 64;
+}
+
+/* Bytes held by the factorization (for benchmarks and memory reports):
+ * the LU entries (value and index) with the off-diagonal blocks, the
+ * border columns Y and rows, and the dense inverse of the border. */
+double us_lcp_fac_bytes(const us_Lcp *p, long *lu_nnz) {
+  const us_LcpFactor *F = &p->fac;
+  const Klu *K = F->klu;
+  long nnz = 0;
+  if (K && K->num) nnz = (long)K->num->lnz + K->num->unz + K->num->nzoff;
+  if (lu_nnz) *lu_nnz = nnz;
+  double bytes = 12.0 * (double)nnz + 13.0 * F->n0;
+  for (int b = 0; b < F->m; b++) bytes += 8.0 * (F->y[b] ? F->n0 : 0) + 12.0 * F->vn[b];
+  return bytes + 8.0 * F->S.cap * F->S.cap;
 }
