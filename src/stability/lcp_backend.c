@@ -32,6 +32,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#define REUSE_PIVOTS 1000 /* pivot limit of a reused run: this + n / 4 */
 #define EQ_TOL 1e-9       /* stable: net wrench below this (units of W) */
 #define UNSTABLE_TOL 1e-6 /* frictionless unstable: net wrench above this */
 
@@ -305,6 +306,10 @@ static us_Status lcp_solve(void *ws, const us_EqSystem *sys, const int *added, i
   if (sys->dim != 2) return us_error_set(err, US_ERR_USAGE, "the LCP backends support 2D only");
   long piv0 = w->lcp.pivots;
   int reused = prepare(w, sys, removed, nremoved, restart);
+  /* a repair after a one-body change needs tens of pivots; one that runs
+   * long is cut short sooner than a scratch solve (the LP settles it and
+   * reseeds the LCP) */
+  if (w->set.max_pivots <= 0) w->lcp.max_pivots = reused ? REUSE_PIVOTS + w->lcp.n / 4 : 0;
   us_LcpResult r = us_lcp_run(&w->lcp);
   info->pivots += w->lcp.pivots - piv0;
   info->reused += reused;
