@@ -433,6 +433,11 @@ static us_LcpResult rebuild(us_Lcp *p) {
   return US_LCP_SOLVED;
 }
 
+/* After a change of the system outside a pivot: refactorize if due. */
+static us_LcpResult keep_fresh(us_Lcp *p, us_LcpResult r) {
+  return r == US_LCP_SOLVED && us_lcp_fac_stale(p) ? rebuild(p) : r;
+}
+
 /* One pivot of a drive of nd driven entries (single: nd == 1, driven
  * direction dir; fade: lam_max bounds the step). */
 static us_LcpResult pivot(us_Lcp *p, Run *run, int nd, int single, double dir, double lam_max,
@@ -496,9 +501,11 @@ static us_LcpResult drive(us_Lcp *p, Run *run, int d) {
     return US_LCP_SOLVED;
   }
   double dir = drive_dir(p, d);
-  if (dir == 0.0) return settle_in_place(p, d);
+  /* settled without a pivot (the border still grows: refactorize when
+   * due, as after a pivot) */
+  if (dir == 0.0) return keep_fresh(p, settle_in_place(p, d));
   if (p->kind[d] == US_LCP_FRICTION && dir * p->f[d] >= p->mu[d] * p->f[p->partner[d]] - p->tol_f)
-    return ev_bound(p, d, (int)dir, 0); /* already at the bound it moves to */
+    return keep_fresh(p, ev_bound(p, d, (int)dir, 0)); /* already at the bound it moves to */
   p->state[d] = US_LCP_DRV;
   while (p->state[d] == US_LCP_DRV) {
     p->didx[0] = d;
