@@ -385,6 +385,11 @@ static void pivot_limit_falls_back(void) {
     us_bitset_clear(&sub, 3);
     CHECK_INT(test_on(w, &sub), ==, US_STABLE);
     CHECK(us_stability_info(w)->lp_fallbacks >= 1);
+    /* lcp-reuse goes on from the LP's forces after a stable fallback */
+    CHECK_INT(us_stability_info(w)->lcp_seeds > 0, ==, methods[k] == US_METHOD_LCP_REUSE);
+    us_bitset_clear(&sub, 2);
+    CHECK_INT(test_on(w, &sub), ==, US_STABLE);
+    if (methods[k] == US_METHOD_LCP_REUSE) CHECK(us_stability_info(w)->reused >= 1);
     us_stability_free(w);
   }
   us_bitset_free(&sub);
