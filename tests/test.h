@@ -93,4 +93,12 @@ int us_test_run(const us_TestCase *cases, int n, int argc, char **argv);
 
 #define T(fn) {#fn, fn}
 
+/* xorshift64: the tests' reproducible uniform numbers in [0, 1). */
+static inline double test_rnd(unsigned long long *state) {
+  *state ^= *state << 13;
+  *state ^= *state >> 7;
+  *state ^= *state << 17;
+  return (double)(*state >> 11) * (1.0 / 9007199254740992.0);
+}
+
 #endif

@@ -27,12 +27,7 @@
 
 
 static unsigned long long rng = 88172645463325252ULL;
-static double rnd(void) {
-  rng ^= rng << 13;
-  rng ^= rng >> 7;
-  rng ^= rng << 17;
-  return (double)(rng >> 11) * (1.0 / 9007199254740992.0);
-}
+static double rnd(void) { return test_rnd(&rng); }
 static double uniform(double a, double b) { return a + (b - a) * rnd(); }
 
 /* A random problem: nb bodies (masses, inertias), nc contact rows of one

@@ -10,12 +10,7 @@
 #define N 48 /* 24 contacts: normal 2c, friction 2c + 1 */
 
 static unsigned long long seed = 88172645463325252ULL;
-static double rnd(void) {
-  seed ^= seed << 13;
-  seed ^= seed >> 7;
-  seed ^= seed << 17;
-  return (double)(seed >> 11) / 9007199254740992.0;
-}
+static double rnd(void) { return test_rnd(&seed); }
 
 /* A symmetric positive definite A (B B^T / N + 0.2 I). */
 static void random_spd(double *A) {

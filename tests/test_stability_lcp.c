@@ -475,12 +475,7 @@ static void wall_takedown(void) {
 /* ------------------------------------------------- differential testing */
 
 static unsigned long long rng = 0x9e3779b97f4a7c15ULL;
-static double rnd(void) {
-  rng ^= rng << 13;
-  rng ^= rng >> 7;
-  rng ^= rng << 17;
-  return (double)(rng >> 11) * (1.0 / 9007199254740992.0);
-}
+static double rnd(void) { return test_rnd(&rng); }
 static double uniform(double a, double b) { return a + (b - a) * rnd(); }
 
 /* Rows of boxes with random widths, gaps (some zero: touching) and

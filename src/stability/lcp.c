@@ -220,8 +220,8 @@ static void consider(Ev *ev, double lam, int kind, int idx, int sign) {
 }
 
 /* Residual of the members' rows for the increments in dfm / da (res by
- * slot); returns its largest magnitude and sets p->dscale = max(1, |dfm|). */
-static double row_residual(us_Lcp *p, double *res) {
+ * slot); returns its largest magnitude and sets *scale = max(1, |dfm|). */
+static double row_residual(const us_Lcp *p, double *res, double *scale) {
   double err = 0.0, sc = 1.0;
   for (int s = 0; s < p->k; s++) {
     int m = p->mem[s];
@@ -234,7 +234,7 @@ static double row_residual(us_Lcp *p, double *res) {
     }
     err = US_MAX(err, fabs(res[s]));
   }
-  p->dscale = sc;
+  *scale = sc;
   return err;
 }
 
@@ -251,13 +251,12 @@ static int direction(us_Lcp *p, int nd) {
   }
   int nout = p->ops.apply(p->ops.ctx, p->didx, p->dval, nd + p->k, p->da, p->out);
   for (int round = 0; round < 2; round++) { /* iterative refinement */
-    double err = row_residual(p, p->e);
-    if (!(err > 1e-12 * p->dscale)) break;
+    double scale, err = row_residual(p, p->e, &scale);
+    if (!(err > 1e-12 * scale)) break;
     us_lcp_fac_solve(p, p->e, p->r);
     for (int s = 0; s < p->k; s++) p->dval[nd + s] = p->dfm[s] -= p->r[s];
     for (int j = 0; j < nout; j++) p->da[p->out[j]] = 0.0;
     nout = p->ops.apply(p->ops.ctx, p->didx, p->dval, nd + p->k, p->da, p->out);
-    p->refined++;
   }
   return nout;
 }
@@ -617,7 +616,6 @@ static us_LcpResult check_friction(us_Lcp *p, int i, Scale sc) {
     if (fabs(p->f[i]) > lim) { /* drifted past its bound: back on it, driven again */
       if (remove_member(p, i)) return degenerate(p, "singular after a friction left");
       p->f[i] = (p->f[i] > 0 ? 1.0 : -1.0) * p->mu[i] * p->f[n];
-      p->repairs++;
       push(p, i);
     }
     return US_LCP_SOLVED;
@@ -630,7 +628,6 @@ static us_LcpResult check_friction(us_Lcp *p, int i, Scale sc) {
   default: /* FREE or left pending: unwatched while f_n moved */
     if (fabs(p->f[i]) > lim) { /* back onto the cone, then driven again */
       p->f[i] = (p->f[i] > 0 ? 1.0 : -1.0) * p->mu[i] * p->f[n];
-      p->repairs++;
       push(p, i);
     } else if (fabs(a) > sc.ta) {
       push(p, i);

@@ -150,9 +150,6 @@ typedef struct us_Lcp {
   long pivots;     /* total */
   long deferred;   /* redundant indices left out of the system */
   long rebuilds;   /* refactorizations of the clamped system (total) */
-  long refined;    /* iterative refinement steps of the drive directions */
-  long repairs;    /* unwatched frictions put back onto their cone */
-  double dscale;   /* scratch: size of the last member increments */
   double tol_a, tol_f, tol_piv;
   const char *why; /* reason of the last DEGENERATE end (static string) */
   void (*trace)(void *ud, const us_LcpStep *st);

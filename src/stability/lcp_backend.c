@@ -193,6 +193,15 @@ static void write_forces(const LcpWs *w, const us_EqSystem *sys, double *f) {
   }
 }
 
+/* The inverse: the LCP's forces from the system's (e.g. the LP's). */
+static void read_forces(LcpWs *w, const us_EqSystem *sys, const double *f) {
+  for (int ci = 0; ci < sys->ncontact; ci++) {
+    int c = sys->contact[ci];
+    w->lcp.f[2 * c] = f[2 * ci];
+    if (w->lcp.kind[2 * c + 1] == US_LCP_FRICTION) w->lcp.f[2 * c + 1] = f[2 * ci + 1];
+  }
+}
+
 static int frictionless(const us_EqSystem *sys) {
   for (int ci = 0; ci < sys->ncontact; ci++)
     if (sys->mu[ci] > 0) return 0;
@@ -216,11 +225,7 @@ static us_Status fallback(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict,
     w->last_body = us_backend_clp.unstable_body(w->lpws);
   const char *seeded = "";
   if (w->reuse && !w->valid && *verdict == US_STABLE) { /* reuse goes on from the LP's forces */
-    for (int ci = 0; ci < sys->ncontact; ci++) {
-      int c = sys->contact[ci];
-      w->lcp.f[2 * c] = f[2 * ci];
-      if (w->lcp.kind[2 * c + 1] == US_LCP_FRICTION) w->lcp.f[2 * c + 1] = f[2 * ci + 1];
-    }
+    read_forces(w, sys, f);
     us_LcpResult r = us_lcp_seed(&w->lcp);
     if (r == US_LCP_NOMEM) return us_error_set(err, US_ERR_NOMEM, "out of memory in the LCP");
     w->valid = r == US_LCP_SOLVED;
