@@ -472,6 +472,40 @@ static void wall_takedown(void) {
   }
 }
 
+/* Back-off: where every LCP run fails (here a pivot limit of 1 on a
+ * friction wall), lcp-reuse stops paying for failing runs: after the
+ * scratch solve failed, tests that cannot reuse go to the LP, and after
+ * j failures in a row 2^(j-1) - 1 tests skip the LCP. Verdicts and
+ * certificates stay those of the LP; lcp (scratch) never skips. */
+static void backoff_when_lcp_fails(void) {
+  us_Structure *s = running_bond(7, 6, 0.6);
+  CHECK(s);
+  us_Stability *w = open_ws(s, US_METHOD_LCP_REUSE, 1), *scratch = open_ws(s, US_METHOD_LCP, 1);
+  us_Stability *lp = open_ws(s, US_METHOD_LP, 0);
+  CHECK(w && scratch && lp);
+  us_Bitset sub;
+  CHECK(us_bitset_init(&sub, s->nbody) == 0);
+  us_bitset_fill(&sub);
+  for (int i = s->nbody - 1; i >= 1; i--) {
+    int v = test_on(lp, &sub);
+    CHECK_INT(v, ==, US_STABLE);
+    CHECK_INT(test_on(w, &sub), ==, v);
+    CHECK_INT(test_on(scratch, &sub), ==, v);
+    us_bitset_clear(&sub, i);
+  }
+  const us_StabilityInfo *in = us_stability_info(w);
+  long runs = in->tests - in->lcp_skips; /* tests that ran the LCP */
+  CHECK(in->lcp_skips > 0);
+  CHECK(runs < in->tests / 2);
+  CHECK_INT(in->lp_fallbacks, >=, in->lcp_skips);
+  CHECK_INT(us_stability_info(scratch)->lcp_skips, ==, 0);
+  us_bitset_free(&sub);
+  us_stability_free(w);
+  us_stability_free(scratch);
+  us_stability_free(lp);
+  us_structure_free(s);
+}
+
 /* ------------------------------------------------- differential testing */
 
 static unsigned long long rng = 0x9e3779b97f4a7c15ULL;
@@ -598,4 +632,4 @@ static void differential(void) {
 US_TEST_MAIN(T(worked_example), T(column_reuse), T(seed_from_forces), T(raw_pivot_limit), T(raw_friction),
              T(redundant_contacts), T(coincident_contacts), T(zero_mass_rejected),
              T(column_counters), T(pivot_limit_falls_back), T(out_of_memory), T(wall_takedown),
-             T(differential))
+             T(backoff_when_lcp_fails), T(differential))

@@ -33,9 +33,10 @@ static void print_stats(const us_PlanStats *st) {
   printf("  time: total %.3f s, setup %.3f s, search %.3f s, in solver %.3f s, "
          "certificate checks %.3f s\n",
          st->time_total, st->time_setup, st->time_search, st->time_solve, st->time_check);
-  printf("  memo %zu bytes; LCP pivots %ld, LP fallbacks %ld (re-seeded %ld), reused %ld\n",
+  printf("  memo %zu bytes; LCP pivots %ld, LP fallbacks %ld (re-seeded %ld, LCP skipped %ld), "
+         "reused %ld\n",
          st->memo_bytes, st->stability.pivots, st->stability.lp_fallbacks,
-         st->stability.lcp_seeds, st->stability.reused);
+         st->stability.lcp_seeds, st->stability.lcp_skips, st->stability.reused);
 }
 
 static void print_summary(const us_Plan *p, const CliCommon *c, const char *out) {

@@ -49,6 +49,7 @@ static void write_stats(us_JsonOut *o, const us_PlanStats *st) {
   write_field_num(o, in, "pivots", (double)st->stability.pivots, 0);
   write_field_num(o, in, "lp_fallbacks", (double)st->stability.lp_fallbacks, 0);
   write_field_num(o, in, "lcp_seeds", (double)st->stability.lcp_seeds, 0);
+  write_field_num(o, in, "lcp_skips", (double)st->stability.lcp_skips, 0);
   write_field_num(o, in, "reused", (double)st->stability.reused, 0);
   write_field_num(o, in, "solve_time", st->stability.solve_time, 0);
   write_field_num(o, in, "check_time", st->stability.check_time, 1);

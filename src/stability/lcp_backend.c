@@ -23,7 +23,15 @@
  * keeps its conditions (pivoting where one would break), which repairs the
  * solution locally. Added bodies: their contacts join with zero force and
  * only they are driven. Old contacts keep their forces in both cases.
- * After a failed run the state is dropped and the next test restarts.
+ * After a failed run the state is dropped; a stable LP verdict re-seeds it.
+ * Back-off (lcp-reuse only): where the LCP keeps failing (large degenerate
+ * walls: long runs of zero-length exchanges), the tests go straight to the
+ * LP instead of paying for failing runs. After the j-th failed run in a
+ * row, the next 2^(j-1) - 1 tests skip the LCP (an isolated failure costs
+ * nothing: the next test reuses again); once a scratch solve of the
+ * workspace has failed, a test that cannot reuse goes to the LP too
+ * (a scratch run would fail again, at the full pivot limit). Skipped tests
+ * are counted in info->lcp_skips; verdicts never depend on the policy.
  */
 #include "lcp.h"
 #include "stability.h"
@@ -35,6 +43,7 @@
 #define REUSE_PIVOTS 1000 /* pivot limit of a reused run: this + n / 4 */
 #define EQ_TOL 1e-9       /* stable: net wrench below this (units of W) */
 #define UNSTABLE_TOL 1e-6 /* frictionless unstable: net wrench above this */
+#define MAX_BACKOFF 20    /* at most 2^19 - 1 tests skipped after a failure */
 
 typedef struct LcpWs {
   const us_Structure *s;
@@ -46,6 +55,9 @@ typedef struct LcpWs {
   int *idx;   /* [2 ncontact + 1] */
   void *lpws; /* CLP workspace, created on the first fallback */
   int last_body;
+  int fails;          /* failed LCP runs (or seeds) in a row, lcp-reuse */
+  long skip;          /* tests left that go straight to the LP (back-off) */
+  int scratch_failed; /* a scratch solve failed: restarts go to the LP */
 } LcpWs;
 
 static void lcp_destroy(void *ws) {
@@ -208,6 +220,25 @@ static int frictionless(const us_EqSystem *sys) {
   return 1;
 }
 
+/* Back-off after a failed run or seed (lcp-reuse): the next 2^(j-1) - 1
+ * tests skip the LCP, j the number of failures in a row. */
+static void record_failure(LcpWs *w) {
+  if (!w->reuse) return;
+  w->fails = US_MIN(w->fails + 1, MAX_BACKOFF);
+  w->skip = (1L << (w->fails - 1)) - 1;
+}
+
+/* Whether this test goes straight to the LP (consumes one skipped test). */
+static int skip_lcp(LcpWs *w, int restart) {
+  if (!w->reuse) return 0;
+  if (w->skip > 0) {
+    w->skip--;
+    w->valid = 0; /* the state no longer follows the sub-assemblies */
+    return 1;
+  }
+  return w->scratch_failed && (!w->valid || restart);
+}
+
 /* The LP decides (CLP backend, lazily created). */
 static us_Status fallback(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, double *f,
                           us_StabilityInfo *info, const char *why, char *note, size_t note_sz,
@@ -224,11 +255,15 @@ static us_Status fallback(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict,
   if (*verdict == US_UNSTABLE && us_backend_clp.unstable_body)
     w->last_body = us_backend_clp.unstable_body(w->lpws);
   const char *seeded = "";
-  if (w->reuse && !w->valid && *verdict == US_STABLE) { /* reuse goes on from the LP's forces */
+  if (w->reuse && !w->valid && w->skip == 0 && *verdict == US_STABLE) {
+    /* reuse goes on from the LP's forces (the live set made that of sys:
+     * a skipped test or a failed fade leaves another) */
+    start_scratch(w, sys);
     read_forces(w, sys, f);
     us_LcpResult r = us_lcp_seed(&w->lcp);
     if (r == US_LCP_NOMEM) return us_error_set(err, US_ERR_NOMEM, "out of memory in the LCP");
     w->valid = r == US_LCP_SOLVED;
+    if (!w->valid) record_failure(w);
     info->lcp_seeds += w->valid;
     seeded = w->valid ? "; LCP re-seeded from it" : "";
   }
@@ -309,18 +344,36 @@ static us_Status lcp_solve(void *ws, const us_EqSystem *sys, const int *added, i
   LcpWs *w = ws;
   w->last_body = -1;
   if (sys->dim != 2) return us_error_set(err, US_ERR_USAGE, "the LCP backends support 2D only");
+  if (skip_lcp(w, restart)) {
+    info->lcp_skips++;
+    char why[64];
+    snprintf(why, sizeof why, "skipped after %d failed run%s", w->fails, w->fails == 1 ? "" : "s");
+    return fallback(w, sys, verdict, f, info, why, note, note_sz, err);
+  }
   long piv0 = w->lcp.pivots;
-  int reused = prepare(w, sys, removed, nremoved, restart);
+  int can_reuse = w->reuse && w->valid && !restart;
   /* a repair after a one-body change needs tens of pivots; one that runs
-   * long is cut short sooner than a scratch solve (the LP settles it and
-   * reseeds the LCP) */
-  if (w->set.max_pivots <= 0) w->lcp.max_pivots = reused ? REUSE_PIVOTS + w->lcp.n / 4 : 0;
+   * long (the fade of the removed contacts, then the run) is cut short
+   * sooner than a scratch solve (the LP settles it and reseeds the LCP) */
+  int auto_limit = w->set.max_pivots <= 0;
+  if (auto_limit) w->lcp.max_pivots = can_reuse ? REUSE_PIVOTS + w->lcp.n / 4 : 0;
+  int reused = prepare(w, sys, removed, nremoved, restart);
+  if (can_reuse && !reused && w->scratch_failed) { /* the fade failed: no scratch run */
+    info->pivots += w->lcp.pivots - piv0;
+    w->valid = 0;
+    record_failure(w);
+    return fallback(w, sys, verdict, f, info, "repair failed", note, note_sz, err);
+  }
+  if (auto_limit && !reused) w->lcp.max_pivots = 0;
   us_LcpResult r = us_lcp_run(&w->lcp);
   info->pivots += w->lcp.pivots - piv0;
   info->reused += reused;
   w->valid = r == US_LCP_SOLVED;
   if (r == US_LCP_NOMEM) return us_error_set(err, US_ERR_NOMEM, "out of memory in the LCP");
+  if (r == US_LCP_SOLVED) w->fails = 0;
   if (r != US_LCP_SOLVED) {
+    w->scratch_failed |= !reused;
+    record_failure(w);
     char why[96];
     snprintf(why, sizeof why, "%s%s%s", result_name(r), r == US_LCP_DEGENERATE ? ": " : "",
              r == US_LCP_DEGENERATE && w->lcp.why ? w->lcp.why : "");
