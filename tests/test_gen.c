@@ -2,7 +2,8 @@
  * bodies movable, contact counts, geometry (shared edges, row lengths,
  * springings on the ground), that every generated structure stands under
  * the LP, that the arch needs every voussoir, reproducibility of the random
- * stacker, and errors (bad settings, out of memory) without leaks. */
+ * stacker, errors (bad settings, out of memory) without leaks, and that
+ * the LCP backends give the LP's verdicts on generated structures. */
 #include "test.h"
 
 /* Verdict of the whole structure with the default (LP) settings, or -1 on
@@ -353,6 +354,100 @@ static void out_of_memory(void) {
   }
 }
 
+/* Verdicts of the three backends (lp, lcp, lcp-reuse) along a walk over
+ * sub-assemblies of s: random bodies removed one at a time, then added
+ * back, each sub-assembly tested by all three (persistent workspaces, so
+ * lcp-reuse reuses both ways). Returns the number of disagreements, or
+ * -1 on error; counts verdicts. */
+static int backends_walk(const us_Structure *s, unsigned long long *rng, long *counts) {
+  const us_Method m[3] = {US_METHOD_LP, US_METHOD_LCP, US_METHOD_LCP_REUSE};
+  us_Stability *w[3] = {NULL, NULL, NULL};
+  us_Error err;
+  us_Bitset sub = {0};
+  int bad = -1;
+  for (int k = 0; k < 3; k++) {
+    us_StabilitySettings set = us_stability_default_settings();
+    set.method = m[k];
+    if (!(w[k] = us_stability_new(s, &set, &err))) goto done;
+  }
+  if (us_bitset_init(&sub, s->nbody)) goto done;
+  us_bitset_fill(&sub);
+  bad = 0;
+  for (int step = 0, steps = 2 * s->nbody; step < steps; step++) {
+    int v[3];
+    for (int k = 0; k < 3; k++) {
+      us_StabilityResult res;
+      memset(&res, 0, sizeof res);
+      v[k] = us_stability_test(w[k], &sub, &res, &err) == US_OK ? (int)res.verdict : -1;
+      if (v[k] == US_STABLE && !res.check.ok) v[k] = -2;
+      us_stability_result_free(&res);
+    }
+    if (v[0] < 0 || v[0] != v[1] || v[0] != v[2]) {
+      fprintf(stderr, "disagreement: lp %d lcp %d lcp-reuse %d (%d of %d bodies, mu %.2f)\n", v[0],
+              v[1], v[2], us_bitset_count(&sub), s->nbody, s->friction);
+      bad++;
+    } else {
+      counts[v[0]]++;
+    }
+    int left = us_bitset_count(&sub), removing = step < steps / 2 ? left > 1 : 0;
+    int i = (int)(test_rnd(rng) * s->nbody);
+    while (us_bitset_get(&sub, i) != removing && left < s->nbody) i = (i + 1) % s->nbody;
+    if (removing) us_bitset_clear(&sub, i);
+    else if (left < s->nbody) us_bitset_set(&sub, i);
+  }
+done:
+  us_bitset_free(&sub);
+  for (int k = 0; k < 3; k++) us_stability_free(w[k]);
+  return bad;
+}
+
+/* The LCP backends against the LP on the project's own generators
+ * (columns, pyramids, walls, arches, the random stacker), frictionless
+ * and with friction: the same verdict on every sub-assembly of a walk. */
+static void backends_agree_on_generated(void) {
+  unsigned long long rng = 0x9e3779b97f4a7c15ULL;
+  long counts[2] = {0, 0};
+  int structures = 0, bad = 0;
+  for (int t = 0; t < 300; t++) {
+    us_GenSettings g = us_gen_default_settings();
+    g.friction = t % 2 ? 0.2 + 0.6 * test_rnd(&rng) : 0.0;
+    us_Error err;
+    us_Structure *s = NULL;
+    switch ((t / 2) % 5) {
+    case 0: g.n = 2 + (int)(6 * test_rnd(&rng)); s = us_gen_column(&g, &err); break;
+    case 1: g.n = 2 + (int)(4 * test_rnd(&rng)); s = us_gen_pyramid(&g, &err); break;
+    case 2:
+      g.rows = 2 + (int)(4 * test_rnd(&rng));
+      g.cols = 2 + (int)(4 * test_rnd(&rng));
+      s = us_gen_wall(&g, &err);
+      break;
+    case 3:
+      g.n = 5 + (int)(8 * test_rnd(&rng));
+      g.thickness = 0.3 + 0.6 * test_rnd(&rng);
+      s = us_gen_arch(&g, &err);
+      break;
+    default:
+      g.width = 3 + (int)(3 * test_rnd(&rng));
+      g.rows = 3 + (int)(4 * test_rnd(&rng));
+      g.seed = (unsigned long)t;
+      s = us_gen_random(&g, &err);
+      break;
+    }
+    CHECK(s != NULL);
+    if (!s) continue;
+    structures++;
+    int r = backends_walk(s, &rng, counts);
+    CHECK(r >= 0);
+    bad += r > 0 ? r : 0;
+    us_structure_free(s);
+  }
+  printf("generated: %d structures, %ld stable and %ld unstable sub-assemblies, lp = lcp = "
+         "lcp-reuse on all but %d\n",
+         structures, counts[US_STABLE], counts[US_UNSTABLE], bad);
+  CHECK_INT(bad, ==, 0);
+  CHECK(counts[US_STABLE] > 200 && counts[US_UNSTABLE] > 200);
+}
+
 US_TEST_MAIN(T(column), T(pyramid), T(wall_small), T(wall_large), T(arch), T(arch_thickness),
              T(random_stacker), T(random_narrow), T(random_gives_up), T(bad_settings),
-             T(out_of_memory))
+             T(out_of_memory), T(backends_agree_on_generated))
