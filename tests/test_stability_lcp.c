@@ -213,6 +213,85 @@ static void raw_friction(void) {
   }
 }
 
+/* The tracked accelerations stay A f + b at every pivot, through runs,
+ * fades and re-adds on frictional stacks pushed sideways (frictions reach
+ * their bounds, slide, stick again; normals lift off): forces that change
+ * outside a step (a friction switched off with its normal, snapped onto
+ * its bound, clipped back onto its cone) must update a, or the final
+ * check finds the members' rows off and the polish repairs them by large
+ * moves. */
+typedef struct Fresh {
+  const Dense *d;
+  const unsigned char *live;
+  double worst;
+} Fresh;
+
+static void fresh_check(void *ud, const us_LcpStep *st) {
+  Fresh *fr = ud;
+  const Dense *d = fr->d;
+  for (int i = 0; i < d->n; i++) {
+    if (!fr->live[i]) continue;
+    double a = d->b[i], sc = 1.0 + fabs(d->b[i]);
+    for (int j = 0; j < d->n; j++) a += d->A[i * d->n + j] * st->f[j];
+    fr->worst = fmax(fr->worst, fabs(a - st->a[i]) / sc);
+  }
+}
+
+static void tracked_a_is_fresh(void) {
+  unsigned long long rng = 12345;
+  double worst = 0.0;
+  for (int trial = 0; trial < 300; trial++) {
+    int nb = 2 + (int)(4 * test_rnd(&rng)), nc = 6 * nb; /* 3 points x (normal, friction) */
+    double *J = calloc((size_t)(nc * 3 * nb), sizeof(double)), *A = malloc(sizeof(double) * nc * nc);
+    double *b = malloc(sizeof(double) * nc), m[6], I[6], F[18];
+    CHECK(J && A && b);
+    for (int k = 0; k < nb; k++) {
+      m[k] = 0.5 + test_rnd(&rng);
+      I[k] = m[k] / 6.0;
+      F[3 * k] = (test_rnd(&rng) - 0.5) * 12.0 * m[k]; /* pushed sideways */
+      F[3 * k + 1] = -9.8 * m[k];
+      F[3 * k + 2] = (test_rnd(&rng) - 0.5) * m[k];
+      for (int q = 0; q < 3; q++) { /* points x = -0.5, 0, 0.5 under body k (redundant) */
+        double px = 0.5 * (q - 1);
+        double *jn = J + (size_t)(6 * k + 2 * q) * 3 * nb, *jt = jn + 3 * nb;
+        jn[3 * k + 1] = 1.0, jn[3 * k + 2] = px; /* normal (0, 1) at (px, -0.5) */
+        jt[3 * k] = 1.0, jt[3 * k + 2] = 0.5;     /* tangent (1, 0) */
+        if (k > 0) {                              /* the body below, opposite */
+          jn[3 * (k - 1) + 1] = -1.0, jn[3 * (k - 1) + 2] = -px;
+          jt[3 * (k - 1)] = -1.0, jt[3 * (k - 1) + 2] = 0.5;
+        }
+      }
+    }
+    assemble(nc, nb, J, m, I, F, A, b);
+    Dense d = {nc, A, b};
+    us_LcpOps ops = dense_ops(&d);
+    us_Lcp p;
+    CHECK(us_lcp_init(&p, nc, &ops) == 0);
+    double mu = 0.2 + 0.6 * test_rnd(&rng);
+    for (int c = 0; c < nc; c += 2) us_lcp_set_friction(&p, c + 1, c, mu);
+    Fresh fr = {&d, p.live, 0.0};
+    p.trace = fresh_check;
+    p.trace_ud = &fr;
+    int all[36];
+    for (int i = 0; i < nc; i++) all[i] = i;
+    us_lcp_add(&p, all, nc);
+    us_LcpResult r = us_lcp_run(&p);
+    for (int step = 0; step < 12 && r == US_LCP_SOLVED; step++) {
+      int c = 2 * (int)(test_rnd(&rng) * (nc / 2)), pair[2] = {c, c + 1};
+      r = us_lcp_fade(&p, pair, 2); /* a contact leaves, the rest repairs */
+      if (r == US_LCP_SOLVED) r = us_lcp_run(&p);
+      if (r != US_LCP_SOLVED) break;
+      us_lcp_add(&p, pair, 2); /* and comes back */
+      r = us_lcp_run(&p);
+    }
+    worst = fmax(worst, fr.worst);
+    us_lcp_free(&p);
+    free(J), free(A), free(b);
+  }
+  printf("tracked a against A f + b: worst %.2e (relative to 1 + |b|)\n", worst);
+  CHECK(worst < 1e-8);
+}
+
 /* ------------------------------------------------------ structure tests */
 
 static const us_Method methods[3] = {US_METHOD_LP, US_METHOD_LCP, US_METHOD_LCP_REUSE};
@@ -630,6 +709,7 @@ static void differential(void) {
 }
 
 US_TEST_MAIN(T(worked_example), T(column_reuse), T(seed_from_forces), T(raw_pivot_limit), T(raw_friction),
+             T(tracked_a_is_fresh),
              T(redundant_contacts), T(coincident_contacts), T(zero_mass_rejected),
              T(column_counters), T(pivot_limit_falls_back), T(out_of_memory), T(wall_takedown),
              T(backoff_when_lcp_fails), T(differential))

@@ -18,6 +18,10 @@
  * (computation reuse, removed contacts) drives a set of forces to zero
  * along a line with the same ratio test.
  *
+ * Forces change only along a step or through set_force, which updates a,
+ * so the tracked a stays A f + b up to round-off (snapping a force to 0
+ * or clipping a friction onto its cone without it left a stale by up to
+ * 0.3 on LP-seeded walls).
  * Invariants between pivots: members satisfy their rows (clamped a_i = 0,
  * bound f_t = s mu f_n), clamped normal forces >= 0, NC normals have
  * f = 0 and a >= 0, a friction whose normal is not clamped has f_t = 0 and
@@ -143,6 +147,25 @@ static void member_column(us_Lcp *p, const int *idx, const double *val, int nd, 
   int nout = p->ops.apply(p->ops.ctx, idx, val, nd, p->da, p->out);
   for (int s = 0; s < p->k; s++) col[s] = p->da[p->mem[s]];
   for (int j = 0; j < nout; j++) p->da[p->out[j]] = 0.0;
+}
+
+/* Change force i outside a step and keep a = A f + b: a += A e_i df for
+ * the live indices the product lists (uses the scratch da / out, which is
+ * clear between pivots). Without it a snapped or clipped force leaves the
+ * tracked a stale, and the final check's fresh a then shows the members'
+ * rows off by the jump (measured: up to 0.3 on LP-seeded walls), which
+ * the polish can only repair by large moves that turn clamped forces
+ * negative. */
+static void set_force(us_Lcp *p, int i, double v) {
+  double df = v - p->f[i];
+  p->f[i] = v;
+  if (df == 0.0) return;
+  int nout = p->ops.apply(p->ops.ctx, &i, &df, 1, p->da, p->out);
+  for (int j = 0; j < nout; j++) {
+    int o = p->out[j];
+    if (p->live[o]) p->a[o] += p->da[o];
+    p->da[o] = 0.0;
+  }
 }
 
 /* Index i joins as a clamped row (a_i = 0). 0, 1 tiny pivot, -1 OOM. */
@@ -342,7 +365,7 @@ static int friction_off(us_Lcp *p, int n) {
   int bad = 0;
   if (p->pos[t] >= 0) bad = remove_member(p, t);
   p->state[t] = US_LCP_OFF;
-  p->f[t] = 0.0;
+  set_force(p, t, 0.0);
   return bad;
 }
 
@@ -357,7 +380,6 @@ static void friction_on(us_Lcp *p, int n) {
  * it is deferred instead, keeping its force (a normal without force is
  * simply NC); deferred indices are re-checked at the end of the run. */
 static us_LcpResult join_clamp(us_Lcp *p, int i) {
-  p->a[i] = 0.0;
   int r = append_clamp(p, i);
   if (r < 0) return US_LCP_NOMEM;
   if (r == 0) {
@@ -374,7 +396,7 @@ static us_LcpResult join_clamp(us_Lcp *p, int i) {
 static us_LcpResult ev_done(us_Lcp *p, int d) { return join_clamp(p, d); }
 
 static us_LcpResult ev_bound(us_Lcp *p, int t, int sign, int was_member) {
-  p->f[t] = sign * p->mu[t] * p->f[p->partner[t]];
+  set_force(p, t, sign * p->mu[t] * p->f[p->partner[t]]);
   if (was_member && remove_member(p, t)) return degenerate(p, "singular after a friction left");
   int r = append_bound(p, t, sign);
   return r < 0 ? US_LCP_NOMEM : r > 0 ? degenerate(p, "tiny pivot of a bound row") : US_LCP_SOLVED;
@@ -385,12 +407,12 @@ static us_LcpResult apply_event(us_Lcp *p, const Ev *ev) {
   switch (ev->kind) {
   case US_LCP_EV_DONE: return ev_done(p, i);
   case US_LCP_EV_ZERO:
-    p->f[i] = 0.0;
+    set_force(p, i, 0.0);
     p->state[i] = US_LCP_NC;
     return US_LCP_SOLVED;
   case US_LCP_EV_BOUND: return ev_bound(p, i, ev->sign, 0);
   case US_LCP_EV_C_NC:
-    p->f[i] = 0.0;
+    set_force(p, i, 0.0);
     if (remove_member(p, i)) return degenerate(p, "singular after a contact left");
     p->state[i] = US_LCP_NC;
     return friction_off(p, i) ? degenerate(p, "singular after a friction left") : US_LCP_SOLVED;
@@ -496,7 +518,7 @@ static double drive_dir(const us_Lcp *p, int d) {
 static us_LcpResult drive(us_Lcp *p, Run *run, int d) {
   if (p->kind[d] == US_LCP_FRICTION && p->state[p->partner[d]] != US_LCP_C) {
     p->state[d] = US_LCP_OFF; /* unloaded contact: no friction */
-    p->f[d] = 0.0;
+    set_force(p, d, 0.0);
     return US_LCP_SOLVED;
   }
   double dir = drive_dir(p, d);
@@ -552,7 +574,8 @@ static us_LcpResult fade(us_Lcp *p, Run *run, const int *idx, int k) {
  * refinement: the rows drift by round-off over many pivots, and a nearly
  * dependent clamped set amplifies it): up to three rounds, each followed
  * by a fresh a; if the rows are still off, the system is refactorized and
- * three more rounds run. 0, or US_LCP_NOMEM. */
+ * three more rounds run. A round that does not reduce the drift (a nearly
+ * singular K) is undone and ends the polish. 0, or US_LCP_NOMEM. */
 static double row_drift(us_Lcp *p) {
   double worst = 0.0;
   for (int s = 0; s < p->k; s++) {
@@ -567,16 +590,24 @@ static double row_drift(us_Lcp *p) {
 }
 
 static us_LcpResult polish(us_Lcp *p) {
+  double drift = row_drift(p);
   for (int round = 0; round < 6; round++) {
-    if (!(row_drift(p) > 1e-3 * p->tol_a)) return US_LCP_SOLVED;
+    if (!(drift > 1e-3 * p->tol_a)) return US_LCP_SOLVED;
     if (round == 3) {
       if (us_lcp_fac_rebuild(p)) return US_LCP_NOMEM;
       p->rebuilds++;
-      (void)row_drift(p);
+      drift = row_drift(p);
     }
     us_lcp_fac_solve(p, p->r, p->dfm);
     for (int s = 0; s < p->k; s++) p->f[p->mem[s]] -= p->dfm[s];
     us_lcp_refresh(p);
+    double now = row_drift(p);
+    if (!(now < drift)) { /* a nearly singular K made it worse: undo, stop */
+      for (int s = 0; s < p->k; s++) p->f[p->mem[s]] += p->dfm[s];
+      us_lcp_refresh(p);
+      return US_LCP_SOLVED;
+    }
+    drift = now;
   }
   return US_LCP_SOLVED;
 }
@@ -615,7 +646,7 @@ static us_LcpResult check_friction(us_Lcp *p, int i, Scale sc) {
     if (fabs(a) > sc.ta) return degenerate(p, "sticking friction off its row");
     if (fabs(p->f[i]) > lim) { /* drifted past its bound: back on it, driven again */
       if (remove_member(p, i)) return degenerate(p, "singular after a friction left");
-      p->f[i] = (p->f[i] > 0 ? 1.0 : -1.0) * p->mu[i] * p->f[n];
+      set_force(p, i, (p->f[i] > 0 ? 1.0 : -1.0) * p->mu[i] * p->f[n]);
       push(p, i);
     }
     return US_LCP_SOLVED;
@@ -627,7 +658,7 @@ static us_LcpResult check_friction(us_Lcp *p, int i, Scale sc) {
     return US_LCP_SOLVED;
   default: /* FREE or left pending: unwatched while f_n moved */
     if (fabs(p->f[i]) > lim) { /* back onto the cone, then driven again */
-      p->f[i] = (p->f[i] > 0 ? 1.0 : -1.0) * p->mu[i] * p->f[n];
+      set_force(p, i, (p->f[i] > 0 ? 1.0 : -1.0) * p->mu[i] * p->f[n]);
       push(p, i);
     } else if (fabs(a) > sc.ta) {
       push(p, i);
