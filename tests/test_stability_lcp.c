@@ -87,11 +87,21 @@ static void worked_example(void) {
 
 /* Two unit blocks in a column, contacts at x = +-0.51 (0, 1: ground to
  * block 1; 2, 3: block 1 to block 2). */
-static void column_system(double *A, double *b) {
+typedef struct ColumnLcp {
+  double A[16], b[4];
+  Dense d;
+  us_Lcp p; /* reaches A and b through d: the struct stays in place */
+} ColumnLcp;
+
+/* Its dense problem and an initialized solver on it; 0 or -1 (OOM). */
+static int column_lcp(ColumnLcp *c) {
   double J[24] = {0, 1,  -0.51, 0, 0, 0,     0, 1,  0.51,  0, 0, 0,
                   0, -1, 0.51,  0, 1, -0.51, 0, -1, -0.51, 0, 1, 0.51};
   double m[2] = {1, 1}, I[2] = {1, 1}, F[6] = {0, -9.8, 0, 0, -9.8, 0};
-  assemble(4, 2, J, m, I, F, A, b);
+  assemble(4, 2, J, m, I, F, c->A, c->b);
+  c->d = (Dense){4, c->A, c->b};
+  us_LcpOps ops = dense_ops(&c->d);
+  return us_lcp_init(&c->p, 4, &ops);
 }
 
 static double max_abs_a(const us_Lcp *p) {
@@ -106,33 +116,30 @@ static double max_abs_a(const us_Lcp *p) {
  * pivot, every normal clamped; a seed that is not a solution (all the
  * weight on one corner of each block) is repaired into one. */
 static void seed_from_forces(void) {
-  double A[16], b[4];
-  column_system(A, b);
-  Dense d = {4, A, b};
-  us_LcpOps ops = dense_ops(&d);
-  us_Lcp p;
-  CHECK(us_lcp_init(&p, 4, &ops) == 0);
+  ColumnLcp c;
+  CHECK(column_lcp(&c) == 0);
+  us_Lcp *p = &c.p;
   double good[4] = {9.8, 9.8, 4.9, 4.9}, bad[4] = {19.6, 0.0, 9.8, 0.0};
   for (int round = 0; round < 2; round++) {
     const double *f0 = round == 0 ? good : bad;
     for (int i = 0; i < 4; i++) {
-      p.live[i] = 1;
-      p.f[i] = f0[i];
+      p->live[i] = 1;
+      p->f[i] = f0[i];
     }
-    long piv0 = p.pivots;
-    CHECK_INT(us_lcp_seed(&p), ==, US_LCP_SOLVED);
+    long piv0 = p->pivots;
+    CHECK_INT(us_lcp_seed(p), ==, US_LCP_SOLVED);
     if (round == 0) {
-      CHECK_INT(p.pivots - piv0, ==, 0);
-      CHECK_INT(p.k, ==, 4); /* every contact carries force: all clamped */
+      CHECK_INT(p->pivots - piv0, ==, 0);
+      CHECK_INT(p->k, ==, 4); /* every contact carries force: all clamped */
     } else {
-      CHECK(p.pivots - piv0 > 0);
+      CHECK(p->pivots - piv0 > 0);
     }
-    us_lcp_refresh(&p);
-    CHECK(max_abs_a(&p) < 1e-9);
-    for (int i = 0; i < 4; i++) CHECK(p.f[i] >= -1e-12);
-    CHECK_NEAR(p.f[0] + p.f[1], 19.6, 1e-9); /* ground carries both */
+    us_lcp_refresh(p);
+    CHECK(max_abs_a(p) < 1e-9);
+    for (int i = 0; i < 4; i++) CHECK(p->f[i] >= -1e-12);
+    CHECK_NEAR(p->f[0] + p->f[1], 19.6, 1e-9); /* ground carries both */
   }
-  us_lcp_free(&p);
+  us_lcp_free(p);
 }
 
 /* Reuse when adding the second block: the 4x4 LCP started from the
@@ -140,47 +147,41 @@ static void seed_from_forces(void) {
  * and the column reaches equilibrium. Then fading the new contacts out
  * brings back the one-block equilibrium. */
 static void column_reuse(void) {
-  double A[16], b[4];
-  column_system(A, b);
-  Dense d = {4, A, b};
-  us_LcpOps ops = dense_ops(&d);
-  us_Lcp p;
-  CHECK(us_lcp_init(&p, 4, &ops) == 0);
+  ColumnLcp c;
+  CHECK(column_lcp(&c) == 0);
+  us_Lcp *p = &c.p;
   int first[2] = {0, 1}, second[2] = {2, 3};
-  us_lcp_add(&p, first, 2);
-  CHECK_INT(us_lcp_run(&p), ==, US_LCP_SOLVED);
-  CHECK_NEAR(p.f[0], 4.9, 1e-9);
-  CHECK_NEAR(p.f[1], 4.9, 1e-9);
+  us_lcp_add(p, first, 2);
+  CHECK_INT(us_lcp_run(p), ==, US_LCP_SOLVED);
+  CHECK_NEAR(p->f[0], 4.9, 1e-9);
+  CHECK_NEAR(p->f[1], 4.9, 1e-9);
   Trace tr = {.n = 4};
-  p.trace = record;
-  p.trace_ud = &tr;
-  us_lcp_add(&p, second, 2);
-  CHECK_INT(us_lcp_run(&p), ==, US_LCP_SOLVED);
+  p->trace = record;
+  p->trace_ud = &tr;
+  us_lcp_add(p, second, 2);
+  CHECK_INT(us_lcp_run(p), ==, US_LCP_SOLVED);
   CHECK(tr.count >= 1);
   CHECK_INT(tr.driven[0], ==, 2); /* started from the old forces */
-  CHECK(max_abs_a(&p) < 1e-9);    /* equilibrium: every a = 0 */
-  for (int i = 0; i < 4; i++) CHECK(p.f[i] > 0);
-  CHECK_INT(us_lcp_fade(&p, second, 2), ==, US_LCP_SOLVED);
-  CHECK_INT(us_lcp_run(&p), ==, US_LCP_SOLVED);
-  CHECK(!p.live[2] && !p.live[3]);
-  CHECK(max_abs_a(&p) < 1e-9);
-  CHECK_NEAR(p.f[0] + p.f[1], 9.8, 1e-9); /* one block's weight again */
-  us_lcp_free(&p);
+  CHECK(max_abs_a(p) < 1e-9);    /* equilibrium: every a = 0 */
+  for (int i = 0; i < 4; i++) CHECK(p->f[i] > 0);
+  CHECK_INT(us_lcp_fade(p, second, 2), ==, US_LCP_SOLVED);
+  CHECK_INT(us_lcp_run(p), ==, US_LCP_SOLVED);
+  CHECK(!p->live[2] && !p->live[3]);
+  CHECK(max_abs_a(p) < 1e-9);
+  CHECK_NEAR(p->f[0] + p->f[1], 9.8, 1e-9); /* one block's weight again */
+  us_lcp_free(p);
 }
 
 /* A tiny pivot limit ends the run as LIMIT, not as a wrong answer. */
 static void raw_pivot_limit(void) {
-  double A[16], b[4];
-  column_system(A, b);
-  Dense d = {4, A, b};
-  us_LcpOps ops = dense_ops(&d);
-  us_Lcp p;
-  CHECK(us_lcp_init(&p, 4, &ops) == 0);
-  p.max_pivots = 1;
+  ColumnLcp c;
+  CHECK(column_lcp(&c) == 0);
+  us_Lcp *p = &c.p;
+  p->max_pivots = 1;
   int all[4] = {0, 1, 2, 3};
-  us_lcp_add(&p, all, 4);
-  CHECK_INT(us_lcp_run(&p), ==, US_LCP_LIMIT);
-  us_lcp_free(&p);
+  us_lcp_add(p, all, 4);
+  CHECK_INT(us_lcp_run(p), ==, US_LCP_LIMIT);
+  us_lcp_free(p);
 }
 
 /* Friction on a raw problem: one block on one ground contact pushed
