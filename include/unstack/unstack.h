@@ -286,13 +286,37 @@ int us_active_contacts(const us_Structure *s, const us_Bitset *present, int *idx
 
 /* ----------------------------------------------------------------- planner */
 
-typedef enum us_Search { US_SEARCH_DFS = 0, US_SEARCH_BFS } us_Search;
+typedef enum us_Search {
+  US_SEARCH_ASSEMBLE = 0, /* greedy assembly from the ground (union theorem; default) */
+  US_SEARCH_DFS,          /* depth-first search of the disassembly graph */
+  US_SEARCH_BFS,          /* breadth-first search */
+  US_SEARCH_RANDOM        /* randomized depth-first search with restarts */
+} us_Search;
 typedef enum us_Order { US_ORDER_HIGHEST = 0, US_ORDER_LOWEST, US_ORDER_INPUT } us_Order;
 typedef enum us_Direction { US_DIR_DOWN = 0, US_DIR_UP } us_Direction;
+/* Which removals are allowed besides stability (kinematics). */
+typedef enum us_Removal {
+  US_REMOVAL_ANY = 0, /* any body, whatever touches it (weak stability only) */
+  US_REMOVAL_UP,      /* lifted straight up without hitting a remaining body */
+  US_REMOVAL_FREE     /* some translation frees it (cone test on its contacts) */
+} us_Removal;
+
+/* Culling rules of the graph searches (DFS, BFS, random), bit flags. */
+enum {
+  US_RULE_MEMO = 1,       /* nodes known dead are never tested or expanded again */
+  US_RULE_GROUND = 2,     /* a node with a body not connected to the ground is
+                             unstable without a test */
+  US_RULE_UNION = 4,      /* a node whose components are each known stable is
+                             stable without a test (union theorem) */
+  US_RULE_COMPONENTS = 8, /* components of the structure are planned apart */
+  US_RULE_GREEDY = 16,    /* a node is dead iff greedy assembly inside it fails:
+                             dead sub-graphs are never explored */
+  US_RULE_ALL = 31
+};
 
 typedef enum us_PlanStatus {
   US_PLAN_FOUND = 0,
-  US_PLAN_NONE,      /* search exhausted: no one-at-a-time order exists */
+  US_PLAN_NONE,      /* proven: no order with steps of at most max_group bodies */
   US_PLAN_UNSTABLE,  /* the full structure does not stand */
   US_PLAN_LIMIT      /* max_tests or time_limit reached */
 } us_PlanStatus;
@@ -300,8 +324,13 @@ const char *us_plan_status_name(us_PlanStatus s);
 
 typedef struct us_PlanSettings {
   us_Search search;
-  us_Order order;
-  us_Direction direction;
+  us_Order order;        /* graph searches: which body to try first */
+  us_Direction direction;/* graph searches: from the full structure or the ground */
+  us_Removal removal;    /* kinematics; not ANY needs a graph search */
+  int max_group;         /* largest step (bodies moved at once), >= 1 (default 1);
+                            0: automatic, the smallest that gives an order */
+  unsigned rules;        /* US_RULE_* flags of the graph searches (default all) */
+  unsigned long seed;    /* random search */
   long max_tests;        /* <= 0: unlimited */
   double time_limit;     /* seconds, <= 0: unlimited */
   int certificates;      /* keep a certificate per step */
@@ -313,9 +342,16 @@ typedef struct us_PlanStats {
   long tests;            /* stability tests run */
   long stable;
   long unstable;
-  long revisited;        /* nodes skipped because already known */
+  long revisited;        /* nodes skipped because already known (memo rule) */
   long nodes_expanded;
   long max_depth;
+  long saved_ground;     /* tests saved by the ground-connectivity rule */
+  long saved_union;      /* tests saved by the union rule (components known stable) */
+  long greedy_checks;    /* greedy-assembly dead checks run (greedy rule) */
+  long greedy_cuts;      /* stable children found dead by them (not explored) */
+  long components;       /* independent parts planned apart (components rule) */
+  long retries_skipped;  /* assemble: re-tests skipped because a body's part did not change */
+  long restarts;         /* random search */
   double time_total;     /* seconds */
   double time_setup;
   double time_search;
@@ -327,11 +363,20 @@ typedef struct us_PlanStats {
 
 typedef struct us_Plan {
   us_PlanStatus status;
-  int nsteps;            /* number of removals (movable bodies) when found */
+  int nsteps;            /* number of bodies removed (length of order) when found */
   int *order;            /* body indices in removal order */
-  us_Forces *certs;      /* with certificates: nsteps+1 entries, certs[k] =
-                            forces of the structure before removal k
-                            (certs[nsteps] is the empty structure) */
+  int ngroups;           /* number of steps; == nsteps when every step is one body */
+  int *group_start;      /* [ngroups + 1]: step k removes order[group_start[k] ..
+                            group_start[k + 1] - 1] */
+  int max_group;         /* largest step used (found), or the bound searched (none) */
+  us_Forces *certs;      /* with certificates: ngroups+1 entries, certs[k] =
+                            forces of the structure before step k
+                            (certs[ngroups] is the empty structure) */
+  /* assemble search, status none: the largest sub-assembly that can be built
+     from the ground (R*) and the movable bodies outside it (cannot be removed
+     with steps of at most max_group bodies) */
+  int nbuildable, *buildable;
+  int nblocked, *blocked;
   us_PlanStats stats;
 } us_Plan;
 void us_plan_free(us_Plan *p);
@@ -354,6 +399,12 @@ typedef struct us_VerifyReport {
 } us_VerifyReport;
 us_Status us_verify_order(const us_Structure *s, const us_StabilitySettings *set, const int *order,
                           int n, us_VerifyReport *rep, us_Error *err);
+/* The same for an order in steps: group_start[ngroups + 1] offsets into order
+ * (NULL: one body per step); the remainder is tested after every step. With
+ * groups, failed_step is the 0-based step. */
+us_Status us_verify_steps(const us_Structure *s, const us_StabilitySettings *set, const int *order,
+                          int n, const int *group_start, int ngroups, us_VerifyReport *rep,
+                          us_Error *err);
 
 /* -------------------------------------------------------------- generators */
 
@@ -375,6 +426,10 @@ us_Structure *us_gen_pyramid(const us_GenSettings *g, us_Error *err);
 us_Structure *us_gen_wall(const us_GenSettings *g, us_Error *err);
 us_Structure *us_gen_arch(const us_GenSettings *g, us_Error *err);
 us_Structure *us_gen_random(const us_GenSettings *g, us_Error *err);
+/* The source-style stacker: rows of blocks at random offsets, cantilevers
+ * held by the blocks above them; only the finished structure is required to
+ * stand (src/gen/stacker.c). */
+us_Structure *us_gen_stacker(const us_GenSettings *g, us_Error *err);
 
 /* --------------------------------------------------------------------- I/O */
 
@@ -394,6 +449,8 @@ typedef struct us_PlanFile {
   us_PlanStatus status;
   int n;
   int *order;
+  int ngroups;        /* steps; an "order" entry may be an array of ids (a group) */
+  int *group_start;   /* [ngroups + 1] offsets into order */
 } us_PlanFile;
 us_Status us_plan_read(const us_Structure *s, const char *path, us_PlanFile *out, us_Error *err);
 void us_plan_file_free(us_PlanFile *pf);
@@ -426,4 +483,7 @@ double us_now(void);
 #ifdef __cplusplus
 }
 #endif
+
+#include "unstack/analysis.h"
+
 #endif
