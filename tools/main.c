@@ -19,6 +19,7 @@ static const char usage[] =
     "  verify FILE PLAN  re-check every step of a plan (exit 0 valid, 1 not)\n"
     "  render FILE     draw the structure (and a plan) as SVG\n"
     "  generate KIND   write a generated structure (column, pyramid, wall, arch, random)\n"
+    "  count FILE      count the sub-assemblies connected to the ground (exit 0 exact, 1 refused)\n"
     "\n"
     "Run 'unstack COMMAND --help' for a command's options. Exit code 2: usage or input error.\n";
 
@@ -70,7 +71,8 @@ int main(int argc, char **argv) {
     const char *name;
     int (*fn)(int, char **);
   } cmds[] = {{"check", cmd_check}, {"plan", cmd_plan}, {"verify", cmd_verify},
-              {"render", cmd_render}, {"generate", cmd_generate}};
+              {"render", cmd_render}, {"generate", cmd_generate},
+              {"count", cmd_count}};
   if (argc < 2) {
     fputs(usage, stderr);
     return CLI_EXIT_ERR;
