@@ -117,6 +117,10 @@ static int pairs_push(PairList *l, int blocked, int blocker) {
 
 /* ------------------------------------------------------- UP: narrow phase */
 
+/* Vertex i (0 <= i < nvert) without us_poly_vertex's modulo: this is the
+ * inner loop of the precomputation. */
+static us_Vec2 vertex(const us_Body *b, int i) { return us_v2(b->verts[2 * i], b->verts[2 * i + 1]); }
+
 /* y of the non-vertical edge p-q at x. */
 static double edge_y(us_Vec2 p, us_Vec2 q, double x) {
   return p.y + (x - p.x) / (q.x - p.x) * (q.y - p.y);
@@ -126,7 +130,7 @@ static double edge_y(us_Vec2 p, us_Vec2 q, double x) {
  * somewhere in their common x-range. */
 static int edge_above(us_Vec2 p, us_Vec2 q, const us_Body *b, double e0, double e1, double tol) {
   for (int j = 0; j < b->nvert; j++) {
-    us_Vec2 r = us_poly_vertex(b->verts, b->nvert, j), t = us_poly_vertex(b->verts, b->nvert, j + 1);
+    us_Vec2 r = vertex(b, j), t = vertex(b, j + 1 < b->nvert ? j + 1 : 0);
     if (r.x == t.x) continue;
     double x0 = US_MAX(e0, US_MIN(r.x, t.x)), x1 = US_MIN(e1, US_MAX(r.x, t.x));
     if (x0 > x1) continue;
@@ -140,7 +144,7 @@ static int edge_above(us_Vec2 p, us_Vec2 q, const us_Body *b, double e0, double 
  * [lo, hi] (the edge-pair form of top_c(x) - bot_b(x) > tol). */
 static int body_above(const us_Body *c, const us_Body *b, double lo, double hi, double tol) {
   for (int i = 0; i < c->nvert; i++) {
-    us_Vec2 p = us_poly_vertex(c->verts, c->nvert, i), q = us_poly_vertex(c->verts, c->nvert, i + 1);
+    us_Vec2 p = vertex(c, i), q = vertex(c, i + 1 < c->nvert ? i + 1 : 0);
     if (p.x == q.x) continue;
     double e0 = US_MAX(lo, US_MIN(p.x, q.x)), e1 = US_MIN(hi, US_MAX(p.x, q.x));
     if (e0 <= e1 && edge_above(p, q, b, e0, e1, tol)) return 1;
@@ -216,17 +220,21 @@ static int contact_blockers(const us_Structure *s, PairList *out) {
 
 /* ------------------------------------------------------------ UP: lists */
 
-static int int_cmp(const void *pa, const void *pb) {
-  int a = *(const int *)pa, b = *(const int *)pb;
-  return (a > b) - (a < b);
+static void offsets(int *start, int nkeys) {
+  for (int i = 0; i < nkeys; i++) start[i + 1] += start[i];
 }
 
-/* Each list sorted and without duplicates, compacted in place. */
-static void sort_lists(us_Kinematics *k) {
+/* After filling with start[key]++: back to the starts. */
+static void unshift(int *start, int nkeys) {
+  for (int i = nkeys; i > 0; i--) start[i] = start[i - 1];
+  start[0] = 0;
+}
+
+/* Duplicates (two contacts of one pair) are adjacent: drop them. */
+static void dedup(us_Kinematics *k) {
   int w = 0, from = 0;
   for (int b = 0; b < k->nbody; b++) {
     int to = k->up_start[b + 1];
-    qsort(k->up + from, (size_t)(to - from), sizeof(int), int_cmp);
     k->up_start[b] = w;
     for (int i = from; i < to; i++)
       if (i == from || k->up[i] != k->up[i - 1]) k->up[w++] = k->up[i];
@@ -235,19 +243,33 @@ static void sort_lists(us_Kinematics *k) {
   k->up_start[k->nbody] = w;
 }
 
-/* Counting sort of the pairs by blocked body into up_start / up. */
-static int build_lists(us_Kinematics *k, const PairList *l) {
-  int np = l->n / 2;
-  k->up_start = us_calloc((size_t)k->nbody + 1, sizeof(int));
-  k->up = us_malloc((size_t)(np > 0 ? np : 1) * sizeof(int));
-  if (!k->up_start || !k->up) return -1;
+/* Two counting sorts: the pairs bucketed by blocker (+1, so the ground
+ * comes first), then read back in blocker order into each blocked body's
+ * list, which therefore comes out ascending. O(pairs + bodies). */
+static void fill_lists(us_Kinematics *k, const PairList *l, int *bstart, int *bval) {
+  int np = l->n / 2, nb = k->nbody;
+  for (int p = 0; p < np; p++) bstart[l->v[2 * p + 1] + 2]++;
+  offsets(bstart, nb + 1);
+  for (int p = 0; p < np; p++) bval[bstart[l->v[2 * p + 1] + 1]++] = l->v[2 * p];
+  unshift(bstart, nb + 1);
   for (int p = 0; p < np; p++) k->up_start[l->v[2 * p] + 1]++;
-  for (int b = 0; b < k->nbody; b++) k->up_start[b + 1] += k->up_start[b];
-  for (int p = 0; p < np; p++) k->up[k->up_start[l->v[2 * p]]++] = l->v[2 * p + 1];
-  for (int b = k->nbody; b > 0; b--) k->up_start[b] = k->up_start[b - 1];
-  k->up_start[0] = 0;
-  sort_lists(k);
-  return 0;
+  offsets(k->up_start, nb);
+  for (int c = 0; c <= nb; c++)
+    for (int i = bstart[c]; i < bstart[c + 1]; i++) k->up[k->up_start[bval[i]]++] = c - 1;
+  unshift(k->up_start, nb);
+  dedup(k);
+}
+
+static int build_lists(us_Kinematics *k, const PairList *l) {
+  size_t m = (size_t)(l->n > 0 ? l->n / 2 : 1);
+  int *bstart = us_calloc((size_t)k->nbody + 2, sizeof(int)), *bval = us_malloc(m * sizeof(int));
+  k->up_start = us_calloc((size_t)k->nbody + 1, sizeof(int));
+  k->up = us_malloc(m * sizeof(int));
+  int rc = bstart && bval && k->up_start && k->up ? 0 : -1;
+  if (!rc) fill_lists(k, l, bstart, bval);
+  us_free(bstart);
+  us_free(bval);
+  return rc;
 }
 
 static int build_up(us_Kinematics *k, const us_Structure *s) {
