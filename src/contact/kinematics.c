@@ -48,7 +48,8 @@
  * a d exists iff all the normals lie in a closed half-plane, i.e. iff the
  * largest circular gap between consecutive normal angles is >= pi; the
  * free directions then form the cone [beta - pi/2, alpha + pi/2], where
- * the normals span [alpha, beta], of width gap - pi. The test accepts a gap
+ * the normals span the arc [alpha, beta] (counter-clockwise, the
+ * complement of the gap), of width gap - pi. The test accepts a gap
  * of pi - US_KIN_ANGLE_TOL (rounding of normals that are exactly
  * opposite). Contacts count when the other side is present (the ground
  * and fixed bodies always are). It is a local test: bodies that b would
@@ -57,11 +58,13 @@
  * normals sorted by angle; a query walks them once, skipping absent
  * bodies.
  *
- * Cost: UP precompute O(n log n + P V^2 + B log B) for P pairs of bodies
- * whose x-ranges overlap, V vertices per body and B blocking pairs (a
- * running-bond wall of R rows: about 1.5 R blockers per brick; a column
- * of n blocks: n(n-1)/2, the size of the answer); FREE O(C log C) for C
- * contacts. */
+ * Cost: UP precompute O(n log n + P V^2 + B) for n bodies, P pairs whose
+ * x-ranges overlap, V vertices per body and B blocking pairs (the lists
+ * come out sorted from two counting sorts); a running-bond wall of R rows
+ * has about 1.5 R blockers per brick, a column of n blocks n(n-1)/2 pairs
+ * in all: that is the size of the answer. Memory: 4 bytes per blocking
+ * pair kept, about 16 (plus growth slack) while building. FREE precompute
+ * O(C log C) for C contacts. */
 #include "kinematics.h"
 
 #include "geometry/geometry.h"
