@@ -25,8 +25,9 @@
  * its frontier; on planar graphs (walls, pyramids) the partitions are
  * non-crossing, about 4^w for width w. The order is chosen among a few
  * candidates (rows by y, columns by x, breadth first from G) for the
- * smallest largest frontier. Counts after t vertices are at most 2^t, so a
- * layer's limbs per count are fixed, t / 64 + 1. */
+ * smallest largest frontier, each swept part by part (the parts of the
+ * graph without G touch only through supports). Counts after t vertices
+ * are at most 2^t, so a layer's limbs per count are fixed, t / 64 + 1. */
 #include "analysis/count.h"
 
 #include <stdio.h>
@@ -38,69 +39,98 @@
 /* ------------------------------------------------------------------ layer */
 
 /* One layer: keys of w bytes, counts of nw limbs, open addressing over
- * state indices (slot value index + 1; 0 empty; load at most 1/2). */
+ * state indices at load at most 1/2. A slot holds the state's index + 1
+ * in its low 32 bits (0: empty) and the top 32 bits of the key's hash in
+ * its high bits, so a probe reads one word and compares keys only when
+ * the tags agree (each access is a cache miss on big layers); the full
+ * hashes are kept for rehashing. */
+#define SLOT_TAG(h) ((h) & 0xffffffff00000000ull)
+#define MAX_STATES 0xfffffffeu
+
 typedef struct Layer {
   int w, nw;
   size_t n, kcap, cap;
-  size_t *slot;
+  uint64_t *slot;
+  uint64_t *hash;
   unsigned char *key;
   uint64_t *val;
 } Layer;
 
 static void layer_free(Layer *L) {
   us_free(L->slot);
+  us_free(L->hash);
   us_free(L->key);
   us_free(L->val);
   memset(L, 0, sizeof *L);
 }
 
-static int layer_init(Layer *L, int w, int nw) {
+/* An empty layer with room for about `expect` states without rehashing. */
+static int layer_init(Layer *L, int w, int nw, size_t expect) {
   memset(L, 0, sizeof *L);
   L->w = w;
   L->nw = nw;
   L->cap = 16;
-  L->slot = us_calloc(L->cap, sizeof(size_t));
+  while (L->cap < 2 * expect && L->cap < ((size_t)1 << 40)) L->cap *= 2;
+  L->slot = us_calloc(L->cap, sizeof(uint64_t));
   return L->slot ? 0 : -1;
 }
 
 static double layer_bytes(const Layer *L) {
-  return (double)L->cap * sizeof(size_t) + (double)L->kcap * (double)L->w +
-         (double)L->kcap * (double)L->nw * sizeof(uint64_t);
+  return (double)L->cap * sizeof(uint64_t) +
+         (double)L->kcap * ((double)L->w + (double)(L->nw + 1) * sizeof(uint64_t));
 }
 
+/* 8 bytes at a time through a multiply-xorshift mix. */
 static uint64_t key_hash(const unsigned char *k, int w) {
-  uint64_t h = 1469598103934665603ull;
-  for (int i = 0; i < w; i++) h = (h ^ k[i]) * 1099511628211ull;
+  uint64_t h = (uint64_t)w * 0x9e3779b97f4a7c15ull;
+  for (int i = 0; i < w; i += 8) {
+    uint64_t x = 0;
+    memcpy(&x, k + i, (size_t)US_MIN(8, w - i));
+    h = (h ^ x) * 0xbf58476d1ce4e5b9ull;
+    h ^= h >> 31;
+  }
+  h *= 0x94d049bb133111ebull;
   return h ^ (h >> 29);
 }
 
-/* The slot of key k: where it is, or the empty slot where it would go. */
-static size_t layer_find(const Layer *L, const unsigned char *k) {
-  size_t m = L->cap - 1, i = (size_t)key_hash(k, L->w) & m;
-  while (L->slot[i] && memcmp(L->key + (L->slot[i] - 1) * (size_t)L->w, k, (size_t)L->w))
-    i = (i + 1) & m;
+/* The slot of key k (hash h): where it is, or the empty slot where it
+ * would go. */
+static size_t layer_find(const Layer *L, const unsigned char *k, uint64_t h) {
+  size_t m = L->cap - 1, i = (size_t)h & m;
+  for (uint64_t e; (e = L->slot[i]) != 0; i = (i + 1) & m) {
+    size_t j = (size_t)(uint32_t)e - 1;
+    if (SLOT_TAG(e) == SLOT_TAG(h) && !memcmp(L->key + j * (size_t)L->w, k, (size_t)L->w)) break;
+  }
   return i;
 }
 
 static int layer_rehash(Layer *L) {
-  size_t *old = L->slot, ocap = L->cap;
-  size_t *slot = us_calloc(2 * ocap, sizeof(size_t));
+  size_t cap = 2 * L->cap, m = cap - 1;
+  uint64_t *slot = us_calloc(cap, sizeof(uint64_t));
   if (!slot) return -1;
+  for (size_t j = 0; j < L->n; j++) {
+    size_t i = (size_t)L->hash[j] & m;
+    while (slot[i]) i = (i + 1) & m;
+    slot[i] = SLOT_TAG(L->hash[j]) | (uint64_t)(j + 1);
+  }
+  us_free(L->slot);
   L->slot = slot;
-  L->cap = 2 * ocap;
-  for (size_t i = 0; i < ocap; i++)
-    if (old[i]) L->slot[layer_find(L, L->key + (old[i] - 1) * (size_t)L->w)] = old[i];
-  us_free(old);
+  L->cap = cap;
   return 0;
 }
 
+/* Room for one more state; -1 out of memory (or past MAX_STATES). */
 static int layer_reserve(Layer *L) {
+  if (L->n >= MAX_STATES) return -1;
   if (2 * (L->n + 1) > L->cap && layer_rehash(L)) return -1;
   if (L->n < L->kcap) return 0;
   size_t kcap = L->kcap ? 2 * L->kcap : 64;
   unsigned char *key = us_realloc(L->key, kcap * (size_t)L->w + 1);
   if (!key) return -1;
   L->key = key;
+  uint64_t *hash = us_realloc(L->hash, kcap * sizeof(uint64_t));
+  if (!hash) return -1;
+  L->hash = hash;
   uint64_t *val = us_realloc(L->val, kcap * (size_t)L->nw * sizeof(uint64_t));
   if (!val) return -1;
   L->val = val;
@@ -122,37 +152,64 @@ static void add_limbs(uint64_t *dst, int nw, const uint64_t *src, int ns) {
 /* Add count c (ns limbs) to key k. 0, or -1 out of memory. */
 static int layer_add(Layer *L, const unsigned char *k, const uint64_t *c, int ns) {
   if (layer_reserve(L)) return -1;
-  size_t i = layer_find(L, k);
+  uint64_t h = key_hash(k, L->w);
+  size_t i = layer_find(L, k, h);
   if (!L->slot[i]) {
     memcpy(L->key + L->n * (size_t)L->w, k, (size_t)L->w);
     memset(L->val + L->n * (size_t)L->nw, 0, (size_t)L->nw * sizeof(uint64_t));
-    L->slot[i] = ++L->n;
+    L->hash[L->n] = h;
+    L->slot[i] = SLOT_TAG(h) | (uint64_t)++L->n;
   }
-  add_limbs(L->val + (L->slot[i] - 1) * (size_t)L->nw, L->nw, c, ns);
+  add_limbs(L->val + ((size_t)(uint32_t)L->slot[i] - 1) * (size_t)L->nw, L->nw, c, ns);
   return 0;
 }
 
 /* ------------------------------------------------------------------ order */
 
+/* Every candidate order is component-major: the parts of the graph
+ * without G (bodies touching only through supports) are swept one after
+ * the other, so their frontiers never add up; within a part the order
+ * follows the candidate's rule. */
+
+/* comp[v] = the part of v (numbered by lowest vertex); queue is scratch
+ * of n ints. Returns the number of parts. */
+static int parts(const us_CGraph *g, int *comp, int *queue) {
+  int k = 0;
+  for (int v = 0; v < g->n; v++) comp[v] = -1;
+  for (int v0 = 0; v0 < g->n; v0++) {
+    if (comp[v0] >= 0) continue;
+    int tail = 0;
+    comp[v0] = k, queue[tail++] = v0;
+    for (int h = 0; h < tail; h++)
+      for (int e = g->start[queue[h]]; e < g->start[queue[h] + 1]; e++)
+        if (comp[g->adj[e]] < 0) comp[g->adj[e]] = k, queue[tail++] = g->adj[e];
+    k++;
+  }
+  return k;
+}
+
 typedef struct SortItem {
+  int c;
   double k1, k2;
   int v;
 } SortItem;
 
 static int cmp_item(const void *a, const void *b) {
   const SortItem *x = a, *y = b;
+  if (x->c != y->c) return x->c < y->c ? -1 : 1;
   if (x->k1 != y->k1) return x->k1 < y->k1 ? -1 : 1;
   if (x->k2 != y->k2) return x->k2 < y->k2 ? -1 : 1;
   return (x->v > y->v) - (x->v < y->v);
 }
 
-/* ord = vertices sorted by centre coordinate `axis`, then the other. */
-static int order_by_axis(const us_CGraph *g, const us_Structure *s, int axis, int *ord) {
+/* ord = vertices by part, then centre coordinate `axis`, then the other. */
+static int order_by_axis(const us_CGraph *g, const us_Structure *s, const int *comp, int axis,
+                         int *ord) {
   SortItem *it = us_malloc((size_t)g->n * sizeof *it + 1);
   if (!it) return -1;
   for (int v = 0; v < g->n; v++) {
     const double *c = s->bodies[g->body[v]].com;
-    it[v] = (SortItem){c[axis], c[1 - axis], v};
+    it[v] = (SortItem){comp[v], c[axis], c[1 - axis], v};
   }
   qsort(it, (size_t)g->n, sizeof *it, cmp_item);
   for (int v = 0; v < g->n; v++) ord[v] = it[v].v;
@@ -160,15 +217,21 @@ static int order_by_axis(const us_CGraph *g, const us_Structure *s, int axis, in
   return 0;
 }
 
-/* ord = breadth-first order from G (the vertices touching G first). */
-static void order_bfs(const us_CGraph *g, int *ord, unsigned char *seen) {
+/* ord = breadth-first order from G, part by part: the multi-source
+ * breadth-first order, stably sorted by part (restricted to one part it is
+ * that part's own breadth-first order). bfs and cnt: scratch of n + 1. */
+static void order_bfs(const us_CGraph *g, const int *comp, int k, int *ord, int *bfs, int *cnt) {
   int tail = 0;
-  memset(seen, 0, (size_t)g->n);
+  for (int v = 0; v < g->n; v++) ord[v] = 0; /* seen marks */
   for (int v = 0; v < g->n; v++)
-    if (g->gadj[v]) seen[v] = 1, ord[tail++] = v;
+    if (g->gadj[v]) ord[v] = 1, bfs[tail++] = v;
   for (int head = 0; head < tail; head++)
-    for (int k = g->start[ord[head]]; k < g->start[ord[head] + 1]; k++)
-      if (!seen[g->adj[k]]) seen[g->adj[k]] = 1, ord[tail++] = g->adj[k];
+    for (int e = g->start[bfs[head]]; e < g->start[bfs[head] + 1]; e++)
+      if (!ord[g->adj[e]]) ord[g->adj[e]] = 1, bfs[tail++] = g->adj[e];
+  memset(cnt, 0, ((size_t)k + 1) * sizeof(int));
+  for (int v = 0; v < g->n; v++) cnt[comp[v] + 1]++;
+  for (int c = 0; c < k; c++) cnt[c + 1] += cnt[c];
+  for (int i = 0; i < tail; i++) ord[cnt[comp[bfs[i]]]++] = bfs[i];
 }
 
 /* pos (inverse of ord) and last[v] = the last step with v on the
@@ -204,6 +267,7 @@ typedef struct Frontier {
   int *slot_of;        /* [n] slot of a frontier vertex, else -1 */
   int *keep, vslot, f2;/* step: new slot of each old slot (-1 leaves), of v */
   int *nb, nnb;        /* step: old slots of v's decided neighbours */
+  int *comp, *tmp;     /* order choice: part of each vertex, scratch */
   unsigned char lab[MAX_WIDTH + 4], key2[MAX_WIDTH + 4], map[MAX_WIDTH + 4];
   int cnt[MAX_WIDTH + 4];
   Layer cur, next;
@@ -217,6 +281,8 @@ static void frontier_free(Frontier *F) {
   us_free(F->slot_of);
   us_free(F->keep);
   us_free(F->nb);
+  us_free(F->comp);
+  us_free(F->tmp);
   layer_free(&F->cur);
   layer_free(&F->next);
 }
@@ -230,7 +296,11 @@ static int frontier_alloc(Frontier *F, int n) {
   F->slot_of = us_malloc(m * sizeof(int));
   F->keep = us_malloc(m * sizeof(int));
   F->nb = us_malloc(m * sizeof(int));
-  if (!F->ord || !F->pos || !F->last || !F->fr || !F->slot_of || !F->keep || !F->nb) return -1;
+  F->comp = us_malloc(m * sizeof(int));
+  F->tmp = us_malloc(m * sizeof(int));
+  if (!F->ord || !F->pos || !F->last || !F->fr || !F->slot_of || !F->keep || !F->nb ||
+      !F->comp || !F->tmp)
+    return -1;
   for (int v = 0; v < n; v++) F->slot_of[v] = -1;
   return 0;
 }
@@ -241,9 +311,10 @@ static int choose_order(Frontier *F, const us_Structure *s) {
   static const char *const names[] = {"rows (by y)", "columns (by x)", "breadth first from G"};
   int best = -1, bw = 0;
   long bsum = 0, sum;
+  int k = parts(g, F->comp, F->tmp);
   for (int c = 0; c < 3; c++) {
-    if (c < 2 && order_by_axis(g, s, 1 - c, F->keep)) return -1;
-    if (c == 2) order_bfs(g, F->keep, (unsigned char *)F->nb);
+    if (c < 2 && order_by_axis(g, s, F->comp, 1 - c, F->keep)) return -1;
+    if (c == 2) order_bfs(g, F->comp, k, F->keep, F->tmp, F->nb);
     order_last(g, F->keep, F->pos, F->last);
     int w = order_width(g, F->pos, F->last, F->fr, &sum);
     if (best < 0 || w < bw || (w == bw && sum < bsum)) {
@@ -344,7 +415,7 @@ static int expand(Frontier *F, int v, const unsigned char *k, const uint64_t *c,
 static int step(Frontier *F, int t) {
   int v = F->ord[t];
   plan_step(F, v, t);
-  if (layer_init(&F->next, F->f2, (t + 1) / 64 + 1)) return -1;
+  if (layer_init(&F->next, F->f2, (t + 1) / 64 + 1, F->cur.n)) return -1;
   us_CountRun *run = F->run;
   for (size_t i = 0; i < F->cur.n; i++) {
     if (us_count_tick(run)) return 1;
@@ -364,7 +435,7 @@ static int step(Frontier *F, int t) {
 /* The first layer: the empty frontier, one way (nothing decided). */
 static int start(Frontier *F) {
   uint64_t one = 1;
-  return layer_init(&F->cur, 0, 1) || layer_add(&F->cur, F->key2, &one, 1) ? -1 : 0;
+  return layer_init(&F->cur, 0, 1, 1) || layer_add(&F->cur, F->key2, &one, 1) ? -1 : 0;
 }
 
 us_Status us_count_frontier(const us_CGraph *g, us_CountRun *run, us_Big *out, us_Error *err) {

@@ -12,8 +12,9 @@
  * into the parent's product at once, so no f is kept longer than needed.
  * A product keeps its one-limb factors in a 64-bit pending factor until
  * the next one would overflow it: a star of k leaves costs k / 63 passes
- * over its big product instead of k. An empty product (acc.n == 0) means
- * 1; products are never 0, so that mark is unambiguous. */
+ * over its big product instead of k, and a node whose f fits one limb
+ * allocates nothing. An empty product (acc.n == 0) means 1; products are
+ * never 0, so that mark is unambiguous. */
 #include "analysis/count.h"
 
 #include <string.h>
@@ -104,7 +105,10 @@ us_Status us_count_tree(const us_CGraph *g, const us_Bitset *R, const us_Bitset 
   int cnt = rc ? 0 : tree_bfs(g, R, A, &t);
   for (int i = cnt - 1; i >= 0 && !rc; i--) {
     int v = t.order[i], p = t.parent[v];
-    rc = finish(&t.acc[v], &t.pend[v], &x) || fold(&t.acc[p], &t.pend[p], &x);
+    uint64_t x1 = t.pend[v] + 1;
+    us_Big small = {1, 1, &x1}; /* f(v) + 1 in one limb: no allocation */
+    if (t.acc[v].n == 0 && x1 != 0) rc = fold(&t.acc[p], &t.pend[p], &small);
+    else rc = finish(&t.acc[v], &t.pend[v], &x) || fold(&t.acc[p], &t.pend[p], &x);
   }
   if (!rc) rc = flush(&t.acc[g->n], &t.pend[g->n]) || us_big_copy(out, &t.acc[g->n]);
   us_big_free(&x);
