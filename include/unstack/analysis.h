@@ -42,9 +42,11 @@ const char *us_count_status_name(us_CountStatus s);
 
 typedef struct us_CountSettings {
   us_CountMethod method;  /* default AUTO */
-  int max_tree_bodies;    /* tree formula: refuse past this (default 1,000,000) */
-  int max_bodies;         /* frontier / contraction: refuse past this (default 10,000) */
-  double time_limit;      /* seconds, <= 0: none (default 10) */
+  int max_tree_bodies;    /* tree formula: refuse past this (default 1,000,000; <= 0: none) */
+  int max_bodies;         /* frontier / contraction: refuse past this (default 10,000;
+                             <= 0: none); bodies connected to the ground are counted */
+  double time_limit;      /* seconds, <= 0: none (default 10); general methods only:
+                             the tree formula is linear */
   double max_memory_mb;   /* state tables and memo, <= 0: none (default 2048) */
 } us_CountSettings;
 us_CountSettings us_count_default_settings(void);

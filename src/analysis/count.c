@@ -68,9 +68,9 @@ void us_cgraph_free(us_CGraph *g) {
 
 /* ------------------------------------------------------------ run limits */
 
-static void refuse(us_CountRun *run, us_CountStatus st, const char *what) {
+void us_count_refuse(us_CountRun *run, us_CountStatus st, const char *why) {
   run->out->status = st;
-  snprintf(run->out->note, sizeof run->out->note, "%s", what);
+  snprintf(run->out->note, sizeof run->out->note, "%s", why);
 }
 
 int us_count_tick(us_CountRun *run) {
@@ -80,7 +80,7 @@ int us_count_tick(us_CountRun *run) {
   if ((w & 1023) != 0 || !(lim > 0) || us_now() - run->t0 <= lim) return 0;
   char msg[96];
   snprintf(msg, sizeof msg, "time limit of %g s reached", lim);
-  refuse(run, US_COUNT_REFUSED_TIME, msg);
+  us_count_refuse(run, US_COUNT_REFUSED_TIME, msg);
   return 1;
 }
 
@@ -90,7 +90,7 @@ int us_count_over_memory(us_CountRun *run, double bytes) {
   if (!(lim > 0) || bytes <= lim * 1048576.0) return 0;
   char msg[96];
   snprintf(msg, sizeof msg, "the tables would pass the memory bound of %g MB", lim);
-  refuse(run, US_COUNT_REFUSED_MEMORY, msg);
+  us_count_refuse(run, US_COUNT_REFUSED_MEMORY, msg);
   return 1;
 }
 
@@ -244,7 +244,7 @@ static int size_refused(us_CountRun *run, int n) {
   char msg[128];
   snprintf(msg, sizeof msg, "%d bodies connected to the ground; the %s limit is %d", n,
            tree ? "tree formula's" : "general algorithms'", lim);
-  refuse(run, US_COUNT_REFUSED_SIZE, msg);
+  us_count_refuse(run, US_COUNT_REFUSED_SIZE, msg);
   return 1;
 }
 

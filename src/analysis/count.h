@@ -34,6 +34,8 @@ typedef struct us_CountRun {
   us_Count *out;
 } us_CountRun;
 
+/* Refuse: out->status = st, out->note = why. */
+void us_count_refuse(us_CountRun *run, us_CountStatus st, const char *why);
 /* One unit of work (out->work++); every 1024 units the clock is read. 1
  * when the time limit is reached (status and note set), else 0. */
 int us_count_tick(us_CountRun *run);

@@ -261,9 +261,10 @@ static int root(const us_CGraph *g, Sub *p) {
 
 us_Status us_count_contract(const us_CGraph *g, us_CountRun *run, us_Big *out, us_Error *err) {
   if (g->n > MAX_DEPTH) {
-    run->out->status = US_COUNT_REFUSED_SIZE;
-    snprintf(run->out->note, sizeof run->out->note,
-             "deletion-contraction recurses once per body: at most %d, not %d", MAX_DEPTH, g->n);
+    char msg[96];
+    snprintf(msg, sizeof msg, "deletion-contraction recurses once per body: at most %d, not %d",
+             MAX_DEPTH, g->n);
+    us_count_refuse(run, US_COUNT_REFUSED_SIZE, msg);
     return US_OK;
   }
   Contract C;

@@ -421,6 +421,8 @@ static int step(Frontier *F, int t) {
     if (us_count_tick(run)) return 1;
     if ((i & 1023) == 0 && us_count_over_memory(run, layer_bytes(&F->cur) + layer_bytes(&F->next)))
       return 1;
+    if (F->next.n + 2 > MAX_STATES)
+      return us_count_refuse(run, US_COUNT_REFUSED_MEMORY, "more than 2^32 - 2 states in a layer"), 1;
     const unsigned char *k = F->cur.key + i * (size_t)F->cur.w;
     if (expand(F, v, k, F->cur.val + i * (size_t)F->cur.nw, F->cur.nw)) return -1;
   }
@@ -446,10 +448,9 @@ us_Status us_count_frontier(const us_CGraph *g, us_CountRun *run, us_Big *out, u
   int rc = frontier_alloc(&F, g->n) || choose_order(&F, run->s) ? -1 : 0;
   run->out->width = F.width;
   if (!rc && F.width > MAX_WIDTH) {
-    char msg[128];
+    char msg[96];
     snprintf(msg, sizeof msg, "frontier width %d is more than %d", F.width, MAX_WIDTH);
-    run->out->status = US_COUNT_REFUSED_SIZE;
-    snprintf(run->out->note, sizeof run->out->note, "%s", msg);
+    us_count_refuse(run, US_COUNT_REFUSED_SIZE, msg);
     rc = 1;
   }
   if (!rc) rc = start(&F);
