@@ -14,10 +14,23 @@ static const char help[] =
     "options:\n"
     "  -o, --output PLAN   write the plan file (also when no order exists)\n"
     "  --method M          lp (CLP, default), lpsolve, lcp, lcp-reuse\n"
-    "  --search S          dfs (default) or bfs\n"
-    "  --order O           candidate order: highest (default), lowest, input\n"
-    "  --direction D       down (disassembly, default) or up (assembly from\n"
-    "                      the ground; the plan is its reverse)\n"
+    "  --search S          assemble (default): greedy assembly from the ground,\n"
+    "                      complete by the union theorem (at most n(n+1)/2 tests;\n"
+    "                      'none' is a proof); dfs, bfs: the source's searches of\n"
+    "                      the disassembly graph; random: DFS with random order\n"
+    "                      and restarts (--seed)\n"
+    "  --max-group K       steps of up to K bodies at once (assemble); 'auto': the\n"
+    "                      smallest K that gives an order (default 1)\n"
+    "  --removal R         any (default), up (lifted straight up without hitting\n"
+    "                      a body that stays), free (some translation frees it);\n"
+    "                      up and free need a graph search\n"
+    "  --order O           graph searches: highest (default), lowest, input\n"
+    "  --direction D       graph searches: down (disassembly, default) or up\n"
+    "                      (assembly; the plan is its reverse)\n"
+    "  --rules LIST        culling rules of the graph searches: all (default),\n"
+    "                      none, or a comma list of memo, ground, union,\n"
+    "                      components, greedy\n"
+    "  --seed S            random search seed (default 1)\n"
     "  --max-tests N       stop after N stability tests (status \"limit\")\n"
     "  --time-limit SEC    stop after SEC seconds (status \"limit\")\n"
     "  --certificates      store the contact forces of every step in the plan\n"
@@ -30,6 +43,10 @@ static void print_stats(const us_PlanStats *st) {
   printf("statistics:\n  tests %ld (stable %ld, unstable %ld), revisited %ld, expanded %ld, "
          "max depth %ld\n",
          st->tests, st->stable, st->unstable, st->revisited, st->nodes_expanded, st->max_depth);
+  printf("  rules: ground saved %ld tests, union saved %ld, greedy checks %ld (cut %ld), "
+         "components %ld, retries skipped %ld, restarts %ld\n",
+         st->saved_ground, st->saved_union, st->greedy_checks, st->greedy_cuts, st->components,
+         st->retries_skipped, st->restarts);
   printf("  time: total %.3f s, setup %.3f s, search %.3f s, in solver %.3f s, "
          "certificate checks %.3f s\n",
          st->time_total, st->time_setup, st->time_search, st->time_solve, st->time_check);
@@ -39,16 +56,36 @@ static void print_stats(const us_PlanStats *st) {
          st->stability.lcp_seeds, st->stability.lcp_skips, st->stability.reused);
 }
 
-static void print_summary(const us_Plan *p, const CliCommon *c, const char *out) {
+/* Up to `max` ids of a list, then "and N more". */
+static void print_ids(const us_Structure *s, const int *v, int n, int max) {
+  for (int k = 0; k < n && k < max; k++) printf("%s%s", k ? ", " : "", s->bodies[v[k]].id);
+  if (n > max) printf(" and %d more", n - max);
+}
+
+static void print_summary(const us_Structure *s, const us_Plan *p, const CliCommon *c,
+                          const char *out) {
   const us_PlanStats *st = &p->stats;
   printf("%s", us_plan_status_name(p->status));
-  if (p->status == US_PLAN_FOUND) printf(": %d removals", p->nsteps);
-  printf(", %ld tests (%ld unstable, %ld revisited), %.3f s [%s, %s, %s, %s]", st->tests,
-         st->unstable, st->revisited, st->time_total, us_method_name(c->stab.method),
-         cli_search_names[c->plan.search], cli_order_names[c->plan.order],
-         cli_direction_names[c->plan.direction]);
+  if (p->status == US_PLAN_FOUND && p->ngroups == p->nsteps)
+    printf(": %d removals", p->nsteps);
+  else if (p->status == US_PLAN_FOUND)
+    printf(": %d removals in %d steps of up to %d bodies", p->nsteps, p->ngroups, p->max_group);
+  printf(", %ld tests (%ld unstable, %ld revisited), %.3f s [%s, %s", st->tests, st->unstable,
+         st->revisited, st->time_total, us_method_name(c->stab.method),
+         us_search_name(c->plan.search));
+  if (c->plan.search != US_SEARCH_ASSEMBLE)
+    printf(", %s, %s", us_order_name(c->plan.order), us_direction_name(c->plan.direction));
+  if (c->plan.removal != US_REMOVAL_ANY) printf(", removal %s", us_removal_name(c->plan.removal));
+  printf("]");
   if (out) printf(" -> %s", out);
   printf("\n");
+  if (p->status == US_PLAN_NONE && p->blocked) {
+    printf("  cannot be removed with steps of up to %d bod%s: ", p->max_group > 0 ? p->max_group : 1,
+           p->max_group > 1 ? "ies" : "y");
+    print_ids(s, p->blocked, p->nblocked, 20);
+    printf("\n  the largest buildable sub-assembly has %d of %d bodies\n", p->nbuildable,
+           p->nbuildable + p->nblocked);
+  }
 }
 
 typedef struct {
@@ -75,6 +112,26 @@ static int parse(int argc, char **argv, CliCommon *c, PlanArgs *a) {
       if (!(v = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
       if (cli_parse_double(v, &c->plan.time_limit) || c->plan.time_limit <= 0)
         return cli_fail("plan", "--time-limit needs a positive number of seconds, got '%s'", v);
+    } else if (!strcmp(argv[i], "--max-group")) {
+      if (!(v = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
+      if (!strcmp(v, "auto")) c->plan.max_group = 0;
+      else if (cli_parse_long(v, &n) || n < 1 || n > 64)
+        return cli_fail("plan", "--max-group needs 'auto' or an integer from 1 to 64, got '%s'", v);
+      else c->plan.max_group = (int)n;
+    } else if (!strcmp(argv[i], "--removal")) {
+      if (!(v = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
+      if (us_removal_parse(v, &c->plan.removal))
+        return cli_fail("plan", "unknown removal '%s' (any, up, free)", v);
+    } else if (!strcmp(argv[i], "--rules")) {
+      if (!(v = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
+      if (us_rules_parse(v, &c->plan.rules))
+        return cli_fail("plan", "unknown rules '%s' (all, none, or a comma list of memo, "
+                        "ground, union, components, greedy)", v);
+    } else if (!strcmp(argv[i], "--seed")) {
+      if (!(v = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
+      if (cli_parse_long(v, &n) || n < 0)
+        return cli_fail("plan", "--seed needs a non-negative integer, got '%s'", v);
+      c->plan.seed = (unsigned long)n;
     } else if (!strcmp(argv[i], "--certificates")) {
       c->plan.certificates = 1;
     } else if (!strcmp(argv[i], "--stats")) {
@@ -106,7 +163,7 @@ int cmd_plan(int argc, char **argv) {
   int code = CLI_EXIT_ERR;
   if (us_plan(s, &c.plan, &p, &err) == US_OK) {
     if (!a.out || us_plan_write(s, &p, &c.plan, a.out, &err) == US_OK) {
-      print_summary(&p, &c, a.out);
+      print_summary(s, &p, &c, a.out);
       if (a.stats) print_stats(&p.stats);
       code = p.status == US_PLAN_FOUND ? CLI_EXIT_OK : CLI_EXIT_NO;
     }

@@ -28,8 +28,9 @@ static int report(const us_Structure *s, const us_PlanFile *pf, const us_VerifyR
     printf("invalid: the full structure does not stand\n");
   } else if (rep->failed_step >= 0) {
     int k = rep->failed_step;
-    printf("invalid: step %d (removing '%s'): the remaining %d bodies do not stand", k + 1,
-           s->bodies[pf->order[k]].id, rep->remaining);
+    printf("invalid: step %d (removing '%s'%s): the remaining %d bodies do not stand", k + 1,
+           s->bodies[pf->order[pf->group_start[k]]].id,
+           pf->group_start[k + 1] - pf->group_start[k] > 1 ? " and others" : "", rep->remaining);
     if (rep->unstable_body >= 0) printf(" ('%s' cannot be held)", s->bodies[rep->unstable_body].id);
     printf("\n");
   } else {
@@ -66,7 +67,8 @@ int cmd_verify(int argc, char **argv) {
       printf("invalid: the plan's status is \"%s\": it holds no complete order\n",
              us_plan_status_name(pf.status));
       code = CLI_EXIT_NO;
-    } else if (us_verify_order(s, &c.stab, pf.order, pf.n, &rep, &err) == US_OK) {
+    } else if (us_verify_steps(s, &c.stab, pf.order, pf.n, pf.group_start, pf.ngroups, &rep,
+                               &err) == US_OK) {
       code = report(s, &pf, &rep);
     }
   }

@@ -5,24 +5,10 @@
 #include <stdio.h>
 #include <string.h>
 
-static int parse_enum(const char *s, const char *const *names, int n, int *out) {
-  for (int i = 0; i < n; i++)
-    if (!strcmp(s, names[i])) {
-      *out = i;
-      return 0;
-    }
-  return -1;
-}
-
-const char *const cli_search_names[] = {"dfs", "bfs"};
-const char *const cli_order_names[] = {"highest", "lowest", "input"};
-const char *const cli_direction_names[] = {"down", "up"};
-
 /* Returns 1 if argv[*i] was a common option (consumed), 0 if not, -1 on a
  * bad value (message printed). */
 int cli_common_option(const char *cmd, int argc, char **argv, int *i, CliCommon *c) {
   const char *a = argv[*i], *v;
-  int e;
   if (!strcmp(a, "--method")) {
     if (!(v = cli_value(cmd, argc, argv, i))) return -1;
     us_Method m;
@@ -39,23 +25,20 @@ int cli_common_option(const char *cmd, int argc, char **argv, int *i, CliCommon 
   }
   if (!strcmp(a, "--search")) {
     if (!(v = cli_value(cmd, argc, argv, i))) return -1;
-    if (parse_enum(v, cli_search_names, 2, &e))
-      return cli_fail(cmd, "unknown search '%s' (dfs, bfs)", v), -1;
-    c->plan.search = (us_Search)e;
+    if (us_search_parse(v, &c->plan.search))
+      return cli_fail(cmd, "unknown search '%s' (assemble, dfs, bfs, random)", v), -1;
     return 1;
   }
   if (!strcmp(a, "--order")) {
     if (!(v = cli_value(cmd, argc, argv, i))) return -1;
-    if (parse_enum(v, cli_order_names, 3, &e))
+    if (us_order_parse(v, &c->plan.order))
       return cli_fail(cmd, "unknown order '%s' (highest, lowest, input)", v), -1;
-    c->plan.order = (us_Order)e;
     return 1;
   }
   if (!strcmp(a, "--direction")) {
     if (!(v = cli_value(cmd, argc, argv, i))) return -1;
-    if (parse_enum(v, cli_direction_names, 2, &e))
+    if (us_direction_parse(v, &c->plan.direction))
       return cli_fail(cmd, "unknown direction '%s' (down, up)", v), -1;
-    c->plan.direction = (us_Direction)e;
     return 1;
   }
   return 0;

@@ -11,10 +11,6 @@ typedef struct CliCommon {
   double contact_tol; /* 0: derived */
 } CliCommon;
 
-extern const char *const cli_search_names[];
-extern const char *const cli_order_names[];
-extern const char *const cli_direction_names[];
-
 void cli_common_init(CliCommon *c);
 int cli_common_option(const char *cmd, int argc, char **argv, int *i, CliCommon *c);
 /* Read and finalize a structure; prints the error and returns NULL. */

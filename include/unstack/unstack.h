@@ -320,7 +320,21 @@ typedef enum us_PlanStatus {
   US_PLAN_UNSTABLE,  /* the full structure does not stand */
   US_PLAN_LIMIT      /* max_tests or time_limit reached */
 } us_PlanStatus;
+/* Names of the planner's enums (the words of the plan files and the CLI);
+ * parse returns 0, or -1 for an unknown word. */
 const char *us_plan_status_name(us_PlanStatus s);
+int us_plan_status_parse(const char *w, us_PlanStatus *out);
+const char *us_search_name(us_Search s);
+int us_search_parse(const char *w, us_Search *out);
+const char *us_order_name(us_Order o);
+int us_order_parse(const char *w, us_Order *out);
+const char *us_direction_name(us_Direction d);
+int us_direction_parse(const char *w, us_Direction *out);
+const char *us_removal_name(us_Removal r);
+int us_removal_parse(const char *w, us_Removal *out);
+const char *us_rule_name(int bit); /* one US_RULE_* bit */
+/* "all", "none" or a comma-separated list of rule names. */
+int us_rules_parse(const char *list, unsigned *out);
 
 typedef struct us_PlanSettings {
   us_Search search;
@@ -366,7 +380,7 @@ typedef struct us_Plan {
   int nsteps;            /* number of bodies removed (length of order) when found */
   int *order;            /* body indices in removal order */
   int ngroups;           /* number of steps; == nsteps when every step is one body */
-  int *group_start;      /* [ngroups + 1]: step k removes order[group_start[k] ..
+  int *group_start;      /* [ngroups + 1] (NULL: one body per step): step k removes order[group_start[k] ..
                             group_start[k + 1] - 1] */
   int max_group;         /* largest step used (found), or the bound searched (none) */
   us_Forces *certs;      /* with certificates: ngroups+1 entries, certs[k] =

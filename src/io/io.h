@@ -60,12 +60,5 @@ void us_jo_vec2(us_JsonOut *o, const double *v); /* [x, y] */
 void us_jo_contact_fields(us_JsonOut *o, const us_Structure *s, const us_Contact *c);
 void us_jo_raw(us_JsonOut *o, const char *s);
 
-/* Name tables (file format words, independent of other modules). */
-const char *us_io_plan_status_word(us_PlanStatus s);
-int us_io_plan_status_parse(const char *w, us_PlanStatus *out); /* 0 or -1 */
-const char *us_io_method_word(us_Method m);
-const char *us_io_search_word(us_Search s);
-const char *us_io_order_word(us_Order o);
-const char *us_io_direction_word(us_Direction d);
 
 #endif

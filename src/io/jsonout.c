@@ -51,31 +51,6 @@ void us_jo_vec2(us_JsonOut *o, const double *v) {
 
 void us_jo_raw(us_JsonOut *o, const char *s) { fputs(s, o->fp); }
 
-static const char *const status_words[] = {"found", "none", "unstable", "limit"};
-static const char *const method_words[] = {"lp", "lpsolve", "lcp", "lcp-reuse"};
-static const char *const search_words[] = {"dfs", "bfs"};
-static const char *const order_words[] = {"highest", "lowest", "input"};
-static const char *const direction_words[] = {"down", "up"};
-
-/* Table lookup with a fallback for out-of-range values. */
-static const char *word(const char *const *table, int n, int v) {
-  return v >= 0 && v < n ? table[v] : "unknown";
-}
-
-const char *us_io_plan_status_word(us_PlanStatus s) { return word(status_words, 4, (int)s); }
-const char *us_io_method_word(us_Method m) { return word(method_words, 4, (int)m); }
-const char *us_io_search_word(us_Search s) { return word(search_words, 2, (int)s); }
-const char *us_io_order_word(us_Order o) { return word(order_words, 3, (int)o); }
-const char *us_io_direction_word(us_Direction d) { return word(direction_words, 2, (int)d); }
-
-int us_io_plan_status_parse(const char *w, us_PlanStatus *out) {
-  for (int i = 0; i < 4; i++)
-    if (!strcmp(w, status_words[i])) {
-      *out = (us_PlanStatus)i;
-      return 0;
-    }
-  return -1;
-}
 
 void us_jo_contact_fields(us_JsonOut *o, const us_Structure *s, const us_Contact *c) {
   us_jo_raw(o, "\"a\": ");

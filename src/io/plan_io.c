@@ -2,8 +2,9 @@
  * per-step certificates and statistics; reading back its status and removal
  * order as body indices of a given structure.
  *
- * Certificates: certs[k] holds the contact forces of the structure before
- * removal k (all movable bodies minus order[0..k-1]). Each written step
+ * Steps: an "order" entry is a body id, or an array of ids removed in one
+ * step (a group). Certificates: certs[k] holds the contact forces of the
+ * structure before step k. Each written step
  * carries those forces in the contacts' frames (f_n along the normal, f_t
  * along t = (-n_y, n_x)) and an independent re-check (us_certificate_check)
  * of that sub-assembly, so a reader can judge the certificate without a
@@ -16,8 +17,8 @@
 #include "io.h"
 
 static const char *const plan_keys[] = {
-    "format",          "version",   "status", "order",      "method", "search",
-    "order_heuristic", "direction", "steps",  "statistics", NULL};
+    "format",    "version",   "status",  "order",   "method",    "search",     "order_heuristic",
+    "direction", "removal",   "max_group", "buildable", "blocked", "steps", "statistics", NULL};
 
 /* ------------------------------------------------------------------ write */
 
@@ -37,6 +38,13 @@ static void write_stats(us_JsonOut *o, const us_PlanStats *st) {
   write_field_num(o, in, "revisited", (double)st->revisited, 0);
   write_field_num(o, in, "nodes_expanded", (double)st->nodes_expanded, 0);
   write_field_num(o, in, "max_depth", (double)st->max_depth, 0);
+  write_field_num(o, in, "saved_ground", (double)st->saved_ground, 0);
+  write_field_num(o, in, "saved_union", (double)st->saved_union, 0);
+  write_field_num(o, in, "greedy_checks", (double)st->greedy_checks, 0);
+  write_field_num(o, in, "greedy_cuts", (double)st->greedy_cuts, 0);
+  write_field_num(o, in, "components", (double)st->components, 0);
+  write_field_num(o, in, "retries_skipped", (double)st->retries_skipped, 0);
+  write_field_num(o, in, "restarts", (double)st->restarts, 0);
   write_field_num(o, in, "time_total", st->time_total, 0);
   write_field_num(o, in, "time_setup", st->time_setup, 0);
   write_field_num(o, in, "time_search", st->time_search, 0);
@@ -78,12 +86,27 @@ static void write_check(us_JsonOut *o, const us_CertCheck *ck) {
   us_jo_raw(o, "}\n");
 }
 
-/* One step: the body removed and the certificate of the structure before. */
+/* Steps: group_start when given, else one body per step. */
+static int nsteps_of(const us_Plan *p) { return p->group_start ? p->ngroups : p->nsteps; }
+static int step_first(const us_Plan *p, int k) { return p->group_start ? p->group_start[k] : k; }
+
+/* The ids of step k: a string for one body, an array for a group. */
+static void write_step_ids(us_JsonOut *o, const us_Structure *s, const us_Plan *p, int k) {
+  int a = step_first(p, k), b = step_first(p, k + 1);
+  if (b - a > 1) us_jo_raw(o, "[");
+  for (int q = a; q < b; q++) {
+    if (q > a) us_jo_raw(o, ", ");
+    us_jo_string(o, s->bodies[p->order[q]].id);
+  }
+  if (b - a > 1) us_jo_raw(o, "]");
+}
+
+/* One step: the bodies removed and the certificate of the structure before. */
 static void write_step(us_JsonOut *o, const us_Structure *s, const us_Plan *p, int k,
                        const us_Bitset *present, double tol) {
   const us_Forces *f = &p->certs[k];
   us_jo_raw(o, k ? ",\n    {\"remove\": " : "\n    {\"remove\": ");
-  us_jo_string(o, s->bodies[p->order[k]].id);
+  write_step_ids(o, s, p, k);
   us_jo_raw(o, ",\n      \"certificate\": {\n        \"contacts\": [");
   for (int j = 0; j < f->ncontact; j++) {
     us_jo_raw(o, j ? ",\n" : "\n");
@@ -100,39 +123,65 @@ static us_Status write_steps(us_JsonOut *o, const us_Structure *s, const us_Plan
   if (us_bitset_init(&present, s->nbody > 0 ? s->nbody : 1)) return US_ERR_NOMEM;
   for (int i = 0; i < s->nbody; i++) us_bitset_set(&present, i);
   us_jo_raw(o, "  \"steps\": [");
-  for (int k = 0; k < p->nsteps; k++) {
+  for (int k = 0; k < nsteps_of(p); k++) {
     write_step(o, s, p, k, &present, tol);
-    us_bitset_clear(&present, p->order[k]);
+    for (int q = step_first(p, k); q < step_first(p, k + 1); q++)
+      us_bitset_clear(&present, p->order[q]);
   }
-  us_jo_raw(o, p->nsteps ? "\n  ],\n" : "],\n");
+  us_jo_raw(o, nsteps_of(p) ? "\n  ],\n" : "],\n");
   us_bitset_free(&present);
   return US_OK;
+}
+
+static void write_id_list(us_JsonOut *o, const char *key, const us_Structure *s, const int *v,
+                          int n) {
+  fprintf(o->fp, "  \"%s\": [", key);
+  for (int k = 0; k < n; k++) {
+    if (k) us_jo_raw(o, ", ");
+    us_jo_string(o, s->bodies[v[k]].id);
+  }
+  us_jo_raw(o, "],\n");
+}
+
+static void write_settings(us_JsonOut *o, const us_PlanSettings *set) {
+  fprintf(o->fp, ",\n  \"method\": \"%s\",\n  \"search\": \"%s\",\n",
+          us_method_name(set->stability.method), us_search_name(set->search));
+  fprintf(o->fp, "  \"order_heuristic\": \"%s\",\n  \"direction\": \"%s\",\n",
+          us_order_name(set->order), us_direction_name(set->direction));
+  fprintf(o->fp, "  \"removal\": \"%s\"", us_removal_name(set->removal));
 }
 
 static void write_header(us_JsonOut *o, const us_Structure *s, const us_Plan *p,
                          const us_PlanSettings *set) {
   us_jo_raw(o, "{\n  \"format\": \"unstack-plan\",\n  \"version\": 1,\n  \"status\": ");
-  us_jo_string(o, us_io_plan_status_word(p->status));
-  if (set) {
-    fprintf(o->fp, ",\n  \"method\": \"%s\",\n  \"search\": \"%s\",\n",
-            us_io_method_word(set->stability.method), us_io_search_word(set->search));
-    fprintf(o->fp, "  \"order_heuristic\": \"%s\",\n  \"direction\": \"%s\"",
-            us_io_order_word(set->order), us_io_direction_word(set->direction));
-  }
+  us_jo_string(o, us_plan_status_name(p->status));
+  if (set) write_settings(o, set);
+  if (p->max_group > 0) fprintf(o->fp, ",\n  \"max_group\": %d", p->max_group);
   us_jo_raw(o, ",\n  \"order\": [");
-  for (int k = 0; k < p->nsteps; k++) {
+  for (int k = 0; k < nsteps_of(p); k++) {
     if (k) us_jo_raw(o, ", ");
-    us_jo_string(o, s->bodies[p->order[k]].id);
+    write_step_ids(o, s, p, k);
   }
   us_jo_raw(o, "],\n");
+  if (p->buildable) write_id_list(o, "buildable", s, p->buildable, p->nbuildable);
+  if (p->blocked) write_id_list(o, "blocked", s, p->blocked, p->nblocked);
 }
 
 /* Indices in the plan must be bodies of s (a caller bug otherwise). */
 static int plan_consistent(const us_Structure *s, const us_Plan *p) {
   if (p->nsteps < 0 || (p->nsteps > 0 && !p->order)) return 0;
+  if (p->group_start && (p->ngroups < 0 || p->group_start[0] != 0 ||
+                         p->group_start[p->ngroups] != p->nsteps))
+    return 0;
+  for (int k = 0; p->group_start && k < p->ngroups; k++)
+    if (p->group_start[k + 1] <= p->group_start[k]) return 0;
+  for (int k = 0; k < p->nbuildable; k++)
+    if (p->buildable[k] < 0 || p->buildable[k] >= s->nbody) return 0;
+  for (int k = 0; k < p->nblocked; k++)
+    if (p->blocked[k] < 0 || p->blocked[k] >= s->nbody) return 0;
   for (int k = 0; k < p->nsteps; k++)
     if (p->order[k] < 0 || p->order[k] >= s->nbody) return 0;
-  for (int k = 0; p->certs && k < p->nsteps; k++)
+  for (int k = 0; p->certs && k <= nsteps_of(p); k++)
     for (int j = 0; j < p->certs[k].ncontact; j++)
       if (p->certs[k].contact[j] < 0 || p->certs[k].contact[j] >= s->ncontact) return 0;
   return 1;
@@ -172,27 +221,47 @@ static us_Status read_header(const us_IoCtx *c, json_t *root, us_PlanStatus *sta
     return us_io_bad(c, "", "version: only version 1 is supported");
   v = json_object_get(root, "status");
   if (!v) return us_io_bad(c, "", "missing field 'status'");
-  if (!json_is_string(v) || us_io_plan_status_parse(json_string_value(v), status))
+  if (!json_is_string(v) || us_plan_status_parse(json_string_value(v), status))
     return us_io_bad(c, "", "status: expected one of \"found\", \"none\", \"unstable\", \"limit\"");
   return US_OK;
 }
 
-/* Map order[k] to a body index: a known, movable body not seen before
+/* Map one id to a body index: a known, movable body not seen before
  * (first[i] = position of body i in the order so far, or -1). */
-static us_Status read_order_entry(const us_IoCtx *c, const us_Structure *s, json_t *v, int k,
-                                  int *first, int *out) {
-  char where[32];
-  snprintf(where, sizeof where, "order[%d]", k);
+static us_Status read_order_id(const us_IoCtx *c, const us_Structure *s, json_t *v,
+                               const char *where, int pos, int *first, int *out) {
   if (!json_is_string(v)) return us_io_bad(c, where, "expected a body id (string)");
   const char *id = json_string_value(v);
   int i = us_structure_find_body(s, id);
   if (i < 0) return us_io_bad(c, where, "unknown body id '%.80s'", id);
   if (s->bodies[i].fixed)
     return us_io_bad(c, where, "body '%.80s' is fixed and cannot be removed", id);
-  if (first[i] >= 0)
-    return us_io_bad(c, where, "body '%.80s' appears twice (also order[%d])", id, first[i]);
-  first[i] = k;
+  if (first[i] >= 0) return us_io_bad(c, where, "body '%.80s' appears twice", id);
+  first[i] = pos;
   *out = i;
+  return US_OK;
+}
+
+/* order[k]: an id (one body) or a non-empty array of ids (a group). */
+static us_Status read_order_entry(const us_IoCtx *c, const us_Structure *s, json_t *v, int k,
+                                  int *first, us_PlanFile *out) {
+  char where[48];
+  snprintf(where, sizeof where, "order[%d]", k);
+  if (!json_is_array(v)) {
+    us_Status st = read_order_id(c, s, v, where, out->n, first, &out->order[out->n]);
+    if (!st) out->n++;
+    return st;
+  }
+  size_t m = json_array_size(v);
+  if (m == 0) return us_io_bad(c, where, "an empty step");
+  for (size_t q = 0; q < m; q++) {
+    if (out->n >= s->nbody) return us_io_bad(c, where, "more bodies than the structure has");
+    snprintf(where, sizeof where, "order[%d][%zu]", k, q);
+    us_Status st = read_order_id(c, s, json_array_get(v, q), where, out->n, first,
+                                 &out->order[out->n]);
+    if (st) return st;
+    out->n++;
+  }
   return US_OK;
 }
 
@@ -203,15 +272,18 @@ static us_Status read_order(const us_IoCtx *c, const us_Structure *s, json_t *ar
   size_t n = json_array_size(arr);
   if (n > (size_t)s->nbody) return us_io_bad(c, "", "order: more entries (%zu) than bodies", n);
   int *first = us_malloc(((size_t)s->nbody + 1) * sizeof *first);
-  out->order = us_malloc((n + 1) * sizeof *out->order);
+  out->order = us_malloc(((size_t)s->nbody + 1) * sizeof *out->order);
+  out->group_start = us_malloc((n + 2) * sizeof *out->group_start);
   us_Status st = US_OK;
-  if (!first || !out->order)
+  if (!first || !out->order || !out->group_start)
     st = us_error_set(c->err, US_ERR_NOMEM, "%s: out of memory", c->name);
   for (int i = 0; !st && i < s->nbody; i++) first[i] = -1;
-  for (size_t k = 0; !st && k < n; k++)
-    st = read_order_entry(c, s, json_array_get(arr, k), (int)k, first, &out->order[k]);
+  if (!st) out->group_start[0] = 0;
+  for (size_t k = 0; !st && k < n; k++) {
+    st = read_order_entry(c, s, json_array_get(arr, k), (int)k, first, out);
+    if (!st) out->group_start[++out->ngroups] = out->n;
+  }
   us_free(first);
-  out->n = (int)n;
   return st;
 }
 
@@ -240,6 +312,7 @@ us_Status us_plan_read(const us_Structure *s, const char *path, us_PlanFile *out
 void us_plan_file_free(us_PlanFile *pf) {
   if (!pf) return;
   us_free(pf->order);
-  pf->order = NULL;
-  pf->n = 0;
+  us_free(pf->group_start);
+  pf->order = pf->group_start = NULL;
+  pf->n = pf->ngroups = 0;
 }

@@ -1,22 +1,60 @@
 /* Depth-first search of the disassembly graph, iterative (no recursion, so
- * thousands of bodies need no deep C stack).
+ * thousands of bodies need no deep C stack), and its randomized variant
+ * with restarts.
  *
  * Invariants: ctx->cur is the node at depth ctx->npath and every node on
  * the path from the root is stable; next[d] is the position in ctx->cand
  * of the next move to try at depth d. A node enters `dead` when it is
- * unstable or when every move from it was tried without reaching the goal,
- * so no node is tested twice and no dead end is expanded twice: every
- * skipped child counts as a revisit. */
+ * unstable, when the greedy rule finds it cannot be emptied, or when every
+ * move from it was tried without reaching the goal; so no node is tested
+ * twice and no dead end is expanded twice: every skipped child counts as a
+ * revisit. With the memo rule off nothing enters `dead` (the plain search
+ * of the source, exponential on dead sub-graphs).
+ *
+ * Greedy rule: at the first backtrack, the search stops
+ * guessing. Liveness is monotone along the path (the ancestors of a live
+ * node are live: the path to it is stable), the root is live (checked by
+ * the driver) and the current node is dead, so a binary search over the
+ * path's depths with greedy-assembly checks finds the deepest live node in
+ * log2(depth) checks; the greedy's build order of that node, reversed,
+ * finishes the path. Nodes found dead on the way enter the memo. Going up
+ * no node is dead once the root is live, and the root's build order
+ * finishes any path (us_plan_rescue). Going up every stable node is live once
+ * the root is (buildable sets are closed under union), so the root check
+ * in plan.c is all the rule does there.
+ *
+ * Random search (the source's suggestion): the candidate order is shuffled
+ * at every restart, and a run is cut after a budget of tests that follows
+ * the Luby sequence (1, 1, 2, 1, 1, 2, 4, ...) times the part's size. The
+ * dead memo is kept across restarts (deadness does not depend on the
+ * order), so the search stays complete: its runs grow without bound.
+ * With the greedy rule a run whose budget is used up is not restarted but
+ * rescued like a backtrack (the deepest live node of its path, then the
+ * greedy's order). */
 #include "search.h"
+
+#include <string.h>
+
+static int memo_on(const us_SearchCtx *ctx) { return (ctx->set->rules & US_RULE_MEMO) != 0; }
+
+static int known_dead(us_SearchCtx *ctx, const us_Bitset *node) {
+  return memo_on(ctx) && us_bitset_set_contains(&ctx->dead, node);
+}
+
+static int mark_dead(us_SearchCtx *ctx, const us_Bitset *node, us_Error *err) {
+  if (memo_on(ctx) && us_bitset_set_add(&ctx->dead, node) < 0)
+    return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), -1;
+  return 0;
+}
 
 /* The next legal move at the current depth whose child is not known dead;
  * -1 when exhausted. Advances *next. */
 static int next_move(us_SearchCtx *ctx, int *next) {
-  while (*next < ctx->nmov) {
+  while (*next < ctx->ncand) {
     int b = ctx->cand[(*next)++];
     if (!us_plan_can_move(ctx, &ctx->cur, b)) continue;
     us_plan_toggle(&ctx->cur, b);
-    int known = us_bitset_set_contains(&ctx->dead, &ctx->cur);
+    int known = known_dead(ctx, &ctx->cur);
     us_plan_toggle(&ctx->cur, b);
     if (!known) return b;
     ctx->st->revisited++;
@@ -26,28 +64,85 @@ static int next_move(us_SearchCtx *ctx, int *next) {
 
 /* Step back to the parent, marking the current node dead. */
 static int backtrack(us_SearchCtx *ctx, us_Error *err) {
-  if (us_bitset_set_add(&ctx->dead, &ctx->cur) < 0) {
-    us_error_set(err, US_ERR_NOMEM, "out of memory in the search");
-    return -1;
-  }
+  if (mark_dead(ctx, &ctx->cur, err)) return -1;
   ctx->npath--;
   us_plan_toggle(&ctx->cur, ctx->path[ctx->npath]);
   return 0;
 }
 
+static int greedy_applies(const us_SearchCtx *ctx) {
+  return (ctx->set->rules & US_RULE_GREEDY) && !ctx->kin && ctx->nroot_seq > 0;
+}
+
+/* Stable: 1; unstable: 0; < 0 stop. */
+static int child_verdict(us_SearchCtx *ctx, us_Error *err) {
+  if (us_plan_is_goal(ctx, &ctx->cur)) return 1;
+  return us_plan_node_test(ctx, &ctx->cur, err);
+}
+
+/* Rewind the path to depth d. */
+static void rewind_to(us_SearchCtx *ctx, int d) {
+  while (ctx->npath > d) us_plan_toggle(&ctx->cur, ctx->path[--ctx->npath]);
+}
+
+/* The node at depth d of the current path, into ctx->scratch. */
+static void node_at(us_SearchCtx *ctx, int d) {
+  us_bitset_copy(&ctx->scratch, &ctx->cur);
+  for (int k = ctx->npath - 1; k >= d; k--) us_plan_toggle(&ctx->scratch, ctx->path[k]);
+}
+
+/* Going up every stable node is live once the root is: the part's build
+ * order with the bodies already placed skipped finishes the path (each set
+ * on the way is the union of two buildable sets). */
+static int finish_up(us_SearchCtx *ctx) {
+  for (int k = 0; k < ctx->nroot_seq; k++) {
+    int b = ctx->root_seq[k];
+    if (us_bitset_get(&ctx->cur, b)) continue;
+    us_bitset_set(&ctx->cur, b);
+    ctx->path[ctx->npath++] = b;
+  }
+  return US_PLAN_FOUND;
+}
+
+int us_plan_rescue(us_SearchCtx *ctx, int top_dead, us_Error *err) {
+  if (ctx->set->direction == US_DIR_UP) return finish_up(ctx);
+  int lo = 0, hi = top_dead ? ctx->npath : ctx->npath + 1; /* live at lo, dead at hi */
+  int *seq = us_malloc(((size_t)ctx->s->nbody + 1) * sizeof(int)), nseq = 0, r = 0;
+  if (!seq) return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), -1;
+  while (hi - lo > 1 && r >= 0) {
+    int mid = lo + (hi - lo) / 2;
+    node_at(ctx, mid);
+    r = us_plan_node_live(ctx, &ctx->scratch, NULL, NULL, err);
+    if (r == 1) lo = mid;
+    if (r == 0) hi = mid, r = mark_dead(ctx, &ctx->scratch, err);
+  }
+  node_at(ctx, lo);
+  if (r >= 0) r = us_plan_node_live(ctx, &ctx->scratch, seq, &nseq, err);
+  if (r == 0) us_error_set(err, US_ERR_SOLVER, "greedy check not reproducible"), r = -1;
+  if (r == 1) {
+    rewind_to(ctx, lo);
+    for (int k = nseq - 1; k >= 0; k--) {
+      ctx->path[ctx->npath++] = seq[k];
+      us_plan_toggle(&ctx->cur, seq[k]);
+    }
+    r = US_PLAN_FOUND;
+  }
+  us_free(seq);
+  return r;
+}
+
 /* Try the child reached by moving b: 1 descended, 0 rejected, <0 stop. */
 static int try_child(us_SearchCtx *ctx, int b, int *next, us_Error *err) {
   us_plan_toggle(&ctx->cur, b);
-  int r = us_plan_is_goal(ctx, &ctx->cur) ? 1 : us_plan_test(ctx, &ctx->cur, err);
+  int r = child_verdict(ctx, err);
   if (r < 0) {
     us_plan_toggle(&ctx->cur, b);
     return r;
   }
   if (r == 0) {
-    int add = us_bitset_set_add(&ctx->dead, &ctx->cur);
+    int bad = mark_dead(ctx, &ctx->cur, err);
     us_plan_toggle(&ctx->cur, b);
-    if (add < 0) return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), -1;
-    return 0;
+    return bad ? -1 : 0;
   }
   ctx->path[ctx->npath++] = b;
   next[ctx->npath] = 0;
@@ -56,32 +151,80 @@ static int try_child(us_SearchCtx *ctx, int b, int *next, us_Error *err) {
   return 1;
 }
 
-int us_plan_dfs(us_SearchCtx *ctx, us_Error *err) {
-  int *next = us_calloc((size_t)ctx->nmov + 1, sizeof(int));
-  if (!next) return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), -1;
-  int status = US_PLAN_NONE;
+/* One depth-first run from ctx->cur: FOUND, NONE, -1 error, -2 limit,
+ * -3 restart budget used up. */
+static int dfs_run(us_SearchCtx *ctx, int *next, us_Error *err) {
   ctx->npath = 0;
+  next[0] = 0;
   for (;;) {
-    if (us_plan_is_goal(ctx, &ctx->cur)) {
-      status = US_PLAN_FOUND;
-      break;
-    }
+    if (us_plan_is_goal(ctx, &ctx->cur)) return US_PLAN_FOUND;
     int b = next_move(ctx, &next[ctx->npath]);
     if (b < 0) {
-      if (ctx->npath == 0) break; /* the root is a dead end: none */
-      if (backtrack(ctx, err)) {
-        status = -1;
-        break;
-      }
+      if (ctx->npath == 0) return US_PLAN_NONE; /* the root is a dead end */
+      if (greedy_applies(ctx)) return us_plan_rescue(ctx, 1, err);
+      if (backtrack(ctx, err)) return -1;
       continue;
     }
     int r = try_child(ctx, b, next, err);
-    if (r == -2) status = US_PLAN_LIMIT;
-    if (r < 0) {
-      if (r == -1) status = -1;
-      break;
+    if (r == -3 && greedy_applies(ctx)) {
+      ctx->budget_end = 0; /* the rescue needs no restart */
+      return us_plan_rescue(ctx, 1, err);
+    }
+    if (r < 0) return r;
+  }
+}
+
+int us_plan_dfs(us_SearchCtx *ctx, us_Error *err) {
+  int *next = us_calloc((size_t)ctx->nmov + 2, sizeof(int));
+  if (!next) return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), -1;
+  int r = dfs_run(ctx, next, err);
+  us_free(next);
+  return r == -3 ? -1 : r;
+}
+
+/* ------------------------------------------------------------- random */
+
+/* Luby's sequence: 1 1 2 1 1 2 4 1 1 2 1 1 2 4 8 ... (i >= 1). */
+static long luby(long i) {
+  for (;;) {
+    long k = 1;
+    while ((1L << k) - 1 < i) k++;
+    if ((1L << k) - 1 == i) return 1L << (k - 1);
+    i -= (1L << (k - 1)) - 1;
+  }
+}
+
+static uint64_t rng_next(uint64_t *s) {
+  uint64_t z = (*s += 0x9e3779b97f4a7c15ULL);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+static void shuffle(us_SearchCtx *ctx) {
+  for (int i = ctx->ncand - 1; i > 0; i--) {
+    int j = (int)(rng_next(&ctx->rng) % (uint64_t)(i + 1));
+    int t = ctx->cand[i];
+    ctx->cand[i] = ctx->cand[j];
+    ctx->cand[j] = t;
+  }
+}
+
+int us_plan_random(us_SearchCtx *ctx, us_Error *err) {
+  int *next = us_calloc((size_t)ctx->nmov + 2, sizeof(int));
+  if (!next) return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), -1;
+  long unit = ctx->ncand > 16 ? ctx->ncand : 16;
+  int r = -3;
+  for (long i = 1; r == -3; i++) {
+    shuffle(ctx);
+    ctx->budget_end = ctx->st->tests + luby(i) * unit;
+    r = dfs_run(ctx, next, err);
+    if (r == -3) {
+      rewind_to(ctx, 0);
+      ctx->st->restarts++;
     }
   }
+  ctx->budget_end = 0;
   us_free(next);
-  return status;
+  return r;
 }

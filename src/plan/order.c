@@ -1,11 +1,12 @@
-/* Candidate ordering: which body the search tries to move first.
+/* Candidate ordering: which body the graph searches try to move first.
  *
  * "highest" sorts bodies by the top of their geometry (the highest vertex,
  * or the centre for bodies without geometry), then by centre height, then
  * by index, so ties are deterministic. Going down the highest body is
  * removed first; going up the order is reversed (the lowest body is placed
  * first), so both directions mirror the same intuition: a structure comes
- * apart top-down and goes up bottom-up. */
+ * apart top-down and goes up bottom-up. Only the bodies of the part being
+ * planned are candidates. */
 #include "search.h"
 
 #include <stdlib.h>
@@ -39,22 +40,29 @@ static void reverse(int *v, int n) {
   }
 }
 
-int us_plan_order_candidates(us_SearchCtx *ctx) {
-  const us_Structure *s = ctx->s;
-  Key *keys = us_malloc((size_t)(ctx->nmov > 0 ? ctx->nmov : 1) * sizeof *keys);
+/* Sort the candidates by height; -1 on OOM. */
+static int sort_highest(us_SearchCtx *ctx) {
+  Key *keys = us_malloc((size_t)(ctx->ncand > 0 ? ctx->ncand : 1) * sizeof *keys);
   if (!keys) return -1;
-  int n = 0;
-  for (int i = 0; i < s->nbody; i++) {
-    if (s->bodies[i].fixed) continue;
-    keys[n].top = body_top(&s->bodies[i]);
-    keys[n].mid = s->bodies[i].com[1];
-    keys[n++].body = i;
+  for (int i = 0; i < ctx->ncand; i++) {
+    const us_Body *b = &ctx->s->bodies[ctx->cand[i]];
+    keys[i].top = body_top(b);
+    keys[i].mid = b->com[1];
+    keys[i].body = ctx->cand[i];
   }
-  if (ctx->set->order != US_ORDER_INPUT) qsort(keys, (size_t)n, sizeof *keys, cmp_highest);
-  for (int i = 0; i < n; i++) ctx->cand[i] = keys[i].body;
+  qsort(keys, (size_t)ctx->ncand, sizeof *keys, cmp_highest);
+  for (int i = 0; i < ctx->ncand; i++) ctx->cand[i] = keys[i].body;
   us_free(keys);
+  return 0;
+}
+
+int us_plan_order_candidates(us_SearchCtx *ctx) {
+  ctx->ncand = 0;
+  for (int i = 0; i < ctx->s->nbody; i++)
+    if (us_bitset_get(&ctx->part, i)) ctx->cand[ctx->ncand++] = i;
+  if (ctx->set->order != US_ORDER_INPUT && sort_highest(ctx)) return -1;
   int flip = (ctx->set->order == US_ORDER_LOWEST) != (ctx->set->direction == US_DIR_UP);
   if (ctx->set->order == US_ORDER_INPUT) flip = ctx->set->direction == US_DIR_UP;
-  if (flip) reverse(ctx->cand, n);
+  if (flip) reverse(ctx->cand, ctx->ncand);
   return 0;
 }

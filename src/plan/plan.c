@@ -1,29 +1,34 @@
-/* The planner's driver: set up a search context, test the full structure,
- * run the chosen search, turn the path into a removal order, and collect
- * per-step certificates when asked.
+/* The planner's driver: check the settings, set up a search context, test
+ * the full structure, run the chosen search, turn its result into a removal
+ * order in steps, and collect per-step certificates when asked.
  *
- * The removal order is the path itself going down; going up the path adds
- * bodies from the ground and its reverse is the removal order. With
- * certificates, each structure along the order is tested once more (the
- * search keeps no forces, so memory stays independent of the path length);
- * those tests are counted in the statistics like the others. */
+ * The assemble search (the default) builds from the ground and the removal
+ * order is the reverse of its build order; when it is stuck the plan names
+ * the largest buildable sub-assembly R* and the bodies outside it. The
+ * graph searches (DFS, BFS, random) plan each component of the structure
+ * apart when the components rule is on (the parts are independent: a
+ * removal in one never changes the verdict of another, so the orders
+ * concatenate), check the root with greedy assembly when the greedy rule is
+ * on, and search each part's disassembly graph. Going up, a part's path
+ * adds bodies and its reverse is the removal order.
+ *
+ * With certificates, each structure along the order is tested once more
+ * (the search keeps no forces, so memory stays independent of the path
+ * length); those tests are counted in the statistics like the others. */
 #include "search.h"
 
 #include <string.h>
 
-static const char *const status_names[] = {"found", "none", "unstable", "limit"};
-
-const char *us_plan_status_name(us_PlanStatus s) {
-  if ((int)s < 0 || (int)s > US_PLAN_LIMIT) return "unknown";
-  return status_names[s];
-}
-
 us_PlanSettings us_plan_default_settings(void) {
   us_PlanSettings p;
   memset(&p, 0, sizeof p);
-  p.search = US_SEARCH_DFS;
+  p.search = US_SEARCH_ASSEMBLE;
   p.order = US_ORDER_HIGHEST;
   p.direction = US_DIR_DOWN;
+  p.removal = US_REMOVAL_ANY;
+  p.max_group = 1;
+  p.rules = US_RULE_ALL;
+  p.seed = 1;
   p.stability = us_stability_default_settings();
   return p;
 }
@@ -31,23 +36,31 @@ us_PlanSettings us_plan_default_settings(void) {
 void us_plan_free(us_Plan *p) {
   if (!p) return;
   if (p->certs)
-    for (int k = 0; k <= p->nsteps; k++) us_forces_free(&p->certs[k]);
+    for (int k = 0; k <= p->ngroups; k++) us_forces_free(&p->certs[k]);
   us_free(p->certs);
   us_free(p->order);
+  us_free(p->group_start);
+  us_free(p->buildable);
+  us_free(p->blocked);
   p->certs = NULL;
-  p->order = NULL;
-  p->nsteps = 0;
+  p->order = p->group_start = p->buildable = p->blocked = NULL;
+  p->nsteps = p->ngroups = p->nbuildable = p->nblocked = 0;
 }
 
+/* ------------------------------------------------------- search helpers */
+
 int us_plan_is_goal(const us_SearchCtx *ctx, const us_Bitset *node) {
-  if (ctx->set->direction == US_DIR_UP) return us_bitset_equal(node, &ctx->full);
+  if (ctx->set->direction == US_DIR_UP) return us_bitset_equal(node, &ctx->part);
   for (int i = 0; i < node->nwords; i++)
     if (node->w[i]) return 0;
   return 1;
 }
 
 int us_plan_can_move(const us_SearchCtx *ctx, const us_Bitset *node, int b) {
-  return us_bitset_get(node, b) == (ctx->set->direction == US_DIR_DOWN);
+  int down = ctx->set->direction == US_DIR_DOWN;
+  if (us_bitset_get(node, b) != down) return 0;
+  /* placing b is removing it, reversed: the same question */
+  return !ctx->kin || us_kinematics_can_remove(ctx->kin, node, b);
 }
 
 static int limit_reached(const us_SearchCtx *ctx) {
@@ -57,10 +70,8 @@ static int limit_reached(const us_SearchCtx *ctx) {
 }
 
 int us_plan_test(us_SearchCtx *ctx, const us_Bitset *node, us_Error *err) {
-  if (limit_reached(ctx)) {
-    ctx->limit = 1;
-    return -2;
-  }
+  if (limit_reached(ctx)) return -2;
+  if (ctx->budget_end > 0 && ctx->st->tests >= ctx->budget_end) return -3;
   if (us_stability_test(ctx->stab, node, &ctx->res, err)) return -1;
   ctx->st->tests++;
   int stable = ctx->res.verdict == US_STABLE;
@@ -71,14 +82,42 @@ int us_plan_test(us_SearchCtx *ctx, const us_Bitset *node, us_Error *err) {
   return stable;
 }
 
+/* ------------------------------------------------------------ set-up */
+
 static void ctx_free(us_SearchCtx *ctx) {
   us_stability_free(ctx->stab);
   us_stability_result_free(&ctx->res);
+  us_kinematics_free(ctx->kin);
+  us_graph_free(&ctx->g);
+  us_free(ctx->comp);
+  us_free(ctx->stack);
+  us_free(ctx->mark);
+  us_free(ctx->root_seq);
   us_free(ctx->cand);
   us_free(ctx->path);
+  us_bitset_free(&ctx->scratch);
   us_bitset_free(&ctx->full);
+  us_bitset_free(&ctx->part);
   us_bitset_free(&ctx->cur);
   us_bitset_set_free(&ctx->dead);
+  us_bitset_set_free(&ctx->stable_parts);
+  us_bitset_set_free(&ctx->unstable_parts);
+}
+
+static int ctx_alloc(us_SearchCtx *ctx, const us_Structure *s) {
+  size_t n = (size_t)s->nbody + 1;
+  ctx->cand = us_malloc(n * sizeof(int));
+  ctx->path = us_malloc(n * sizeof(int));
+  ctx->comp = us_malloc(n * sizeof(int));
+  ctx->stack = us_malloc(n * sizeof(int));
+  ctx->mark = us_malloc(n);
+  ctx->root_seq = us_malloc(n * sizeof(int));
+  return !ctx->root_seq || !ctx->cand || !ctx->path || !ctx->comp || !ctx->stack || !ctx->mark ||
+         us_graph_init(&ctx->g, s) || us_structure_movable_set(s, &ctx->full) ||
+         us_bitset_init(&ctx->part, s->nbody) || us_bitset_init(&ctx->scratch, s->nbody) ||
+         us_bitset_init(&ctx->cur, s->nbody) || us_bitset_set_init(&ctx->dead, s->nbody) ||
+         us_bitset_set_init(&ctx->stable_parts, s->nbody) ||
+         us_bitset_set_init(&ctx->unstable_parts, s->nbody);
 }
 
 static us_Status ctx_init(us_SearchCtx *ctx, const us_Structure *s, const us_PlanSettings *set,
@@ -89,27 +128,161 @@ static us_Status ctx_init(us_SearchCtx *ctx, const us_Structure *s, const us_Pla
   ctx->st = st;
   ctx->t_start = us_now();
   ctx->nmov = us_structure_movable_count(s);
-  size_t n = (size_t)ctx->nmov + 1;
-  ctx->cand = us_malloc(n * sizeof(int));
-  ctx->path = us_malloc(n * sizeof(int));
-  int bad = !ctx->cand || !ctx->path || us_structure_movable_set(s, &ctx->full) ||
-            us_bitset_init(&ctx->cur, s->nbody) || us_bitset_set_init(&ctx->dead, s->nbody) ||
-            us_plan_order_candidates(ctx);
-  if (bad) return us_error_set(err, US_ERR_NOMEM, "out of memory setting up the search");
+  ctx->rng = (uint64_t)set->seed * 0x9e3779b97f4a7c15ULL + 1;
+  if (ctx_alloc(ctx, s)) return us_error_set(err, US_ERR_NOMEM, "out of memory setting up the search");
+  if (set->removal != US_REMOVAL_ANY && !(ctx->kin = us_kinematics_new(s, set->removal, err)))
+    return err && err->code ? err->code : US_ERR_NOMEM;
   ctx->stab = us_stability_new(s, &set->stability, err);
-  return ctx->stab ? US_OK : err->code;
+  return ctx->stab ? US_OK : (err && err->code ? err->code : US_ERR_NOMEM);
 }
 
-/* Removal order from the search path. */
-static us_Status take_order(const us_SearchCtx *ctx, us_Plan *out, us_Error *err) {
-  out->order = us_malloc((size_t)(ctx->npath > 0 ? ctx->npath : 1) * sizeof(int));
-  if (!out->order) return us_error_set(err, US_ERR_NOMEM, "out of memory");
-  out->nsteps = ctx->npath;
-  for (int k = 0; k < ctx->npath; k++)
-    out->order[k] = ctx->set->direction == US_DIR_DOWN ? ctx->path[k]
-                                                       : ctx->path[ctx->npath - 1 - k];
+static us_Status check_settings(const us_PlanSettings *set, us_Error *err) {
+  if ((unsigned)set->search > US_SEARCH_RANDOM || (unsigned)set->order > US_ORDER_INPUT ||
+      (unsigned)set->direction > US_DIR_UP || (unsigned)set->removal > US_REMOVAL_FREE)
+    return us_error_set(err, US_ERR_USAGE, "plan settings: unknown search, order, direction or removal");
+  if (set->max_group < 0 || set->max_group > 64)
+    return us_error_set(err, US_ERR_USAGE, "plan settings: max_group must be 0 (auto) to 64, got %d",
+                        set->max_group);
+  if (set->removal != US_REMOVAL_ANY && set->search == US_SEARCH_ASSEMBLE)
+    return us_error_set(err, US_ERR_USAGE, "removal kinematics (up, free) break the union theorem "
+                        "the assemble search rests on: use a graph search (dfs, bfs, random)");
+  if (set->max_group != 1 && set->search != US_SEARCH_ASSEMBLE)
+    return us_error_set(err, US_ERR_USAGE, "steps of several bodies (max_group != 1) need the "
+                        "assemble search");
   return US_OK;
 }
+
+/* ------------------------------------------------------------ results */
+
+static us_Status alloc_order(us_Plan *out, int n, us_Error *err) {
+  out->order = us_malloc(((size_t)n + 1) * sizeof(int));
+  out->group_start = us_malloc(((size_t)n + 2) * sizeof(int));
+  if (!out->order || !out->group_start) return us_error_set(err, US_ERR_NOMEM, "out of memory");
+  out->group_start[0] = 0;
+  return US_OK;
+}
+
+/* Removal order = the build sequence reversed, step by step. */
+static us_Status order_from_assembly(const us_Assembly *a, us_Plan *out, us_Error *err) {
+  if (alloc_order(out, a->nseq, err)) return US_ERR_NOMEM;
+  for (int k = a->ngroups - 1; k >= 0; k--) {
+    for (int q = a->gstart[k]; q < a->gstart[k + 1]; q++) out->order[out->nsteps++] = a->seq[q];
+    out->group_start[++out->ngroups] = out->nsteps;
+  }
+  out->max_group = a->max_group;
+  return US_OK;
+}
+
+/* R* and the bodies outside it. */
+static us_Status report_stuck(const us_SearchCtx *ctx, const us_Bitset *built, us_Plan *out,
+                              us_Error *err) {
+  out->buildable = us_malloc(((size_t)ctx->nmov + 1) * sizeof(int));
+  out->blocked = us_malloc(((size_t)ctx->nmov + 1) * sizeof(int));
+  if (!out->buildable || !out->blocked) return us_error_set(err, US_ERR_NOMEM, "out of memory");
+  for (int i = 0; i < ctx->s->nbody; i++) {
+    if (ctx->s->bodies[i].fixed) continue;
+    if (us_bitset_get(built, i)) out->buildable[out->nbuildable++] = i;
+    else out->blocked[out->nblocked++] = i;
+  }
+  return US_OK;
+}
+
+/* Greedy assembly of the whole structure: found, or R*. <0 stop. */
+static int run_assemble(us_SearchCtx *ctx, us_Plan *out, us_Error *err) {
+  us_Assembly a;
+  int r = us_assemble(ctx, &ctx->full, ctx->set->max_group, &a, err);
+  us_Status st = US_OK;
+  if (r == 1) st = order_from_assembly(&a, out, err);
+  if (r == 0) {
+    out->max_group = a.max_group;
+    st = report_stuck(ctx, &a.built, out, err);
+  }
+  us_assembly_free(&a);
+  if (st) return -1;
+  return r == 1 ? US_PLAN_FOUND : r == 0 ? US_PLAN_NONE : r;
+}
+
+/* ------------------------------------------------------ graph searches */
+
+/* Append the part's path as removals, one body per step. */
+static void append_path(const us_SearchCtx *ctx, us_Plan *out) {
+  for (int k = 0; k < ctx->npath; k++) {
+    int j = ctx->set->direction == US_DIR_DOWN ? k : ctx->npath - 1 - k;
+    out->order[out->nsteps++] = ctx->path[j];
+    out->group_start[++out->ngroups] = out->nsteps;
+  }
+}
+
+static int search_part(us_SearchCtx *ctx, us_Error *err) {
+  if (us_plan_order_candidates(ctx))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), -1;
+  ctx->npath = 0;
+  int greedy = (ctx->set->rules & US_RULE_GREEDY) && !ctx->kin;
+  ctx->nroot_seq = 0;
+  int live = greedy ? us_plan_node_live(ctx, &ctx->part, ctx->root_seq, &ctx->nroot_seq, err) : 1;
+  if (live < 0) return live == -3 ? -1 : live;
+  if (!live) return US_PLAN_NONE;
+  if (ctx->set->direction == US_DIR_DOWN) us_bitset_copy(&ctx->cur, &ctx->part);
+  else memset(ctx->cur.w, 0, (size_t)ctx->cur.nwords * sizeof(uint64_t));
+  switch (ctx->set->search) {
+  case US_SEARCH_BFS: return us_plan_bfs(ctx, err);
+  case US_SEARCH_RANDOM: return us_plan_random(ctx, err);
+  default: return us_plan_dfs(ctx, err);
+  }
+}
+
+/* The parts: components of the structure (components rule) or the whole. */
+static int run_graph_search(us_SearchCtx *ctx, us_Plan *out, us_Error *err) {
+  if (alloc_order(out, ctx->nmov, err)) return -1;
+  /* with kinematics a part's bodies can block another's: no split */
+  int split = (ctx->set->rules & US_RULE_COMPONENTS) && !ctx->kin;
+  int k = split ? us_graph_components(&ctx->g, &ctx->full, ctx->comp, ctx->stack) : 1;
+  int *label = us_malloc(((size_t)ctx->s->nbody + 1) * sizeof(int));
+  if (!label) return us_error_set(err, US_ERR_NOMEM, "out of memory"), -1;
+  if (split) memcpy(label, ctx->comp, (size_t)ctx->s->nbody * sizeof(int));
+  ctx->st->components = k;
+  int r = US_PLAN_FOUND;
+  for (int c = 0; c < k && r == US_PLAN_FOUND; c++) {
+    for (int i = 0; i < ctx->s->nbody; i++) {
+      int in = split ? label[i] == c : us_bitset_get(&ctx->full, i);
+      if (in) us_bitset_set(&ctx->part, i);
+      else us_bitset_clear(&ctx->part, i);
+    }
+    r = search_part(ctx, err);
+    if (r == US_PLAN_FOUND) append_path(ctx, out);
+  }
+  us_free(label);
+  return r;
+}
+
+/* For a graph search that ends in none: name R* too (removal any only). */
+static us_Status name_stuck(us_SearchCtx *ctx, us_Plan *out, us_Error *err) {
+  if (ctx->kin) return US_OK;
+  us_Assembly a;
+  int r = us_assemble(ctx, &ctx->full, 1, &a, err);
+  us_Status st = r == 0 ? report_stuck(ctx, &a.built, out, err) : US_OK;
+  us_assembly_free(&a);
+  return r == -1 ? (err && err->code ? err->code : US_ERR_NOMEM) : st;
+}
+
+static int run_search(us_SearchCtx *ctx, us_Plan *out, us_Error *err) {
+  if (ctx->set->search == US_SEARCH_ASSEMBLE) return run_assemble(ctx, out, err);
+  int r = run_graph_search(ctx, out, err);
+  if (r == US_PLAN_NONE && name_stuck(ctx, out, err)) return -1;
+  if (r == US_PLAN_FOUND) out->max_group = 1;
+  return r;
+}
+
+/* Only a found plan has an order (a part's order may be there from a
+ * search that stopped later). */
+static void drop_order(us_Plan *out) {
+  us_free(out->order);
+  us_free(out->group_start);
+  out->order = out->group_start = NULL;
+  out->nsteps = out->ngroups = 0;
+}
+
+/* ------------------------------------------------------- certificates */
 
 static us_Status copy_forces(us_Forces *dst, const us_Forces *src, int dim, us_Error *err) {
   memset(dst, 0, sizeof *dst);
@@ -125,15 +298,16 @@ static us_Status copy_forces(us_Forces *dst, const us_Forces *src, int dim, us_E
   return US_OK;
 }
 
-/* certs[k]: forces of the structure before removal k. */
+/* certs[k]: forces of the structure before step k. */
 static us_Status collect_certificates(us_SearchCtx *ctx, us_Plan *out, us_Error *err) {
-  out->certs = us_calloc((size_t)out->nsteps + 1, sizeof(us_Forces));
+  out->certs = us_calloc((size_t)out->ngroups + 1, sizeof(us_Forces));
   if (!out->certs) return us_error_set(err, US_ERR_NOMEM, "out of memory");
   us_Bitset node = {0};
   if (us_bitset_copy(&node, &ctx->full)) return us_error_set(err, US_ERR_NOMEM, "out of memory");
   us_Status st = US_OK;
-  for (int k = 0; k <= out->nsteps && !st; k++) {
-    if (k > 0) us_bitset_clear(&node, out->order[k - 1]);
+  for (int k = 0; k <= out->ngroups && !st; k++) {
+    for (int q = k > 0 ? out->group_start[k - 1] : 0; k > 0 && q < out->group_start[k]; q++)
+      us_bitset_clear(&node, out->order[q]);
     st = us_stability_test(ctx->stab, &node, &ctx->res, err);
     ctx->st->tests++;
     if (!st && ctx->res.verdict != US_STABLE)
@@ -144,11 +318,6 @@ static us_Status collect_certificates(us_SearchCtx *ctx, us_Plan *out, us_Error 
   return st;
 }
 
-static int run_search(us_SearchCtx *ctx, us_Error *err) {
-  if (ctx->set->direction == US_DIR_DOWN) us_bitset_copy(&ctx->cur, &ctx->full);
-  return ctx->set->search == US_SEARCH_BFS ? us_plan_bfs(ctx, err) : us_plan_dfs(ctx, err);
-}
-
 static void finish_stats(us_SearchCtx *ctx, us_PlanStats *st, double t_search) {
   const us_StabilityInfo *info = us_stability_info(ctx->stab);
   st->stability = *info;
@@ -156,22 +325,26 @@ static void finish_stats(us_SearchCtx *ctx, us_PlanStats *st, double t_search) {
   st->time_check = info->check_time;
   st->time_search = us_now() - t_search;
   st->time_total = us_now() - ctx->t_start;
-  st->memo_bytes += us_bitset_set_bytes(&ctx->dead);
+  st->memo_bytes += us_bitset_set_bytes(&ctx->dead) + us_bitset_set_bytes(&ctx->stable_parts) +
+                    us_bitset_set_bytes(&ctx->unstable_parts);
 }
 
 us_Status us_plan(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
                   us_Error *err) {
   memset(out, 0, sizeof *out);
+  if (!s || !set) return us_error_set(err, US_ERR_USAGE, "us_plan: NULL argument");
+  us_Status st = check_settings(set, err);
+  if (st) return st;
   us_SearchCtx ctx;
-  us_Status st = ctx_init(&ctx, s, set, &out->stats, err);
+  st = ctx_init(&ctx, s, set, &out->stats, err);
   int full = st ? -1 : us_plan_test(&ctx, &ctx.full, err);
   out->stats.time_setup = us_now() - ctx.t_start;
   double t_search = us_now();
-  int r = full < 0 ? full : full == 0 ? US_PLAN_UNSTABLE : run_search(&ctx, err);
+  int r = full < 0 ? full : full == 0 ? US_PLAN_UNSTABLE : run_search(&ctx, out, err);
   if (r == -2) r = US_PLAN_LIMIT;
-  if (!st && r == -1) st = err->code ? err->code : US_ERR_SOLVER;
+  if (!st && r < 0) st = err && err->code ? err->code : US_ERR_SOLVER;
   if (!st) out->status = (us_PlanStatus)r;
-  if (!st && r == US_PLAN_FOUND) st = take_order(&ctx, out, err);
+  if (!st && r != US_PLAN_FOUND) drop_order(out);
   if (!st && r == US_PLAN_FOUND && set->certificates) st = collect_certificates(&ctx, out, err);
   if (ctx.stab) finish_stats(&ctx, &out->stats, t_search);
   ctx_free(&ctx);

@@ -33,11 +33,13 @@ static void note_step(us_VerifyReport *rep, const us_StabilityResult *res) {
     rep->max_torque_residual = res->check.max_torque_residual;
 }
 
-/* Walk the order; stops at the first remainder that does not stand. */
-static us_Status walk(us_Stability *w, us_Bitset *node, const int *order, int n,
-                      us_VerifyReport *rep, us_StabilityResult *res, us_Error *err) {
-  for (int k = -1; k < n; k++) {
-    if (k >= 0) us_bitset_clear(node, order[k]);
+/* Walk the order step by step (gs: step offsets, NULL: one body a step);
+ * stops at the first remainder that does not stand. */
+static us_Status walk(us_Stability *w, us_Bitset *node, const int *order, const int *gs,
+                      int nsteps, us_VerifyReport *rep, us_StabilityResult *res, us_Error *err) {
+  for (int k = -1; k < nsteps; k++) {
+    for (int q = k < 0 ? 0 : gs ? gs[k] : k; k >= 0 && q < (gs ? gs[k + 1] : k + 1); q++)
+      us_bitset_clear(node, order[q]);
     us_Status st = us_stability_test(w, node, res, err);
     if (st) return st;
     note_step(rep, res);
@@ -55,8 +57,27 @@ static us_Status walk(us_Stability *w, us_Bitset *node, const int *order, int n,
   return US_OK;
 }
 
+/* Step offsets must run from 0 to n, increasing. */
+static us_Status check_steps(const int *gs, int ngroups, int n, us_Error *err) {
+  if (!gs) return US_OK;
+  if (ngroups < 0 || gs[0] != 0 || gs[ngroups] != n)
+    return us_error_set(err, US_ERR_INPUT, "plan steps do not cover the order");
+  for (int k = 0; k < ngroups; k++)
+    if (gs[k + 1] <= gs[k])
+      return us_error_set(err, US_ERR_INPUT, "plan step %d is empty", k + 1);
+  return US_OK;
+}
+
 us_Status us_verify_order(const us_Structure *s, const us_StabilitySettings *set, const int *order,
                           int n, us_VerifyReport *rep, us_Error *err) {
+  return us_verify_steps(s, set, order, n, NULL, n, rep, err);
+}
+
+us_Status us_verify_steps(const us_Structure *s, const us_StabilitySettings *set, const int *order,
+                          int n, const int *group_start, int ngroups, us_VerifyReport *rep,
+                          us_Error *err) {
+  if (!s || !set || !rep || (n > 0 && !order))
+    return us_error_set(err, US_ERR_USAGE, "us_verify_steps: NULL argument");
   memset(rep, 0, sizeof *rep);
   rep->failed_step = -1;
   rep->unstable_body = -1;
@@ -66,11 +87,12 @@ us_Status us_verify_order(const us_Structure *s, const us_StabilitySettings *set
     return us_error_set(err, US_ERR_NOMEM, "out of memory");
   }
   us_Status st = check_order(s, order, n, &seen, err);
+  if (!st) st = check_steps(group_start, ngroups, n, err);
   us_Stability *w = st ? NULL : us_stability_new(s, set, err);
-  if (!st && !w) st = err->code;
+  if (!st && !w) st = err && err->code ? err->code : US_ERR_NOMEM;
   us_StabilityResult res;
   memset(&res, 0, sizeof res);
-  if (!st) st = walk(w, &node, order, n, rep, &res, err);
+  if (!st) st = walk(w, &node, order, group_start, group_start ? ngroups : n, rep, &res, err);
   us_stability_result_free(&res);
   us_stability_free(w);
   us_bitset_free(&seen);

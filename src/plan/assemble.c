@@ -1,0 +1,446 @@
+/* Greedy assembly from the ground: the complete planner built on the union
+ * theorem (docs/planning.md has the statements and proofs).
+ *
+ * Facts it rests on:
+ *   1. Union: if sub-assemblies A and B stand, A ∪ B stands (keep A's
+ *      forces on A's contacts, B's on B's, zero on the contacts between
+ *      A \ B and B \ A ... see docs: forces of B on contacts inside A ∩ B
+ *      are added to A's; every body's rows still balance).
+ *   2. Buildable sets (built from the empty set one step at a time, every
+ *      intermediate standing) are closed under union, so every structure
+ *      has one largest buildable sub-assembly R*, and a greedy that adds
+ *      any step keeping the set standing reaches R* without backtracking.
+ *      Reversed, a build order is a removal order: a stable unstacking
+ *      sequence exists iff the greedy reaches the whole structure.
+ *   3. Decoupling: C ∪ G stands iff the component W of C ∪ G that holds G
+ *      stands, when C stands (components share no contact). So a step is
+ *      tested on W alone, and a body whose W did not change since it failed
+ *      is not tested again. W only grows as C grows, so "W unchanged" is
+ *      "|W| unchanged".
+ *
+ * Data: C = `built`; union-find over C's components with member lists
+ * (head/next) so W is listed in O(|W|); a min-heap of ready candidates
+ * keyed by height (the lowest point, then the centre, then the index);
+ * state[b] NEW (touches nothing yet), READY (in the heap), PARKED (failed
+ * with would-be size stamp[b]), PLACED or OUT (not in `within`). A parked
+ * body waits on the lists of the components it touched; when one of them
+ * grows (a body joins it) every body waiting on it is woken, since its W
+ * grew. Only bodies touching C or a support are candidates: a part that
+ * touches no support cannot stand under gravity.
+ *
+ * Groups (max_group > 1, or 0 for automatic): when no single body can be
+ * added, connected groups of 2..K absent bodies are tried (connected
+ * through themselves and C's components; a group whose parts fall in
+ * different components of C ∪ G is never needed, since each part would
+ * stand on its own by fact 3). A group's W is memoised when it fails. With
+ * max_group 0 the bound starts at 1 and rises by one only when stuck, so
+ * the bound reached is the smallest K for which an order exists.
+ *
+ * Cost: at most n(n+1)/2 single-body tests (each body fails at most once
+ * per growth of its part); about n on stacks built bottom-up. */
+#include "search.h"
+
+#include <string.h>
+
+enum { NEW = 0, READY, PARKED, PLACED, OUT };
+
+typedef struct {
+  int *v, n, cap;
+} IntVec;
+
+typedef struct Asm {
+  us_SearchCtx *ctx;
+  const us_Bitset *within;
+  us_Assembly *out;
+  us_Dsu dsu;
+  int *head, *next, *tail; /* member lists of components (valid at roots) */
+  unsigned char *state;
+  int *stamp;
+  double *key;            /* heap key: lowest point of the body */
+  int *heap, nheap;
+  IntVec *wait;           /* [n] bodies parked on component root r */
+  int *roots;             /* scratch: distinct roots adjacent to a set */
+  us_Bitset w;            /* scratch: the would-be component */
+  us_BitsetSet failed;    /* groups: components W known not to stand */
+  int nwithin, nplaced;
+} Asm;
+
+static int vec_push(IntVec *v, int x) {
+  if (US_GROW(v->v, v->cap, v->n + 1)) return -1;
+  v->v[v->n++] = x;
+  return 0;
+}
+
+/* ------------------------------------------------------------------ heap */
+
+static int heap_less(const Asm *a, int x, int y) {
+  if (a->key[x] != a->key[y]) return a->key[x] < a->key[y];
+  double cx = a->ctx->s->bodies[x].com[1], cy = a->ctx->s->bodies[y].com[1];
+  if (cx != cy) return cx < cy;
+  return x < y;
+}
+
+static void heap_push(Asm *a, int b) {
+  int i = a->nheap++;
+  a->heap[i] = b;
+  while (i > 0 && heap_less(a, a->heap[i], a->heap[(i - 1) / 2])) {
+    int p = (i - 1) / 2, t = a->heap[p];
+    a->heap[p] = a->heap[i];
+    a->heap[i] = t;
+    i = p;
+  }
+}
+
+static int heap_pop(Asm *a) {
+  int top = a->heap[0];
+  a->heap[0] = a->heap[--a->nheap];
+  for (int i = 0;;) {
+    int l = 2 * i + 1, r = l + 1, m = i;
+    if (l < a->nheap && heap_less(a, a->heap[l], a->heap[m])) m = l;
+    if (r < a->nheap && heap_less(a, a->heap[r], a->heap[m])) m = r;
+    if (m == i) break;
+    int t = a->heap[m];
+    a->heap[m] = a->heap[i];
+    a->heap[i] = t;
+    i = m;
+  }
+  return top;
+}
+
+static void make_ready(Asm *a, int b) {
+  if (a->state[b] != NEW && a->state[b] != PARKED) return;
+  a->state[b] = READY;
+  heap_push(a, b);
+}
+
+/* ------------------------------------------------------------- set-up */
+
+static double lowest_point(const us_Body *b) {
+  if (b->nvert == 0) return b->com[1];
+  double y = b->verts[1];
+  for (int k = 1; k < b->nvert; k++)
+    if (b->verts[2 * k + 1] < y) y = b->verts[2 * k + 1];
+  return y;
+}
+
+static void asm_free(Asm *a) {
+  int n = a->ctx->s->nbody;
+  us_dsu_free(&a->dsu);
+  for (int i = 0; a->wait && i < n; i++) us_free(a->wait[i].v);
+  us_free(a->wait);
+  us_free(a->head);
+  us_free(a->next);
+  us_free(a->tail);
+  us_free(a->state);
+  us_free(a->stamp);
+  us_free(a->key);
+  us_free(a->heap);
+  us_free(a->roots);
+  us_bitset_free(&a->w);
+  us_bitset_set_free(&a->failed);
+}
+
+static int asm_alloc(Asm *a, int n) {
+  size_t m = (size_t)n + 1;
+  a->head = us_malloc(m * sizeof(int));
+  a->next = us_malloc(m * sizeof(int));
+  a->tail = us_malloc(m * sizeof(int));
+  a->state = us_calloc(m, 1);
+  a->stamp = us_calloc(m, sizeof(int));
+  a->key = us_malloc(m * sizeof(double));
+  a->heap = us_malloc(m * sizeof(int));
+  a->roots = us_malloc(m * sizeof(int));
+  a->wait = us_calloc(m, sizeof(IntVec));
+  int bad = !a->head || !a->next || !a->tail || !a->state || !a->stamp || !a->key ||
+            !a->heap || !a->roots || !a->wait;
+  return bad || us_dsu_init(&a->dsu, n) || us_bitset_init(&a->w, n) ||
+                 us_bitset_set_init(&a->failed, n)
+             ? -1
+             : 0;
+}
+
+static int asm_init(Asm *a, us_SearchCtx *ctx, const us_Bitset *within, us_Assembly *out) {
+  memset(a, 0, sizeof *a);
+  a->ctx = ctx;
+  a->within = within;
+  a->out = out;
+  int n = ctx->s->nbody;
+  if (asm_alloc(a, n)) return -1;
+  for (int i = 0; i < n; i++) {
+    a->head[i] = a->tail[i] = i;
+    a->next[i] = -1;
+    a->key[i] = lowest_point(&ctx->s->bodies[i]);
+    a->state[i] = us_bitset_get(within, i) ? NEW : OUT;
+    if (a->state[i] == NEW) a->nwithin++;
+  }
+  for (int i = 0; i < n; i++)
+    if (a->state[i] == NEW && ctx->g.grounded[i]) make_ready(a, i);
+  return 0;
+}
+
+/* ------------------------------------------------- would-be components */
+
+/* Distinct roots of C's components adjacent to the bodies in grp; their
+ * count. */
+static int adjacent_roots(Asm *a, const int *grp, int ng) {
+  const us_Graph *g = &a->ctx->g;
+  int nr = 0;
+  for (int j = 0; j < ng; j++)
+    for (int k = g->start[grp[j]]; k < g->start[grp[j] + 1]; k++) {
+      int u = g->adj[k];
+      if (a->state[u] != PLACED) continue;
+      int r = us_dsu_find(&a->dsu, u), dup = 0;
+      for (int q = 0; q < nr && !dup; q++) dup = a->roots[q] == r;
+      if (!dup) a->roots[nr++] = r;
+    }
+  return nr;
+}
+
+static int would_be_size(Asm *a, const int *grp, int ng) {
+  int nr = adjacent_roots(a, grp, ng), size = ng;
+  for (int q = 0; q < nr; q++) size += a->dsu.size[a->roots[q]];
+  return size;
+}
+
+/* Set (on = 1) or clear the bits of W = grp ∪ adjacent components in a->w. */
+static void mark_w(Asm *a, const int *grp, int ng, int on) {
+  int nr = adjacent_roots(a, grp, ng);
+  for (int j = 0; j < ng; j++) {
+    if (on) us_bitset_set(&a->w, grp[j]);
+    else us_bitset_clear(&a->w, grp[j]);
+  }
+  for (int q = 0; q < nr; q++)
+    for (int v = a->head[a->roots[q]]; v >= 0; v = a->next[v]) {
+      if (on) us_bitset_set(&a->w, v);
+      else us_bitset_clear(&a->w, v);
+    }
+}
+
+/* Test C ∪ grp through its component W: 1 stable, 0 not, < 0 stop. */
+static int test_step(Asm *a, const int *grp, int ng, us_Error *err) {
+  mark_w(a, grp, ng, 1);
+  int r = us_plan_test(a->ctx, &a->w, err);
+  mark_w(a, grp, ng, 0);
+  return r;
+}
+
+/* ------------------------------------------------------------ placing */
+
+/* Wake every body parked on root r (its W grew) and empty the list. */
+static void wake_list(Asm *a, int r) {
+  IntVec *v = &a->wait[r];
+  for (int k = 0; k < v->n; k++) make_ready(a, v->v[k]);
+  v->n = 0;
+}
+
+static void join(Asm *a, int b, int u) {
+  int rb = us_dsu_find(&a->dsu, b), ru = us_dsu_find(&a->dsu, u);
+  if (rb == ru) return;
+  wake_list(a, ru);
+  wake_list(a, rb);
+  int r = us_dsu_union(&a->dsu, rb, ru), o = r == rb ? ru : rb;
+  a->next[a->tail[r]] = a->head[o];
+  a->tail[r] = a->tail[o];
+}
+
+static void place_one(Asm *a, int b) {
+  const us_Graph *g = &a->ctx->g;
+  a->state[b] = PLACED;
+  us_bitset_set(&a->out->built, b);
+  a->out->seq[a->out->nseq++] = b;
+  a->nplaced++;
+  for (int k = g->start[b]; k < g->start[b + 1]; k++) {
+    int u = g->adj[k];
+    if (a->state[u] == PLACED) join(a, b, u);
+  }
+}
+
+/* Place a step (one body or a group) and wake what it affects. */
+static void place_step(Asm *a, const int *grp, int ng) {
+  const us_Graph *g = &a->ctx->g;
+  for (int j = 0; j < ng; j++) place_one(a, grp[j]);
+  wake_list(a, us_dsu_find(&a->dsu, grp[0]));
+  for (int j = 0; j < ng; j++)
+    for (int k = g->start[grp[j]]; k < g->start[grp[j] + 1]; k++) make_ready(a, g->adj[k]);
+  a->out->gstart[++a->out->ngroups] = a->out->nseq;
+  if (ng > a->out->max_group) a->out->max_group = ng;
+}
+
+static int park(Asm *a, int b) {
+  a->state[b] = PARKED;
+  a->stamp[b] = would_be_size(a, &b, 1);
+  int nr = adjacent_roots(a, &b, 1);
+  for (int q = 0; q < nr; q++)
+    if (vec_push(&a->wait[a->roots[q]], b)) return -1;
+  return 0;
+}
+
+/* Singles until the heap is empty: 1 something was placed, 0 nothing, <0 stop. */
+static int run_singles(Asm *a, us_Error *err) {
+  int placed = 0;
+  while (a->nheap > 0) {
+    int b = heap_pop(a);
+    if (a->state[b] != READY) continue;
+    if (a->stamp[b] && a->stamp[b] == would_be_size(a, &b, 1)) {
+      a->ctx->st->retries_skipped++; /* unchanged since it failed */
+      if (park(a, b))
+        return us_error_set(err, US_ERR_NOMEM, "out of memory in the assembly search"), -1;
+      continue;
+    }
+    int r = test_step(a, &b, 1, err);
+    if (r < 0) return r;
+    if (r == 1) {
+      place_step(a, &b, 1);
+      placed = 1;
+    } else if (park(a, b)) {
+      return us_error_set(err, US_ERR_NOMEM, "out of memory in the assembly search"), -1;
+    }
+  }
+  return placed;
+}
+
+/* ------------------------------------------------------------- groups */
+
+typedef struct {
+  int grp[64];
+  int ng, k;
+  us_BitsetSet seen;
+} GroupEnum;
+
+/* Absent bodies of `within` adjacent to the group or to C's components
+ * adjacent to it, into cand (capacity n); their count. */
+static int group_frontier(Asm *a, const int *grp, int ng, int *cand) {
+  const us_Graph *g = &a->ctx->g;
+  int nc = 0, nr = adjacent_roots(a, grp, ng);
+  for (int j = 0; j < ng + nr; j++) {
+    int first = j < ng ? grp[j] : a->head[a->roots[j - ng]];
+    for (int v = first; v >= 0; v = j < ng ? -1 : a->next[v])
+      for (int k = g->start[v]; k < g->start[v + 1]; k++) {
+        int u = g->adj[k];
+        if ((a->state[u] == NEW || a->state[u] == PARKED || a->state[u] == READY) &&
+            !us_bitset_get(&a->w, u)) {
+          us_bitset_set(&a->w, u);
+          cand[nc++] = u;
+        }
+      }
+  }
+  for (int q = 0; q < nc; q++) us_bitset_clear(&a->w, cand[q]);
+  return nc;
+}
+
+/* The group as a bitset key in a->w (caller clears). */
+static void group_key(Asm *a, const GroupEnum *e, int on) {
+  for (int j = 0; j < e->ng; j++) {
+    if (on) us_bitset_set(&a->w, e->grp[j]);
+    else us_bitset_clear(&a->w, e->grp[j]);
+  }
+}
+
+/* A complete group of size k: test it unless seen or its W failed before. */
+static int try_group(Asm *a, GroupEnum *e, us_Error *err) {
+  group_key(a, e, 1);
+  int fresh = us_bitset_set_add(&e->seen, &a->w);
+  group_key(a, e, 0);
+  if (fresh <= 0) return fresh < 0 ? -1 : 0;
+  mark_w(a, e->grp, e->ng, 1);
+  int known = us_bitset_set_contains(&a->failed, &a->w);
+  mark_w(a, e->grp, e->ng, 0);
+  if (known) return a->ctx->st->retries_skipped++, 0;
+  int r = test_step(a, e->grp, e->ng, err);
+  if (r == 0) {
+    mark_w(a, e->grp, e->ng, 1);
+    int add = us_bitset_set_add(&a->failed, &a->w);
+    mark_w(a, e->grp, e->ng, 0);
+    if (add < 0) return -1;
+  }
+  return r;
+}
+
+/* Extend the group by one frontier body at a time (depth-first). */
+static int extend_group(Asm *a, GroupEnum *e, us_Error *err) {
+  if (e->ng == e->k) return try_group(a, e, err);
+  int *cand = us_malloc(((size_t)a->ctx->s->nbody + 1) * sizeof(int));
+  if (!cand) return -1;
+  int nc = group_frontier(a, e->grp, e->ng, cand), r = 0;
+  for (int q = 0; q < nc && r == 0; q++) {
+    int dup = 0;
+    for (int j = 0; j < e->ng && !dup; j++) dup = e->grp[j] == cand[q];
+    if (dup) continue;
+    e->grp[e->ng++] = cand[q];
+    r = extend_group(a, e, err);
+    e->ng--;
+  }
+  us_free(cand);
+  return r;
+}
+
+/* Try groups of exactly k bodies seeded at bodies touching C or a support;
+ * place the first that stands. 1 placed, 0 none, < 0 stop. */
+static int run_groups(Asm *a, int k, us_Error *err) {
+  GroupEnum e;
+  memset(&e, 0, sizeof e);
+  e.k = k;
+  if (us_bitset_set_init(&e.seen, a->ctx->s->nbody)) return -1;
+  int r = 0;
+  for (int b = 0; b < a->ctx->s->nbody && r == 0; b++) {
+    int st = a->state[b];
+    if (st == PLACED || st == OUT || st == NEW) continue; /* seeds touch C or a support */
+    e.grp[0] = b;
+    e.ng = 1;
+    r = extend_group(a, &e, err);
+  }
+  us_bitset_set_free(&e.seen);
+  if (r == 1) place_step(a, e.grp, e.ng);
+  if (r == -1 && err && !err->code)
+    us_error_set(err, US_ERR_NOMEM, "out of memory in the assembly search");
+  return r;
+}
+
+/* ---------------------------------------------------------------- driver */
+
+/* Singles, then groups of 2..bound; back to singles after every group. */
+static int run(Asm *a, int max_group, us_Error *err) {
+  int bound = max_group > 0 ? max_group : 1;
+  for (;;) {
+    int r = run_singles(a, err);
+    if (r < 0) return r;
+    if (a->nplaced == a->nwithin) return 1;
+    int placed = 0;
+    for (int k = 2; k <= bound && !placed; k++) {
+      r = run_groups(a, k, err);
+      if (r < 0) return r;
+      placed = r;
+    }
+    if (placed) continue;
+    if (max_group > 0 || bound >= a->nwithin - a->nplaced || bound >= 64) {
+      a->out->max_group = bound;
+      return 0;
+    }
+    bound++;
+  }
+}
+
+void us_assembly_free(us_Assembly *a) {
+  us_bitset_free(&a->built);
+  us_free(a->seq);
+  us_free(a->gstart);
+  memset(a, 0, sizeof *a);
+}
+
+int us_assemble(us_SearchCtx *ctx, const us_Bitset *within, int max_group, us_Assembly *out,
+                us_Error *err) {
+  memset(out, 0, sizeof *out);
+  size_t m = (size_t)ctx->s->nbody + 1;
+  Asm a;
+  memset(&a, 0, sizeof a);
+  out->seq = us_malloc(m * sizeof(int));
+  out->gstart = us_calloc(m + 1, sizeof(int));
+  int r = !out->seq || !out->gstart || us_bitset_init(&out->built, ctx->s->nbody) ||
+                  asm_init(&a, ctx, within, out)
+              ? -1
+              : run(&a, max_group, err);
+  if (r == -1 && err && !err->code)
+    us_error_set(err, US_ERR_NOMEM, "out of memory in the assembly search");
+  if (a.ctx == ctx) asm_free(&a);
+  return r;
+}
