@@ -19,9 +19,10 @@ static const char help[] =
 
 static int report(const us_Structure *s, const us_PlanFile *pf, const us_VerifyReport *rep) {
   if (rep->ok) {
-    printf("valid: %d removals re-checked; worst certificate residuals: force %.2e, "
-           "torque %.2e (relative)\n",
-           pf->n, rep->max_force_residual, rep->max_torque_residual);
+    printf("valid: %d removals", pf->n);
+    if (pf->ngroups != pf->n) printf(" in %d steps", pf->ngroups);
+    printf(" re-checked; worst certificate residuals: force %.2e, torque %.2e (relative)\n",
+           rep->max_force_residual, rep->max_torque_residual);
     return CLI_EXIT_OK;
   }
   if (rep->full_unstable) {

@@ -359,6 +359,7 @@ typedef struct us_PlanStats {
   long revisited;        /* nodes skipped because already known (memo rule) */
   long nodes_expanded;
   long max_depth;
+  long backtracks;       /* graph searches: dead ends stepped back from */
   long saved_ground;     /* tests saved by the ground-connectivity rule */
   long saved_union;      /* tests saved by the union rule (components known stable) */
   long greedy_checks;    /* greedy-assembly dead checks run (greedy rule) */

@@ -38,6 +38,7 @@ static void write_stats(us_JsonOut *o, const us_PlanStats *st) {
   write_field_num(o, in, "revisited", (double)st->revisited, 0);
   write_field_num(o, in, "nodes_expanded", (double)st->nodes_expanded, 0);
   write_field_num(o, in, "max_depth", (double)st->max_depth, 0);
+  write_field_num(o, in, "backtracks", (double)st->backtracks, 0);
   write_field_num(o, in, "saved_ground", (double)st->saved_ground, 0);
   write_field_num(o, in, "saved_union", (double)st->saved_union, 0);
   write_field_num(o, in, "greedy_checks", (double)st->greedy_checks, 0);

@@ -368,7 +368,7 @@ static int extend_group(Asm *a, GroupEnum *e, us_Error *err) {
     if (dup) continue;
     e->grp[e->ng++] = cand[q];
     r = extend_group(a, e, err);
-    e->ng--;
+    if (r != 1) e->ng--; /* a group that stood stays in e->grp */
   }
   us_free(cand);
   return r;

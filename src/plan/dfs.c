@@ -65,6 +65,7 @@ static int next_move(us_SearchCtx *ctx, int *next) {
 /* Step back to the parent, marking the current node dead. */
 static int backtrack(us_SearchCtx *ctx, us_Error *err) {
   if (mark_dead(ctx, &ctx->cur, err)) return -1;
+  ctx->st->backtracks++;
   ctx->npath--;
   us_plan_toggle(&ctx->cur, ctx->path[ctx->npath]);
   return 0;
