@@ -108,6 +108,78 @@ us_Status us_critical_friction(const us_Structure *s, const us_Bitset *present,
                                const us_StabilitySettings *set, double tol, double mu_max,
                                us_FrictionResult *out, us_Error *err);
 
+/* Classification (src/plan/classify.c, docs/classify.md): the classes of
+ * the research proposal, each decided exactly by the library's own tests
+ * and searches, with its evidence:
+ *   1. stands: one stability test of the full structure (its own friction);
+ *   2. stands frictionless / only with friction: us_critical_friction;
+ *   3. top-down: the source's plain DFS (order highest, direction down,
+ *      rule memo only) finds an order without a single unstable move or
+ *      dead end, i.e. "remove the highest body" always works;
+ *   4. a one-at-a-time sequence exists: the assemble search (max_group 1);
+ *      when none, the bodies outside R* are the evidence;
+ *   5. the smallest group size K: the assemble search with max_group 0;
+ *      no K at all exactly when the full structure does not stand;
+ *   6. frictionless, strong and weak stability coincide (Gauss's principle,
+ *      docs/classify.md): reported, not computed;
+ * and the count of connected sub-assemblies containing the ground, an upper
+ * bound on the tests of a search with the ground rule and a memo. */
+typedef struct us_ClassifySettings {
+  us_StabilitySettings stability; /* backend of every test (default lp) */
+  long max_tests;          /* test limit of the top-down DFS probe (default
+                              20,000; <= 0: none); the other classes are
+                              polynomial or bounded by the group search */
+  double count_time_limit; /* seconds for the count (default 2; <= 0: none) */
+} us_ClassifySettings;
+us_ClassifySettings us_classify_default_settings(void);
+
+typedef struct us_Classification {
+  int nbody;               /* movable bodies */
+  /* 1. */
+  int stands;              /* the full structure stands with its own friction */
+  int unstable_body;       /* !stands: the body the test names, or -1 */
+  /* 2. */
+  int stands_frictionless; /* stands with every mu = 0 */
+  int stands_some_mu;      /* stands for some mu up to 1e3 */
+  double mu_critical;      /* the smallest such mu to 1e-7 (0 when frictionless,
+                              INFINITY when none up to 1e3) */
+  int friction_probes;
+  /* 3. */
+  int topdown;             /* 1 yes, 0 no, -1 unknown (the DFS hit max_tests
+                              before any move failed) */
+  us_PlanStatus dfs_status;/* the plain DFS: found, none, unstable or limit */
+  long dfs_tests;          /* its stability tests */
+  long rejected;           /* moves it tested and found unstable */
+  long backtracks;         /* dead ends it stepped back from */
+  /* 4. */
+  int sequence;            /* a one-at-a-time removal order exists */
+  long sequence_tests;
+  int nbuildable;          /* !sequence && stands: |R*| */
+  int nblocked, *blocked;  /* !sequence && stands: movable bodies outside R* */
+  /* 5. */
+  int min_group;           /* the smallest K with an order of steps of at most
+                              K bodies; 0 when the full structure does not
+                              stand (no K); -1 when more than group_bound */
+  int group_bound;         /* the largest K the group search tried */
+  long group_tests;
+  /* 6. */
+  int strong_equals_weak;  /* stands frictionless: strong = weak there */
+  /* the bound on a search's tests */
+  us_CountStatus count_status;
+  char *count;             /* decimal digits when exact, else NULL */
+  char count_note[128];    /* why the count was refused */
+  double seconds;          /* the whole classification */
+  double t_stands, t_friction, t_topdown, t_sequence, t_group, t_count;
+} us_Classification;
+
+/* Classify structure s (finalized). set NULL: the defaults. Every class is
+ * an outcome in out; errors are bad arguments, out of memory and backend
+ * failures (out is then empty). err may be NULL. us_classification_free(out)
+ * afterwards (also harmless after an error). */
+us_Status us_classify(const us_Structure *s, const us_ClassifySettings *set,
+                      us_Classification *out, us_Error *err);
+void us_classification_free(us_Classification *c);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,0 +1,263 @@
+/* Classification of a structure along the lines of the research proposal:
+ * each class is decided exactly by the library's own tests and searches,
+ * never by a search of its own, and comes with its evidence.
+ *
+ *   1. stands: one stability test of the full structure with the
+ *      contacts' own coefficients (the certificate is re-checked by the
+ *      stability front end; an undecided verdict is not "stands").
+ *   2. frictionless / only with friction: us_critical_friction on the full
+ *      structure, every contact's mu overridden alike: mu* = 0 when it
+ *      stands at mu = 0, else the bisection's smallest stable probe (within
+ *      1e-7 above mu*), or none up to mu = 1e3.
+ *   3. top-down: the source's plain DFS (order highest, direction down,
+ *      culling rule memo only, so every child is tested). Its first path is
+ *      the greedy "remove the highest body": the structure is top-down iff
+ *      the DFS finds an order without one rejected move (a child tested
+ *      unstable) and without one dead end (stats.backtracks counts only
+ *      the latter: stepping back from a stable node whose moves all
+ *      failed). A found order with either is "needs backtracking". The
+ *      probe is cut at max_tests: a cut after a rejection still proves
+ *      "not top-down"; a cut before any (max_tests below the body count)
+ *      leaves it unknown.
+ *   4. a one-at-a-time sequence exists: the assemble search (max_group 1),
+ *      complete by the union theorem, so "none" is a proof; its evidence is
+ *      the bodies outside the largest buildable sub-assembly R*.
+ *   5. the smallest group size K: the assemble search with max_group 0,
+ *      which raises its bound by one only when stuck, so the bound of the
+ *      order it finds is the smallest K. A sequence of single bodies gives
+ *      K = 1 without a second search (the automatic bound starts at 1 and
+ *      runs the same search). Removing every body at once is one step, so
+ *      some K exists iff the full structure stands; the planner's bound
+ *      stops at 64 bodies per step, beyond which K is reported as unknown
+ *      (-1, more than group_bound).
+ *   6. frictionless, strong stability (every solution of the contact LCP
+ *      has zero accelerations) and weak stability (some has) coincide:
+ *      docs/classify.md gives the proof (Gauss's principle of least
+ *      constraint); reported when class 2 says frictionless.
+ * The count of connected sub-assemblies containing the ground
+ * (us_count_subgraphs, with a short time limit) bounds the tests of a
+ * search with the ground rule and a memo.
+ *
+ * Every step writes its own fields of the classification and its time;
+ * the first error stops the driver and empties the result. */
+#include "core/core.h"
+
+#include <math.h>
+#include <string.h>
+
+#define US_CLASSIFY_MAX_TESTS 20000 /* default limit of the top-down probe */
+#define US_CLASSIFY_COUNT_TIME 2.0  /* default seconds for the count */
+
+us_ClassifySettings us_classify_default_settings(void) {
+  us_ClassifySettings c;
+  memset(&c, 0, sizeof c);
+  c.stability = us_stability_default_settings();
+  c.max_tests = US_CLASSIFY_MAX_TESTS;
+  c.count_time_limit = US_CLASSIFY_COUNT_TIME;
+  return c;
+}
+
+static void reset(us_Classification *c) {
+  memset(c, 0, sizeof *c);
+  c->unstable_body = -1;
+  c->mu_critical = INFINITY;
+  c->topdown = -1;
+  c->dfs_status = US_PLAN_LIMIT;
+  c->count_status = US_COUNT_REFUSED_TIME;
+}
+
+void us_classification_free(us_Classification *c) {
+  if (!c) return;
+  us_free(c->blocked);
+  us_free(c->count);
+  reset(c);
+}
+
+/* The code of an error some callee reported (or out of memory). */
+static us_Status failed(const us_Error *err) {
+  return err->code != US_OK ? err->code : US_ERR_NOMEM;
+}
+
+/* ------------------------------------------------------------- 1. stands */
+
+static us_Status classify_stands(const us_Structure *s, const us_ClassifySettings *set,
+                                 us_Classification *out, us_Error *err) {
+  us_Stability *w = us_stability_new(s, &set->stability, err);
+  if (!w) return failed(err);
+  us_StabilityResult res;
+  memset(&res, 0, sizeof res);
+  us_Status st = us_stability_test_full(w, &res, err);
+  if (!st) {
+    out->stands = res.verdict == US_STABLE;
+    out->unstable_body = out->stands ? -1 : res.unstable_body;
+  }
+  us_stability_result_free(&res);
+  us_stability_free(w);
+  return st;
+}
+
+/* ----------------------------------------------------------- 2. friction */
+
+static us_Status classify_friction(const us_Structure *s, const us_ClassifySettings *set,
+                                   us_Classification *out, us_Error *err) {
+  us_FrictionResult fr;
+  us_Status st = us_critical_friction(s, NULL, &set->stability, 0.0, 0.0, &fr, err);
+  if (!st) {
+    out->stands_frictionless = fr.stands_frictionless;
+    out->stands_some_mu = fr.stands;
+    out->mu_critical = fr.mu_critical;
+    out->friction_probes = fr.probes;
+    out->strong_equals_weak = fr.stands_frictionless;
+  }
+  us_friction_result_free(&fr);
+  return st;
+}
+
+/* ------------------------------------------------- 3. top-down (plain DFS) */
+
+/* Plan settings of one probe: the classification's backend, no limits. */
+static us_PlanSettings probe_settings(const us_ClassifySettings *set, us_Search search,
+                                      int max_group) {
+  us_PlanSettings p = us_plan_default_settings();
+  p.search = search;
+  p.max_group = max_group;
+  p.stability = set->stability;
+  return p;
+}
+
+/* 1 top-down, 0 not, -1 unknown; see the file head. */
+static int topdown_verdict(const us_Classification *c) {
+  int clean = c->rejected == 0 && c->backtracks == 0;
+  if (c->dfs_status == US_PLAN_FOUND) return clean;
+  if (c->dfs_status == US_PLAN_LIMIT) return clean ? -1 : 0;
+  return 0; /* none, or the full structure does not stand */
+}
+
+static us_Status classify_topdown(const us_Structure *s, const us_ClassifySettings *set,
+                                  us_Classification *out, us_Error *err) {
+  us_PlanSettings p = probe_settings(set, US_SEARCH_DFS, 1);
+  p.order = US_ORDER_HIGHEST;
+  p.direction = US_DIR_DOWN;
+  p.rules = US_RULE_MEMO;
+  p.max_tests = set->max_tests > 0 ? set->max_tests : 0;
+  us_Plan plan;
+  us_Status st = us_plan(s, &p, &plan, err);
+  if (st) return st;
+  out->dfs_status = plan.status;
+  out->dfs_tests = plan.stats.tests;
+  /* the full structure's own test is the one unstable test of UNSTABLE */
+  out->rejected = plan.stats.unstable - (plan.status == US_PLAN_UNSTABLE);
+  out->backtracks = plan.stats.backtracks;
+  out->topdown = topdown_verdict(out);
+  us_plan_free(&plan);
+  return US_OK;
+}
+
+/* --------------------------------------------------- 4. one at a time */
+
+/* The bodies outside R* (the plan's evidence of none). */
+static us_Status keep_blocked(const us_Plan *plan, us_Classification *out, us_Error *err) {
+  out->nbuildable = plan->nbuildable;
+  out->blocked = us_malloc((size_t)(plan->nblocked > 0 ? plan->nblocked : 1) * sizeof(int));
+  if (!out->blocked) return us_error_set(err, US_ERR_NOMEM, "out of memory classifying");
+  if (plan->nblocked > 0) memcpy(out->blocked, plan->blocked, (size_t)plan->nblocked * sizeof(int));
+  out->nblocked = plan->nblocked;
+  return US_OK;
+}
+
+static us_Status classify_sequence(const us_Structure *s, const us_ClassifySettings *set,
+                                   us_Classification *out, us_Error *err) {
+  us_PlanSettings p = probe_settings(set, US_SEARCH_ASSEMBLE, 1);
+  us_Plan plan;
+  us_Status st = us_plan(s, &p, &plan, err);
+  if (st) return st;
+  out->sequence_tests = plan.stats.tests;
+  out->sequence = plan.status == US_PLAN_FOUND;
+  if (plan.status == US_PLAN_NONE) st = keep_blocked(&plan, out, err);
+  if (plan.status == US_PLAN_LIMIT) /* no limit was set */
+    st = us_error_set(err, US_ERR_SOLVER, "classify: the assemble search stopped at a limit");
+  /* no K when the full structure does not stand; K = 1 with a sequence */
+  out->min_group = out->sequence ? 1 : 0;
+  out->group_bound = plan.status == US_PLAN_UNSTABLE ? 0 : 1;
+  us_plan_free(&plan);
+  return st;
+}
+
+/* ----------------------------------------------------- 5. smallest K */
+
+static us_Status classify_group(const us_Structure *s, const us_ClassifySettings *set,
+                                us_Classification *out, us_Error *err) {
+  if (out->sequence || out->group_bound == 0) return US_OK; /* decided by step 4 */
+  us_PlanSettings p = probe_settings(set, US_SEARCH_ASSEMBLE, 0);
+  us_Plan plan;
+  us_Status st = us_plan(s, &p, &plan, err);
+  if (st) return st;
+  out->group_tests = plan.stats.tests;
+  out->group_bound = plan.max_group;
+  if (plan.status == US_PLAN_FOUND) out->min_group = plan.max_group;
+  else if (plan.status == US_PLAN_NONE) out->min_group = -1; /* past the planner's bound */
+  else st = us_error_set(err, US_ERR_SOLVER, "classify: the group search ended with status %s "
+                         "after step 4 found the structure standing",
+                         us_plan_status_name(plan.status));
+  us_plan_free(&plan);
+  return st;
+}
+
+/* -------------------------------------------------------------- count */
+
+static us_Status classify_count(const us_Structure *s, const us_ClassifySettings *set,
+                                us_Classification *out, us_Error *err) {
+  us_CountSettings cs = us_count_default_settings();
+  cs.time_limit = set->count_time_limit > 0 ? set->count_time_limit : 0.0;
+  us_Count c;
+  us_Status st = us_count_subgraphs(s, &cs, &c, err);
+  if (!st) {
+    out->count_status = c.status;
+    out->count = c.value; /* taken over */
+    c.value = NULL;
+    memcpy(out->count_note, c.note, sizeof out->count_note);
+    out->count_note[sizeof out->count_note - 1] = '\0';
+  }
+  us_count_free(&c);
+  return st;
+}
+
+/* ------------------------------------------------------------- driver */
+
+typedef us_Status (*Step)(const us_Structure *, const us_ClassifySettings *, us_Classification *,
+                          us_Error *);
+
+static us_Status check_args(const us_Structure *s, const us_Classification *out, us_Error *err) {
+  if (!s || !out) return us_error_set(err, US_ERR_USAGE, "us_classify: NULL argument");
+  if (!s->finalized)
+    return us_error_set(err, US_ERR_USAGE, "us_classify: the structure is not finalized");
+  return US_OK;
+}
+
+us_Status us_classify(const us_Structure *s, const us_ClassifySettings *set,
+                      us_Classification *out, us_Error *err) {
+  us_Error local;
+  if (!err) err = &local;
+  us_error_clear(err);
+  if (out) reset(out);
+  us_Status st = check_args(s, out, err);
+  if (st) return st;
+  us_ClassifySettings def = us_classify_default_settings();
+  if (!set) set = &def;
+  const struct {
+    Step fn;
+    double *t;
+  } steps[] = {{classify_stands, &out->t_stands},     {classify_friction, &out->t_friction},
+               {classify_topdown, &out->t_topdown},   {classify_sequence, &out->t_sequence},
+               {classify_group, &out->t_group},       {classify_count, &out->t_count}};
+  double t0 = us_now();
+  out->nbody = us_structure_movable_count(s);
+  for (size_t k = 0; k < sizeof steps / sizeof steps[0] && !st; k++) {
+    double t = us_now();
+    st = steps[k].fn(s, set, out, err);
+    *steps[k].t = us_now() - t;
+  }
+  out->seconds = us_now() - t0;
+  if (st) us_classification_free(out);
+  return st;
+}

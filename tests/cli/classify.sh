@@ -1,0 +1,104 @@
+# unstack classify: the classes of generated and fixture structures (text
+# and JSON), ids that need escaping, the top-down probe's limit, usage and
+# input errors (exit 2). Reference values: the column, the cantilever
+# fixture and the arch as in tests/test_plan_classify.c; the leaning
+# fixture's mu* by hand statics (its _note): with the left slab's centre
+# c_x = 1.6825 / 3.075, mu* = (c_x - 0.3) / 2.25 = 0.76 / 6.91875 =
+# 0.1098464...; the overhang tips at any mu.
+. "$(dirname "$0")/lib.sh"
+
+# json_is FILE JQ-EXPR DESCRIPTION: the output parses and the expression holds
+json_is() {
+  if command -v jq >/dev/null; then
+    if jq -e "$2" "$1" >/dev/null 2>&1; then ok "$3"; else bad "$3 ($2)"; sed 's/^/    /' "$1" | head -5; fi
+  elif command -v python3 >/dev/null; then
+    if python3 -c 'import json, sys; json.load(open(sys.argv[1]))' "$1"; then ok "$3 (parsed only)"; else bad "$3: not JSON"; fi
+  else
+    ok "$3 (skipped: no jq or python3)"
+  fi
+}
+
+expect 0 "classify --help" -- "$CLI" classify --help
+contains "$T/out" "usage: unstack classify" "classify help text"
+expect 0 "unstack --help lists classify" -- "$CLI" --help
+contains "$T/out" "classify FILE" "usage names classify"
+
+# a column: top-down, frictionless, K = 1
+"$CLI" generate column --blocks 5 -o "$T/c5.json" >/dev/null
+expect 0 "classify column" -- "$CLI" classify "$T/c5.json"
+contains "$T/out" "stands: yes" "column stands"
+contains "$T/out" "friction: stands frictionless (mu* = 0" "column needs no friction"
+contains "$T/out" "frictionless: strong = weak (Gauss's principle)" "column: strong = weak"
+contains "$T/out" "top-down: yes" "column is top-down"
+contains "$T/out" "sequence: yes" "column has a sequence"
+contains "$T/out" "group: smallest K = 1" "column: K = 1"
+contains "$T/out" "count: 6 connected" "column: count 6"
+[ "$(wc -l <"$T/out")" -eq 8 ] && ok "one line per class and a time line" || bad "$(wc -l <"$T/out") lines"
+
+# the cantilever: highest first fails, the DFS finds an order
+expect 0 "classify cantilever" -- "$CLI" classify "$DATA/cantilever.json"
+contains "$T/out" "top-down: no, needs backtracking in the source's DFS (found after 1 rejected move" "cantilever needs backtracking"
+contains "$T/out" "sequence: yes" "cantilever has a sequence"
+expect 0 "cantilever, probe cut after the rejection" -- "$CLI" classify "$DATA/cantilever.json" --max-tests 3
+contains "$T/out" "top-down: no, highest first fails" "a rejection before the limit decides"
+"$CLI" generate column --blocks 30 -o "$T/c30.json" >/dev/null
+expect 0 "column, probe cut early" -- "$CLI" classify "$T/c30.json" --max-tests 5
+contains "$T/out" "top-down: unknown (limit" "limit before any failure: unknown"
+contains "$T/out" "group: smallest K = 1" "the other classes have no limit"
+
+# two slabs leaning on each other: friction, no sequence, K = 2
+expect 0 "classify leaning" -- "$CLI" classify "$DATA/leaning.json"
+contains "$T/out" "stands only with friction, mu* = 0.109846" "leaning: mu* by hand statics"
+contains "$T/out" 'sequence: none; blocked: "left", "right"' "leaning: both slabs blocked"
+contains "$T/out" "group: smallest K = 2" "leaning: K = 2"
+contains "$T/out" "strong stability not decided" "leaning: no strong = weak claim with friction"
+expect 0 "classify leaning --json" -- "$CLI" classify "$DATA/leaning.json" --json
+json_is "$T/out" '.stands and (.stands_frictionless | not) and .min_group == 2 and .sequence == false and .blocked == ["left", "right"] and .count == "4" and .mu_critical == 0.109846' "leaning: JSON classes"
+expect 0 "classify leaning with the LCP" -- "$CLI" classify "$DATA/leaning.json" --method lcp-reuse
+contains "$T/out" "group: smallest K = 2" "lcp-reuse: K = 2"
+
+# the arch: the crown must go at once
+"$CLI" generate arch -o "$T/arch.json" >/dev/null
+expect 0 "classify arch" -- "$CLI" classify "$T/arch.json"
+contains "$T/out" 'sequence: none; blocked: "b3", "b4", "b5", "b6", "b7", "b8"' "arch: crown blocked"
+contains "$T/out" "group: smallest K = 6" "arch: K = 6"
+contains "$T/out" "top-down: no" "arch: not top-down"
+
+# a plank that tips: no K at all
+cat >"$T/overhang.json" <<'EOF'
+{"friction": 0.5, "bodies": [
+  {"id": "pier", "polygon": [[0, 0], [1, 0], [1, 1], [0, 1]]},
+  {"id": "plank", "polygon": [[0.2, 1], [2.7, 1], [2.7, 1.2], [0.2, 1.2]]}]}
+EOF
+expect 0 "classify overhang" -- "$CLI" classify "$T/overhang.json"
+contains "$T/out" 'stands: no (lp: body "plank" cannot be held)' "overhang: the plank named"
+contains "$T/out" "stands for no mu up to 1000" "overhang: no mu"
+contains "$T/out" "group: no sequence for any K: the full structure does not stand" "overhang: no K"
+expect 0 "classify overhang --json" -- "$CLI" classify "$T/overhang.json" --json
+json_is "$T/out" '.stands == false and .unstable_body == "plank" and .mu_critical == null and .min_group == null and .group_status == "unstable" and .topdown == false' "overhang: JSON"
+
+# ids with quotes, backslashes and control characters are escaped
+cat >"$T/weird.json" <<'EOF'
+{"friction": 0.5, "bodies": [
+ {"id": "le\"ft\\", "polygon": [[0, 0], [0.3, 0], [1, 1.75], [1, 2.25]]},
+ {"id": "ri\u0001g\nht\t\u00e9", "polygon": [[2, 0], [1, 2.25], [1, 1.75], [1.7, 0]]}]}
+EOF
+expect 0 "classify odd ids" -- "$CLI" classify "$T/weird.json"
+contains "$T/out" 'blocked: "le\"ft\\", "ri\u0001g\u000aht\u0009' "text: ids escaped"
+[ "$(wc -l <"$T/out")" -eq 8 ] && ok "no raw newline from an id" || bad "an id broke a line"
+expect 0 "classify odd ids --json" -- "$CLI" classify "$T/weird.json" --json
+json_is "$T/out" '.blocked == ["le\"ft\\", "ri\u0001g\nht\t\u00e9"]' "json: ids round-trip"
+
+# usage and input errors: exit 2
+expect 2 "classify without file" -- "$CLI" classify
+expect 2 "classify missing file" -- "$CLI" classify "$T/nope.json"
+contains "$T/err" "nope.json" "names the missing file"
+expect 2 "classify bad input" -- "$CLI" classify "$DATA/bad/overlap.json"
+contains "$T/err" "overlap.json" "names the bad file"
+expect 2 "classify unknown option" -- "$CLI" classify "$T/c5.json" --frob
+expect 2 "classify bad max-tests" -- "$CLI" classify "$T/c5.json" --max-tests ten
+expect 2 "classify negative max-tests" -- "$CLI" classify "$T/c5.json" --max-tests -1
+expect 2 "classify unknown method" -- "$CLI" classify "$T/c5.json" --method simplex
+expect 2 "classify bad tolerance" -- "$CLI" classify "$T/c5.json" --contact-tol 0
+expect 2 "classify two files" -- "$CLI" classify "$T/c5.json" "$T/arch.json"
+finish

@@ -1,0 +1,289 @@
+/* unstack classify: the classes of a structure (stands, friction, top-down,
+ * one-at-a-time, smallest group, strong = weak), each with its evidence,
+ * as text (one line per class) or as one JSON object. */
+#include "options.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static const char help[] =
+    "usage: unstack classify FILE [options]\n"
+    "\n"
+    "Classify the structure in FILE, one line per class with its evidence\n"
+    "(docs/classify.md):\n"
+    "  stands       does the full structure stand with its own friction?\n"
+    "  friction     frictionless, or only with friction: the critical coefficient mu*\n"
+    "  strong-weak  frictionless, strong and weak stability coincide\n"
+    "  top-down     does 'remove the highest body' work? (the source's plain DFS)\n"
+    "  sequence     does a one-at-a-time removal order exist? (if not: the blocked bodies)\n"
+    "  group        the smallest K such that steps of at most K bodies suffice\n"
+    "  count        connected sub-assemblies containing the ground (bound on tests)\n"
+    "\n"
+    "options:\n"
+    "  --json            print one JSON object instead\n"
+    "  --method M        lp (CLP, default), lpsolve, lcp, lcp-reuse\n"
+    "  --max-tests N     test limit of the top-down DFS (default 20000; 0: none)\n"
+    "  --contact-tol T   contact detection tolerance (default 1e-6 x size)\n"
+    "\n"
+    "exit: 0 classified, 2 usage or input error\n";
+
+#define TEXT_IDS 20 /* blocked bodies named in the text output */
+
+typedef struct ClassifyArgs {
+  CliCommon common;
+  us_ClassifySettings set;
+  const char *file;
+  int json;
+} ClassifyArgs;
+
+/* -1: help printed (exit 0); else 0 or CLI_EXIT_ERR. */
+static int parse_args(int argc, char **argv, ClassifyArgs *a) {
+  for (int i = 1; i < argc; i++) {
+    const char *s = argv[i], *v;
+    long n;
+    if (cli_is_help(s)) return fputs(help, stdout), -1;
+    if (!strcmp(s, "--json")) {
+      a->json = 1;
+    } else if (!strcmp(s, "--max-tests")) {
+      if (!(v = cli_value("classify", argc, argv, &i))) return CLI_EXIT_ERR;
+      if (cli_parse_long(v, &n) || n < 0)
+        return cli_fail("classify", "--max-tests needs an integer >= 0, got '%s'", v);
+      a->set.max_tests = n;
+    } else if (!strcmp(s, "--method") || !strcmp(s, "--contact-tol")) {
+      if (cli_common_option("classify", argc, argv, &i, &a->common) < 0) return CLI_EXIT_ERR;
+    } else if (s[0] == '-' && s[1]) {
+      return cli_fail("classify", "unknown option '%s'", s);
+    } else if (a->file) {
+      return cli_fail("classify", "more than one FILE given");
+    } else {
+      a->file = s;
+    }
+  }
+  if (!a->file) return cli_fail("classify", "no FILE given (see 'unstack classify --help')");
+  a->set.stability = a->common.stab;
+  return 0;
+}
+
+/* ------------------------------------------------------------- strings */
+
+/* A JSON string: quotes, backslashes and control characters escaped (ids
+ * are user data and may hold any of them). Used by the text output too. */
+static void put_string(const char *s) {
+  putchar('"');
+  for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
+    if (*p == '"' || *p == '\\') printf("\\%c", *p);
+    else if (*p < 0x20 || *p == 0x7f) printf("\\u%04x", *p);
+    else putchar(*p);
+  }
+  putchar('"');
+}
+
+static void put_body(const us_Structure *s, int b) { put_string(s->bodies[b].id); }
+
+/* ---------------------------------------------------------------- text */
+
+static void text_stands(const us_Structure *s, const us_Classification *c, const char *method) {
+  if (c->stands) {
+    printf("stands: yes (%s, certificate re-checked)\n", method);
+    return;
+  }
+  printf("stands: no (%s", method);
+  if (c->unstable_body >= 0) printf(": body "), put_body(s, c->unstable_body), printf(" cannot be held");
+  printf(")\n");
+}
+
+static void text_friction(const us_Classification *c) {
+  if (c->stands_frictionless)
+    printf("friction: stands frictionless (mu* = 0, %d probe%s)\n", c->friction_probes,
+           c->friction_probes == 1 ? "" : "s");
+  else if (c->stands_some_mu)
+    printf("friction: stands only with friction, mu* = %.6f (every contact alike; bisection to "
+           "1e-7, %d probes)\n", c->mu_critical, c->friction_probes);
+  else
+    printf("friction: stands for no mu up to 1000 (%d probes)\n", c->friction_probes);
+}
+
+static void text_strong_weak(const us_Classification *c) {
+  if (c->strong_equals_weak)
+    printf("strong-weak: frictionless: strong = weak (Gauss's principle)\n");
+  else
+    printf("strong-weak: not frictionless: weak stability only (strong stability not decided)\n");
+}
+
+static const char *plural(long n) { return n == 1 ? "" : "s"; }
+
+/* "R rejected moves, B backtracks" */
+static void moves(const us_Classification *c) {
+  printf("%ld rejected move%s, %ld backtrack%s", c->rejected, plural(c->rejected), c->backtracks,
+         plural(c->backtracks));
+}
+
+static void text_topdown(const us_Classification *c, long max_tests) {
+  printf("top-down: ");
+  if (c->topdown == 1) {
+    printf("yes (the source's DFS, highest first: %ld tests, no rejected move, no "
+           "backtracking)\n", c->dfs_tests);
+  } else if (c->dfs_status == US_PLAN_UNSTABLE) {
+    printf("no (the full structure does not stand)\n");
+  } else if (c->topdown == -1) {
+    printf("unknown (limit: the source's DFS stopped at %ld tests before any move failed)\n",
+           c->dfs_tests);
+  } else if (c->dfs_status == US_PLAN_FOUND) {
+    printf("no, needs backtracking in the source's DFS (found after "), moves(c);
+    printf("; %ld tests)\n", c->dfs_tests);
+  } else if (c->dfs_status == US_PLAN_NONE) {
+    printf("no (the source's DFS finds no order: %ld tests, ", c->dfs_tests), moves(c);
+    printf(")\n");
+  } else {
+    printf("no, highest first fails ("), moves(c);
+    printf("; the source's DFS stopped at its limit of %ld tests)\n", max_tests);
+  }
+}
+
+static void text_sequence(const us_Structure *s, const us_Classification *c) {
+  if (c->sequence) {
+    printf("sequence: yes, one body at a time (assemble search, %ld tests)\n", c->sequence_tests);
+    return;
+  }
+  if (c->group_bound == 0) {
+    printf("sequence: none (the full structure does not stand)\n");
+    return;
+  }
+  printf("sequence: none; blocked: ");
+  for (int k = 0; k < c->nblocked && k < TEXT_IDS; k++) {
+    if (k) printf(", ");
+    put_body(s, c->blocked[k]);
+  }
+  if (c->nblocked > TEXT_IDS) printf(" and %d more", c->nblocked - TEXT_IDS);
+  printf(" (the largest buildable sub-assembly has %d of %d bodies; %ld tests)\n", c->nbuildable,
+         c->nbody, c->sequence_tests);
+}
+
+static void text_group(const us_Classification *c) {
+  if (c->min_group > 0 && c->sequence)
+    printf("group: smallest K = 1\n");
+  else if (c->min_group > 0)
+    printf("group: smallest K = %d (assemble with automatic K, %ld tests)\n", c->min_group,
+           c->group_tests);
+  else if (c->min_group == 0)
+    printf("group: no sequence for any K: the full structure does not stand (removing "
+           "everything at once is one step)\n");
+  else
+    printf("group: K > %d (the planner's bound; K <= %d, all bodies at once)\n", c->group_bound,
+           c->nbody);
+}
+
+static void text_count(const us_Classification *c) {
+  if (c->count)
+    printf("count: %s connected sub-assemblies containing the ground (bound on a search's "
+           "tests)\n", c->count);
+  else
+    printf("count: refused (%s)\n", c->count_note);
+}
+
+static void print_text(const us_Structure *s, const us_Classification *c, const ClassifyArgs *a) {
+  const char *method = us_method_name(a->set.stability.method);
+  text_stands(s, c, method);
+  text_friction(c);
+  text_strong_weak(c);
+  text_topdown(c, a->set.max_tests);
+  text_sequence(s, c);
+  text_group(c);
+  text_count(c);
+  printf("time: %.3f s (%d bodies, %d contacts)\n", c->seconds, c->nbody, s->ncontact);
+}
+
+/* ---------------------------------------------------------------- JSON */
+
+static const char *json_bool(int b) { return b ? "true" : "false"; }
+
+static void json_body_or_null(const us_Structure *s, int b) {
+  if (b >= 0) put_body(s, b);
+  else printf("null");
+}
+
+static void json_friction(const us_Classification *c) {
+  printf(", \"stands_frictionless\": %s, \"stands_with_friction\": %s, \"mu_critical\": ",
+         json_bool(c->stands_frictionless), json_bool(c->stands_some_mu));
+  if (isfinite(c->mu_critical)) printf("%.6f", c->mu_critical);
+  else printf("null");
+  printf(", \"friction_probes\": %d, \"strong_equals_weak\": %s", c->friction_probes,
+         json_bool(c->strong_equals_weak));
+}
+
+static void json_topdown(const us_Classification *c, long max_tests) {
+  printf(", \"topdown\": %s", c->topdown < 0 ? "null" : json_bool(c->topdown));
+  printf(", \"dfs\": {\"status\": \"%s\", \"tests\": %ld, \"rejected\": %ld, \"backtracks\": %ld, "
+         "\"max_tests\": %ld}", us_plan_status_name(c->dfs_status), c->dfs_tests, c->rejected,
+         c->backtracks, max_tests);
+}
+
+static void json_sequence(const us_Structure *s, const us_Classification *c) {
+  printf(", \"sequence\": %s, \"sequence_tests\": %ld, \"buildable\": %d, \"blocked\": [",
+         json_bool(c->sequence), c->sequence_tests, c->nbuildable);
+  for (int k = 0; k < c->nblocked; k++) {
+    if (k) printf(", ");
+    put_body(s, c->blocked[k]);
+  }
+  printf("]");
+}
+
+static void json_group(const us_Classification *c) {
+  const char *gs = c->min_group > 0 ? "found" : c->min_group == 0 ? "unstable" : "beyond-bound";
+  printf(", \"min_group\": ");
+  if (c->min_group > 0) printf("%d", c->min_group);
+  else printf("null");
+  printf(", \"group_status\": \"%s\", \"group_bound\": %d, \"group_tests\": %ld", gs,
+         c->group_bound, c->group_tests);
+}
+
+static void json_count(const us_Classification *c) {
+  printf(", \"count\": ");
+  if (c->count) put_string(c->count);
+  else printf("null");
+  printf(", \"count_status\": \"%s\", \"count_note\": ", us_count_status_name(c->count_status));
+  put_string(c->count_note);
+}
+
+static void print_json(const us_Structure *s, const us_Classification *c, const ClassifyArgs *a) {
+  printf("{\"file\": ");
+  put_string(a->file);
+  printf(", \"method\": \"%s\", \"bodies\": %d, \"contacts\": %d, \"stands\": %s, "
+         "\"unstable_body\": ", us_method_name(a->set.stability.method), c->nbody, s->ncontact,
+         json_bool(c->stands));
+  json_body_or_null(s, c->unstable_body);
+  json_friction(c);
+  json_topdown(c, a->set.max_tests);
+  json_sequence(s, c);
+  json_group(c);
+  json_count(c);
+  printf(", \"seconds\": %.6f, \"times\": {\"stands\": %.6f, \"friction\": %.6f, \"topdown\": %.6f, "
+         "\"sequence\": %.6f, \"group\": %.6f, \"count\": %.6f}}\n", c->seconds, c->t_stands,
+         c->t_friction, c->t_topdown, c->t_sequence, c->t_group, c->t_count);
+}
+
+int cmd_classify(int argc, char **argv) {
+  ClassifyArgs a;
+  memset(&a, 0, sizeof a);
+  cli_common_init(&a.common);
+  a.set = us_classify_default_settings();
+  int r = parse_args(argc, argv, &a);
+  if (r) return r < 0 ? CLI_EXIT_OK : r;
+  us_Structure *s = cli_load("classify", a.file, &a.common);
+  if (!s) return CLI_EXIT_ERR;
+  us_Error err;
+  us_error_clear(&err);
+  us_Classification c;
+  int code = CLI_EXIT_ERR;
+  if (us_classify(s, &a.set, &c, &err) == US_OK) {
+    if (a.json) print_json(s, &c, &a);
+    else print_text(s, &c, &a);
+    code = CLI_EXIT_OK;
+  } else {
+    cli_error("classify", &err);
+  }
+  us_classification_free(&c);
+  us_structure_free(s);
+  return code;
+}
