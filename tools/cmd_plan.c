@@ -43,10 +43,12 @@ static void print_stats(const us_PlanStats *st) {
   printf("statistics:\n  tests %ld (stable %ld, unstable %ld), revisited %ld, expanded %ld, "
          "max depth %ld\n",
          st->tests, st->stable, st->unstable, st->revisited, st->nodes_expanded, st->max_depth);
-  printf("  backtracks %ld; rules: ground saved %ld tests, union saved %ld, greedy checks %ld (cut %ld), "
-         "components %ld, retries skipped %ld, restarts %ld\n",
-         st->backtracks, st->saved_ground, st->saved_union, st->greedy_checks, st->greedy_cuts, st->components,
-         st->retries_skipped, st->restarts);
+  printf("  backtracks %ld; rules: ground saved %ld tests, union saved %ld, exact checks %ld, "
+         "greedy checks %ld, components %ld\n",
+         st->backtracks, st->saved_ground, st->saved_union, st->exact_checks, st->greedy_checks,
+         st->components);
+  printf("  assembly: retries skipped %ld, sets searched exhaustively %ld; restarts %ld\n",
+         st->retries_skipped, st->exhaustive, st->restarts);
   printf("  time: total %.3f s, setup %.3f s, search %.3f s, in solver %.3f s, "
          "certificate checks %.3f s\n",
          st->time_total, st->time_setup, st->time_search, st->time_solve, st->time_check);

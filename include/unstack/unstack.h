@@ -362,10 +362,11 @@ typedef struct us_PlanStats {
   long backtracks;       /* graph searches: dead ends stepped back from */
   long saved_ground;     /* tests saved by the ground-connectivity rule */
   long saved_union;      /* tests saved by the union rule (components known stable) */
-  long greedy_checks;    /* greedy-assembly dead checks run (greedy rule) */
-  long greedy_cuts;      /* stable children found dead by them (not explored) */
+  long exact_checks;     /* greedy rule: exact decisions asked (root checks) */
+  long greedy_checks;    /* greedy rule: greedy assemblies run by the rescue */
   long components;       /* independent parts planned apart (components rule) */
   long retries_skipped;  /* assemble: re-tests skipped because a body's part did not change */
+  long exhaustive;       /* connected sets the greedy could not rebuild, searched exhaustively */
   long restarts;         /* random search */
   double time_total;     /* seconds */
   double time_setup;

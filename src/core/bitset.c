@@ -111,6 +111,13 @@ int us_bitset_set_contains(const us_BitsetSet *s, const us_Bitset *b) {
   return s->hashes[find_slot(s, b->w, h)] != 0;
 }
 
+long us_bitset_set_index(const us_BitsetSet *s, const us_Bitset *b) {
+  if (!s->hashes) return -1;
+  uint64_t h = hash_words(b->w, s->nwords);
+  size_t i = find_slot(s, b->w, h);
+  return s->hashes[i] ? (long)s->slot_key[i] : -1;
+}
+
 static int rehash(us_BitsetSet *s) {
   size_t ncap = s->cap * 2;
   uint64_t *nh = us_calloc(ncap, sizeof(uint64_t));

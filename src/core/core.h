@@ -37,6 +37,9 @@ void us_bitset_set_free(us_BitsetSet *s);
 int us_bitset_set_contains(const us_BitsetSet *s, const us_Bitset *b);
 /* 1 added, 0 already present, -1 OOM */
 int us_bitset_set_add(us_BitsetSet *s, const us_Bitset *b);
+/* Keys are numbered 0, 1, ... in the order they were added (so callers can
+ * keep values in a parallel array): the number of b, or -1 when absent. */
+long us_bitset_set_index(const us_BitsetSet *s, const us_Bitset *b);
 size_t us_bitset_set_bytes(const us_BitsetSet *s);
 
 /* Hash map from borrowed strings to non-negative ints (body ids to

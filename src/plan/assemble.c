@@ -1,22 +1,23 @@
-/* Greedy assembly from the ground: the complete planner built on the union
- * theorem (docs/planning.md has the statements and proofs).
+/* Greedy assembly from the ground: the fast path of the planner.
  *
- * Facts it rests on:
- *   1. Union: if sub-assemblies A and B stand, A ∪ B stands (keep A's
- *      forces on A's contacts, B's on B's, zero on the contacts between
- *      A \ B and B \ A ... see docs: forces of B on contacts inside A ∩ B
- *      are added to A's; every body's rows still balance).
- *   2. Buildable sets (built from the empty set one step at a time, every
- *      intermediate standing) are closed under union, so every structure
- *      has one largest buildable sub-assembly R*, and a greedy that adds
- *      any step keeping the set standing reaches R* without backtracking.
- *      Reversed, a build order is a removal order: a stable unstacking
- *      sequence exists iff the greedy reaches the whole structure.
- *   3. Decoupling: C ∪ G stands iff the component W of C ∪ G that holds G
- *      stands, when C stands (components share no contact). So a step is
- *      tested on W alone, and a body whose W did not change since it failed
- *      is not tested again. W only grows as C grows, so "W unchanged" is
- *      "|W| unchanged".
+ * Build from the empty set, adding any body (or group of at most K
+ * bodies) that keeps the set standing, lowest first; a body that failed is
+ * retried only when the part it would join changed. When it reaches the
+ * whole set, its build order reversed is a removal order (every set on the
+ * way stood). When it is stuck nothing follows from that alone: buildable
+ * sets are not closed under union when they overlap (a post can hold one
+ * leaning plank or the other but not both), so a different choice earlier
+ * might have gone on; exact.c decides those cases. docs/planning.md has the
+ * statements, the counterexample and the proofs.
+ *
+ * Facts it uses:
+ *   - Decoupling: when C stands, C ∪ G stands iff the component W of
+ *     C ∪ G that holds G stands (components share no contact). So a step
+ *     is tested on W alone, and a body whose W did not change since it
+ *     failed is not tested again. W only grows as C grows, so "W
+ *     unchanged" is "|W| unchanged".
+ *   - A part that touches no support cannot stand under gravity, so only
+ *     bodies touching C or a support are candidates.
  *
  * Data: C = `built`; union-find over C's components with member lists
  * (head/next) so W is listed in O(|W|); a min-heap of ready candidates
@@ -24,17 +25,13 @@
  * state[b] NEW (touches nothing yet), READY (in the heap), PARKED (failed
  * with would-be size stamp[b]), PLACED or OUT (not in `within`). A parked
  * body waits on the lists of the components it touched; when one of them
- * grows (a body joins it) every body waiting on it is woken, since its W
- * grew. Only bodies touching C or a support are candidates: a part that
- * touches no support cannot stand under gravity.
+ * grows every body waiting on it is woken, since its W grew.
  *
- * Groups (max_group > 1, or 0 for automatic): when no single body can be
- * added, connected groups of 2..K absent bodies are tried (connected
- * through themselves and C's components; a group whose parts fall in
- * different components of C ∪ G is never needed, since each part would
- * stand on its own by fact 3). A group's W is memoised when it fails. With
- * max_group 0 the bound starts at 1 and rises by one only when stuck, so
- * the bound reached is the smallest K for which an order exists.
+ * Groups (K > 1): when no single body can be added, groups of 2..K absent
+ * bodies connected through themselves and C's components are tried (a
+ * group whose parts fall in different components of C ∪ G is never
+ * needed: by decoupling each part stands added alone). A group's W is
+ * memoised when it fails.
  *
  * Cost: at most n(n+1)/2 single-body tests (each body fails at most once
  * per growth of its part); about n on stacks built bottom-up. */
@@ -243,11 +240,11 @@ static void join(Asm *a, int b, int u) {
   a->tail[r] = a->tail[o];
 }
 
-static void place_one(Asm *a, int b) {
+static void place_one(Asm *a, int b, int record) {
   const us_Graph *g = &a->ctx->g;
   a->state[b] = PLACED;
   us_bitset_set(&a->out->built, b);
-  a->out->seq[a->out->nseq++] = b;
+  if (record) a->out->seq[a->out->nseq++] = b;
   a->nplaced++;
   for (int k = g->start[b]; k < g->start[b + 1]; k++) {
     int u = g->adj[k];
@@ -258,7 +255,7 @@ static void place_one(Asm *a, int b) {
 /* Place a step (one body or a group) and wake what it affects. */
 static void place_step(Asm *a, const int *grp, int ng) {
   const us_Graph *g = &a->ctx->g;
-  for (int j = 0; j < ng; j++) place_one(a, grp[j]);
+  for (int j = 0; j < ng; j++) place_one(a, grp[j], 1);
   wake_list(a, us_dsu_find(&a->dsu, grp[0]));
   for (int j = 0; j < ng; j++)
     for (int k = g->start[grp[j]]; k < g->start[grp[j] + 1]; k++) make_ready(a, g->adj[k]);
@@ -398,25 +395,22 @@ static int run_groups(Asm *a, int k, us_Error *err) {
 
 /* ---------------------------------------------------------------- driver */
 
-/* Singles, then groups of 2..bound; back to singles after every group. */
+/* Singles, then groups of 2..K; back to singles after every group. */
 static int run(Asm *a, int max_group, us_Error *err) {
-  int bound = max_group > 0 ? max_group : 1;
   for (;;) {
     int r = run_singles(a, err);
     if (r < 0) return r;
     if (a->nplaced == a->nwithin) return 1;
     int placed = 0;
-    for (int k = 2; k <= bound && !placed; k++) {
+    for (int k = 2; k <= max_group && !placed; k++) {
       r = run_groups(a, k, err);
       if (r < 0) return r;
       placed = r;
     }
-    if (placed) continue;
-    if (max_group > 0 || bound >= a->nwithin - a->nplaced || bound >= 64) {
-      a->out->max_group = bound;
+    if (!placed) {
+      a->out->max_group = max_group;
       return 0;
     }
-    bound++;
   }
 }
 
@@ -427,8 +421,20 @@ void us_assembly_free(us_Assembly *a) {
   memset(a, 0, sizeof *a);
 }
 
-int us_assemble(us_SearchCtx *ctx, const us_Bitset *within, int max_group, us_Assembly *out,
-                us_Error *err) {
+/* The start set is in place before the first test (it stands by the
+ * caller's word); its absent neighbours become candidates. */
+static void place_start(Asm *a, const us_Bitset *start) {
+  const us_Graph *g = &a->ctx->g;
+  int n = a->ctx->s->nbody;
+  for (int i = 0; i < n; i++)
+    if (a->state[i] != OUT && us_bitset_get(start, i)) place_one(a, i, 0);
+  for (int i = 0; i < n; i++)
+    if (a->state[i] == PLACED)
+      for (int k = g->start[i]; k < g->start[i + 1]; k++) make_ready(a, g->adj[k]);
+}
+
+int us_assemble_from(us_SearchCtx *ctx, const us_Bitset *within, const us_Bitset *start,
+                     int max_group, us_Assembly *out, us_Error *err) {
   memset(out, 0, sizeof *out);
   size_t m = (size_t)ctx->s->nbody + 1;
   Asm a;
@@ -438,9 +444,16 @@ int us_assemble(us_SearchCtx *ctx, const us_Bitset *within, int max_group, us_As
   int r = !out->seq || !out->gstart || us_bitset_init(&out->built, ctx->s->nbody) ||
                   asm_init(&a, ctx, within, out)
               ? -1
-              : run(&a, max_group, err);
+              : 0;
+  if (r == 0 && start) place_start(&a, start);
+  if (r == 0) r = run(&a, max_group, err);
   if (r == -1 && err && !err->code)
     us_error_set(err, US_ERR_NOMEM, "out of memory in the assembly search");
   if (a.ctx == ctx) asm_free(&a);
   return r;
+}
+
+int us_assemble(us_SearchCtx *ctx, const us_Bitset *within, int max_group, us_Assembly *out,
+                us_Error *err) {
+  return us_assemble_from(ctx, within, NULL, max_group, out, err);
 }

@@ -76,8 +76,8 @@ static int expand(us_SearchCtx *ctx, Queue *q, int k, us_Error *err) {
   return 0;
 }
 
-/* Greedy rule, when the queue outgrows 64 + 4 n nodes: finish from the
- * deepest node queued (us_plan_rescue). */
+/* Greedy rule, when the queue outgrows 64 + 4 n nodes: finish
+ * from the deepest node queued (us_plan_rescue). */
 static int bfs_rescue(us_SearchCtx *ctx, const Queue *q, us_Error *err) {
   int j = q->n - 1;
   memcpy(ctx->cur.w, q->words + (size_t)j * (size_t)q->nwords, (size_t)q->nwords * sizeof(uint64_t));
@@ -86,7 +86,7 @@ static int bfs_rescue(us_SearchCtx *ctx, const Queue *q, us_Error *err) {
 }
 
 static int rescue_due(const us_SearchCtx *ctx, const Queue *q) {
-  return (ctx->set->rules & US_RULE_GREEDY) && !ctx->kin && ctx->nroot_seq > 0 &&
+  return (ctx->set->rules & US_RULE_GREEDY) && !ctx->kin && ctx->root_live &&
          q->n > 64 + 4 * ctx->ncand;
 }
 

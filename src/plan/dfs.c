@@ -5,23 +5,19 @@
  * Invariants: ctx->cur is the node at depth ctx->npath and every node on
  * the path from the root is stable; next[d] is the position in ctx->cand
  * of the next move to try at depth d. A node enters `dead` when it is
- * unstable, when the greedy rule finds it cannot be emptied, or when every
+ * unstable, or when every
  * move from it was tried without reaching the goal; so no node is tested
  * twice and no dead end is expanded twice: every skipped child counts as a
  * revisit. With the memo rule off nothing enters `dead` (the plain search
  * of the source, exponential on dead sub-graphs).
  *
  * Greedy rule: at the first backtrack, the search stops
- * guessing. Liveness is monotone along the path (the ancestors of a live
- * node are live: the path to it is stable), the root is live (checked by
- * the driver) and the current node is dead, so a binary search over the
- * path's depths with greedy-assembly checks finds the deepest live node in
- * log2(depth) checks; the greedy's build order of that node, reversed,
- * finishes the path. Nodes found dead on the way enter the memo. Going up
- * no node is dead once the root is live, and the root's build order
- * finishes any path (us_plan_rescue). Going up every stable node is live once
- * the root is (buildable sets are closed under union), so the root check
- * in plan.c is all the rule does there.
+ * guessing. The root is live (decided exactly by the driver), so the path
+ * can always be finished from it; a binary search over the path's depths
+ * with greedy-assembly checks (one-sided: a node the greedy rebuilds is
+ * live, one it cannot is merely unknown) finds a deep node to finish from
+ * in log2(depth) checks, and the greedy's order finishes the path. Going
+ * up the same, with greedy assembly continued from the node (rules.c).
  *
  * Random search (the source's suggestion): the candidate order is shuffled
  * at every restart, and a run is cut after a budget of tests that follows
@@ -29,8 +25,7 @@
  * dead memo is kept across restarts (deadness does not depend on the
  * order), so the search stays complete: its runs grow without bound.
  * With the greedy rule a run whose budget is used up is not restarted but
- * rescued like a backtrack (the deepest live node of its path, then the
- * greedy's order). */
+ * rescued like a backtrack. */
 #include "search.h"
 
 #include <string.h>
@@ -72,7 +67,7 @@ static int backtrack(us_SearchCtx *ctx, us_Error *err) {
 }
 
 static int greedy_applies(const us_SearchCtx *ctx) {
-  return (ctx->set->rules & US_RULE_GREEDY) && !ctx->kin && ctx->nroot_seq > 0;
+  return (ctx->set->rules & US_RULE_GREEDY) && !ctx->kin && ctx->root_live;
 }
 
 /* Stable: 1; unstable: 0; < 0 stop. */
@@ -92,37 +87,37 @@ static void node_at(us_SearchCtx *ctx, int d) {
   for (int k = ctx->npath - 1; k >= d; k--) us_plan_toggle(&ctx->scratch, ctx->path[k]);
 }
 
-/* Going up every stable node is live once the root is: the part's build
- * order with the bodies already placed skipped finishes the path (each set
- * on the way is the union of two buildable sets). */
-static int finish_up(us_SearchCtx *ctx) {
-  for (int k = 0; k < ctx->nroot_seq; k++) {
-    int b = ctx->root_seq[k];
-    if (us_bitset_get(&ctx->cur, b)) continue;
-    us_bitset_set(&ctx->cur, b);
-    ctx->path[ctx->npath++] = b;
-  }
-  return US_PLAN_FOUND;
+/* The moves from the root to the goal by the exact decision (the root is
+ * live): its removal order, or reversed going up. */
+static int root_moves(us_SearchCtx *ctx, int *seq, int *nseq, us_Error *err) {
+  int r = us_plan_node_live(ctx, &ctx->part, seq, nseq, err);
+  if (r == 1 && ctx->set->direction == US_DIR_UP)
+    for (int i = 0, j = *nseq - 1; i < j; i++, j--) {
+      int t = seq[i];
+      seq[i] = seq[j];
+      seq[j] = t;
+    }
+  return r;
 }
 
 int us_plan_rescue(us_SearchCtx *ctx, int top_dead, us_Error *err) {
-  if (ctx->set->direction == US_DIR_UP) return finish_up(ctx);
-  int lo = 0, hi = top_dead ? ctx->npath : ctx->npath + 1; /* live at lo, dead at hi */
+  int lo = 0, hi = top_dead ? ctx->npath : ctx->npath + 1; /* lo passes, hi unknown */
   int *seq = us_malloc(((size_t)ctx->s->nbody + 1) * sizeof(int)), nseq = 0, r = 0;
   if (!seq) return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), -1;
   while (hi - lo > 1 && r >= 0) {
     int mid = lo + (hi - lo) / 2;
     node_at(ctx, mid);
-    r = us_plan_node_live(ctx, &ctx->scratch, NULL, NULL, err);
+    r = us_plan_node_greedy(ctx, &ctx->scratch, NULL, NULL, err);
     if (r == 1) lo = mid;
-    if (r == 0) hi = mid, r = mark_dead(ctx, &ctx->scratch, err);
+    if (r == 0) hi = mid;
   }
   node_at(ctx, lo);
-  if (r >= 0) r = us_plan_node_live(ctx, &ctx->scratch, seq, &nseq, err);
-  if (r == 0) us_error_set(err, US_ERR_SOLVER, "greedy check not reproducible"), r = -1;
+  if (r >= 0 && lo > 0) r = us_plan_node_greedy(ctx, &ctx->scratch, seq, &nseq, err);
+  if (r >= 0 && lo == 0) r = root_moves(ctx, seq, &nseq, err);
+  if (r == 0) us_error_set(err, US_ERR_SOLVER, "live node check not reproducible"), r = -1;
   if (r == 1) {
     rewind_to(ctx, lo);
-    for (int k = nseq - 1; k >= 0; k--) {
+    for (int k = 0; k < nseq; k++) {
       ctx->path[ctx->npath++] = seq[k];
       us_plan_toggle(&ctx->cur, seq[k]);
     }

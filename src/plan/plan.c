@@ -2,15 +2,18 @@
  * the full structure, run the chosen search, turn its result into a removal
  * order in steps, and collect per-step certificates when asked.
  *
- * The assemble search (the default) builds from the ground and the removal
- * order is the reverse of its build order; when it is stuck the plan names
- * the largest buildable sub-assembly R* and the bodies outside it. The
- * graph searches (DFS, BFS, random) plan each component of the structure
- * apart when the components rule is on (the parts are independent: a
- * removal in one never changes the verdict of another, so the orders
- * concatenate), check the root with greedy assembly when the greedy rule is
- * on, and search each part's disassembly graph. Going up, a part's path
- * adds bodies and its reverse is the removal order.
+ * The assemble search (the default) builds from the ground greedily and the
+ * removal order is the reverse of its build order; when the greedy is stuck
+ * the exact decision (exact.c) settles it, and a `none` names the greedy's
+ * maximal buildable sub-assembly and the bodies outside it. With
+ * max_group 0 the step bound K rises from 1 until an order exists (at most
+ * the largest component: a component taken away whole always works when
+ * the structure stands). The graph searches (DFS, BFS, random) plan each
+ * component of the structure apart when the components rule is on (the
+ * parts are independent: a removal in one never changes the verdict of
+ * another, so the orders concatenate), decide the root exactly when the
+ * greedy rule is on, and search each part's disassembly graph. Going up, a
+ * part's path adds bodies and its reverse is the removal order.
  *
  * With certificates, each structure along the order is tested once more
  * (the search keeps no forces, so memory stays independent of the path
@@ -92,7 +95,7 @@ static void ctx_free(us_SearchCtx *ctx) {
   us_free(ctx->comp);
   us_free(ctx->stack);
   us_free(ctx->mark);
-  us_free(ctx->root_seq);
+  us_exact_free(ctx->exact);
   us_free(ctx->cand);
   us_free(ctx->path);
   us_bitset_free(&ctx->scratch);
@@ -111,8 +114,7 @@ static int ctx_alloc(us_SearchCtx *ctx, const us_Structure *s) {
   ctx->comp = us_malloc(n * sizeof(int));
   ctx->stack = us_malloc(n * sizeof(int));
   ctx->mark = us_malloc(n);
-  ctx->root_seq = us_malloc(n * sizeof(int));
-  return !ctx->root_seq || !ctx->cand || !ctx->path || !ctx->comp || !ctx->stack || !ctx->mark ||
+  return !ctx->cand || !ctx->path || !ctx->comp || !ctx->stack || !ctx->mark ||
          us_graph_init(&ctx->g, s) || us_structure_movable_set(s, &ctx->full) ||
          us_bitset_init(&ctx->part, s->nbody) || us_bitset_init(&ctx->scratch, s->nbody) ||
          us_bitset_init(&ctx->cur, s->nbody) || us_bitset_set_init(&ctx->dead, s->nbody) ||
@@ -173,9 +175,27 @@ static us_Status order_from_assembly(const us_Assembly *a, us_Plan *out, us_Erro
   return US_OK;
 }
 
-/* R* and the bodies outside it. */
+/* A removal order with step ends marked (exact.c) into the plan. */
+static us_Status order_from_exact(const int *order, const unsigned char *end, int n, us_Plan *out,
+                                  us_Error *err) {
+  if (alloc_order(out, n, err)) return US_ERR_NOMEM;
+  out->max_group = 0;
+  for (int q = 0; q < n; q++) {
+    out->order[out->nsteps++] = order[q];
+    if (!end[q]) continue;
+    out->group_start[++out->ngroups] = out->nsteps;
+    int size = out->group_start[out->ngroups] - out->group_start[out->ngroups - 1];
+    if (size > out->max_group) out->max_group = size;
+  }
+  return US_OK;
+}
+
+/* A maximal buildable sub-assembly (the greedy's) and the bodies outside it. */
 static us_Status report_stuck(const us_SearchCtx *ctx, const us_Bitset *built, us_Plan *out,
                               us_Error *err) {
+  us_free(out->buildable);
+  us_free(out->blocked);
+  out->nbuildable = out->nblocked = 0;
   out->buildable = us_malloc(((size_t)ctx->nmov + 1) * sizeof(int));
   out->blocked = us_malloc(((size_t)ctx->nmov + 1) * sizeof(int));
   if (!out->buildable || !out->blocked) return us_error_set(err, US_ERR_NOMEM, "out of memory");
@@ -187,18 +207,59 @@ static us_Status report_stuck(const us_SearchCtx *ctx, const us_Bitset *built, u
   return US_OK;
 }
 
-/* Greedy assembly of the whole structure: found, or R*. <0 stop. */
-static int run_assemble(us_SearchCtx *ctx, us_Plan *out, us_Error *err) {
+/* The exact decision for steps of at most K, after the greedy was stuck. */
+static int exact_for(us_SearchCtx *ctx, int K, us_Plan *out, us_Error *err) {
+  size_t n = (size_t)ctx->s->nbody + 1;
+  int *order = us_malloc(n * sizeof(int)), len = 0;
+  unsigned char *end = us_malloc(n);
+  us_Exact *e = us_exact_new(ctx->s->nbody, K);
+  int r = order && end && e ? us_exact_solve(ctx, e, &ctx->full, order, end, &len, err) : -1;
+  if (r == 1 && order_from_exact(order, end, len, out, err)) r = -1;
+  if (e) ctx->st->memo_bytes += us_exact_bytes(e);
+  us_exact_free(e);
+  us_free(order);
+  us_free(end);
+  if (r == -1 && err && !err->code) us_error_set(err, US_ERR_NOMEM, "out of memory in the search");
+  return r;
+}
+
+/* Steps of at most K: the greedy, then (stuck) the exact decision. */
+static int assemble_with(us_SearchCtx *ctx, int K, us_Plan *out, us_Error *err) {
   us_Assembly a;
-  int r = us_assemble(ctx, &ctx->full, ctx->set->max_group, &a, err);
+  int r = us_assemble(ctx, &ctx->full, K, &a, err);
   us_Status st = US_OK;
   if (r == 1) st = order_from_assembly(&a, out, err);
-  if (r == 0) {
-    out->max_group = a.max_group;
-    st = report_stuck(ctx, &a.built, out, err);
-  }
+  if (r == 0) st = report_stuck(ctx, &a.built, out, err);
   us_assembly_free(&a);
   if (st) return -1;
+  if (r == 0) r = exact_for(ctx, K, out, err);
+  if (r == 0) out->max_group = K;
+  return r;
+}
+
+/* The size of the largest component: no step needs to be larger. */
+static int largest_component(us_SearchCtx *ctx) {
+  int k = us_graph_components(&ctx->g, &ctx->full, ctx->comp, ctx->stack), best = 1;
+  for (int c = 0; c < k; c++) {
+    int size = 0;
+    for (int i = 0; i < ctx->s->nbody; i++) size += ctx->comp[i] == c;
+    if (size > best) best = size;
+  }
+  return best;
+}
+
+/* The assemble search; max_group 0: K = 1, 2, ... until an order exists. */
+static int run_assemble(us_SearchCtx *ctx, us_Plan *out, us_Error *err) {
+  int K = ctx->set->max_group > 0 ? ctx->set->max_group : 1;
+  int top = ctx->set->max_group > 0 ? K : US_MIN(largest_component(ctx), 64);
+  int r = 0;
+  for (; K <= top && r == 0; K++) r = assemble_with(ctx, K, out, err);
+  if (r == 1 && out->buildable) {
+    us_free(out->buildable);
+    us_free(out->blocked);
+    out->buildable = out->blocked = NULL;
+    out->nbuildable = out->nblocked = 0;
+  }
   return r == 1 ? US_PLAN_FOUND : r == 0 ? US_PLAN_NONE : r;
 }
 
@@ -218,10 +279,10 @@ static int search_part(us_SearchCtx *ctx, us_Error *err) {
     return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), -1;
   ctx->npath = 0;
   int greedy = (ctx->set->rules & US_RULE_GREEDY) && !ctx->kin;
-  ctx->nroot_seq = 0;
-  int live = greedy ? us_plan_node_live(ctx, &ctx->part, ctx->root_seq, &ctx->nroot_seq, err) : 1;
-  if (live < 0) return live == -3 ? -1 : live;
+  int live = greedy ? us_plan_node_live(ctx, &ctx->part, NULL, NULL, err) : 1;
+  if (live < 0) return live;
   if (!live) return US_PLAN_NONE;
+  ctx->root_live = greedy;
   if (ctx->set->direction == US_DIR_DOWN) us_bitset_copy(&ctx->cur, &ctx->part);
   else memset(ctx->cur.w, 0, (size_t)ctx->cur.nwords * sizeof(uint64_t));
   switch (ctx->set->search) {
@@ -326,7 +387,8 @@ static void finish_stats(us_SearchCtx *ctx, us_PlanStats *st, double t_search) {
   st->time_search = us_now() - t_search;
   st->time_total = us_now() - ctx->t_start;
   st->memo_bytes += us_bitset_set_bytes(&ctx->dead) + us_bitset_set_bytes(&ctx->stable_parts) +
-                    us_bitset_set_bytes(&ctx->unstable_parts);
+                    us_bitset_set_bytes(&ctx->unstable_parts) +
+                    (ctx->exact ? us_exact_bytes(ctx->exact) : 0);
 }
 
 us_Status us_plan(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,

@@ -9,15 +9,19 @@
  *   union   A node stands iff each of its components stands (the
  *           decoupling lemma, graph.h). Components are tested one by one
  *           and their verdicts memoised; a node whose components are all
- *           known is decided without a test. The union theorem is the
- *           "stable" half: components that stood apart stand together.
- *   greedy  A node of the downward search is live (can be emptied one body
- *           at a time) iff greedy assembly inside it rebuilds it
- *           (assemble.c); a stable child that is not live is dead and is
- *           never explored, and a live one needs no search at all: the
- *           greedy's build order, reversed, empties it. The DFS arms this
- *           rule after its first backtrack and the driver always checks the
- *           root, so searches that never backtrack pay nothing for it.
+ *           known is decided without a test. The source's union theorem is
+ *           the "stable" half: disjoint parts that stood apart stand
+ *           together.
+ *   greedy  Whether a node can be emptied at all is decided exactly by
+ *           exact.c (greedy assembly first, an exhaustive search over
+ *           connected sets where the greedy is stuck, memoised). The
+ *           driver asks it for the root (so `none` needs no search of the
+ *           graph). A downward search that has to backtrack then looks for
+ *           the deepest node of its path that greedy assembly can rebuild
+ *           (a one-sided check: success proves the node live, failure
+ *           proves nothing) and finishes from there with the greedy's
+ *           order, or from the root with the exact order; searches that
+ *           never backtrack pay nothing for it.
  * The memo rule (nodes known dead are not tested again) lives in the
  * searches themselves; the components rule in the driver (plan.c). */
 #include "search.h"
@@ -94,14 +98,23 @@ int us_plan_node_test(us_SearchCtx *ctx, const us_Bitset *node, us_Error *err) {
 
 int us_plan_node_live(us_SearchCtx *ctx, const us_Bitset *node, int *seq, int *nseq,
                       us_Error *err) {
+  if (!ctx->exact && !(ctx->exact = us_exact_new(ctx->s->nbody, 1)))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), -1;
+  ctx->st->exact_checks++;
+  return us_exact_solve(ctx, ctx->exact, node, seq, NULL, nseq, err);
+}
+
+int us_plan_node_greedy(us_SearchCtx *ctx, const us_Bitset *node, int *seq, int *nseq,
+                        us_Error *err) {
   us_Assembly a;
   ctx->st->greedy_checks++;
-  int r = us_assemble(ctx, node, 1, &a, err);
+  int up = ctx->set->direction == US_DIR_UP;
+  int r = up ? us_assemble_from(ctx, &ctx->part, node, 1, &a, err)
+             : us_assemble(ctx, node, 1, &a, err);
   if (r == 1 && seq) {
-    memcpy(seq, a.seq, (size_t)a.nseq * sizeof(int));
+    for (int k = 0; k < a.nseq; k++) seq[k] = up ? a.seq[k] : a.seq[a.nseq - 1 - k];
     *nseq = a.nseq;
   }
   us_assembly_free(&a);
-  if (r == 0) ctx->st->greedy_cuts++;
   return r;
 }
