@@ -97,6 +97,10 @@ int cmd_render(int argc, char **argv) {
   if (code == CLI_EXIT_OK) {
     a.r.order = pf.order;
     a.r.norder = pf.n;
+    a.r.group_start = pf.ngroups != pf.n ? pf.group_start : NULL;
+    a.r.ngroups = pf.ngroups;
+    a.r.blocked = pf.blocked;
+    a.r.nblocked = pf.nblocked;
     a.r.forces = a.forces && !falls ? &res.forces : NULL;
     if (us_render_svg(s, &a.r, a.out, &err)) code = CLI_EXIT_ERR;
   }

@@ -467,6 +467,8 @@ typedef struct us_PlanFile {
   int *order;
   int ngroups;        /* steps; an "order" entry may be an array of ids (a group) */
   int *group_start;   /* [ngroups + 1] offsets into order */
+  int nblocked;       /* "blocked": bodies a plan with status none names */
+  int *blocked;
 } us_PlanFile;
 us_Status us_plan_read(const us_Structure *s, const char *path, us_PlanFile *out, us_Error *err);
 void us_plan_file_free(us_PlanFile *pf);
@@ -476,6 +478,10 @@ void us_plan_file_free(us_PlanFile *pf);
 typedef struct us_RenderSettings {
   const int *order;       /* removal order (may be NULL) */
   int norder;
+  const int *group_start; /* steps of the order (NULL: one body each) */
+  int ngroups;
+  const int *blocked;     /* bodies that cannot be removed (plan status none) */
+  int nblocked;
   const us_Forces *forces;/* draw as arrows (may be NULL) */
   int show_contacts;      /* default 1 */
   int show_labels;        /* default 1 */

@@ -289,6 +289,29 @@ static us_Status read_order(const us_IoCtx *c, const us_Structure *s, json_t *ar
   return st;
 }
 
+/* "blocked" (optional): distinct movable bodies, none of them in the order. */
+static us_Status read_blocked(const us_IoCtx *c, const us_Structure *s, json_t *arr,
+                              us_PlanFile *out) {
+  if (!arr) return US_OK;
+  if (!json_is_array(arr)) return us_io_bad(c, "", "blocked: expected an array of body ids");
+  size_t n = json_array_size(arr);
+  if (n > (size_t)s->nbody) return us_io_bad(c, "", "blocked: more entries than bodies");
+  int *first = us_malloc(((size_t)s->nbody + 1) * sizeof *first);
+  out->blocked = us_malloc((n + 1) * sizeof *out->blocked);
+  us_Status st = first && out->blocked ? US_OK
+                                       : us_error_set(c->err, US_ERR_NOMEM, "%s: out of memory", c->name);
+  for (int i = 0; !st && i < s->nbody; i++) first[i] = -1;
+  for (int k = 0; !st && k < out->n; k++) first[out->order[k]] = k;
+  char where[32];
+  for (size_t k = 0; !st && k < n; k++) {
+    snprintf(where, sizeof where, "blocked[%zu]", k);
+    st = read_order_id(c, s, json_array_get(arr, k), where, (int)k, first, &out->blocked[k]);
+    if (!st) out->nblocked++;
+  }
+  us_free(first);
+  return st;
+}
+
 us_Status us_plan_read(const us_Structure *s, const char *path, us_PlanFile *out, us_Error *err) {
   us_Error local;
   us_error_clear(&local);
@@ -302,6 +325,7 @@ us_Status us_plan_read(const us_Structure *s, const char *path, us_PlanFile *out
     st = us_io_bad(&c, "", "expected a JSON object at the top level");
   if (!st) st = read_header(&c, root, &out->status);
   if (!st) st = read_order(&c, s, json_object_get(root, "order"), out);
+  if (!st) st = read_blocked(&c, s, json_object_get(root, "blocked"), out);
   json_decref(root);
   us_free(text);
   if (st) {
@@ -315,6 +339,7 @@ void us_plan_file_free(us_PlanFile *pf) {
   if (!pf) return;
   us_free(pf->order);
   us_free(pf->group_start);
-  pf->order = pf->group_start = NULL;
-  pf->n = pf->ngroups = 0;
+  us_free(pf->blocked);
+  pf->order = pf->group_start = pf->blocked = NULL;
+  pf->n = pf->ngroups = pf->nblocked = 0;
 }

@@ -11,7 +11,9 @@
  * bodies as filled polygons (point bodies, without geometry, as circles at
  * their centre), fixed bodies grey and hatched; with an order, each body in
  * it coloured by its removal step on a viridis-like ramp (dark = removed
- * first) and numbered (1 = removed first), bodies not in it light grey;
+ * first) and numbered (1 = removed first; with steps of several bodies
+ * all bodies of a step share its number), bodies not in it light grey,
+ * bodies named as blocked (a plan with status none) light red;
  * without an order, body ids as labels (show_labels); contact points as
  * dots (show_contacts); r->forces as arrows from each contact point along
  * the force on body b of the contact (f_n n + f_t t), the longest 12% of
@@ -65,6 +67,9 @@ static void ramp(double t, char out[8]) {
 
 /* Position of removal step `step` (1-based) of n on the ramp. */
 static double step_t(int step, int n) { return n > 1 ? (double)(step - 1) / (double)(n - 1) : 0.0; }
+
+/* Steps of the order: its groups, or one body each. */
+static int nsteps(const us_RenderSettings *r) { return r->group_start ? r->ngroups : r->norder; }
 
 /* ----------------------------------------------------------- utilities */
 
@@ -144,7 +149,7 @@ static double typical_side(const View *v, const us_Structure *s) {
 /* --------------------------------------------------------------- checks */
 
 /* Validate r against s; fills step[i] (1-based removal step, 0 if not in
- * the order). */
+ * the order, -1 when named as blocked). */
 static us_Status check_settings(const us_Structure *s, const us_RenderSettings *r, int *step,
                                 us_Error *err) {
   if (s->dim != 2)
@@ -164,6 +169,19 @@ static us_Status check_settings(const us_Structure *s, const us_RenderSettings *
       return us_error_set(err, US_ERR_USAGE, "render: body '%s' appears twice in the order",
                           s->bodies[i].id);
     step[i] = k + 1;
+  }
+  if (r->group_start) {
+    if (r->ngroups < 0 || r->group_start[0] != 0 || r->group_start[r->ngroups] != r->norder)
+      return us_error_set(err, US_ERR_USAGE, "render: steps do not cover the order");
+    for (int g = 0; g < r->ngroups; g++)
+      for (int k = r->group_start[g]; k < r->group_start[g + 1]; k++) step[r->order[k]] = g + 1;
+  }
+  for (int k = 0; k < r->nblocked; k++) {
+    int i = r->blocked ? r->blocked[k] : -1;
+    if (i < 0 || i >= s->nbody || step[i])
+      return us_error_set(err, US_ERR_USAGE, "render: blocked entry %d is not a body outside "
+                          "the order", k);
+    step[i] = -1;
   }
   const us_Forces *f = r->forces;
   if (f && (f->ncontact < 0 || (f->ncontact > 0 && (!f->contact || !f->f))))
@@ -255,7 +273,8 @@ static void put_ground(FILE *fp, const View *v) {
 static void body_fill(const us_Structure *s, const us_RenderSettings *r, const int *step, int i,
                       char out[16]) {
   if (s->bodies[i].fixed) snprintf(out, 16, "url(#fixed)");
-  else if (r->norder > 0 && step[i]) ramp(step_t(step[i], r->norder), out);
+  else if (step[i] < 0) snprintf(out, 16, "#e8847a"); /* blocked: cannot be removed */
+  else if (r->norder > 0 && step[i]) ramp(step_t(step[i], nsteps(r)), out);
   else if (r->norder > 0) snprintf(out, 16, "#e4e4e4");
   else snprintf(out, 16, "#d9c7a3"); /* sandstone */
 }
@@ -278,14 +297,14 @@ static void put_shape(FILE *fp, const View *v, const us_Body *b, const char *fil
 static void put_label(FILE *fp, const View *v, const us_Structure *s,
                       const us_RenderSettings *r, const int *step, int i) {
   const us_Body *b = &s->bodies[i];
-  int numbered = r->norder > 0 && step[i];
+  int numbered = r->norder > 0 && step[i] > 0;
   if (!numbered && !(r->norder == 0 && r->show_labels)) return;
   char num[16];
   snprintf(num, sizeof num, "%d", step[i]);
   double fs = label_size(v, b, strlen(numbered ? num : b->id)), x, y;
   if (fs <= 0) return;
   label_point(s, i, &x, &y);
-  int dark = numbered && step_t(step[i], r->norder) < 0.6;
+  int dark = numbered && step_t(step[i], nsteps(r)) < 0.6;
   fprintf(fp, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"%.1f\" text-anchor=\"middle\" "
           "dominant-baseline=\"central\" fill=\"%s\">", px_x(v, x), px_y(v, y), fs,
           dark ? "white" : "black");
@@ -368,6 +387,9 @@ static void put_legend(FILE *fp, const View *v, const us_Structure *s,
           s->nbody, nfixed, s->ncontact);
   if (r->norder > 0)
     fprintf(fp, "; %d in the removal order, %d not", r->norder, s->nbody - nfixed - r->norder);
+  if (r->norder > 0 && nsteps(r) != r->norder) fprintf(fp, " (%d steps)", nsteps(r));
+  if (r->nblocked > 0)
+    fprintf(fp, "; %d cannot be removed (red)", r->nblocked);
   fputs("</text>\n", fp);
   if (fmax > 0)
     fprintf(fp, "<text x=\"%.2f\" y=\"%.2f\">arrows: contact forces on body b of each "
