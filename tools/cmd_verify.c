@@ -40,6 +40,27 @@ static int report(const us_Structure *s, const us_PlanFile *pf, const us_VerifyR
   return CLI_EXIT_NO;
 }
 
+/* The plan says how bodies may leave (removal up or free): check it. */
+static int check_removals(const us_Structure *s, const us_PlanFile *pf, us_Error *err) {
+  if (pf->ngroups != pf->n)
+    return us_error_set(err, US_ERR_INPUT, "removal kinematics with steps of several bodies "
+                        "cannot be checked"), CLI_EXIT_ERR;
+  int k, by;
+  if (us_verify_removals(s, pf->removal, pf->order, pf->n, &k, &by, err)) return CLI_EXIT_ERR;
+  if (k < 0) {
+    printf("valid: every removal can %s\n", pf->removal == US_REMOVAL_UP
+                                                ? "be lifted straight up"
+                                                : "leave along a free direction");
+    return CLI_EXIT_OK;
+  }
+  printf("invalid: step %d: '%s' cannot %s", k + 1, s->bodies[pf->order[k]].id,
+         pf->removal == US_REMOVAL_UP ? "be lifted straight up" : "leave in any direction");
+  if (by >= 0) printf(" ('%s' is in the way)", s->bodies[by].id);
+  if (by == US_GROUND) printf(" (the ground is in the way)");
+  printf("\n");
+  return CLI_EXIT_NO;
+}
+
 int cmd_verify(int argc, char **argv) {
   CliCommon c;
   cli_common_init(&c);
@@ -71,6 +92,8 @@ int cmd_verify(int argc, char **argv) {
     } else if (us_verify_steps(s, &c.stab, pf.order, pf.n, pf.group_start, pf.ngroups, &rep,
                                &err) == US_OK) {
       code = report(s, &pf, &rep);
+      if (code == CLI_EXIT_OK && pf.removal != US_REMOVAL_ANY)
+        code = check_removals(s, &pf, &err);
     }
   }
   if (code == CLI_EXIT_ERR) cli_error("verify", &err);

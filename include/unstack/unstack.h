@@ -422,6 +422,13 @@ us_Status us_verify_steps(const us_Structure *s, const us_StabilitySettings *set
                           int n, const int *group_start, int ngroups, us_VerifyReport *rep,
                           us_Error *err);
 
+/* Removal kinematics of an order (one body a step): before each removal the
+ * body must be able to leave past the bodies still there (docs/kinematics.md).
+ * failed_step: the first 0-based removal that cannot be made, or -1;
+ * blocker: a body in its way (US_GROUND for the ground, -2 when unknown). */
+us_Status us_verify_removals(const us_Structure *s, us_Removal removal, const int *order, int n,
+                             int *failed_step, int *blocker, us_Error *err);
+
 /* -------------------------------------------------------------- generators */
 
 typedef struct us_GenSettings {
@@ -469,6 +476,7 @@ typedef struct us_PlanFile {
   int *group_start;   /* [ngroups + 1] offsets into order */
   int nblocked;       /* "blocked": bodies a plan with status none names */
   int *blocked;
+  us_Removal removal; /* "removal" (default any): verify checks the kinematics */
 } us_PlanFile;
 us_Status us_plan_read(const us_Structure *s, const char *path, us_PlanFile *out, us_Error *err);
 void us_plan_file_free(us_PlanFile *pf);

@@ -312,6 +312,13 @@ static us_Status read_blocked(const us_IoCtx *c, const us_Structure *s, json_t *
   return st;
 }
 
+static us_Status read_removal(const us_IoCtx *c, json_t *v, us_Removal *out) {
+  *out = US_REMOVAL_ANY;
+  if (v && (!json_is_string(v) || us_removal_parse(json_string_value(v), out)))
+    return us_io_bad(c, "", "removal: expected one of \"any\", \"up\", \"free\"");
+  return US_OK;
+}
+
 us_Status us_plan_read(const us_Structure *s, const char *path, us_PlanFile *out, us_Error *err) {
   us_Error local;
   us_error_clear(&local);
@@ -326,6 +333,7 @@ us_Status us_plan_read(const us_Structure *s, const char *path, us_PlanFile *out
   if (!st) st = read_header(&c, root, &out->status);
   if (!st) st = read_order(&c, s, json_object_get(root, "order"), out);
   if (!st) st = read_blocked(&c, s, json_object_get(root, "blocked"), out);
+  if (!st) st = read_removal(&c, json_object_get(root, "removal"), &out->removal);
   json_decref(root);
   us_free(text);
   if (st) {

@@ -5,6 +5,7 @@
  * incomplete. Input mistakes in the order (unknown, fixed or repeated
  * bodies) are errors, not outcomes. */
 #include "core/core.h"
+#include "contact/kinematics.h"
 
 #include <string.h>
 
@@ -98,4 +99,29 @@ us_Status us_verify_steps(const us_Structure *s, const us_StabilitySettings *set
   us_bitset_free(&seen);
   us_bitset_free(&node);
   return st;
+}
+
+/* Kinematics of an order: before each removal, may the body leave (lifted
+ * straight up, or along some free direction) past the bodies still there? */
+us_Status us_verify_removals(const us_Structure *s, us_Removal removal, const int *order, int n,
+                             int *failed_step, int *blocker, us_Error *err) {
+  *failed_step = -1;
+  *blocker = -1;
+  if (removal == US_REMOVAL_ANY) return US_OK;
+  us_Kinematics *k = us_kinematics_new(s, removal, err);
+  us_Bitset node = {0};
+  if (!k || us_structure_movable_set(s, &node)) {
+    us_kinematics_free(k);
+    return k ? us_error_set(err, US_ERR_NOMEM, "out of memory") : (err ? err->code : US_ERR_NOMEM);
+  }
+  for (int q = 0; q < n && *failed_step < 0; q++) {
+    if (!us_kinematics_can_remove(k, &node, order[q])) {
+      *failed_step = q;
+      *blocker = us_kinematics_blocker(k, &node, order[q]);
+    }
+    us_bitset_clear(&node, order[q]);
+  }
+  us_bitset_free(&node);
+  us_kinematics_free(k);
+  return US_OK;
 }
