@@ -156,7 +156,7 @@ static void text_sequence(const us_Structure *s, const us_Classification *c) {
     put_body(s, c->blocked[k]);
   }
   if (c->nblocked > TEXT_IDS) printf(" and %d more", c->nblocked - TEXT_IDS);
-  printf(" (the largest buildable sub-assembly has %d of %d bodies; %ld tests)\n", c->nbuildable,
+  printf(" (a maximal buildable sub-assembly has %d of %d bodies; %ld tests)\n", c->nbuildable,
          c->nbody, c->sequence_tests);
 }
 

@@ -71,7 +71,8 @@ static void print_summary(const us_Structure *s, const us_Plan *p, const CliComm
   if (p->status == US_PLAN_FOUND && p->ngroups == p->nsteps)
     printf(": %d removals", p->nsteps);
   else if (p->status == US_PLAN_FOUND)
-    printf(": %d removals in %d steps of up to %d bodies", p->nsteps, p->ngroups, p->max_group);
+    printf(": %d removals in %d step%s of up to %d bodies", p->nsteps, p->ngroups,
+           p->ngroups == 1 ? "" : "s", p->max_group);
   printf(", %ld tests (%ld unstable, %ld revisited), %.3f s [%s, %s", st->tests, st->unstable,
          st->revisited, st->time_total, us_method_name(c->stab.method),
          us_search_name(c->plan.search));
@@ -85,7 +86,7 @@ static void print_summary(const us_Structure *s, const us_Plan *p, const CliComm
     printf("  cannot be removed with steps of up to %d bod%s: ", p->max_group > 0 ? p->max_group : 1,
            p->max_group > 1 ? "ies" : "y");
     print_ids(s, p->blocked, p->nblocked, 20);
-    printf("\n  the largest buildable sub-assembly has %d of %d bodies\n", p->nbuildable,
+    printf("\n  a maximal buildable sub-assembly (the greedy's) has %d of %d bodies\n", p->nbuildable,
            p->nbuildable + p->nblocked);
   }
 }

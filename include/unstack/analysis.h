@@ -117,7 +117,8 @@ us_Status us_critical_friction(const us_Structure *s, const us_Bitset *present,
  *      rule memo only) finds an order without a single unstable move or
  *      dead end, i.e. "remove the highest body" always works;
  *   4. a one-at-a-time sequence exists: the assemble search (max_group 1);
- *      when none, the bodies outside R* are the evidence;
+ *      when none, the bodies outside the greedy's maximal buildable
+ *      sub-assembly are the evidence;
  *   5. the smallest group size K: the assemble search with max_group 0;
  *      no K at all exactly when the full structure does not stand;
  *   6. frictionless, strong and weak stability coincide (Gauss's principle,
@@ -154,8 +155,8 @@ typedef struct us_Classification {
   /* 4. */
   int sequence;            /* a one-at-a-time removal order exists */
   long sequence_tests;
-  int nbuildable;          /* !sequence && stands: |R*| */
-  int nblocked, *blocked;  /* !sequence && stands: movable bodies outside R* */
+  int nbuildable;          /* !sequence && stands: size of the greedy's maximal buildable set */
+  int nblocked, *blocked;  /* !sequence && stands: movable bodies outside it */
   /* 5. */
   int min_group;           /* the smallest K with an order of steps of at most
                               K bodies; 0 when the full structure does not

@@ -388,9 +388,9 @@ typedef struct us_Plan {
   us_Forces *certs;      /* with certificates: ngroups+1 entries, certs[k] =
                             forces of the structure before step k
                             (certs[ngroups] is the empty structure) */
-  /* assemble search, status none: the largest sub-assembly that can be built
-     from the ground (R*) and the movable bodies outside it (cannot be removed
-     with steps of at most max_group bodies) */
+  /* status none: a maximal sub-assembly that can be built from the ground
+     (the greedy's; it need not be unique) and the movable bodies outside it
+     (no order with steps of at most max_group bodies reaches them all) */
   int nbuildable, *buildable;
   int nblocked, *blocked;
   us_PlanStats stats;

@@ -20,11 +20,12 @@
  *      "not top-down"; a cut before any (max_tests below the body count)
  *      leaves it unknown.
  *   4. a one-at-a-time sequence exists: the assemble search (max_group 1),
- *      complete by the union theorem, so "none" is a proof; its evidence is
- *      the bodies outside the largest buildable sub-assembly R*.
+ *      exact (greedy, then exact.c where it is stuck), so "none" is a
+ *      proof; its evidence is
+ *      the bodies outside a maximal buildable sub-assembly (the greedy's).
  *   5. the smallest group size K: the assemble search with max_group 0,
- *      which raises its bound by one only when stuck, so the bound of the
- *      order it finds is the smallest K. A sequence of single bodies gives
+ *      which decides K = 1, 2, ... in turn and stops at the first that
+ *      gives an order, so that K is the smallest. A sequence of single bodies gives
  *      K = 1 without a second search (the automatic bound starts at 1 and
  *      runs the same search). Removing every body at once is one step, so
  *      some K exists iff the full structure stands; the planner's bound
@@ -155,7 +156,7 @@ static us_Status classify_topdown(const us_Structure *s, const us_ClassifySettin
 
 /* --------------------------------------------------- 4. one at a time */
 
-/* The bodies outside R* (the plan's evidence of none). */
+/* The bodies outside the greedy's maximal buildable sub-assembly. */
 static us_Status keep_blocked(const us_Plan *plan, us_Classification *out, us_Error *err) {
   out->nbuildable = plan->nbuildable;
   out->blocked = us_malloc((size_t)(plan->nblocked > 0 ? plan->nblocked : 1) * sizeof(int));

@@ -316,7 +316,8 @@ static int run_graph_search(us_SearchCtx *ctx, us_Plan *out, us_Error *err) {
   return r;
 }
 
-/* For a graph search that ends in none: name R* too (removal any only). */
+/* For a graph search that ends in none: name a maximal buildable
+ * sub-assembly too (removal any only). */
 static us_Status name_stuck(us_SearchCtx *ctx, us_Plan *out, us_Error *err) {
   if (ctx->kin) return US_OK;
   us_Assembly a;
