@@ -95,6 +95,7 @@ static int pool_reserve(Pool *p, long extra) {
 
 /* Append len entries of src starting at off to dst. */
 static int pool_copy(Pool *dst, const Pool *src, long off, long len) {
+  if (len <= 0) return 0;
   if (pool_reserve(dst, len)) return -1;
   memcpy(dst->body + dst->n, src->body + off, (size_t)len * sizeof(int));
   memcpy(dst->end + dst->n, src->end + off, (size_t)len);
@@ -303,8 +304,8 @@ int us_exact_solve(us_SearchCtx *ctx, us_Exact *e, const us_Bitset *set, int *or
     r = solve_parts(&sv, &scratch, list, first, k);
   if (r == 1 && order) {
     *n = (int)(e->work.n - from);
-    memcpy(order, e->work.body + from, (size_t)*n * sizeof(int));
-    if (step_end) memcpy(step_end, e->work.end + from, (size_t)*n);
+    if (*n > 0) memcpy(order, e->work.body + from, (size_t)*n * sizeof(int));
+    if (*n > 0 && step_end) memcpy(step_end, e->work.end + from, (size_t)*n);
   }
   e->work.n = from;
   us_bitset_free(&scratch);
