@@ -187,6 +187,8 @@ static void leaning_slabs_need_friction_and_pairs(void) {
   CHECK_INT(c.dfs_status, ==, US_PLAN_UNSTABLE);
   CHECK_INT(c.topdown, ==, 0);
   CHECK(!c.sequence);
+  CHECK_INT(c.sequence_status, ==, US_PLAN_UNSTABLE);
+  CHECK_INT(c.group_status, ==, US_PLAN_UNSTABLE);
   CHECK_INT(c.min_group, ==, 0);
   CHECK_INT(c.nblocked, ==, 0);
   us_classification_free(&c);
@@ -210,6 +212,8 @@ static void arch_needs_a_group(void) {
     snprintf(id, sizeof id, "b%d", i);
     CHECK(has_id(s, &c, id));
   }
+  CHECK_INT(c.sequence_status, ==, US_PLAN_NONE);
+  CHECK_INT(c.group_status, ==, US_PLAN_FOUND);
   CHECK_INT(c.min_group, ==, 6);
   CHECK_INT(c.group_bound, ==, 6);
   us_classification_free(&c);
@@ -252,6 +256,7 @@ static void overhang_stands_for_no_mu(void) {
   CHECK_INT(c.topdown, ==, 0);
   CHECK_INT(c.rejected, ==, 0);
   CHECK(!c.sequence);
+  CHECK_INT(c.group_status, ==, US_PLAN_UNSTABLE);
   CHECK_INT(c.min_group, ==, 0);
   CHECK_INT(c.group_tests, ==, 0); /* decided without the group search */
   CHECK(c.count && !strcmp(c.count, "3"));
@@ -300,6 +305,41 @@ static us_Structure *wall(int rows, int cols) {
       scene_box(s, id, c + 0.5 * (r & 1), 0.5 * r, 1, 0.5, 1);
     }
   return scene_seal(s);
+}
+
+/* The searches' time limit: a class cut there is unknown, with what was
+ * proven before the cut. The 30-voussoir arch needs K = 20, which the
+ * exact decision does not reach in half a second (K = 10 alone takes
+ * ~90 s); K = 1 is decided at once. */
+static void time_limit_leaves_classes_unknown(void) {
+  us_Structure *s = arch(30, 3.0, 0.5, 0.5);
+  CHECK(s);
+  us_ClassifySettings set = us_classify_default_settings();
+  set.time_limit = 0.5;
+  us_Classification c;
+  CHECK(classify(s, &set, &c));
+  CHECK(c.stands);
+  CHECK_INT(c.sequence_status, ==, US_PLAN_NONE);
+  CHECK(c.nblocked > 0);
+  CHECK_INT(c.group_status, ==, US_PLAN_LIMIT);
+  CHECK_INT(c.min_group, ==, 0);
+  CHECK(c.group_bound >= 1 && c.group_bound < 20);
+  us_classification_free(&c);
+  us_structure_free(s);
+  s = column(4);
+  CHECK(s);
+  set.time_limit = 1e-9; /* every search is cut at its first test */
+  CHECK(classify(s, &set, &c));
+  CHECK(c.stands && c.stands_frictionless);
+  CHECK_INT(c.dfs_status, ==, US_PLAN_LIMIT);
+  CHECK_INT(c.topdown, ==, -1);
+  CHECK_INT(c.sequence_status, ==, US_PLAN_LIMIT);
+  CHECK(!c.sequence);
+  CHECK_INT(c.group_status, ==, US_PLAN_LIMIT);
+  CHECK_INT(c.min_group, ==, 0);
+  CHECK(c.count && !strcmp(c.count, "5"));
+  us_classification_free(&c);
+  us_structure_free(s);
 }
 
 /* A count past its time limit is a refusal with its reason, not an error;
@@ -794,6 +834,6 @@ static void out_of_memory_is_clean(void) {
 
 US_TEST_MAIN(T(column_is_topdown), T(cantilever_needs_backtracking),
              T(leaning_slabs_need_friction_and_pairs), T(arch_needs_a_group),
-             T(ramp_needs_tan_alpha), T(overhang_stands_for_no_mu), T(topdown_probe_limit), T(count_refusal_is_reported),
+             T(ramp_needs_tan_alpha), T(overhang_stands_for_no_mu), T(topdown_probe_limit), T(time_limit_leaves_classes_unknown), T(count_refusal_is_reported),
              T(classes_match_brute_force), T(frictionless_verdicts_agree),
              T(frictionless_accelerations_unique), T(argument_errors), T(out_of_memory_is_clean))

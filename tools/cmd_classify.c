@@ -24,6 +24,8 @@ static const char help[] =
     "  --json            print one JSON object instead\n"
     "  --method M        lp (CLP, default), lpsolve, lcp, lcp-reuse\n"
     "  --max-tests N     test limit of the top-down DFS (default 20000; 0: none)\n"
+    "  --time-limit S    seconds for each search of top-down, sequence and group\n"
+    "                    (default 60; 0: none); a class cut there is unknown\n"
     "  --contact-tol T   contact detection tolerance (default 1e-6 x size)\n"
     "\n"
     "exit: 0 classified, 2 usage or input error\n";
@@ -50,6 +52,10 @@ static int parse_args(int argc, char **argv, ClassifyArgs *a) {
       if (cli_parse_long(v, &n) || n < 0)
         return cli_fail("classify", "--max-tests needs an integer >= 0, got '%s'", v);
       a->set.max_tests = n;
+    } else if (!strcmp(s, "--time-limit")) {
+      if (!(v = cli_value("classify", argc, argv, &i))) return CLI_EXIT_ERR;
+      if (cli_parse_double(v, &a->set.time_limit) || a->set.time_limit < 0)
+        return cli_fail("classify", "--time-limit needs a number >= 0, got '%s'", v);
     } else if (!strcmp(s, "--method") || !strcmp(s, "--contact-tol")) {
       if (cli_common_option("classify", argc, argv, &i, &a->common) < 0) return CLI_EXIT_ERR;
     } else if (s[0] == '-' && s[1]) {
@@ -119,7 +125,7 @@ static void moves(const us_Classification *c) {
          plural(c->backtracks));
 }
 
-static void text_topdown(const us_Classification *c, long max_tests) {
+static void text_topdown(const us_Classification *c) {
   printf("top-down: ");
   if (c->topdown == 1) {
     printf("yes (the source's DFS, highest first: %ld tests, no rejected move, no "
@@ -137,41 +143,57 @@ static void text_topdown(const us_Classification *c, long max_tests) {
     printf(")\n");
   } else {
     printf("no, highest first fails ("), moves(c);
-    printf("; the source's DFS stopped at its limit of %ld tests)\n", max_tests);
+    printf("; the source's DFS stopped at its limit after %ld tests)\n", c->dfs_tests);
   }
 }
 
-static void text_sequence(const us_Structure *s, const us_Classification *c) {
-  if (c->sequence) {
-    printf("sequence: yes, one body at a time (assemble search, %ld tests)\n", c->sequence_tests);
-    return;
-  }
-  if (c->group_bound == 0) {
-    printf("sequence: none (the full structure does not stand)\n");
-    return;
-  }
-  printf("sequence: none; blocked: ");
+static void text_blocked(const us_Structure *s, const us_Classification *c) {
   for (int k = 0; k < c->nblocked && k < TEXT_IDS; k++) {
     if (k) printf(", ");
     put_body(s, c->blocked[k]);
   }
   if (c->nblocked > TEXT_IDS) printf(" and %d more", c->nblocked - TEXT_IDS);
+}
+
+static void text_sequence(const us_Structure *s, const us_Classification *c,
+                          const ClassifyArgs *a) {
+  switch (c->sequence_status) {
+  case US_PLAN_FOUND:
+    printf("sequence: yes, one body at a time (assemble search, %ld tests)\n", c->sequence_tests);
+    return;
+  case US_PLAN_UNSTABLE: printf("sequence: none (the full structure does not stand)\n"); return;
+  case US_PLAN_LIMIT:
+    printf("sequence: unknown (time limit of %g s, %ld tests)\n", a->set.time_limit,
+           c->sequence_tests);
+    return;
+  default: break;
+  }
+  printf("sequence: none; blocked: ");
+  text_blocked(s, c);
   printf(" (a maximal buildable sub-assembly has %d of %d bodies; %ld tests)\n", c->nbuildable,
          c->nbody, c->sequence_tests);
 }
 
-static void text_group(const us_Classification *c) {
-  if (c->min_group > 0 && c->sequence)
-    printf("group: smallest K = 1\n");
-  else if (c->min_group > 0)
-    printf("group: smallest K = %d (assemble with automatic K, %ld tests)\n", c->min_group,
-           c->group_tests);
-  else if (c->min_group == 0)
+static void text_group(const us_Classification *c, const ClassifyArgs *a) {
+  switch (c->group_status) {
+  case US_PLAN_FOUND:
+    if (c->sequence) printf("group: smallest K = 1\n");
+    else printf("group: smallest K = %d (assemble with automatic K, %ld tests)\n", c->min_group,
+                c->group_tests);
+    return;
+  case US_PLAN_UNSTABLE:
     printf("group: no sequence for any K: the full structure does not stand (removing "
            "everything at once is one step)\n");
-  else
+    return;
+  case US_PLAN_NONE:
     printf("group: K > %d (the planner's bound; K <= %d, all bodies at once)\n", c->group_bound,
            c->nbody);
+    return;
+  default: break;
+  }
+  printf("group: unknown (time limit of %g s", a->set.time_limit);
+  if (c->group_bound > 0) printf("; K > %d", c->group_bound);
+  printf(")\n");
 }
 
 static void text_count(const us_Classification *c) {
@@ -187,9 +209,9 @@ static void print_text(const us_Structure *s, const us_Classification *c, const 
   text_stands(s, c, method);
   text_friction(c);
   text_strong_weak(c);
-  text_topdown(c, a->set.max_tests);
-  text_sequence(s, c);
-  text_group(c);
+  text_topdown(c);
+  text_sequence(s, c, a);
+  text_group(c, a);
   text_count(c);
   printf("time: %.3f s (%d bodies, %d contacts)\n", c->seconds, c->nbody, s->ncontact);
 }
@@ -220,8 +242,10 @@ static void json_topdown(const us_Classification *c, long max_tests) {
 }
 
 static void json_sequence(const us_Structure *s, const us_Classification *c) {
-  printf(", \"sequence\": %s, \"sequence_tests\": %ld, \"buildable\": %d, \"blocked\": [",
-         json_bool(c->sequence), c->sequence_tests, c->nbuildable);
+  printf(", \"sequence\": %s, \"sequence_status\": \"%s\", \"sequence_tests\": %ld, "
+         "\"buildable\": %d, \"blocked\": [", c->sequence_status == US_PLAN_LIMIT ? "null"
+         : json_bool(c->sequence), us_plan_status_name(c->sequence_status), c->sequence_tests,
+         c->nbuildable);
   for (int k = 0; k < c->nblocked; k++) {
     if (k) printf(", ");
     put_body(s, c->blocked[k]);
@@ -229,13 +253,21 @@ static void json_sequence(const us_Structure *s, const us_Classification *c) {
   printf("]");
 }
 
+static const char *group_word(us_PlanStatus st) {
+  switch (st) {
+  case US_PLAN_FOUND: return "found";
+  case US_PLAN_UNSTABLE: return "unstable";
+  case US_PLAN_NONE: return "beyond-bound";
+  default: return "limit";
+  }
+}
+
 static void json_group(const us_Classification *c) {
-  const char *gs = c->min_group > 0 ? "found" : c->min_group == 0 ? "unstable" : "beyond-bound";
   printf(", \"min_group\": ");
-  if (c->min_group > 0) printf("%d", c->min_group);
+  if (c->group_status == US_PLAN_FOUND) printf("%d", c->min_group);
   else printf("null");
-  printf(", \"group_status\": \"%s\", \"group_bound\": %d, \"group_tests\": %ld", gs,
-         c->group_bound, c->group_tests);
+  printf(", \"group_status\": \"%s\", \"group_bound\": %d, \"group_tests\": %ld",
+         group_word(c->group_status), c->group_bound, c->group_tests);
 }
 
 static void json_count(const us_Classification *c) {
@@ -255,6 +287,7 @@ static void print_json(const us_Structure *s, const us_Classification *c, const 
   json_body_or_null(s, c->unstable_body);
   json_friction(c);
   json_topdown(c, a->set.max_tests);
+  printf(", \"time_limit\": %g", a->set.time_limit);
   json_sequence(s, c);
   json_group(c);
   json_count(c);

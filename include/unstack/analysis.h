@@ -120,7 +120,8 @@ us_Status us_critical_friction(const us_Structure *s, const us_Bitset *present,
  *      when none, the bodies outside the greedy's maximal buildable
  *      sub-assembly are the evidence;
  *   5. the smallest group size K: the assemble search with max_group 0;
- *      no K at all exactly when the full structure does not stand;
+ *      no K at all exactly when the full structure does not stand
+ *      (the searches of 3-5 stop at time_limit: the class is then unknown);
  *   6. frictionless, strong and weak stability coincide (Gauss's principle,
  *      docs/classify.md): reported, not computed;
  * and the count of connected sub-assemblies containing the ground, an upper
@@ -128,8 +129,9 @@ us_Status us_critical_friction(const us_Structure *s, const us_Bitset *present,
 typedef struct us_ClassifySettings {
   us_StabilitySettings stability; /* backend of every test (default lp) */
   long max_tests;          /* test limit of the top-down DFS probe (default
-                              20,000; <= 0: none); the other classes are
-                              polynomial or bounded by the group search */
+                              20,000; <= 0: none) */
+  double time_limit;       /* seconds for each search of classes 3-5 (default
+                              60; <= 0: none): past it a class is unknown */
   double count_time_limit; /* seconds for the count (default 2; <= 0: none) */
 } us_ClassifySettings;
 us_ClassifySettings us_classify_default_settings(void);
@@ -146,22 +148,28 @@ typedef struct us_Classification {
                               INFINITY when none up to 1e3) */
   int friction_probes;
   /* 3. */
-  int topdown;             /* 1 yes, 0 no, -1 unknown (the DFS hit max_tests
-                              before any move failed) */
+  int topdown;             /* 1 yes, 0 no, -1 unknown (the DFS hit max_tests or
+                              time_limit before any move failed) */
   us_PlanStatus dfs_status;/* the plain DFS: found, none, unstable or limit */
   long dfs_tests;          /* its stability tests */
   long rejected;           /* moves it tested and found unstable */
   long backtracks;         /* dead ends it stepped back from */
   /* 4. */
-  int sequence;            /* a one-at-a-time removal order exists */
+  us_PlanStatus sequence_status; /* found, none (a proof), unstable (the full
+                              structure does not stand) or limit (unknown) */
+  int sequence;            /* sequence_status == US_PLAN_FOUND */
   long sequence_tests;
-  int nbuildable;          /* !sequence && stands: size of the greedy's maximal buildable set */
-  int nblocked, *blocked;  /* !sequence && stands: movable bodies outside it */
+  int nbuildable;          /* none: the size of a maximal buildable
+                              sub-assembly (the greedy's) */
+  int nblocked, *blocked;  /* none: the movable bodies outside it */
   /* 5. */
-  int min_group;           /* the smallest K with an order of steps of at most
-                              K bodies; 0 when the full structure does not
-                              stand (no K); -1 when more than group_bound */
-  int group_bound;         /* the largest K the group search tried */
+  us_PlanStatus group_status; /* found: min_group is the smallest K;
+                              unstable: no K (the full structure does not
+                              stand); none: K > group_bound, the planner's
+                              bound (64); limit: unknown, K > group_bound */
+  int min_group;           /* found: the smallest K with an order of steps of
+                              at most K bodies; else 0 */
+  int group_bound;         /* see group_status */
   long group_tests;
   /* 6. */
   int strong_equals_weak;  /* stands frictionless: strong = weak there */

@@ -16,21 +16,25 @@
  *      unstable) and without one dead end (stats.backtracks counts only
  *      the latter: stepping back from a stable node whose moves all
  *      failed). A found order with either is "needs backtracking". The
- *      probe is cut at max_tests: a cut after a rejection still proves
- *      "not top-down"; a cut before any (max_tests below the body count)
- *      leaves it unknown.
+ *      probe is cut at max_tests or time_limit: a cut after a rejection
+ *      still proves "not top-down"; a cut before any leaves it unknown.
  *   4. a one-at-a-time sequence exists: the assemble search (max_group 1),
- *      exact (greedy, then exact.c where it is stuck), so "none" is a
- *      proof; its evidence is
- *      the bodies outside a maximal buildable sub-assembly (the greedy's).
+ *      greedy assembly from the ground and, where the greedy is stuck, the
+ *      planner's exact decision (src/plan/exact.c), so "none" is a proof;
+ *      its evidence is the bodies outside the greedy's maximal buildable
+ *      sub-assembly.
  *   5. the smallest group size K: the assemble search with max_group 0,
  *      which decides K = 1, 2, ... in turn and stops at the first that
- *      gives an order, so that K is the smallest. A sequence of single bodies gives
- *      K = 1 without a second search (the automatic bound starts at 1 and
- *      runs the same search). Removing every body at once is one step, so
- *      some K exists iff the full structure stands; the planner's bound
- *      stops at 64 bodies per step, beyond which K is reported as unknown
- *      (-1, more than group_bound).
+ *      gives an order, so that K is the smallest. A sequence of single
+ *      bodies gives K = 1 without a second search (the automatic search
+ *      starts with the same K = 1 search). Removing every body at once is
+ *      one step, so some K exists iff the full structure stands; the
+ *      planner stops at 64 bodies per step, beyond which K is reported as
+ *      more than that bound.
+ *   The searches of 3-5 stop at time_limit (the exact decision is
+ *   exponential in K: 92 s for K = 10 on a 30-voussoir arch, in 422
+ *   tests); a class cut there is unknown, with what was proven before the
+ *   cut (K > group_bound).
  *   6. frictionless, strong stability (every solution of the contact LCP
  *      has zero accelerations) and weak stability (some has) coincide:
  *      docs/classify.md gives the proof (Gauss's principle of least
@@ -47,6 +51,7 @@
 #include <string.h>
 
 #define US_CLASSIFY_MAX_TESTS 20000 /* default limit of the top-down probe */
+#define US_CLASSIFY_TIME 60.0       /* default seconds per search of classes 3-5 */
 #define US_CLASSIFY_COUNT_TIME 2.0  /* default seconds for the count */
 
 us_ClassifySettings us_classify_default_settings(void) {
@@ -54,6 +59,7 @@ us_ClassifySettings us_classify_default_settings(void) {
   memset(&c, 0, sizeof c);
   c.stability = us_stability_default_settings();
   c.max_tests = US_CLASSIFY_MAX_TESTS;
+  c.time_limit = US_CLASSIFY_TIME;
   c.count_time_limit = US_CLASSIFY_COUNT_TIME;
   return c;
 }
@@ -63,7 +69,7 @@ static void reset(us_Classification *c) {
   c->unstable_body = -1;
   c->mu_critical = INFINITY;
   c->topdown = -1;
-  c->dfs_status = US_PLAN_LIMIT;
+  c->dfs_status = c->sequence_status = c->group_status = US_PLAN_LIMIT;
   c->count_status = US_COUNT_REFUSED_TIME;
 }
 
@@ -116,13 +122,14 @@ static us_Status classify_friction(const us_Structure *s, const us_ClassifySetti
 
 /* ------------------------------------------------- 3. top-down (plain DFS) */
 
-/* Plan settings of one probe: the classification's backend, no limits. */
+/* Plan settings of one probe: the classification's backend and time. */
 static us_PlanSettings probe_settings(const us_ClassifySettings *set, us_Search search,
                                       int max_group) {
   us_PlanSettings p = us_plan_default_settings();
   p.search = search;
   p.max_group = max_group;
   p.stability = set->stability;
+  p.time_limit = set->time_limit > 0 ? set->time_limit : 0.0;
   return p;
 }
 
@@ -173,13 +180,13 @@ static us_Status classify_sequence(const us_Structure *s, const us_ClassifySetti
   us_Status st = us_plan(s, &p, &plan, err);
   if (st) return st;
   out->sequence_tests = plan.stats.tests;
+  out->sequence_status = plan.status;
   out->sequence = plan.status == US_PLAN_FOUND;
   if (plan.status == US_PLAN_NONE) st = keep_blocked(&plan, out, err);
-  if (plan.status == US_PLAN_LIMIT) /* no limit was set */
-    st = us_error_set(err, US_ERR_SOLVER, "classify: the assemble search stopped at a limit");
-  /* no K when the full structure does not stand; K = 1 with a sequence */
-  out->min_group = out->sequence ? 1 : 0;
-  out->group_bound = plan.status == US_PLAN_UNSTABLE ? 0 : 1;
+  /* decided here: K = 1 with a sequence, no K when it does not stand, and
+     unknown when K = 1 was cut (the group search would start there) */
+  out->group_status = plan.status;
+  out->min_group = out->group_bound = out->sequence;
   us_plan_free(&plan);
   return st;
 }
@@ -188,18 +195,20 @@ static us_Status classify_sequence(const us_Structure *s, const us_ClassifySetti
 
 static us_Status classify_group(const us_Structure *s, const us_ClassifySettings *set,
                                 us_Classification *out, us_Error *err) {
-  if (out->sequence || out->group_bound == 0) return US_OK; /* decided by step 4 */
+  if (out->sequence_status != US_PLAN_NONE) return US_OK; /* decided by step 4 */
   us_PlanSettings p = probe_settings(set, US_SEARCH_ASSEMBLE, 0);
   us_Plan plan;
   us_Status st = us_plan(s, &p, &plan, err);
   if (st) return st;
   out->group_tests = plan.stats.tests;
-  out->group_bound = plan.max_group;
-  if (plan.status == US_PLAN_FOUND) out->min_group = plan.max_group;
-  else if (plan.status == US_PLAN_NONE) out->min_group = -1; /* past the planner's bound */
-  else st = us_error_set(err, US_ERR_SOLVER, "classify: the group search ended with status %s "
-                         "after step 4 found the structure standing",
-                         us_plan_status_name(plan.status));
+  out->group_status = plan.status;
+  /* found: the K of the order; none or limit: the largest K that failed
+     (at least 1: step 4 proved K = 1 fails) */
+  out->group_bound = US_MAX(plan.max_group, 1);
+  out->min_group = plan.status == US_PLAN_FOUND ? plan.max_group : 0;
+  if (plan.status == US_PLAN_UNSTABLE) /* step 4 saw it stand */
+    st = us_error_set(err, US_ERR_SOLVER, "classify: the group search found the full structure "
+                      "unstable after the sequence search found it standing");
   us_plan_free(&plan);
   return st;
 }
