@@ -28,6 +28,42 @@ static inline us_Structure *scene_seal(us_Structure *s) {
   return s;
 }
 
+/* A column of n boxes 1 x 0.5, ids c0 (bottom) .. c<n-1>. */
+static inline us_Structure *scene_column(int n) {
+  us_Structure *s = us_structure_new(2);
+  char id[16];
+  for (int i = 0; i < n; i++) {
+    snprintf(id, sizeof id, "c%d", i);
+    scene_box(s, id, 0, 0.5 * i, 1, 0.5, 1);
+  }
+  return scene_seal(s);
+}
+
+/* Pier P, spacer S and plank L on it, heavy counterweight C on S and the
+ * plank's inner end. C is highest, but removing it first tips the plank:
+ * the plank must go first. */
+static inline us_Structure *scene_cantilever(void) {
+  us_Structure *s = us_structure_new(2);
+  scene_box(s, "P", 0, 0, 1, 1, 1);
+  scene_box(s, "S", 0, 1, 0.6, 0.2, 1);
+  scene_box(s, "L", 0.6, 1, 3, 0.2, 1);
+  scene_box(s, "C", 0, 1.2, 1, 0.5, 10);
+  return scene_seal(s);
+}
+
+/* Two slabs leaning on each other (an inverted V), touching along x = 1,
+ * y 1.5..2: each needs the other; they stand only with friction (hand
+ * statics, docs/classify.md: mu* = 13/165). */
+static inline us_Structure *scene_leaning(double mu) {
+  us_Structure *s = us_structure_new(2);
+  s->friction = mu;
+  double l[8] = {0, 0, 0.4, 0, 1.0, 1.5, 1.0, 2.0};
+  double r[8] = {1.6, 0, 2.0, 0, 1.0, 2.0, 1.0, 1.5};
+  us_structure_add_polygon(s, "left", 4, l, 1, 0, 0, -1, NULL);
+  us_structure_add_polygon(s, "right", 4, r, 1, 0, 0, -1, NULL);
+  return scene_seal(s);
+}
+
 /* Finalize must fail with US_ERR_INPUT and a message containing both
  * fragments (the second may be NULL). */
 static inline int scene_fails_with(us_Structure *s, const char *frag1, const char *frag2) {

@@ -8,39 +8,6 @@
 #include "scenes.h"
 #include "test.h"
 
-static us_Structure *column(int n) {
-  us_Structure *s = us_structure_new(2);
-  char id[16];
-  for (int i = 0; i < n; i++) {
-    snprintf(id, sizeof id, "c%d", i);
-    scene_box(s, id, 0, 0.5 * i, 1, 0.5, 1);
-  }
-  return scene_seal(s);
-}
-
-/* Pier P, spacer S and plank L on it, heavy counterweight C on S and the
- * plank's inner end. C is highest, but removing it first tips the plank:
- * the plank must go first. */
-static us_Structure *cantilever(void) {
-  us_Structure *s = us_structure_new(2);
-  scene_box(s, "P", 0, 0, 1, 1, 1);
-  scene_box(s, "S", 0, 1, 0.6, 0.2, 1);
-  scene_box(s, "L", 0.6, 1, 3, 0.2, 1);
-  scene_box(s, "C", 0, 1.2, 1, 0.5, 10);
-  return scene_seal(s);
-}
-
-/* Two slabs leaning on each other (inverted V): each needs the other. */
-static us_Structure *leaning(double mu) {
-  us_Structure *s = us_structure_new(2);
-  s->friction = mu;
-  double l[8] = {0, 0, 0.4, 0, 1.0, 1.5, 1.0, 2.0};
-  double r[8] = {1.6, 0, 2.0, 0, 1.0, 2.0, 1.0, 1.5};
-  us_structure_add_polygon(s, "left", 4, l, 1, 0, 0, -1, NULL);
-  us_structure_add_polygon(s, "right", 4, r, 1, 0, 0, -1, NULL);
-  return scene_seal(s);
-}
-
 static us_Bitset all_movable(const us_Structure *s) {
   us_Bitset b = {0};
   us_structure_movable_set(s, &b);
@@ -69,7 +36,7 @@ static int order_valid(const us_Structure *s, const us_Plan *p) {
 }
 
 static void column_top_down(void) {
-  us_Structure *s = column(5);
+  us_Structure *s = scene_column(5);
   CHECK(s);
   us_Plan p;
   CHECK_INT(plan_status(s, US_SEARCH_DFS, US_DIR_DOWN, &p), ==, US_PLAN_FOUND);
@@ -83,7 +50,7 @@ static void column_top_down(void) {
 
 /* More than 64 bodies: the bitsets span several words. */
 static void column_of_150(void) {
-  us_Structure *s = column(150);
+  us_Structure *s = scene_column(150);
   CHECK(s);
   us_Plan p;
   CHECK_INT(plan_status(s, US_SEARCH_DFS, US_DIR_DOWN, &p), ==, US_PLAN_FOUND);
@@ -94,7 +61,7 @@ static void column_of_150(void) {
 }
 
 static void cantilever_needs_backtracking(void) {
-  us_Structure *s = cantilever();
+  us_Structure *s = scene_cantilever();
   CHECK(s);
   us_Plan p;
   CHECK_INT(plan_status(s, US_SEARCH_DFS, US_DIR_DOWN, &p), ==, US_PLAN_FOUND);
@@ -106,7 +73,7 @@ static void cantilever_needs_backtracking(void) {
 }
 
 static void leaning_slabs_have_no_order(void) {
-  us_Structure *s = leaning(0.5);
+  us_Structure *s = scene_leaning(0.5);
   CHECK(s);
   us_Plan p;
   CHECK_INT(plan_status(s, US_SEARCH_DFS, US_DIR_DOWN, &p), ==, US_PLAN_NONE);
@@ -114,7 +81,7 @@ static void leaning_slabs_have_no_order(void) {
   CHECK_INT(plan_status(s, US_SEARCH_BFS, US_DIR_DOWN, &p), ==, US_PLAN_NONE);
   us_plan_free(&p);
   us_structure_free(s);
-  s = leaning(0.0);
+  s = scene_leaning(0.0);
   CHECK(s);
   CHECK_INT(plan_status(s, US_SEARCH_DFS, US_DIR_DOWN, &p), ==, US_PLAN_UNSTABLE);
   us_plan_free(&p);
@@ -122,7 +89,7 @@ static void leaning_slabs_have_no_order(void) {
 }
 
 static void limits_stop_the_search(void) {
-  us_Structure *s = column(20);
+  us_Structure *s = scene_column(20);
   CHECK(s);
   us_PlanSettings set = us_plan_default_settings();
   set.max_tests = 5;
@@ -136,7 +103,7 @@ static void limits_stop_the_search(void) {
 }
 
 static void certificates_per_step(void) {
-  us_Structure *s = cantilever();
+  us_Structure *s = scene_cantilever();
   CHECK(s);
   us_PlanSettings set = us_plan_default_settings();
   set.certificates = 1;
@@ -158,7 +125,7 @@ static void certificates_per_step(void) {
 }
 
 static void verify_names_the_failing_step(void) {
-  us_Structure *s = cantilever();
+  us_Structure *s = scene_cantilever();
   CHECK(s);
   us_StabilitySettings st = us_stability_default_settings();
   int C = us_structure_find_body(s, "C"), L = us_structure_find_body(s, "L");
@@ -284,7 +251,7 @@ static void agrees_with_exhaustive_reference(void) {
 }
 
 static void out_of_memory_is_clean(void) {
-  us_Structure *s = cantilever();
+  us_Structure *s = scene_cantilever();
   CHECK(s);
   us_PlanSettings set = us_plan_default_settings();
   set.certificates = 1;

@@ -18,40 +18,11 @@
 
 /* ----------------------------------------------------------------- scenes */
 
-static us_Structure *column(int n) {
-  us_Structure *s = us_structure_new(2);
-  char id[16];
-  for (int i = 0; i < n; i++) {
-    snprintf(id, sizeof id, "c%d", i);
-    scene_box(s, id, 0, 0.5 * i, 1, 0.5, 1);
-  }
-  return scene_seal(s);
-}
-
 /* tests/test_plan.c's cantilever: pier P, spacer S and plank L on it, the
  * heavy counterweight C (highest) on S and the plank's inner end. Removing
  * C first tips the plank: the plank must go first. */
-static us_Structure *cantilever(void) {
-  us_Structure *s = us_structure_new(2);
-  scene_box(s, "P", 0, 0, 1, 1, 1);
-  scene_box(s, "S", 0, 1, 0.6, 0.2, 1);
-  scene_box(s, "L", 0.6, 1, 3, 0.2, 1);
-  scene_box(s, "C", 0, 1.2, 1, 0.5, 10);
-  return scene_seal(s);
-}
-
 /* tests/test_plan.c's inverted V: two mirrored slabs touching along x = 1,
  * y 1.5..2. Hand statics (docs/classify.md): mu* = 13/165. */
-static us_Structure *leaning(double mu) {
-  us_Structure *s = us_structure_new(2);
-  s->friction = mu;
-  double l[8] = {0, 0, 0.4, 0, 1.0, 1.5, 1.0, 2.0};
-  double r[8] = {1.6, 0, 2.0, 0, 1.0, 2.0, 1.0, 1.5};
-  us_structure_add_polygon(s, "left", 4, l, 1, 0, 0, -1, NULL);
-  us_structure_add_polygon(s, "right", 4, r, 1, 0, 0, -1, NULL);
-  return scene_seal(s);
-}
-
 /* The arch of us_gen_arch (src/gen/arch.c), built here because this test
  * links the planner only: n voussoirs b1..bn between the semicircles of
  * radii R -+ t/2 centred at (R + t/2, 0), radial joints, springings on
@@ -123,7 +94,7 @@ static int has_id(const us_Structure *s, const us_Classification *c, const char 
 /* ----------------------------------------------------- known classes */
 
 static void column_is_topdown(void) {
-  us_Structure *s = column(5);
+  us_Structure *s = scene_column(5);
   CHECK(s);
   us_Classification c;
   CHECK(classify(s, NULL, &c));
@@ -146,7 +117,7 @@ static void column_is_topdown(void) {
 }
 
 static void cantilever_needs_backtracking(void) {
-  us_Structure *s = cantilever();
+  us_Structure *s = scene_cantilever();
   CHECK(s);
   us_Classification c;
   CHECK(classify(s, NULL, &c));
@@ -162,7 +133,7 @@ static void cantilever_needs_backtracking(void) {
 }
 
 static void leaning_slabs_need_friction_and_pairs(void) {
-  us_Structure *s = leaning(0.5);
+  us_Structure *s = scene_leaning(0.5);
   CHECK(s);
   us_Classification c;
   CHECK(classify(s, NULL, &c));
@@ -179,7 +150,7 @@ static void leaning_slabs_need_friction_and_pairs(void) {
   us_classification_free(&c);
   us_structure_free(s);
   /* below mu* the pair falls: no K at all; mu* ignores the own coefficient */
-  s = leaning(0.07);
+  s = scene_leaning(0.07);
   CHECK(s);
   CHECK(classify(s, NULL, &c));
   CHECK(!c.stands && c.stands_some_mu);
@@ -266,7 +237,7 @@ static void overhang_stands_for_no_mu(void) {
 
 /* The probe's limit: unknown only when no move failed before it. */
 static void topdown_probe_limit(void) {
-  us_Structure *s = column(30);
+  us_Structure *s = scene_column(30);
   CHECK(s);
   us_ClassifySettings set = us_classify_default_settings();
   set.max_tests = 10;
@@ -283,7 +254,7 @@ static void topdown_probe_limit(void) {
   CHECK_INT(c.dfs_tests, ==, 30);
   us_classification_free(&c);
   us_structure_free(s);
-  s = cantilever();
+  s = scene_cantilever();
   CHECK(s);
   set.max_tests = 3; /* the full structure, C (rejected), L: then the limit */
   CHECK(classify(s, &set, &c));
@@ -326,7 +297,7 @@ static void time_limit_leaves_classes_unknown(void) {
   CHECK(c.group_bound >= 1 && c.group_bound < 20);
   us_classification_free(&c);
   us_structure_free(s);
-  s = column(4);
+  s = scene_column(4);
   CHECK(s);
   set.time_limit = 1e-9; /* every search is cut at its first test */
   CHECK(classify(s, &set, &c));
@@ -783,7 +754,7 @@ static void argument_errors(void) {
   us_Error err;
   CHECK_INT(us_classify(NULL, NULL, &c, &err), ==, US_ERR_USAGE);
   CHECK(c.count == NULL && c.blocked == NULL);
-  us_Structure *s = column(2);
+  us_Structure *s = scene_column(2);
   CHECK(s);
   CHECK_INT(us_classify(s, NULL, NULL, &err), ==, US_ERR_USAGE);
   CHECK_INT(us_classify(s, NULL, NULL, NULL), ==, US_ERR_USAGE); /* err may be NULL */
@@ -806,7 +777,7 @@ static void argument_errors(void) {
  * failure is out of memory (or a backend's report of it), with nothing
  * leaked and an empty result. */
 static void out_of_memory_is_clean(void) {
-  us_Structure *scenes[2] = {leaning(0.5), arch(6, 3.0, 0.6, 0.5)};
+  us_Structure *scenes[2] = {scene_leaning(0.5), arch(6, 3.0, 0.6, 0.5)};
   CHECK(scenes[0] && scenes[1]);
   for (int k = 0; k < 2; k++) {
     long live0 = us_alloc_live(), n = 0, runs = 0;
