@@ -47,9 +47,11 @@ row() { # STRUCTURE METHOD [extra plan args]
   echo "|---|---|---|---|---|---|---|---|"
 } >"$OUT.tmp"
 cat "$OUT.tmp"
-# the source's Table 2 structure, every backend, both directions
+# the source's Table 2 structure, every backend: the default assemble
+# search, and the source's DFS in both directions
+for m in lpsolve lp lcp lcp-reuse; do row pyramid91 $m; done
 for d in down up; do
-  for m in lpsolve lp lcp lcp-reuse; do row pyramid91 $m --direction $d; done
+  for m in lpsolve lp lcp lcp-reuse; do row pyramid91 $m --search dfs --direction $d; done
 done
 row column1000 lp
 row column1000 lcp-reuse
