@@ -75,7 +75,7 @@ us_Status us_count_subgraphs(const us_Structure *s, const us_CountSettings *set,
 void us_count_free(us_Count *c);
 
 /* ------------------------------------------------------------- classify */
-/* (src/plan/classify.c, src/plan/friction.c) */
+/* (src/plan/classify.c, src/analysis/friction.c) */
 
 /* Critical friction (src/analysis/friction.c, docs/classify.md): the
  * smallest Coulomb coefficient mu which, put on every contact of the
