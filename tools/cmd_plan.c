@@ -32,6 +32,8 @@ static const char help[] =
     "                      components, greedy\n"
     "  --seed S            random search seed (default 1)\n"
     "  --max-tests N       stop after N stability tests (status \"limit\")\n"
+    "  --exact-tests N     tests one exact decision may use where the greedy is\n"
+    "                      stuck (default 100000, 0: no limit; status \"limit\")\n"
     "  --time-limit SEC    stop after SEC seconds (status \"limit\")\n"
     "  --certificates      store the contact forces of every step in the plan\n"
     "  --stats             print the search statistics\n"
@@ -82,6 +84,13 @@ static void print_summary(const us_Structure *s, const us_Plan *p, const CliComm
   printf("]");
   if (out) printf(" -> %s", out);
   printf("\n");
+  if (p->status == US_PLAN_LIMIT && p->blocked) {
+    printf("  the greedy was stuck with %d of %d bodies placed, and the exact decision was "
+           "cut (--exact-tests, --max-tests, --time-limit);\n  not reached by the greedy: ",
+           p->nbuildable, p->nbuildable + p->nblocked);
+    print_ids(s, p->blocked, p->nblocked, 20);
+    printf("\n");
+  }
   if (p->status == US_PLAN_NONE && p->blocked) {
     printf("  cannot be removed with steps of up to %d bod%s: ", p->max_group > 0 ? p->max_group : 1,
            p->max_group > 1 ? "ies" : "y");
@@ -135,6 +144,11 @@ static int parse(int argc, char **argv, CliCommon *c, PlanArgs *a) {
       if (cli_parse_long(v, &n) || n < 0)
         return cli_fail("plan", "--seed needs a non-negative integer, got '%s'", v);
       c->plan.seed = (unsigned long)n;
+    } else if (!strcmp(argv[i], "--exact-tests")) {
+      if (!(v = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
+      if (cli_parse_long(v, &n) || n < 0)
+        return cli_fail("plan", "--exact-tests needs a non-negative integer (0: no limit), got '%s'", v);
+      c->plan.max_exact_tests = n;
     } else if (!strcmp(argv[i], "--certificates")) {
       c->plan.certificates = 1;
     } else if (!strcmp(argv[i], "--stats")) {

@@ -347,6 +347,10 @@ typedef struct us_PlanSettings {
   unsigned long seed;    /* random search */
   long max_tests;        /* <= 0: unlimited */
   double time_limit;     /* seconds, <= 0: unlimited */
+  long max_exact_tests;  /* tests one exact decision (where the greedy is stuck)
+                            may use before the plan ends in `limit`; it is
+                            exponential in the worst case (default 100000;
+                            <= 0: unlimited) */
   int certificates;      /* keep a certificate per step */
   us_StabilitySettings stability;
 } us_PlanSettings;

@@ -22,6 +22,10 @@
  * union when they overlap: two bodies may each be holdable by a third but
  * not both together), so the exhaustive step above decides.
  *
+ * Budget: one decision may run at most set->max_exact_tests stability
+ * tests (the recursion is exponential in the worst case); past it the
+ * plan ends in `limit`, never in a guess.
+ *
  * Storage: every decided connected set is a key of `keys`; ok[i] its
  * answer and, when it can be emptied, its removal order as a slice of
  * `body` with step ends marked in `end`. Orders of a set are concatenations
@@ -297,6 +301,9 @@ static int solve(Solver *sv, const us_Bitset *comp) {
 int us_exact_solve(us_SearchCtx *ctx, us_Exact *e, const us_Bitset *set, int *order,
                    unsigned char *step_end, int *n, us_Error *err) {
   Solver sv = {ctx, e, err, 0};
+  long budget = ctx->set->max_exact_tests;
+  int outer = ctx->exact_end > 0; /* nested in another decision: its budget holds */
+  if (!outer && budget > 0) ctx->exact_end = ctx->st->tests + budget;
   int *list = NULL, *first = NULL, k = split(ctx, set, &list, &first), r = -1;
   us_Bitset scratch = {0};
   long from = e->work.n;
@@ -308,6 +315,7 @@ int us_exact_solve(us_SearchCtx *ctx, us_Exact *e, const us_Bitset *set, int *or
     if (*n > 0 && step_end) memcpy(step_end, e->work.end + from, (size_t)*n);
   }
   e->work.n = from;
+  if (!outer) ctx->exact_end = 0;
   us_bitset_free(&scratch);
   us_free(list);
   us_free(first);

@@ -32,6 +32,7 @@ us_PlanSettings us_plan_default_settings(void) {
   p.max_group = 1;
   p.rules = US_RULE_ALL;
   p.seed = 1;
+  p.max_exact_tests = 100000;
   p.stability = us_stability_default_settings();
   return p;
 }
@@ -74,6 +75,7 @@ static int limit_reached(const us_SearchCtx *ctx) {
 
 int us_plan_test(us_SearchCtx *ctx, const us_Bitset *node, us_Error *err) {
   if (limit_reached(ctx)) return -2;
+  if (ctx->exact_end > 0 && ctx->st->tests >= ctx->exact_end) return -2;
   if (ctx->budget_end > 0 && ctx->st->tests >= ctx->budget_end) return -3;
   if (us_stability_test(ctx->stab, node, &ctx->res, err)) return -1;
   ctx->st->tests++;

@@ -39,6 +39,7 @@ typedef struct us_SearchCtx {
   us_PlanStats *st;
   double t_start;
   long budget_end;      /* random search: restart when tests reach this (0: none) */
+  long exact_end;       /* an exact decision stops when tests reach this (0: none) */
   struct us_Exact *exact; /* greedy rule: exact buildability memo (K = 1) */
   int root_live;        /* greedy rule: the part's root can be emptied */
   uint64_t rng;         /* random search */

@@ -44,6 +44,14 @@ sed 's/"order": \[[^]]*\]/"order": ["b", "lintel", "pr", "pl"]/' "$T/b.json" >"$
 expect 1 "verify catches a blocked lift" -- "$CLI" verify "$DATA/bridge.json" "$T/b2.json"
 contains "$T/out" "'lintel' is in the way" "verify names the body in the way"
 
+# where the greedy is stuck the exact decision settles it, within its budget
+expect 0 "greedy stuck, exact finds" -- "$CLI" plan "$DATA/greedy_stuck.json" --stats
+contains "$T/out" "sets searched exhaustively 1" "the exact decision ran"
+expect 1 "a cut exact decision is a limit" -- "$CLI" plan "$DATA/greedy_stuck.json" --exact-tests 3
+contains "$T/out" "limit" "status limit"
+contains "$T/out" "not reached by the greedy" "the summary says what the greedy left"
+expect 2 "--exact-tests -1" -- "$CLI" plan "$DATA/greedy_stuck.json" --exact-tests -1
+
 # bad option values
 expect 2 "--max-group 0" -- "$CLI" plan "$T/arch.json" --max-group 0
 expect 2 "--max-group x" -- "$CLI" plan "$T/arch.json" --max-group x
