@@ -58,8 +58,9 @@
  * stands with any, and the frictionless LP is several times faster. The
  * finished structure (T of the top row, which has no cantilevers) is
  * tested with the structure's own friction. The structure of rows 0..r
- * with its pending cantilevers (an intermediate build stage) does not
- * stand; the finished one does.
+ * with its pending cantilevers (an intermediate build stage) does not stand
+ * when row r has one (in the tests, 34 of 78 stages of 14 x 12 piles); the
+ * finished one does.
  *
  * Repair: a row that fails (its test, or no block at all) is redrawn,
  * without new cantilevers after kTriesCant failures; kTriesRow failures of
