@@ -100,7 +100,8 @@ static void deterministic_per_seed(void) {
   CHECK(differ);
 }
 
-/* Blocks lie on the quarter grid inside [0, W], in whole rows; ids b1..bn
+/* Blocks lie on the quarter grid inside [0, W], in whole rows, 1 to 2
+ * blocks wide (counterweights up to 3); ids b1..bn
  * row by row; every block rests on a block of the row below or the ground. */
 static int geometry_ok(const us_Structure *s, double width, double h) {
   char id[24];
@@ -111,7 +112,7 @@ static int geometry_ok(const us_Structure *s, double width, double h) {
     double r = bb[1] / h;
     if (strcmp(s->bodies[i].id, id) || s->bodies[i].nvert != 4 || bb[0] < 0 || bb[2] > width ||
         bb[0] * 4 != floor(bb[0] * 4) || bb[2] * 4 != floor(bb[2] * 4) || r != floor(r) ||
-        bb[3] - bb[1] != h || bb[2] - bb[0] < 1 || bb[2] - bb[0] > 2 || bb[1] < prev_y)
+        bb[3] - bb[1] != h || bb[2] - bb[0] < 1 || bb[2] - bb[0] > 3 || bb[1] < prev_y)
       return fprintf(stderr, "body %s: [%g %g] x [%g %g]\n", s->bodies[i].id, bb[0], bb[2],
                      bb[1], bb[3]),
              0;
@@ -160,7 +161,7 @@ static void block_counts(void) {
   CHECK_INT(nc, ==, 12);
 }
 
-/* Cantilevers that would tip alone exist (10-30 %), and some intermediate
+/* Cantilevers that would tip alone exist (5-30 %), and some intermediate
  * build stages (rows 0..r) do not stand while the whole does. */
 static void cantilevers_need_the_rows_above(void) {
   int blocks = 0, cants = 0, fallen = 0, stages = 0;
@@ -184,7 +185,8 @@ static void cantilevers_need_the_rows_above(void) {
   printf("cantilevers: %d of %d blocks (%.1f %%); %d of %d build stages do not stand\n", cants,
          blocks, 100.0 * cants / blocks, fallen, stages);
   CHECK(cants > 0);
-  CHECK(cants * 100 >= 8 * blocks && cants * 10 <= 3 * blocks);
+  /* 5-30 %: a cantilever needs room for its counterweight's tail over B */
+  CHECK(cants * 100 >= 5 * blocks && cants * 10 <= 3 * blocks);
   CHECK(fallen > 0);
 }
 

@@ -9,7 +9,7 @@
  * Geometry: x is counted in quarter blocks (q), so every coordinate is an
  * exact binary fraction and blocks touch exactly or not at all. The
  * structure spans [0, Q] with Q = floor(4 W); row r spans [r h, (r + 1) h].
- * A block is 1 to 2 blocks wide (4 to 8 q). Bodies are named "b1", "b2",
+ * A block is 1 to 2 blocks wide (4 to 8 q; counterweights up to 3). Bodies are named "b1", "b2",
  * ... row by row from the bottom, left to right in a row.
  *
  * Rows: a row is drawn by a walk across it, left to right or right to left
@@ -29,8 +29,11 @@
  * (at most 1 q away) and C are placed as a pair: B first and C hanging
  * ahead of the walk, or C hanging behind and B right after it; B may also
  * be the block the walk placed last. C is held by a counterweight D in the
- * next row: a block of even width w_d centred on the joint, resting on B
- * and C. D's weight can go wholly into C's inner corner (arm L about A's
+ * next row: a block of even width w_d centred on the joint and longer by
+ * one block on B's side (kCwTail; a cantilever is made only where it fits), resting
+ * on B and C, so that its centre of mass lies over B: D stands on B alone,
+ * and the structure can be built B, D, then C slid in under D's end, and
+ * taken apart cantilever first, one block at a time. D's weight can go wholly into C's inner corner (arm L about A's
  * corner) while C's weight acts w/2 - L beyond it, so D holds C when
  * w_d L >= w (w/2 - L) (weights go with widths). C is made only when
  * w_d = 3 w (w - 2 L) / (4 L) (1.5 times that, rounded up to even) is at
@@ -38,8 +41,8 @@
  * C with that counterweight passes the probe; D's width is drawn from there
  * to 8 q. C's overhang, and the part of D above it, carry no block of the
  * next row; C clears the next block below by a quarter (a touching corner
- * would support it); two joints of a row are at least 2 blocks apart, so
- * counterweights never collide. Each walk step takes a pair when one fits
+ * would support it); two joints of a row are at least 4 blocks apart, so
+ * counterweights (up to 3 blocks long) never collide. Each walk step takes a pair when one fits
  * there (drawn among all that do). The top row makes no cantilevers. Until
  * its counterweight is placed a cantilever is pending.
  *
@@ -71,12 +74,12 @@
  * Figures (Release, friction 0.5, this project's 2-core machine; printed
  * by tests/test_gen_stacker.c, stacker_sizes; seed 1):
  *   rows x width   blocks   cantilevers   time
- *   14 x 12            83      11 (13 %)   0.02 s
- *   30 x 30           384      47 (12 %)   0.25 s
- *   60 x 60           965     155 (16 %)   1.6 s
- * Seeds 1-5 of 60 x 70 give 1,030 to 1,230 blocks in 1.5 to 3.4 s; seeds
- * 1-10 of 14 x 12 give 65 to 83 blocks. About 10 to 18 % of the blocks are
- * cantilevers (more in taller structures). The count is roughly 0.3 R W
+ *   14 x 12            78       6 (8 %)    0.01 s
+ *   30 x 30           263      29 (11 %)   0.15 s
+ *   60 x 60           861     118 (14 %)   1.2 s
+ * Seeds 1-10 of 14 x 12 give 57 to 84 blocks. About 8 to 14 % of the blocks
+ * are cantilevers (more in taller structures; fewer than before the
+ * counterweights got their tail over B, which needs room). The count is roughly 0.3 R W
  * for tall structures (rows thin out where no block passes) and 0.45 R W
  * for low ones. The cost is about one LP per row (frictionless LPs take a
  * fifth of the time of LPs with friction) plus the probes, O(rows) each.
@@ -92,7 +95,8 @@ enum {
   kQMin = 4,      /* narrowest block, quarters */
   kQMax = 8,      /* widest block */
   kGapMax = 6,    /* widest gap drawn */
-  kJointGap = 8,  /* least distance between two cantilever joints of a row */
+  kJointGap = 16, /* least distance between two cantilever joints of a row */
+  kCwTail = 4,    /* a counterweight's extra length over B (see place_counterweights) */
   kTriesCant = 2, /* attempts of a row with new cantilevers */
   kTriesRow = 4,  /* attempts of a row before the row below is redrawn */
   kWidths = kQMax - kQMin + 1,
@@ -357,7 +361,12 @@ static void place_counterweights(Stk *k) {
     if (!c->side) continue;
     long w = c->wd;
     long j = c->side > 0 ? c->q0 : c->q1; /* the joint: C's inner edge */
+    /* centred on the joint, and longer by kCwTail on B's side, so that its
+       centre of mass lies over B: D stands on B alone, and the structure
+       can be built B, D, C (C slid in under D) and taken apart C first */
     long d0 = j - w / 2, d1 = j + w / 2;
+    if (c->side > 0) d0 -= kCwTail; /* room checked by cantilever_ok */
+    else d1 += kCwTail;
     Blk *d = &k->cur[k->ncur++];
     *d = (Blk){d0, d1, 0, 0, d0, d1, 0, 0};
     if (c->side > 0) d->a1 = US_MIN(d1, c->s1), add_obstacle(k, c->s1, c->q1, 0);
@@ -412,6 +421,8 @@ static int cantilever_ok(Stk *k, long c0, long c1, int side, long *L, long *wd) 
   if (side < 0 && i > 0 && k->seg[i - 1].hi >= bare0) return 0;
   if (!clear_between(k, c0, c1) || !(bare0 < bare1)) return 0;
   *wd = need + 2 * us_gen_rng_below(&k->rng, (kQMax - need) / 2 + 1);
+  /* room for the counterweight's tail over B (it must stand on B alone) */
+  if (side > 0 ? j - *wd / 2 - kCwTail < 0 : j + *wd / 2 + kCwTail > k->Q) return 0;
   double P = (double)(w + *wd);
   to_walk(k, c0, c1, &a, &b);
   return probe(k, a, b, P, (0.5 * (double)(a + b) * (double)w + (double)(*wd * ja)) / P);
