@@ -12,7 +12,10 @@
 #include "scenes.h"
 #include "test.h"
 
-#define PILE(rng, n) mixed_pile(rng, n)
+#include "piles.h"
+/* both generators: piles.h (counterweights, leaning pairs, small arches)
+   on even trials, the boxes and inverted Vs below on odd ones */
+#define PILE(rng, n) (trial % 2 ? mixed_pile(rng, n) : pile_random(rng, n))
 
 #ifdef US_TEST_SANITIZED
 #define US_TEST_PILES 400 /* memory errors, not statistics (CMakeLists.txt) */
