@@ -110,26 +110,8 @@ static void stacker(int quick) {
 static us_Structure *arch_with_loose(int k) {
   us_GenSettings g = us_gen_default_settings();
   g.n = 7;
-  us_Structure *a = us_gen_arch(&g, NULL);
-  if (!a) return NULL;
-  us_Structure *s = us_structure_new(2);
-  s->friction = a->friction;
-  for (int i = 0; i < a->nbody; i++)
-    us_structure_add_polygon(s, a->bodies[i].id, a->bodies[i].nvert, a->bodies[i].verts,
-                             a->bodies[i].density, 0, a->bodies[i].fixed, -1, NULL);
-  double x = a->bbox[2] + 1;
-  us_structure_free(a);
-  char id[32];
-  for (int i = 0; i < k; i++) {
-    double xy[8] = {x + 1.5 * i, 0, x + 1.5 * i + 1, 0, x + 1.5 * i + 1, 1, x + 1.5 * i, 1};
-    snprintf(id, sizeof id, "loose%d", i);
-    us_structure_add_polygon(s, id, 4, xy, 1, 0, 0, -1, NULL);
-  }
-  if (us_structure_finalize(s, NULL)) {
-    us_structure_free(s);
-    return NULL;
-  }
-  return s;
+  g.loose = k;
+  return us_gen_arch(&g, NULL);
 }
 
 static void arches(void) {

@@ -12,7 +12,8 @@ static const char help[] =
     "  column   --blocks N                    N blocks stacked on the ground\n"
     "  pyramid  --rows N                      stack bond, N rows (13 rows = 91 blocks)\n"
     "  wall     --rows R --cols C             running bond with half bricks at the ends\n"
-    "  arch     --voussoirs N --radius R --thickness T\n"
+    "  arch     --voussoirs N --radius R --thickness T [--loose K: K unit blocks\n"
+    "           on the ground beside it]\n"
     "                                         semicircular, radial joints, on the ground\n"
     "  random   --rows R --width W --seed S   the random stacker: blocks 1 wide dropped at\n"
     "                                         random rows and offsets (quarter blocks) in a\n"
@@ -49,6 +50,7 @@ static int int_option(const char *name, us_GenSettings *g, int **dst) {
          : !strcmp(name, "--rows") ? &g->rows
          : !strcmp(name, "--cols") ? &g->cols
          : !strcmp(name, "--max-tries") ? &g->max_tries
+         : !strcmp(name, "--loose") ? &g->loose
                                           : NULL;
   return *dst != NULL;
 }

@@ -441,6 +441,7 @@ typedef struct us_GenSettings {
   double width;      /* block width (random: structure width in blocks) */
   double height;     /* block height */
   double radius, thickness; /* arch */
+  int loose;         /* arch: unit blocks standing on the ground beside it (0) */
   double friction;   /* default coefficient written to the structure */
   double density;
   unsigned long seed;

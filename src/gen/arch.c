@@ -12,6 +12,10 @@
  * its points by the same expression (bit-identical coordinates), and the
  * springing points are put exactly on y = 0.
  *
+ * With g->loose = k, unit blocks b<n+1> .. b<n+k> stand on the ground to
+ * the right of the arch, 0.5 apart: a structure whose parts touch only
+ * through the ground (the planner's test of `none` next to easy parts).
+ *
  * Stability (checked by tests/test_gen.c with the LP): the thrust line
  * must fit inside the ring. Measured with the LP (bisection on t / R,
  * friction 0.5): the thinnest ring that stands has t / R = 0.107 for 10
@@ -49,6 +53,9 @@ static us_Status check_arch(const us_GenSettings *g, us_Error *err) {
     st = us_error_set(err, US_ERR_USAGE,
                       "arch: thickness (%g) must be less than twice the centre-line radius (%g)",
                       g->thickness, g->radius);
+  if (!st && (g->loose < 0 || g->loose > US_GEN_MAX_BODIES))
+    st = us_error_set(err, US_ERR_USAGE, "arch: loose blocks must be in 0..%ld, got %d",
+                      US_GEN_MAX_BODIES, g->loose);
   if (!st && (g->n < 2 || g->n > US_GEN_MAX_BODIES))
     st = us_error_set(err, US_ERR_USAGE, "arch: n (voussoirs) must be in 2..%ld, got %d",
                       US_GEN_MAX_BODIES, g->n);
@@ -67,6 +74,10 @@ us_Structure *us_gen_arch(const us_GenSettings *g, us_Error *err) {
     arch_point(i + 1, g->n, ro, ro, &q[4], &q[5]);
     arch_point(i, g->n, ro, ro, &q[6], &q[7]);
     st = us_gen_add(s, g, i, 4, q, err);
+  }
+  for (int i = 0; !st && i < g->loose; i++) { /* a unit block every 1.5 */
+    double x = 2.0 * ro + 1.0 + 1.5 * i;
+    st = us_gen_add_box(s, g, g->n + i, x, 0.0, x + 1.0, 1.0, err);
   }
   if (st) {
     us_structure_free(s);

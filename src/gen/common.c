@@ -12,9 +12,11 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 us_GenSettings us_gen_default_settings(void) {
   us_GenSettings g;
+  memset(&g, 0, sizeof g); /* every field not named below is 0 */
   g.n = 10;
   g.rows = 10;
   g.cols = 10;

@@ -21,6 +21,13 @@ expect 0 "verify the group plan" -- "$CLI" verify "$T/arch.json" "$T/arch-k.json
 contains "$T/out" "steps re-checked" "verify counts steps"
 expect 0 "render the group plan" -- "$CLI" render "$T/arch.json" --plan "$T/arch-k.json" -o "$T/arch-k.svg"
 
+# an arch next to loose blocks: none at once, the voussoirs named
+expect 0 "generate arch --loose 30" -- "$CLI" generate arch --voussoirs 7 --loose 30 -o "$T/al.json"
+contains "$T/out" "37 bodies" "7 voussoirs and 30 loose blocks"
+expect 1 "arch + 30 loose: none" -- "$CLI" plan "$T/al.json"
+contains "$T/out" "cannot be removed with steps of up to 1 body: b2, b3, b4, b5, b6" "names the voussoirs"
+expect 2 "--loose -1" -- "$CLI" generate arch --loose -1 -o "$T/x.json"
+
 # every search mode and direction gives the same answer
 "$CLI" generate random --rows 8 --width 6 --seed 3 -o "$T/r.json" >/dev/null
 for s in assemble dfs bfs random; do
