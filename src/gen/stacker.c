@@ -55,7 +55,9 @@
  * so passing proves nothing; it spares the LP most rows that would fail.
  *
  * Test per row: with P_r the pending cantilevers of row r, the structure
- * T_r of rows 0..r without P_r must stand. T_r is built, finalized and
+ * T_r of rows 0..r without P_r must stand, and so must T_r without P_{r-1}
+ * (the counterweights of row r without the cantilevers they hold: with
+ * that, taking each cantilever out first leaves a standing structure). T_r is built, finalized and
  * tested once per row (r >= 1) without friction, with the default
  * stability settings (the LP): a structure that stands without friction
  * stands with any, and the frictionless LP is several times faster. The
@@ -588,16 +590,18 @@ static us_Status add_blk(us_Structure *s, const Stk *k, const Blk *b, int r, int
                         (double)b->q1 * 0.25, (double)(r + 1) * g->height, err);
 }
 
-/* T: the kept rows without the pending cantilevers of the top one,
- * finalized; frictionless when `smooth`. */
-static us_Structure *build(const Stk *k, int smooth, us_Error *err) {
+/* T: the kept rows without the pending cantilevers of the top one (and,
+ * with `bare`, without the cantilevers of the row below it either: their
+ * counterweights alone), finalized; frictionless when `smooth`. */
+static us_Structure *build(const Stk *k, int smooth, int bare, us_Error *err) {
   us_Structure *s = us_gen_begin(k->g, err);
   us_Status st = s ? US_OK : US_ERR_NOMEM;
   int id = 0;
   if (s && smooth) s->friction = 0;
   for (int r = 0; !st && r < k->rows; r++)
     for (int i = k->start[r]; !st && i < k->start[r + 1]; i++)
-      if (!(k->b[i].side && r == k->rows - 1)) st = add_blk(s, k, &k->b[i], r, &id, err);
+      if (!(k->b[i].side && (r == k->rows - 1 || (bare && r == k->rows - 2))))
+        st = add_blk(s, k, &k->b[i], r, &id, err);
   if (st) {
     us_structure_free(s);
     return NULL;
@@ -607,11 +611,11 @@ static us_Structure *build(const Stk *k, int smooth, us_Error *err) {
 
 /* Test T (frictionless when `smooth`) with the default settings: *stable =
  * 1 if it stands; T itself into *out when out is not NULL and it stands. */
-static us_Status test_T(const Stk *k, int smooth, int *stable, us_Structure **out,
+static us_Status test_T(const Stk *k, int smooth, int bare, int *stable, us_Structure **out,
                         us_Error *err) {
   us_StabilitySettings set = us_stability_default_settings();
   us_StabilityResult res = {0};
-  us_Structure *s = build(k, smooth, err);
+  us_Structure *s = build(k, smooth, bare, err);
   if (!s) return err->code;
   us_Stability *w = us_stability_new(s, &set, err);
   us_Status st = w ? us_stability_test_full(w, &res, err) : err->code;
@@ -623,6 +627,12 @@ static us_Status test_T(const Stk *k, int smooth, int *stable, us_Structure **ou
   return st;
 }
 
+static int row_has_cantilevers(const Stk *k, int r) {
+  for (int i = k->start[r]; i < k->start[r + 1]; i++)
+    if (k->b[i].side) return 1;
+  return 0;
+}
+
 /* One attempt at the next row; *kept = 1 when it is kept. The finished
  * structure goes to *out. */
 static us_Status attempt_row(Stk *k, us_Structure **out, int *kept, us_Error *err) {
@@ -631,8 +641,12 @@ static us_Status attempt_row(Stk *k, us_Structure **out, int *kept, us_Error *er
   *kept = 0;
   if (!draw_row(k)) return US_OK;
   if ((st = keep_row(k, err))) return st;
-  if (top) st = test_T(k, 0, &stable, out, err);
-  else if (k->rows > 1) st = test_T(k, 1, &stable, NULL, err);
+  if (top) st = test_T(k, 0, 0, &stable, out, err);
+  else if (k->rows > 1) st = test_T(k, 1, 0, &stable, NULL, err);
+  /* the counterweights must stand without their cantilevers too, so that
+     the structure has a one-at-a-time order (cantilever first) */
+  if (!st && stable && k->rows > 1 && row_has_cantilevers(k, k->rows - 2))
+    st = test_T(k, 1, 1, &stable, NULL, err);
   if (st || !stable) drop_row(k);
   *kept = !st && stable;
   return st;
