@@ -32,7 +32,6 @@
  * of its parts' orders, so a whole plan is read off the memo. */
 #include "search.h"
 
-#include <stdlib.h>
 #include <string.h>
 
 typedef struct {
@@ -218,26 +217,10 @@ static int try_step(Solver *sv, const us_Bitset *comp, const int *g, int ng) {
   return r;
 }
 
-static double top_of(const us_Body *b) {
-  double t = b->com[1];
-  for (int k = 0; k < b->nvert; k++)
-    if (b->verts[2 * k + 1] > t) t = b->verts[2 * k + 1];
-  return t;
-}
-
-static const us_Structure *sort_s;
-static int cmp_top(const void *pa, const void *pb) {
-  int a = *(const int *)pa, b = *(const int *)pb;
-  double ta = top_of(&sort_s->bodies[a]), tb = top_of(&sort_s->bodies[b]);
-  if (ta != tb) return ta > tb ? -1 : 1;
-  return (a > b) - (a < b);
-}
-
 /* Steps of 1..K bodies out of comp (highest bodies first), as combinations
  * of positions in list[0..m). 1 found (its order appended), 0 none, < 0. */
 static int exhaust(Solver *sv, const us_Bitset *comp, int *list, int m) {
-  sort_s = sv->ctx->s;
-  qsort(list, (size_t)m, sizeof(int), cmp_top);
+  if (us_plan_sort_highest(sv->ctx->s, list, m)) return -1;
   int idx[64], g[64], r = 0;
   for (int k = 1; k <= sv->e->K && k <= m && r == 0; k++) {
     for (int j = 0; j < k; j++) idx[j] = j;

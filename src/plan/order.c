@@ -40,18 +40,17 @@ static void reverse(int *v, int n) {
   }
 }
 
-/* Sort the candidates by height; -1 on OOM. */
-static int sort_highest(us_SearchCtx *ctx) {
-  Key *keys = us_malloc((size_t)(ctx->ncand > 0 ? ctx->ncand : 1) * sizeof *keys);
+int us_plan_sort_highest(const us_Structure *s, int *bodies, int n) {
+  Key *keys = us_malloc((size_t)(n > 0 ? n : 1) * sizeof *keys);
   if (!keys) return -1;
-  for (int i = 0; i < ctx->ncand; i++) {
-    const us_Body *b = &ctx->s->bodies[ctx->cand[i]];
+  for (int i = 0; i < n; i++) {
+    const us_Body *b = &s->bodies[bodies[i]];
     keys[i].top = body_top(b);
     keys[i].mid = b->com[1];
-    keys[i].body = ctx->cand[i];
+    keys[i].body = bodies[i];
   }
-  qsort(keys, (size_t)ctx->ncand, sizeof *keys, cmp_highest);
-  for (int i = 0; i < ctx->ncand; i++) ctx->cand[i] = keys[i].body;
+  qsort(keys, (size_t)n, sizeof *keys, cmp_highest);
+  for (int i = 0; i < n; i++) bodies[i] = keys[i].body;
   us_free(keys);
   return 0;
 }
@@ -60,7 +59,8 @@ int us_plan_order_candidates(us_SearchCtx *ctx) {
   ctx->ncand = 0;
   for (int i = 0; i < ctx->s->nbody; i++)
     if (us_bitset_get(&ctx->part, i)) ctx->cand[ctx->ncand++] = i;
-  if (ctx->set->order != US_ORDER_INPUT && sort_highest(ctx)) return -1;
+  if (ctx->set->order != US_ORDER_INPUT && us_plan_sort_highest(ctx->s, ctx->cand, ctx->ncand))
+    return -1;
   int flip = (ctx->set->order == US_ORDER_LOWEST) != (ctx->set->direction == US_DIR_UP);
   if (ctx->set->order == US_ORDER_INPUT) flip = ctx->set->direction == US_DIR_UP;
   if (flip) reverse(ctx->cand, ctx->ncand);

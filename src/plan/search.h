@@ -80,6 +80,9 @@ int us_exact_solve(us_SearchCtx *ctx, us_Exact *e, const us_Bitset *set, int *or
 /* order.c: fill ctx->cand with the bodies of ctx->part according to
  * set->order and direction; 0, or -1 on OOM. */
 int us_plan_order_candidates(us_SearchCtx *ctx);
+/* order.c: sort bodies[0..n) highest first (top of the geometry, then the
+ * centre, then the index); 0, or -1 on OOM. */
+int us_plan_sort_highest(const us_Structure *s, int *bodies, int n);
 
 /* plan.c: one stability test of `node`; 1 stable, 0 not, -1 error, -2 limit,
  * -3 restart budget reached (random search). */
