@@ -18,6 +18,11 @@
 int us_grow(void **arr, int *cap, int need, size_t elem);
 #define US_GROW(arr, cap, need) us_grow((void **)&(arr), &(cap), (need), sizeof(*(arr)))
 
+/* splitmix64 (rng.c): the next 64 random bits of state *s, and a uniform
+ * integer in [0, m) for m >= 1. */
+uint64_t us_rng_next(uint64_t *s);
+long us_rng_below(uint64_t *s, long m);
+
 /* Hash set of bitsets of one fixed width (the failed-node memo of the
  * planner). Open addressing with linear probing; keys are copied into one
  * growing word pool, so a set of k keys of w words costs about

@@ -82,17 +82,3 @@ us_Structure *us_gen_finish(us_Structure *s, us_Error *err) {
   return s;
 }
 
-uint64_t us_gen_rng_next(uint64_t *s) {
-  uint64_t z = (*s += 0x9e3779b97f4a7c15ULL);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-long us_gen_rng_below(uint64_t *s, long m) {
-  uint64_t um = (uint64_t)m, limit = UINT64_MAX - UINT64_MAX % um;
-  uint64_t v;
-  do v = us_gen_rng_next(s);
-  while (v >= limit);
-  return (long)(v % um);
-}

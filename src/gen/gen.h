@@ -30,11 +30,7 @@ us_Status us_gen_add_box(us_Structure *s, const us_GenSettings *g, int k, double
 /* Finalize s; on error free it and return NULL (err set). */
 us_Structure *us_gen_finish(us_Structure *s, us_Error *err);
 
-/* The generators' random numbers: splitmix64 (Steele, Lea, Flood 2014), a
- * full-period 64-bit generator on the state *s (seed it with g->seed), so
- * a seed gives the same structure on every platform; never rand(). */
-uint64_t us_gen_rng_next(uint64_t *s);
-/* Uniform integer in [0, m), m >= 1, without modulo bias (rejection). */
-long us_gen_rng_below(uint64_t *s, long m);
+/* Random numbers: us_rng_next / us_rng_below (src/core/rng.c), seeded
+ * with g->seed, so a seed gives the same structure on every platform. */
 
 #endif

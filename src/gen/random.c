@@ -45,23 +45,6 @@ typedef struct Stacker {
   int top;       /* highest occupied row, -1 when empty */
 } Stacker;
 
-/* splitmix64 (Steele, Lea, Flood 2014): a full-period 64-bit generator. */
-static uint64_t rng_next(uint64_t *s) {
-  uint64_t z = (*s += 0x9e3779b97f4a7c15ULL);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-/* Uniform integer in [0, m), m >= 1, without modulo bias (rejection). */
-static long rng_below(uint64_t *s, long m) {
-  uint64_t um = (uint64_t)m, limit = UINT64_MAX - UINT64_MAX % um;
-  uint64_t v;
-  do v = rng_next(s);
-  while (v >= limit);
-  return (long)(v % um);
-}
-
 static us_Status check_random(const us_GenSettings *g, us_Error *err) {
   us_Status st = us_gen_check_common(g, "random", err);
   if (!st) st = us_gen_check_positive(g->height, "random", "block height", err);
@@ -149,8 +132,8 @@ static us_Status keep(Stacker *k, int r, long q, us_Error *err) {
  * the structure with the block when kept (the previous one is freed). */
 static us_Status attempt(Stacker *k, us_Structure **out, int *kept, us_Error *err) {
   int rmax = US_MIN(k->top + 1, k->g->rows - 1);
-  int r = (int)rng_below(&k->rng, (long)rmax + 1);
-  long q = rng_below(&k->rng, k->nq);
+  int r = (int)us_rng_below(&k->rng, (long)rmax + 1);
+  long q = us_rng_below(&k->rng, k->nq);
   *kept = 0;
   if (!fits(k, r, q)) return US_OK;
   us_Structure *s = build(k, r, q, err);

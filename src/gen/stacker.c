@@ -86,7 +86,7 @@
  * for low ones. The cost is about one LP per row (frictionless LPs take a
  * fifth of the time of LPs with friction) plus the probes, O(rows) each.
  *
- * Randomness: one splitmix64 stream (us_gen_rng_next) seeded with g->seed,
+ * Randomness: one splitmix64 stream (us_rng_next) seeded with g->seed,
  * so a seed gives the same structure on every platform. */
 #include "gen.h"
 
@@ -422,7 +422,7 @@ static int cantilever_ok(Stk *k, long c0, long c1, int side, long *L, long *wd) 
   if (side > 0 && i + 1 < k->nseg && k->seg[i + 1].lo <= bare1) return 0;
   if (side < 0 && i > 0 && k->seg[i - 1].hi >= bare0) return 0;
   if (!clear_between(k, c0, c1) || !(bare0 < bare1)) return 0;
-  *wd = need + 2 * us_gen_rng_below(&k->rng, (kQMax - need) / 2 + 1);
+  *wd = need + 2 * us_rng_below(&k->rng, (kQMax - need) / 2 + 1);
   /* room for the counterweight's tail over B (it must stand on B alone) */
   if (side > 0 ? j - *wd / 2 - kCwTail < 0 : j + *wd / 2 + kCwTail > k->Q) return 0;
   double P = (double)(w + *wd);
@@ -492,7 +492,7 @@ static long block_width(Stk *k, long x0, long w, long wmax, int free_end) {
   if (w <= wmax && fits(k, x0, w)) return w;
   for (long c = kQMin; c <= wmax; c++)
     if (c != w && fits(k, x0, c)) fit[nfit++] = c;
-  return nfit ? fit[us_gen_rng_below(&k->rng, nfit)] : 0;
+  return nfit ? fit[us_rng_below(&k->rng, nfit)] : 0;
 }
 
 /* Move the cursor past obstacle i; a counterweight may serve as B. */
@@ -505,9 +505,9 @@ static void pass_obstacle(Stk *k, Walk *wk, int i) {
 
 /* One step of the walk: place a pair or a block, or move the cursor on. */
 static void walk_step(Stk *k, Walk *wk, Pair *pairs) {
-  long x0 = wk->u, w = kQMin + us_gen_rng_below(&k->rng, kQMax - kQMin + 1);
-  if (wk->u > 0 && !wk->slid && us_gen_rng_below(&k->rng, 2))
-    x0 += 1 + us_gen_rng_below(&k->rng, kGapMax);
+  long x0 = wk->u, w = kQMin + us_rng_below(&k->rng, kQMax - kQMin + 1);
+  if (wk->u > 0 && !wk->slid && us_rng_below(&k->rng, 2))
+    x0 += 1 + us_rng_below(&k->rng, kGapMax);
   x0 = US_MAX(wk->u, US_MIN(x0, k->Q - kQMin)); /* the last gap fits the edge */
   long wmax = US_MIN((long)kQMax, k->Q - x0);    /* room before an obstacle */
   int ob = -1;
@@ -520,7 +520,7 @@ static void walk_step(Stk *k, Walk *wk, Pair *pairs) {
   if (ob >= 0) wmax = k->obs[ob].lo - x0;
   int np = k->cant_ok ? collect_pairs(k, wk, x0, wmax, pairs) : 0;
   if (np) {
-    put_pair(k, wk, &pairs[us_gen_rng_below(&k->rng, np)]);
+    put_pair(k, wk, &pairs[us_rng_below(&k->rng, np)]);
     return;
   }
   if (!(w = block_width(k, x0, w, wmax, ob < 0))) {
@@ -553,7 +553,7 @@ static void support_extent(const Stk *k, Blk *c) {
 static int draw_row(Stk *k) {
   Pair pairs[kPickMax];
   Walk wk = {0, LONG_MIN / 2, LONG_MIN / 2, 0, 0};
-  k->dir = us_gen_rng_below(&k->rng, 2) ? 1 : -1;
+  k->dir = us_rng_below(&k->rng, 2) ? 1 : -1;
   k->ncur = 0;
   lower_segments(k);
   place_counterweights(k);

@@ -190,16 +190,9 @@ static long luby(long i) {
   }
 }
 
-static uint64_t rng_next(uint64_t *s) {
-  uint64_t z = (*s += 0x9e3779b97f4a7c15ULL);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
 static void shuffle(us_SearchCtx *ctx) {
   for (int i = ctx->ncand - 1; i > 0; i--) {
-    int j = (int)(rng_next(&ctx->rng) % (uint64_t)(i + 1));
+    int j = (int)us_rng_below(&ctx->rng, i + 1);
     int t = ctx->cand[i];
     ctx->cand[i] = ctx->cand[j];
     ctx->cand[j] = t;
