@@ -62,18 +62,6 @@ static us_Structure *ramp(double x0, double alpha, double mu, us_Structure *into
   return into ? st : scene_seal(st);
 }
 
-/* Two slabs leaning on each other, mirror images about x = 1, touching
- * along x = 1, y 1.5..2 (the inverted V of tests/test_plan.c). */
-static us_Structure *leaning(double mu) {
-  us_Structure *s = us_structure_new(2);
-  s->friction = mu;
-  double l[8] = {0, 0, 0.4, 0, 1.0, 1.5, 1.0, 2.0};
-  double r[8] = {1.6, 0, 2.0, 0, 1.0, 2.0, 1.0, 1.5};
-  us_structure_add_polygon(s, "left", 4, l, 1, 0, 0, -1, NULL);
-  us_structure_add_polygon(s, "right", 4, r, 1, 0, 0, -1, NULL);
-  return scene_seal(s);
-}
-
 /* Hand statics of the inverted V. The forces that hold it at a given mu
  * form a convex set mapped onto itself by the mirror, so if it stands it
  * stands with mirror-symmetric forces, and those carry no shear on the
@@ -85,17 +73,6 @@ static us_Structure *leaning(double mu) {
  * origin: 0.4 N2 + 1.5 P1 + 2 P2 = W c_x, so the smallest push is
  * (c_x - 0.4) W / 2 (N2 = W, P1 = 0): mu* = (c_x - 0.4) / 2 = 13 / 165. */
 #define LEANING_MU (13.0 / 165.0)
-
-static us_Structure *column(int n) {
-  us_Structure *s = us_structure_new(2);
-  s->friction = 0.5;
-  char id[16];
-  for (int i = 0; i < n; i++) {
-    snprintf(id, sizeof id, "b%d", i);
-    scene_box(s, id, 0, i * 0.5, 1, 0.5, 1);
-  }
-  return scene_seal(s);
-}
 
 /* A box on a base box with its centre beyond the base's edge, and a box
  * floating off to the side. */
@@ -222,7 +199,7 @@ static void ramp_tan_alpha(void) {
 }
 
 static void column_needs_none(void) {
-  us_Structure *s = column(4);
+  us_Structure *s = scene_column(4);
   CHECK(s);
   us_FrictionResult r;
   us_Error err;
@@ -238,7 +215,7 @@ static void column_needs_none(void) {
 }
 
 static void leaning_pair(void) {
-  us_Structure *s = leaning(0.5);
+  us_Structure *s = scene_leaning(0.5);
   CHECK(s);
   CHECK_NEAR(mu_of(s, NULL, US_METHOD_LP), LEANING_MU, 1e-6);
   /* 2 end probes, 5 geometric ones from [0, 1e3] down to [0.042, 0.087],
@@ -331,7 +308,7 @@ static void separate_parts(void) {
 }
 
 static void backends_agree(void) {
-  us_Structure *sc[3] = {leaning(0.5), ladder(50 * PI / 180, 2.0, 0.1, 0.5),
+  us_Structure *sc[3] = {scene_leaning(0.5), ladder(50 * PI / 180, 2.0, 0.1, 0.5),
                          ramp(0, 30 * PI / 180, 0.5, NULL)};
   double want[3] = {LEANING_MU, ladder_mu(50 * PI / 180, 2.0, 0.1), tan(30 * PI / 180)};
   for (int k = 0; k < 3; k++) CHECK(sc[k]);
@@ -418,7 +395,7 @@ static void undecided_is_not_standing(void) {
 }
 
 static void bad_arguments(void) {
-  us_Structure *s = column(2);
+  us_Structure *s = scene_column(2);
   CHECK(s);
   us_FrictionResult r;
   us_Error err;
