@@ -394,22 +394,30 @@ static void kinematics_need_a_graph_search(void) {
   us_structure_free(s);
 }
 
+/* Every allocation failing in turn, for the assemble search with auto K
+ * and for BFS: a clean error with a message, nothing leaked (the harness
+ * checks), also with a NULL error pointer. */
 static void out_of_memory_is_clean(void) {
   us_Structure *s = post_and_planks();
   CHECK(s);
-  us_PlanSettings set = us_plan_default_settings();
-  set.max_group = 0;
-  for (long n = 0; n < 3000; n += 3) {
-    us_Plan p;
-    us_Error err;
-    us_alloc_fail_after(n);
-    us_Status st = us_plan(s, &set, &p, &err);
-    us_alloc_fail_after(-1);
-    if (st == US_OK) {
-      us_plan_free(&p);
-      break;
+  for (int mode = 0; mode < 3; mode++) {
+    us_PlanSettings set = us_plan_default_settings();
+    set.max_group = mode == 0 ? 0 : 1;
+    if (mode > 0) set.search = US_SEARCH_BFS;
+    for (long n = 0; n < 3000; n += 3) {
+      us_Plan p;
+      us_Error err;
+      us_error_clear(&err);
+      us_alloc_fail_after(n);
+      us_Status st = us_plan(s, &set, &p, mode == 2 ? NULL : &err);
+      us_alloc_fail_after(-1);
+      if (st == US_OK) {
+        us_plan_free(&p);
+        break;
+      }
+      CHECK(st == US_ERR_NOMEM || st == US_ERR_SOLVER);
+      if (mode < 2) CHECK(err.code == st && err.msg[0]);
     }
-    CHECK(st == US_ERR_NOMEM || st == US_ERR_SOLVER);
   }
   us_structure_free(s);
 }

@@ -68,7 +68,8 @@ static int expand(us_SearchCtx *ctx, Queue *q, int k, us_Error *err) {
     int r = added < 0 ? -1 : added == 0 ? 0 : goal ? 1 : us_plan_node_test(ctx, &ctx->cur, err);
     if (added < 0) us_error_set(err, US_ERR_NOMEM, "out of memory in the search");
     if (added == 0) ctx->st->revisited++;
-    if (r == 1 && queue_push(q, &ctx->cur, k, b)) r = -1;
+    if (r == 1 && queue_push(q, &ctx->cur, k, b))
+      r = -1, us_error_set(err, US_ERR_NOMEM, "out of memory in the search");
     us_plan_toggle(&ctx->cur, b);
     if (r < 0) return r;
     if (r == 1 && goal) return 1;
