@@ -4,6 +4,7 @@
 #ifndef US_TEST_SCENES_H
 #define US_TEST_SCENES_H
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -62,6 +63,40 @@ static inline us_Structure *scene_leaning(double mu) {
   us_structure_add_polygon(s, "left", 4, l, 1, 0, 0, -1, NULL);
   us_structure_add_polygon(s, "right", 4, r, 1, 0, 0, -1, NULL);
   return scene_seal(s);
+}
+
+/* Random piles drop boxes onto the exact skyline of the boxes below: a box
+ * [x0, x0 + w] lands on the highest top it overlaps, or on the ground. */
+typedef struct SceneSkyline {
+  int n;
+  double x0[64], x1[64], top[64];
+} SceneSkyline;
+
+static inline double scene_landing(const SceneSkyline *k, double x0, double w) {
+  double y = 0;
+  for (int j = 0; j < k->n; j++)
+    if (k->x0[j] < x0 + w && k->x1[j] > x0 && k->top[j] > y) y = k->top[j];
+  return y;
+}
+
+/* Record a dropped box [x0, x0 + w] whose top is `top` (at most 64). */
+static inline void scene_skyline_add(SceneSkyline *k, double x0, double w, double top) {
+  k->x0[k->n] = x0;
+  k->x1[k->n] = x0 + w;
+  k->top[k->n++] = top;
+}
+
+/* Bounding box of body i: xmin, ymin, xmax, ymax. */
+static inline void scene_body_box(const us_Structure *s, int i, double bb[4]) {
+  const us_Body *b = &s->bodies[i];
+  bb[0] = bb[1] = INFINITY;
+  bb[2] = bb[3] = -INFINITY;
+  for (int k = 0; k < b->nvert; k++) {
+    bb[0] = fmin(bb[0], b->verts[2 * k]);
+    bb[1] = fmin(bb[1], b->verts[2 * k + 1]);
+    bb[2] = fmax(bb[2], b->verts[2 * k]);
+    bb[3] = fmax(bb[3], b->verts[2 * k + 1]);
+  }
 }
 
 /* Finalize must fail with US_ERR_INPUT and a message containing both

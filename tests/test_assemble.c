@@ -33,7 +33,7 @@
 static us_Structure *mixed_pile(unsigned long long *rng, int n) {
   us_Structure *s = us_structure_new(2);
   s->friction = test_rnd(rng) < 0.3 ? 0.0 : 0.3 + 0.5 * test_rnd(rng);
-  double bx0[16], bx1[16], btop[16];
+  SceneSkyline sky = {0};
   char id[16];
   int k = 0;
   if (n >= 4 && test_rnd(rng) < 0.4) { /* an inverted V at the left */
@@ -44,17 +44,14 @@ static us_Structure *mixed_pile(unsigned long long *rng, int n) {
     k = 2;
   }
   for (int i = 0; k < n; i++, k++) {
-    double w = 0.5 + 1.6 * test_rnd(rng), x0 = 4.0 * test_rnd(rng), y = 0, h = 0.2 + 0.3 * test_rnd(rng);
+    double w = 0.5 + 1.6 * test_rnd(rng), x0 = 4.0 * test_rnd(rng), h = 0.2 + 0.3 * test_rnd(rng);
     if (i > 0 && test_rnd(rng) < 0.6) { /* near the middle of an earlier box */
       int j = (int)(test_rnd(rng) * i);
-      double wj = bx1[j] - bx0[j];
-      x0 = 0.5 * (bx0[j] + bx1[j]) - 0.5 * w + 0.8 * (test_rnd(rng) - 0.5) * (w < wj ? w : wj);
+      double wj = sky.x1[j] - sky.x0[j];
+      x0 = 0.5 * (sky.x0[j] + sky.x1[j]) - 0.5 * w + 0.8 * (test_rnd(rng) - 0.5) * (w < wj ? w : wj);
     }
-    for (int j = 0; j < i; j++)
-      if (bx0[j] < x0 + w && bx1[j] > x0 && btop[j] > y) y = btop[j];
-    bx0[i] = x0;
-    bx1[i] = x0 + w;
-    btop[i] = y + h;
+    double y = scene_landing(&sky, x0, w);
+    scene_skyline_add(&sky, x0, w, y + h);
     snprintf(id, sizeof id, "r%d", i);
     scene_box(s, id, x0, y, w, h, test_rnd(rng) < 0.25 ? 6.0 : 1.0);
   }

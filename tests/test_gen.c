@@ -4,6 +4,7 @@
  * the LP, that the arch needs every voussoir, reproducibility of the random
  * stacker, errors (bad settings, out of memory) without leaks, and that
  * the LCP backends give the LP's verdicts on generated structures. */
+#include "scenes.h"
 #include "test.h"
 
 /* Verdict of the whole structure with the default (LP) settings, or -1 on
@@ -43,19 +44,6 @@ static int ids_and_movable(const us_Structure *s) {
   return us_structure_movable_count(s) == s->nbody;
 }
 
-/* Bounding box of body i: xmin, ymin, xmax, ymax. */
-static void body_box(const us_Structure *s, int i, double bb[4]) {
-  const us_Body *b = &s->bodies[i];
-  bb[0] = bb[1] = INFINITY;
-  bb[2] = bb[3] = -INFINITY;
-  for (int k = 0; k < b->nvert; k++) {
-    bb[0] = fmin(bb[0], b->verts[2 * k]);
-    bb[1] = fmin(bb[1], b->verts[2 * k + 1]);
-    bb[2] = fmax(bb[2], b->verts[2 * k]);
-    bb[3] = fmax(bb[3], b->verts[2 * k + 1]);
-  }
-}
-
 /* Contacts touching body i (as a or b). */
 static int contacts_of(const us_Structure *s, int i) {
   int n = 0;
@@ -81,7 +69,7 @@ static void column(void) {
   CHECK_INT(s->ncontact, ==, 2 * 7);
   CHECK_NEAR(s->friction, 0.5, 0);
   double bb[4];
-  body_box(s, 6, bb); /* b7 is the top block */
+  scene_body_box(s, 6, bb); /* b7 is the top block */
   CHECK_NEAR(bb[1], 6 * 0.5, 1e-12);
   CHECK_NEAR(bb[3], 7 * 0.5, 1e-12);
   CHECK_NEAR(bb[2] - bb[0], 1.0, 1e-12);
@@ -108,8 +96,8 @@ static void pyramid(void) {
   CHECK(all_supported(s));
   /* the apex is centred over the base */
   double base[4], apex[4];
-  body_box(s, 0, base);
-  body_box(s, 90, apex);
+  scene_body_box(s, 0, base);
+  scene_body_box(s, 90, apex);
   CHECK_NEAR(apex[0], 12 * 0.5, 1e-12);
   CHECK_NEAR(apex[1], 12 * 0.5, 1e-12);
   CHECK_NEAR(0.5 * (apex[0] + apex[2]), 0.5 * (s->bbox[0] + s->bbox[2]), 1e-12);
@@ -133,11 +121,11 @@ static void wall_small(void) {
   CHECK(all_supported(s));
   /* every row spans [0, 3]; the odd rows start and end with half bricks */
   double bb[4];
-  body_box(s, 3, bb); /* b4: first of row 1 */
+  scene_body_box(s, 3, bb); /* b4: first of row 1 */
   CHECK_NEAR(bb[0], 0.0, 0);
   CHECK_NEAR(bb[2], 0.5, 1e-15);
   CHECK_NEAR(bb[1], 0.5, 1e-15);
-  body_box(s, 6, bb); /* b7: last of row 1 */
+  scene_body_box(s, 6, bb); /* b7: last of row 1 */
   CHECK_NEAR(bb[0], 2.5, 1e-15);
   CHECK_NEAR(bb[2], 3.0, 1e-15);
   CHECK_NEAR(s->bbox[2], 3.0, 1e-15);

@@ -6,6 +6,7 @@
  * and intermediate build stages (rows 0..r) do not all stand; bad settings
  * are rejected with a message; out of memory is clean. stacker_sizes
  * prints the generation times quoted in the file head. */
+#include "scenes.h"
 #include "test.h"
 
 static us_Structure *stacker(int rows, double width, unsigned long seed, double mu) {
@@ -41,19 +42,6 @@ static int verdict(us_Structure *s, const us_Bitset *present, double mu) {
   for (int k = 0; k < s->ncontact; k++) s->contacts[k].mu = keep[k];
   us_free(keep);
   return v;
-}
-
-/* Bounding box of body i: xmin, ymin, xmax, ymax. */
-static void body_box(const us_Structure *s, int i, double bb[4]) {
-  const us_Body *b = &s->bodies[i];
-  bb[0] = bb[1] = INFINITY;
-  bb[2] = bb[3] = -INFINITY;
-  for (int k = 0; k < b->nvert; k++) {
-    bb[0] = fmin(bb[0], b->verts[2 * k]);
-    bb[1] = fmin(bb[1], b->verts[2 * k + 1]);
-    bb[2] = fmax(bb[2], b->verts[2 * k]);
-    bb[3] = fmax(bb[3], b->verts[2 * k + 1]);
-  }
 }
 
 /* Contact k supports body i from below (normal pointing up into i). */
@@ -108,7 +96,7 @@ static int geometry_ok(const us_Structure *s, double width, double h) {
   double prev_y = 0, bb[4];
   for (int i = 0; i < s->nbody; i++) {
     snprintf(id, sizeof id, "b%d", i + 1);
-    body_box(s, i, bb);
+    scene_body_box(s, i, bb);
     double r = bb[1] / h;
     if (strcmp(s->bodies[i].id, id) || s->bodies[i].nvert != 4 || bb[0] < 0 || bb[2] > width ||
         bb[0] * 4 != floor(bb[0] * 4) || bb[2] * 4 != floor(bb[2] * 4) || r != floor(r) ||
@@ -174,7 +162,7 @@ static void cantilevers_need_the_rows_above(void) {
     double bb[4];
     for (int r = 0; r < 13; r++, stages++) {
       for (int i = 0; i < s->nbody; i++) {
-        body_box(s, i, bb);
+        scene_body_box(s, i, bb);
         if (bb[1] <= r * 0.5) us_bitset_set(&b, i);
       }
       fallen += verdict(s, &b, -1) == US_UNSTABLE;

@@ -201,18 +201,14 @@ static double rnd(void) {
 static us_Structure *random_pile(int n) {
   us_Structure *s = us_structure_new(2);
   s->friction = rnd() < 0.3 ? 0.0 : 0.6;
-  double bx0[16], bx1[16], btop[16];
+  SceneSkyline sky = {0};
   char id[16];
   for (int i = 0; i < n; i++) {
     double w = 0.5 + 1.2 * rnd();
     double x0 = 2.0 * rnd();
-    double y = 0;
-    for (int j = 0; j < i; j++)
-      if (bx0[j] < x0 + w && bx1[j] > x0 && btop[j] > y) y = btop[j];
+    double y = scene_landing(&sky, x0, w);
     double h = 0.2 + 0.3 * rnd();
-    bx0[i] = x0;
-    bx1[i] = x0 + w;
-    btop[i] = y + h;
+    scene_skyline_add(&sky, x0, w, y + h);
     snprintf(id, sizeof id, "r%d", i);
     scene_box(s, id, x0, y, w, h, rnd() < 0.2 ? 5.0 : 1.0);
   }

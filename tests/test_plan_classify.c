@@ -342,19 +342,16 @@ static void count_refusal_is_reported(void) {
 static us_Structure *random_pile(int n, double mu, unsigned long long *rng) {
   us_Structure *s = us_structure_new(2);
   s->friction = mu;
-  double bx0[16] = {0}, bx1[16] = {0}, btop[16] = {0};
+  SceneSkyline sky = {0};
   char id[16];
   for (int i = 0; i < n; i++) {
-    double w = 0.5 * (1 + (int)(3 * test_rnd(rng))), x0 = 2.0 * test_rnd(rng), y = 0;
+    double w = 0.5 * (1 + (int)(3 * test_rnd(rng))), x0 = 2.0 * test_rnd(rng);
     int on = (int)(test_rnd(rng) * (i + 1)) - 1; /* -1: the ground */
-    if (on >= 0) x0 = 0.5 * (bx0[on] + bx1[on]) - w * test_rnd(rng);
+    if (on >= 0) x0 = 0.5 * (sky.x0[on] + sky.x1[on]) - w * test_rnd(rng);
     x0 = 0.25 * floor(4 * x0); /* on a grid: edges and tops meet */
-    for (int j = 0; j < i; j++)
-      if (bx0[j] < x0 + w && bx1[j] > x0 && btop[j] > y) y = btop[j];
+    double y = scene_landing(&sky, x0, w);
     double h = test_rnd(rng) < 0.5 ? 0.25 : 0.5; /* equal tops: bridges */
-    bx0[i] = x0;
-    bx1[i] = x0 + w;
-    btop[i] = y + h;
+    scene_skyline_add(&sky, x0, w, y + h);
     snprintf(id, sizeof id, "r%d", i);
     scene_box(s, id, x0, y, w, h, test_rnd(rng) < 0.25 ? 5.0 : 1.0);
   }

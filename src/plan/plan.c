@@ -242,11 +242,10 @@ static int assemble_with(us_SearchCtx *ctx, int K, us_Plan *out, us_Error *err) 
 /* The size of the largest component: no step needs to be larger. */
 static int largest_component(us_SearchCtx *ctx) {
   int k = us_graph_components(&ctx->g, &ctx->full, ctx->comp, ctx->stack), best = 1;
-  for (int c = 0; c < k; c++) {
-    int size = 0;
-    for (int i = 0; i < ctx->s->nbody; i++) size += ctx->comp[i] == c;
-    if (size > best) best = size;
-  }
+  int *size = ctx->stack; /* free again: one count per component */
+  for (int c = 0; c < k; c++) size[c] = 0;
+  for (int i = 0; i < ctx->s->nbody; i++)
+    if (ctx->comp[i] >= 0 && ++size[ctx->comp[i]] > best) best = size[ctx->comp[i]];
   return best;
 }
 
