@@ -1,6 +1,8 @@
 /* Minimal test harness: typed asserts that print both operands, one
  * executable per module, each case a function. Register cases with
- * US_TEST_MAIN; `./test_x name` runs one case, no argument runs all. A
+ * US_TEST_MAIN; `./test_x name` runs one case, `./test_x --list` lists the
+ * cases (CMake registers each as the ctest entry <module>.<case>), no
+ * argument runs all. A
  * case fails on the first failed check; leaks of the allocation funnel are
  * checked after each case. */
 #ifndef US_TEST_H
@@ -72,6 +74,10 @@ int us_test_run(const us_TestCase *cases, int n, int argc, char **argv);
   }                                                                        \
   int us_test_run(const us_TestCase *cases, int n, int argc, char **argv) { \
     int fails = 0, ran = 0;                                                \
+    if (argc > 1 && strcmp(argv[1], "--list") == 0) {                      \
+      for (int i = 0; i < n; i++) printf("%s\n", cases[i].name);          \
+      return 0;                                                            \
+    }                                                                      \
     for (int i = 0; i < n; i++) {                                          \
       if (argc > 1 && strcmp(argv[1], cases[i].name) != 0) continue;      \
       long live0 = us_alloc_live();                                        \

@@ -1,0 +1,21 @@
+# Run after a test executable is built (POST_BUILD): ask it for its cases
+# (`<exe> --list`) and write a ctest file that registers each case as the
+# entry <module>.<case>, so that one failing case can be rerun alone
+# (`ctest -R '^plan\.dfs_column$'`) and ctest -j spreads the cases of one
+# module over the cores.
+#
+# Inputs (-D): EXE, MODULE, OUT, TIMEOUT.
+execute_process(COMMAND "${EXE}" --list OUTPUT_VARIABLE cases RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "${EXE} --list failed (${rc})")
+endif()
+string(REPLACE "\n" ";" cases "${cases}")
+set(text "")
+foreach(c ${cases})
+  if(c STREQUAL "")
+    continue()
+  endif()
+  string(APPEND text "add_test([=[${MODULE}.${c}]=] [=[${EXE}]=] [=[${c}]=])\n")
+  string(APPEND text "set_tests_properties([=[${MODULE}.${c}]=] PROPERTIES TIMEOUT ${TIMEOUT} LABELS ${MODULE})\n")
+endforeach()
+file(WRITE "${OUT}" "${text}")
