@@ -392,11 +392,17 @@ done:
 /* The LCP backends against the LP on the project's own generators
  * (columns, pyramids, walls, arches, the random stacker), frictionless
  * and with friction: the same verdict on every sub-assembly of a walk. */
+#ifdef US_TEST_SANITIZED
+#define GEN_AGREE_STRUCTURES 60 /* memory errors, not statistics (CMakeLists.txt) */
+#else
+#define GEN_AGREE_STRUCTURES 300
+#endif
+
 static void backends_agree_on_generated(void) {
   unsigned long long rng = 0x9e3779b97f4a7c15ULL;
   long counts[2] = {0, 0};
   int structures = 0, bad = 0;
-  for (int t = 0; t < 300; t++) {
+  for (int t = 0; t < GEN_AGREE_STRUCTURES; t++) {
     us_GenSettings g = us_gen_default_settings();
     g.friction = t % 2 ? 0.2 + 0.6 * test_rnd(&rng) : 0.0;
     us_Error err;
@@ -433,7 +439,9 @@ static void backends_agree_on_generated(void) {
          "lcp-reuse on all but %d\n",
          structures, counts[US_STABLE], counts[US_UNSTABLE], bad);
   CHECK_INT(bad, ==, 0);
-  CHECK(counts[US_STABLE] > 200 && counts[US_UNSTABLE] > 200);
+  /* both verdicts well represented (over 2/3 of a sub-assembly per structure each) */
+  CHECK(counts[US_STABLE] > 2 * GEN_AGREE_STRUCTURES / 3 &&
+        counts[US_UNSTABLE] > 2 * GEN_AGREE_STRUCTURES / 3);
 }
 
 US_TEST_MAIN(T(column), T(pyramid), T(wall_small), T(wall_large), T(arch), T(arch_thickness),
