@@ -172,6 +172,7 @@ int cmd_plan(int argc, char **argv) {
   int r = parse(argc, argv, &c, &a);
   if (r) return r < 0 ? CLI_EXIT_OK : r;
   c.plan.stability = c.stab;
+  if (a.out && cli_check_output("plan", a.out, &a.file, 1)) return CLI_EXIT_ERR;
   us_Structure *s = cli_load("plan", a.file, &c);
   if (!s) return CLI_EXIT_ERR;
   us_Error err;
