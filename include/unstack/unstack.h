@@ -504,6 +504,16 @@ us_RenderSettings us_render_default_settings(void);
 us_Status us_render_svg(const us_Structure *s, const us_RenderSettings *r, const char *path,
                         us_Error *err);
 
+/* An id quoted for a message (src/core/text.c): control characters, DEL,
+ * C1 controls, bidi overrides, U+FFFE/U+FFFF and invalid UTF-8 bytes as
+ * \xNN / \uNNNN escapes, a backslash as \\, cut at a character boundary
+ * after at most 80 bytes with "...". Returned by value so that
+ * printf("'%s'", us_id_text(id).s) works. Every message naming an id uses it. */
+typedef struct us_IdText {
+  char s[84];
+} us_IdText;
+us_IdText us_id_text(const char *id);
+
 /* Output files shared by all writers (src/core/file.c): the content goes to
  * a temporary file and is put in place at commit, nothing on abort. A new or
  * plain file is replaced by rename (keeping its mode and owner); a symlink is
