@@ -46,7 +46,7 @@ static int own_option(int argc, char **argv, int *i, CountArgs *a) {
       return cli_fail("count", "--max-bodies needs a positive integer, got '%s'", v);
     a->set.max_bodies = (int)n;
   } else if (us_count_method_parse(v, &a->set.method)) { /* --method */
-    return cli_fail("count", "unknown method '%s' (auto, tree, frontier, contract)", v);
+    return cli_unknown("count", "method", v, cli_count_method_word);
   }
   return 0;
 }

@@ -133,7 +133,7 @@ static int parse(int argc, char **argv, CliCommon *c, PlanArgs *a) {
     } else if (!strcmp(argv[i], "--removal")) {
       if (!(v = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
       if (us_removal_parse(v, &c->plan.removal))
-        return cli_fail("plan", "unknown removal '%s' (any, up, free)", v);
+        return cli_unknown("plan", "removal", v, cli_removal_word);
     } else if (!strcmp(argv[i], "--rules")) {
       if (!(v = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
       if (us_rules_parse(v, &c->plan.rules))
