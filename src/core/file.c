@@ -141,9 +141,11 @@ static int can_rename(const char *path, const Dest *d) {
   return S_ISREG(d->st.st_mode) && d->st.st_nlink == 1 && dir_writable(d->target);
 }
 
+/* 0: af->fp is the named temp file; -1: cannot (copy mode for an existing
+ * file); -2: out of memory. */
 static int open_temp(us_AtomicFile *af, const Dest *d) {
   size_t n = strlen(af->target) + 16;
-  if (!(af->tmp = us_malloc(n))) return -1;
+  if (!(af->tmp = us_malloc(n))) return -2;
   snprintf(af->tmp, n, "%s.tmp.XXXXXX", af->target);
   int fd = mkstemp(af->tmp);
   if (fd < 0) return -1;
@@ -181,8 +183,10 @@ us_AtomicFile *us_atomic_open(const char *path, us_Error *err) {
     us_error_set(err, US_ERR_NOMEM, "%s: out of memory", path);
     return NULL;
   }
-  if (can_rename(path, &d) && open_temp(af, &d) != 0 && !d.exists) {
-    io_fail(err, path, "cannot write", errno);
+  int r = can_rename(path, &d) ? open_temp(af, &d) : 1;
+  if (r == -2 || (r == -1 && !d.exists)) {
+    if (r == -2) us_error_set(err, US_ERR_NOMEM, "%s: out of memory", path);
+    else io_fail(err, path, "cannot write", errno);
     atomic_release(af);
     return NULL;
   }
