@@ -15,7 +15,11 @@
  *     (open, truncate, write), so the file keeps its inode, its links, its
  *     mode and owner, and a device or FIFO is written through, never
  *     replaced. Only an I/O error during that final copy can leave it
- *     partial. A FIFO is opened at commit, which waits for a reader.
+ *     partial. A FIFO is opened at commit, which waits for a reader. Names
+ *     under /dev and /proc are always written this way: /dev/stdout may
+ *     lead to a regular file that the process itself holds open; a target
+ *     that is the process's stdout or stderr is written through that
+ *     descriptor, after what was printed before.
  * A regular file with no write bit is refused ("not writable") for every
  * user, root included: root passes access(2), so the mode bits are checked
  * too. Other permission checks use faccessat(AT_EACCESS), which root passes
@@ -65,7 +69,8 @@ static us_Status resolve(const char *path, Dest *d, us_Error *err) {
   strcpy(d->target, path);
   d->exists = stat(path, &d->st) == 0;
   if (d->exists) {
-    if (!realpath(path, d->target)) return io_fail(err, path, "cannot resolve", errno);
+    /* a name realpath cannot spell (/dev/stdout on a pipe) is opened as given */
+    if (!realpath(path, d->target)) strcpy(d->target, path);
     return US_OK;
   }
   if (errno == ENOENT) return US_OK; /* absent, or a symlink to nothing */
@@ -137,6 +142,7 @@ us_Status us_output_check(const char *path, const char *const *inputs, int ninpu
 /* rename mode: is the target a plain file we can replace without changing
  * anything but its content? */
 static int can_rename(const char *path, const Dest *d) {
+  if (!strncmp(path, "/dev/", 5) || !strncmp(path, "/proc/", 6)) return 0; /* /dev/stdout */
   if (!d->exists) return !is_symlink(path);
   return S_ISREG(d->st.st_mode) && d->st.st_nlink == 1 && dir_writable(d->target);
 }
@@ -205,10 +211,25 @@ us_AtomicFile *us_atomic_open(const char *path, us_Error *err) {
 
 void *us_atomic_stream(us_AtomicFile *af) { return af->fp; }
 
+/* A descriptor on the target: the process's own stdout or stderr when the
+ * target is the same file (-o /dev/stdout redirected to a file: a fresh open
+ * would truncate it and write at offset 0 under the shell's output), else
+ * the target opened for writing. */
+static int open_target(const char *target) {
+  struct stat t, o;
+  int have = stat(target, &t) == 0;
+  for (int fd = 1; have && fd <= 2; fd++)
+    if (fstat(fd, &o) == 0 && o.st_dev == t.st_dev && o.st_ino == t.st_ino) {
+      fflush(fd == 1 ? stdout : stderr);
+      return dup(fd);
+    }
+  return open(target, O_WRONLY | O_CREAT | O_TRUNC | O_NOCTTY, 0666);
+}
+
 /* copy mode: the temp file's content into the existing target */
 static int copy_into(us_AtomicFile *af) {
   if (fflush(af->fp) != 0 || fseek(af->fp, 0, SEEK_SET) != 0) return -1;
-  int fd = open(af->target, O_WRONLY | O_CREAT | O_TRUNC | O_NOCTTY, 0666);
+  int fd = open_target(af->target);
   if (fd < 0) return -1;
   char buf[1 << 14];
   size_t n;

@@ -51,6 +51,15 @@ if [ -w /dev/null ]; then
   [ -c /dev/null ] && ok "/dev/null is still a device" || bad "/dev/null replaced"
 fi
 
+# /dev/stdout: to a pipe, and to a redirected file (not truncated under the
+# shell's own output: the structure, then the summary line)
+"$CLI" generate column --blocks 2 -o /dev/stdout | cat >"$T/piped.txt"
+[ "$(lines "$T/piped.txt")" -eq 2 ] && ok "-o /dev/stdout into a pipe" || bad "pipe got $(lines "$T/piped.txt") ids"
+"$CLI" generate column --blocks 2 -o /dev/stdout >"$T/redir.txt"
+[ "$(lines "$T/redir.txt")" -eq 2 ] && head -1 "$T/redir.txt" | grep -q '^{' &&
+  tail -1 "$T/redir.txt" | grep -q '^wrote' && ok "-o /dev/stdout redirected to a file" ||
+  { bad "-o /dev/stdout > file"; sed 's/^/    /' "$T/redir.txt" | head -5; }
+
 # an output that is an input, by any name: refused, input unchanged
 before=$(cksum <"$S")
 ln -s s.json "$T/s-link.json"
