@@ -749,8 +749,25 @@ static void text_and_ids(void) {
         !strchr(err.msg, '\n'));
 }
 
+/* An id that is not valid UTF-8 (possible through the C API, not from a
+ * file) is refused at write: the file would not read back. Nothing is left. */
+static void write_invalid_utf8(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  double xy[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+  CHECK(us_structure_add_polygon(s, "b\xff", 4, xy, 1, 0, 0, -1, &err) >= 0);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  char out[256];
+  tmp_path(out, sizeof out, "utf8.json");
+  CHECK_INT(us_structure_write(s, out, &err), ==, US_ERR_INPUT);
+  CHECK(strstr(err.msg, "not valid UTF-8") && strstr(err.msg, out));
+  CHECK(access(out, F_OK) != 0);
+  us_structure_free(s);
+}
+
 US_TEST_MAIN(T(read_examples), T(defaults_and_fields), T(explicit_contacts),
              T(contact_tol_override), T(examples_physics), T(round_trip), T(round_trip_awkward),
              T(bad_files), T(read_errors), T(failed_write_leaves_no_file), T(plan_round_trip),
              T(plan_without_certificates), T(plan_read_errors), T(fuzz_mutations), T(fuzz_plan),
-             T(out_of_memory), T(large_wall), T(text_and_ids))
+             T(out_of_memory), T(large_wall), T(text_and_ids),
+             T(write_invalid_utf8))

@@ -196,16 +196,17 @@ us_Status us_plan_write(const us_Structure *s, const us_Plan *p, const us_PlanSe
     return us_error_set(err, US_ERR_USAGE, "%s: plan does not match the structure", path);
   us_AtomicFile *af = us_atomic_open(path, err);
   if (!af) return err ? err->code : US_ERR_IO;
-  us_JsonOut o = {us_atomic_stream(af), 0};
+  us_JsonOut o = {us_atomic_stream(af), 0, 0};
   us_Status st = US_OK;
   write_header(&o, s, p, set);
   if (p->certs) st = write_steps(&o, s, p, set ? set->stability.cert_tol : 1e-6);
   if (!st) write_stats(&o, &p->stats);
   us_jo_raw(&o, "}\n");
-  if (st || o.bad) {
+  if (st || o.bad || o.bad_text) {
     us_atomic_abort(af);
     if (st) return us_error_set(err, st, "%s: out of memory writing the plan", path);
-    return us_error_set(err, US_ERR_INPUT, "%s: the plan holds a non-finite number", path);
+    return us_error_set(err, US_ERR_INPUT, "%s: the plan holds %s", path,
+                        o.bad ? "a non-finite number" : "an id that is not valid UTF-8");
   }
   return us_atomic_commit(af, err);
 }
