@@ -62,7 +62,8 @@ static void print_stats(const us_PlanStats *st) {
 
 /* Up to `max` ids of a list, then "and N more". */
 static void print_ids(const us_Structure *s, const int *v, int n, int max) {
-  for (int k = 0; k < n && k < max; k++) printf("%s%s", k ? ", " : "", us_id_text(s->bodies[v[k]].id).s);
+  for (int k = 0; k < n && k < max; k++) printf("%s%s",
+                                                k ? ", " : "", us_id_text(s->bodies[v[k]].id).s);
   if (n > max) printf(" and %d more", n - max);
 }
 

@@ -32,7 +32,8 @@ static int report(const us_Structure *s, const us_PlanFile *pf, const us_VerifyR
     printf("invalid: step %d (removing '%s'%s): the remaining %d bodies do not stand", k + 1,
            us_id_text(s->bodies[pf->order[pf->group_start[k]]].id).s,
            pf->group_start[k + 1] - pf->group_start[k] > 1 ? " and others" : "", rep->remaining);
-    if (rep->unstable_body >= 0) printf(" ('%s' cannot be held)", us_id_text(s->bodies[rep->unstable_body].id).s);
+    if (rep->unstable_body >= 0) printf(" ('%s' cannot be held)",
+                                        us_id_text(s->bodies[rep->unstable_body].id).s);
     printf("\n");
   } else {
     printf("invalid: incomplete order: %d bodies are never removed\n", rep->remaining);

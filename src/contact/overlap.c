@@ -24,7 +24,8 @@ static us_Status report(const us_Structure *s, int i, int j, const char *what, i
                         double depth, us_Error *err) {
   return us_error_set(err, US_ERR_INPUT,
                       "bodies '%s' and '%s' overlap (%s %d of '%s' is %g inside '%s')",
-                      us_id_text(s->bodies[i].id).s, us_id_text(s->bodies[j].id).s, what, k, us_id_text(s->bodies[owner].id).s, depth,
+                      us_id_text(s->bodies[i].id).s, us_id_text(s->bodies[j].id).s, what, k,
+                      us_id_text(s->bodies[owner].id).s, depth,
                       us_id_text(s->bodies[owner == i ? j : i].id).s);
 }
 
@@ -139,7 +140,8 @@ static us_Status coincident(const us_Structure *s, int i, int j, double tol, us_
         return us_error_set(err, US_ERR_INPUT,
                             "bodies '%s' and '%s' overlap (edge %d of '%s' lies on edge %d of "
                             "'%s' with both bodies on the same side)",
-                            us_id_text(a->id).s, us_id_text(b->id).s, e, us_id_text(a->id).s, f, us_id_text(b->id).s);
+                            us_id_text(a->id).s, us_id_text(b->id).s, e, us_id_text(a->id).s, f,
+                            us_id_text(b->id).s);
   }
   return US_OK;
 }

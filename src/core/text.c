@@ -50,7 +50,8 @@ static int shown_escaped(uint32_t c) {
 static void piece(const char *s, int n, uint32_t c, char rep[12]) {
   if (c == '\\') strcpy(rep, "\\\\");
   else if (c == US_UTF8_INVALID || c < 0x80) {
-    if (c == US_UTF8_INVALID || shown_escaped(c)) snprintf(rep, 12, "\\x%02X", (unsigned)(unsigned char)s[0]);
+    if (c == US_UTF8_INVALID || shown_escaped(c))
+      snprintf(rep, 12, "\\x%02X", (unsigned)(unsigned char)s[0]);
     else rep[0] = s[0], rep[1] = '\0';
   } else if (shown_escaped(c)) {
     snprintf(rep, 12, "\\u%04X", (unsigned)c);

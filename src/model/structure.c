@@ -159,7 +159,8 @@ int us_structure_add_contact(us_Structure *s, int a, int b, const double *p, con
   len = sqrt(len);
   if (!(len > 1e-12) || !isfinite(len)) {
     us_error_set(err, US_ERR_INPUT, "contact %d (%s, %s): zero or non-finite normal",
-                 s->ncontact, a < 0 ? "ground" : us_id_text(s->bodies[a].id).s, us_id_text(s->bodies[b].id).s);
+                 s->ncontact, a < 0 ? "ground" : us_id_text(s->bodies[a].id).s,
+                 us_id_text(s->bodies[b].id).s);
     return -1;
   }
   if (US_GROW(s->contacts, s->cap_contact, s->ncontact + 1)) {
