@@ -1,6 +1,14 @@
-/* Tests of src/core: bitsets, the bitset hash set, the allocation funnel. */
+/* Tests of src/core: bitsets, the bitset hash set, the allocation funnel,
+ * ids quoted for messages (text.c) and output files (file.c): a regular
+ * file replaced with its mode kept, a hard-linked file written in place, a
+ * symlink followed, a read-only file refused, an aborted write leaving the
+ * old content, an output equal to an input refused. */
+#define _XOPEN_SOURCE 700
 #include "core/core.h"
 #include "test.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 static void bitset_basics(void) {
   us_Bitset b;
@@ -88,4 +96,148 @@ static void error_messages(void) {
   CHECK(strcmp(us_status_name(US_ERR_NOMEM), "out of memory") == 0);
 }
 
-US_TEST_MAIN(T(bitset_basics), T(bitset_set_many), T(alloc_failure_hook), T(error_messages))
+/* Escapes, a backslash doubled, no byte below 0x20 or ESC left, cuts at a
+ * character boundary with "...". */
+static void id_text(void) {
+  CHECK(!strcmp(us_id_text("b1").s, "b1"));
+  CHECK(!strcmp(us_id_text("a\x1b[31m\nb").s, "a\\x1B[31m\\x0Ab"));
+  CHECK(!strcmp(us_id_text("x\\y").s, "x\\\\y"));
+  CHECK(!strcmp(us_id_text("\xef\xbf\xbf\xc2\x85\xe2\x80\xae").s, "\\uFFFF\\u0085\\u202E"));
+  CHECK(!strcmp(us_id_text("\xff\xc0\xaf\xed\xa0\x80").s, "\\xFF\\xC0\\xAF\\xED\\xA0\\x80"));
+  CHECK(!strcmp(us_id_text("caf\xc3\xa9").s, "caf\xc3\xa9"));
+  char longid[400] = "";
+  for (int i = 0; i < 100; i++) strcat(longid, "\xc3\xa9"); /* 2-byte characters */
+  longid[199] = 'x'; /* an odd length so that a byte cut would split one */
+  us_IdText t = us_id_text(longid);
+  size_t n = strlen(t.s);
+  CHECK(n <= 83 && n >= 70);
+  CHECK(!strcmp(t.s + n - 3, "..."));
+  CHECK_INT((int)(n - 3) % 2, ==, 0); /* whole characters only */
+  for (size_t k = 0; k + 3 < n; k += 2) CHECK(!memcmp(t.s + k, "\xc3\xa9", 2));
+  char many_esc[200];
+  memset(many_esc, 0x1b, sizeof many_esc - 1);
+  many_esc[sizeof many_esc - 1] = 0;
+  t = us_id_text(many_esc);
+  CHECK(strlen(t.s) <= 83 && !strchr(t.s, 0x1b));
+}
+
+static char g_dir[64];
+
+static const char *tmp_path(const char *name, char *buf, size_t n) {
+  if (!g_dir[0]) {
+    snprintf(g_dir, sizeof g_dir, "/tmp/us_test_core_XXXXXX");
+    if (!mkdtemp(g_dir)) return NULL;
+  }
+  snprintf(buf, n, "%s/%s", g_dir, name);
+  return buf;
+}
+
+static us_Status put(const char *path, const char *text, us_Error *err) {
+  us_AtomicFile *af = us_atomic_open(path, err);
+  if (!af) return err->code;
+  fputs(text, (FILE *)us_atomic_stream(af));
+  return us_atomic_commit(af, err);
+}
+
+static int has(const char *path, const char *text) {
+  char buf[64] = "";
+  FILE *fp = fopen(path, "r");
+  if (!fp) return 0;
+  size_t n = fread(buf, 1, sizeof buf - 1, fp);
+  fclose(fp);
+  buf[n] = 0;
+  return !strcmp(buf, text);
+}
+
+static int leftovers(void) {
+  char cmd[128];
+  snprintf(cmd, sizeof cmd, "ls %s | grep -q '\\.tmp\\.'", g_dir);
+  return system(cmd) == 0;
+}
+
+/* New file, replaced file (mode kept), hard link (written in place, both
+ * names see it), symlink (the link stays, the target changes), abort. */
+static void output_files(void) {
+  us_Error err;
+  char a[128], b[128], l[128];
+  CHECK(tmp_path("a.txt", a, sizeof a) && tmp_path("b.txt", b, sizeof b) &&
+        tmp_path("l.txt", l, sizeof l));
+  CHECK_OK(put(a, "one", &err), &err);
+  CHECK(has(a, "one"));
+  CHECK(chmod(a, 0640) == 0);
+  CHECK_OK(put(a, "two", &err), &err);
+  struct stat st;
+  CHECK(stat(a, &st) == 0 && (st.st_mode & 07777) == 0640 && has(a, "two"));
+  CHECK(link(a, b) == 0);
+  CHECK_OK(put(b, "three", &err), &err);
+  struct stat sa, sb;
+  CHECK(stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_ino == sb.st_ino && sa.st_nlink == 2);
+  CHECK(has(a, "three"));
+  CHECK(symlink("a.txt", l) == 0);
+  CHECK_OK(put(l, "four", &err), &err);
+  CHECK(lstat(l, &st) == 0 && S_ISLNK(st.st_mode) && has(a, "four") && has(b, "four"));
+  us_AtomicFile *af = us_atomic_open(a, &err);
+  CHECK(af != NULL);
+  fputs("partial", (FILE *)us_atomic_stream(af));
+  us_atomic_abort(af);
+  CHECK(has(a, "four"));
+  CHECK(!leftovers());
+  remove(l), remove(b), remove(a);
+}
+
+/* Read-only files (refused even for root: mode bits), directories, missing
+ * directories, outputs that are inputs by another name. */
+static void output_refusals(void) {
+  us_Error err;
+  char a[128], b[128], l[128], miss[160];
+  CHECK(tmp_path("ro.txt", a, sizeof a) && tmp_path("h.txt", b, sizeof b) &&
+        tmp_path("s.txt", l, sizeof l));
+  snprintf(miss, sizeof miss, "%s/no/such/x.txt", g_dir);
+  CHECK_OK(put(a, "keep", &err), &err);
+  CHECK(chmod(a, 0444) == 0);
+  CHECK(us_atomic_open(a, &err) == NULL && err.code == US_ERR_IO && strstr(err.msg, "not writable"));
+  CHECK(us_output_check(a, NULL, 0, &err) == US_ERR_IO && strstr(err.msg, "not writable"));
+  CHECK(has(a, "keep"));
+  CHECK(chmod(a, 0644) == 0);
+  CHECK(us_atomic_open(g_dir, &err) == NULL && strstr(err.msg, "is a directory"));
+  CHECK(us_output_check(miss, NULL, 0, &err) == US_ERR_IO && strstr(err.msg, "cannot write"));
+  CHECK(us_atomic_open(miss, &err) == NULL && err.code == US_ERR_IO);
+  CHECK(link(a, b) == 0 && symlink("ro.txt", l) == 0);
+  const char *inputs[1] = {a};
+  CHECK(us_output_check(b, inputs, 1, &err) == US_ERR_IO &&
+        strstr(err.msg, "output would overwrite input"));
+  CHECK(us_output_check(l, inputs, 1, &err) == US_ERR_IO);
+  char dotted[160];
+  snprintf(dotted, sizeof dotted, "%s/./ro.txt", g_dir);
+  CHECK(us_output_check(dotted, inputs, 1, &err) == US_ERR_IO);
+  us_error_clear(&err);
+  CHECK(us_output_check(miss, NULL, 0, NULL) == US_ERR_IO); /* NULL err is fine */
+  char fresh[128];
+  CHECK(tmp_path("fresh.txt", fresh, sizeof fresh));
+  CHECK_OK(us_output_check(fresh, inputs, 1, &err), &err);
+  CHECK(access(fresh, F_OK) != 0); /* the check touches nothing */
+  remove(l), remove(b), remove(a);
+}
+
+/* Out of memory inside us_atomic_open fails cleanly, without a leak. */
+static void output_nomem(void) {
+  char a[128];
+  CHECK(tmp_path("oom.txt", a, sizeof a));
+  for (int n = 0; n < 4; n++) {
+    us_Error err;
+    us_alloc_fail_after(n);
+    us_AtomicFile *af = us_atomic_open(a, &err);
+    us_alloc_fail_after(-1);
+    if (af) us_atomic_abort(af);
+    else CHECK_INT(err.code, ==, US_ERR_NOMEM);
+  }
+  CHECK(!leftovers());
+  CHECK(access(a, F_OK) != 0);
+}
+
+static void cleanup(void) {
+  if (g_dir[0]) CHECK(rmdir(g_dir) == 0);
+}
+
+US_TEST_MAIN(T(bitset_basics), T(bitset_set_many), T(alloc_failure_hook), T(error_messages),
+             T(id_text), T(output_files), T(output_refusals), T(output_nomem), T(cleanup))

@@ -508,6 +508,20 @@ static void plan_read_errors(void) {
       {"{\"version\": 2, \"status\": \"found\", \"order\": []}", "version", US_ERR_INPUT},
       {"{\"status\": \"found\", \"order\": [], \"oder\": 1}", "unknown field 'oder'", US_ERR_INPUT},
       {"[]", "expected a JSON object", US_ERR_INPUT},
+      /* a plan for another structure: longer than the body count, the
+         first unknown id is named (also inside a group) */
+      {"{\"status\": \"found\", \"order\": [\"slab\", \"b1\", \"b2\", \"b3\", \"b4\", \"b5\", "
+       "\"b6\", \"b7\", \"b8\", \"b9\"]}", "order[1]: unknown body id 'b1' (a plan for another",
+       US_ERR_INPUT},
+      {"{\"status\": \"found\", \"order\": [[\"slab\", \"q\"], \"b2\", \"b3\", \"b4\", \"b5\", "
+       "\"b6\", \"b7\", \"b8\", \"b9\"]}", "order[0][1]: unknown body id 'q'", US_ERR_INPUT},
+      {"{\"status\": \"found\", \"order\": [], \"blocked\": [\"slab\", \"b1\", \"b2\", \"b3\", "
+       "\"b4\", \"b5\", \"b6\", \"b7\", \"b8\", \"b9\"]}", "blocked[1]: unknown body id 'b1'",
+       US_ERR_INPUT},
+      {"{\"status\": \"none\", \"order\": [], \"removal\": \"sideways\"}",
+       "removal: expected one of \"any\", \"up\", \"free\"", US_ERR_INPUT},
+      {"{\"status\": \"found\", \"order\": [\"a\\u001b[2Jb\"]}", "unknown body id 'a\\x1B[2Jb'",
+       US_ERR_INPUT},
   };
   us_Error err;
   us_Structure *s = read_data("lean_wall.json", &err);
@@ -524,6 +538,11 @@ static void plan_read_errors(void) {
     CHECK(strstr(err.msg, cases[i].fragment) && strstr(err.msg, path));
     CHECK(pf.order == NULL);
   }
+  /* a byte order mark before the JSON is skipped */
+  write_text(path, "\xEF\xBB\xBF{\"status\": \"limit\", \"order\": []}");
+  us_PlanFile bom;
+  CHECK_OK(us_plan_read(s, path, &bom, &err), &err);
+  us_plan_file_free(&bom);
   /* a partial order is fine: completeness is for verification */
   write_text(path, "{\"status\": \"limit\", \"order\": [\"slab\"], \"_by\": \"hand\"}");
   us_PlanFile pf;
@@ -709,8 +728,46 @@ static void large_wall(void) {
   remove(out);
 }
 
+/* Text in structure files: a BOM is skipped; invalid UTF-8 is a parse error
+ * naming file and line; an id with an escape sequence or a newline is read,
+ * and messages show it escaped (no ESC, no newline). */
+static void text_and_ids(void) {
+  us_Error err;
+  us_Structure *s = us_structure_parse(
+      "\xEF\xBB\xBF{\"bodies\": [{\"id\": \"b1\", \"polygon\": [[0,0],[1,0],[1,1],[0,1]]}]}",
+      "bom.json", 0, &err);
+  CHECK(s != NULL);
+  us_structure_free(s);
+  s = us_structure_parse("{\"bodies\": [\n{\"id\": \"b\xff\", \"polygon\": [[0,0],[1,0],[1,1],[0,1]]}]}",
+                         "utf.json", 0, &err);
+  CHECK(s == NULL && err.code == US_ERR_PARSE && strstr(err.msg, "utf.json:2:"));
+  s = us_structure_parse("{\"bodies\": [{\"id\": \"b\\u001b]0;x\\u0007\\n\", \"polygon\": "
+                         "[[0,0],[1,0],[1,1],[0,1]]}, {\"id\": \"b\\u001b]0;x\\u0007\\n\", \"polygon\": "
+                         "[[0,1],[1,1],[1,2],[0,2]]}]}", "ids.json", 0, &err);
+  CHECK(s == NULL && err.code == US_ERR_INPUT);
+  CHECK(strstr(err.msg, "duplicate id 'b\\x1B]0;x\\x07\\x0A'") && !strchr(err.msg, 0x1b) &&
+        !strchr(err.msg, '\n'));
+}
+
+/* An id that is not valid UTF-8 (possible through the C API, not from a
+ * file) is refused at write: the file would not read back. Nothing is left. */
+static void write_invalid_utf8(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(2);
+  double xy[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+  CHECK(us_structure_add_polygon(s, "b\xff", 4, xy, 1, 0, 0, -1, &err) >= 0);
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  char out[256];
+  tmp_path(out, sizeof out, "utf8.json");
+  CHECK_INT(us_structure_write(s, out, &err), ==, US_ERR_INPUT);
+  CHECK(strstr(err.msg, "not valid UTF-8") && strstr(err.msg, out));
+  CHECK(access(out, F_OK) != 0);
+  us_structure_free(s);
+}
+
 US_TEST_MAIN(T(read_examples), T(defaults_and_fields), T(explicit_contacts),
              T(contact_tol_override), T(examples_physics), T(round_trip), T(round_trip_awkward),
              T(bad_files), T(read_errors), T(failed_write_leaves_no_file), T(plan_round_trip),
              T(plan_without_certificates), T(plan_read_errors), T(fuzz_mutations), T(fuzz_plan),
-             T(out_of_memory), T(large_wall))
+             T(out_of_memory), T(large_wall), T(text_and_ids),
+             T(write_invalid_utf8))

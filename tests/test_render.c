@@ -2,11 +2,17 @@
  * small tag-nesting checker), one <polygon> per polygon body, ids escaped,
  * order numbers and legend present, force arrows pointing along the force
  * on body b, bad settings rejected before any file is written, and a write
- * into a missing directory failing with US_ERR_IO without leaving a file. */
+ * into a missing directory failing with US_ERR_IO without leaving a file.
+ * Ids holding characters XML cannot hold (controls, U+FFFE, U+FFFF, invalid
+ * UTF-8) give a document libxml2 parses (libxml2 from scripts/deps.sh; the
+ * case fails when the build did not find it). */
 #define _POSIX_C_SOURCE 200809L
 #include "test.h"
 
 #include <unistd.h>
+#ifdef US_HAVE_LIBXML2
+#include <libxml/parser.h>
+#endif
 
 static char g_dir[64];
 
@@ -287,6 +293,49 @@ static void empty(void) {
   remove(path);
 }
 
+/* 1 when libxml2 parses the file as XML 1.0 without any error. */
+static int libxml_parses(const char *path) {
+#ifdef US_HAVE_LIBXML2
+  xmlDocPtr doc = xmlReadFile(path, NULL, XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
+  int ok = doc != NULL;
+  xmlFreeDoc(doc);
+  xmlCleanupParser();
+  return ok;
+#else
+  fprintf(stderr, "libxml2 was not found at configure time: run scripts/deps.sh\n");
+  US_UNUSED(path);
+  return 0;
+#endif
+}
+
+/* Ids with characters XML 1.0 cannot hold still give valid XML, with the
+ * characters replaced by U+FFFD; ordinary UTF-8 and specials pass. */
+static void hostile_ids(void) {
+  us_Error err;
+  char path[128];
+  const char *ids[] = {"esc\x1b[31m\x07", "nl\nx", "\xef\xbf\xbe\xef\xbf\xbf", "bad\xff\xc0",
+                       "\xed\xa0\x80sur", "caf\xc3\xa9 <&>"};
+  us_Structure *s = us_structure_new(2);
+  for (int i = 0; i < 6; i++) {
+    double y0 = i, xy[8] = {0, y0, 1, y0, 1, y0 + 1, 0, y0 + 1};
+    CHECK(us_structure_add_polygon(s, ids[i], 4, xy, 1, 0, 0, -1, &err) >= 0);
+  }
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  CHECK(tmp_path("hostile.svg", path, sizeof path));
+  us_RenderSettings r = us_render_default_settings();
+  CHECK_OK(us_render_svg(s, &r, path, &err), &err);
+  us_structure_free(s);
+  char *svg = slurp(path);
+  CHECK(svg != NULL);
+  int ok = well_formed(svg) && !strchr(svg, 0x1b) && !strchr(svg, 0x07) &&
+           !strstr(svg, "\xef\xbf\xbe") && !strstr(svg, "\xef\xbf\xbf") && !strstr(svg, "\xff") &&
+           strstr(svg, "caf\xc3\xa9 &lt;&amp;&gt;") && strstr(svg, "esc\xef\xbf\xbd[31m\xef\xbf\xbd");
+  us_free(svg);
+  CHECK(ok);
+  CHECK(libxml_parses(path));
+  remove(path);
+}
+
 /* The checker itself rejects broken documents. */
 static void checker(void) {
   CHECK(well_formed("<a><b/></a>"));
@@ -301,4 +350,5 @@ static void cleanup(void) {
 }
 
 US_TEST_MAIN(T(checker), T(plain), T(with_order), T(with_forces), T(errors), T(point_bodies), T(empty),
+             T(hostile_ids),
              T(cleanup))

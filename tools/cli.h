@@ -26,6 +26,9 @@ int cli_fail(const char *cmd, const char *fmt, ...)
 #endif
     ;
 int cli_error(const char *cmd, const us_Error *err); /* exit code for err */
+/* Before any work: can `out` be written, and is it none of the inputs?
+ * 0, or the message printed and CLI_EXIT_ERR. */
+int cli_check_output(const char *cmd, const char *out, const char *const *inputs, int n);
 int cli_is_help(const char *arg);
 /* Parse numbers strictly: whole string, finite. 0 ok, -1 bad. */
 int cli_parse_double(const char *s, double *out);

@@ -25,8 +25,8 @@ static void print_forces(const us_Structure *s, const us_Forces *f) {
   for (int k = 0; k < f->ncontact; k++) {
     const us_Contact *c = &s->contacts[f->contact[k]];
     printf("  %s -> %s at (%.6g, %.6g): fn = %.6g, ft = %.6g\n",
-           c->a < 0 ? "ground" : s->bodies[c->a].id, s->bodies[c->b].id, c->p[0], c->p[1],
-           f->f[dim * k], f->f[dim * k + 1]);
+           c->a < 0 ? "ground" : us_id_text(s->bodies[c->a].id).s,
+           us_id_text(s->bodies[c->b].id).s, c->p[0], c->p[1], f->f[dim * k], f->f[dim * k + 1]);
   }
 }
 
@@ -42,7 +42,8 @@ static int report(const us_Structure *s, const us_StabilityResult *res, int forc
     return CLI_EXIT_OK;
   }
   printf("%s: %d bodies, %d contacts", us_verdict_name(res->verdict), nmov, s->ncontact);
-  if (res->unstable_body >= 0) printf("; body '%s' cannot be held", s->bodies[res->unstable_body].id);
+  if (res->unstable_body >= 0) printf("; body '%s' cannot be held",
+                                      us_id_text(s->bodies[res->unstable_body].id).s);
   if (res->note[0]) printf(" (%s)", res->note);
   printf("\n");
   return CLI_EXIT_NO;

@@ -255,10 +255,8 @@ static void json_sequence(const us_Structure *s, const us_Classification *c) {
 
 static const char *group_word(us_PlanStatus st) {
   switch (st) {
-  case US_PLAN_FOUND: return "found";
-  case US_PLAN_UNSTABLE: return "unstable";
-  case US_PLAN_NONE: return "beyond-bound";
-  default: return "limit";
+  case US_PLAN_NONE: return "beyond-bound"; /* no step of up to the bound */
+  default: return us_plan_status_name(st);
   }
 }
 

@@ -46,7 +46,7 @@ static int own_option(int argc, char **argv, int *i, CountArgs *a) {
       return cli_fail("count", "--max-bodies needs a positive integer, got '%s'", v);
     a->set.max_bodies = (int)n;
   } else if (us_count_method_parse(v, &a->set.method)) { /* --method */
-    return cli_fail("count", "unknown method '%s' (auto, tree, frontier, contract)", v);
+    return cli_unknown("count", "method", v, cli_count_method_word);
   }
   return 0;
 }
@@ -77,18 +77,12 @@ static int parse_args(int argc, char **argv, CountArgs *a) {
   return 0;
 }
 
-static const char *method_text(const us_Count *c) {
-  return c->method == US_COUNT_TREE       ? "tree"
-         : c->method == US_COUNT_CONTRACT ? "deletion-contraction"
-                                          : "frontier";
-}
-
 static void print_text(const us_Count *c) {
   if (c->status == US_COUNT_EXACT)
     printf("count: %s connected sub-assemblies containing the ground (", c->value);
   else
     printf("count: refused, %s (", c->note);
-  printf("%s", method_text(c));
+  printf("%s", us_count_method_name(c->method)); /* the word --method takes */
   if (c->method == US_COUNT_FRONTIER) printf(", width %d", c->width);
   printf(", %d bodies", c->nbody);
   if (c->nconnected != c->nbody) printf(" (%d connected to the ground)", c->nconnected);

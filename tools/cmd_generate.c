@@ -2,6 +2,7 @@
  * arch, random, stacker) as a structure file. */
 #include "options.h"
 
+#include <limits.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -82,8 +83,10 @@ static int parse_option(int argc, char **argv, int *i, us_GenSettings *g, double
     g->seed = (unsigned long)n;
   } else if (int_option(name, g, &ip)) {
     if (!(v = cli_value("generate", argc, argv, i))) return CLI_EXIT_ERR;
-    if (cli_parse_long(v, &n) || n < 1 || n > 100000000)
+    if (cli_parse_long(v, &n) || n < 1)
       return cli_fail("generate", "%s needs a positive integer, got '%s'", name, v);
+    if (n > INT_MAX) /* the generator names its own, smaller, limits */
+      return cli_fail("generate", "%s: %s is too large (at most %d)", name, v, INT_MAX);
     *ip = (int)n;
   } else if (real_option(name, g, &dp)) {
     if (!(v = cli_value("generate", argc, argv, i))) return CLI_EXIT_ERR;
@@ -117,6 +120,7 @@ int cmd_generate(int argc, char **argv) {
     }
   }
   if (!out) return cli_fail("generate", "no output given: use -o FILE");
+  if (cli_check_output("generate", out, NULL, 0)) return CLI_EXIT_ERR;
   if (fn == us_gen_pyramid && g.rows > 0) g.n = g.rows;
   if (g.rows < 0) g.rows = default_rows;
   if (fn == us_gen_random || fn == us_gen_stacker) {

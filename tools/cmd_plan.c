@@ -62,7 +62,8 @@ static void print_stats(const us_PlanStats *st) {
 
 /* Up to `max` ids of a list, then "and N more". */
 static void print_ids(const us_Structure *s, const int *v, int n, int max) {
-  for (int k = 0; k < n && k < max; k++) printf("%s%s", k ? ", " : "", s->bodies[v[k]].id);
+  for (int k = 0; k < n && k < max; k++) printf("%s%s",
+                                                k ? ", " : "", us_id_text(s->bodies[v[k]].id).s);
   if (n > max) printf(" and %d more", n - max);
 }
 
@@ -133,7 +134,7 @@ static int parse(int argc, char **argv, CliCommon *c, PlanArgs *a) {
     } else if (!strcmp(argv[i], "--removal")) {
       if (!(v = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
       if (us_removal_parse(v, &c->plan.removal))
-        return cli_fail("plan", "unknown removal '%s' (any, up, free)", v);
+        return cli_unknown("plan", "removal", v, cli_removal_word);
     } else if (!strcmp(argv[i], "--rules")) {
       if (!(v = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
       if (us_rules_parse(v, &c->plan.rules))
@@ -172,6 +173,7 @@ int cmd_plan(int argc, char **argv) {
   int r = parse(argc, argv, &c, &a);
   if (r) return r < 0 ? CLI_EXIT_OK : r;
   c.plan.stability = c.stab;
+  if (a.out && cli_check_output("plan", a.out, &a.file, 1)) return CLI_EXIT_ERR;
   us_Structure *s = cli_load("plan", a.file, &c);
   if (!s) return CLI_EXIT_ERR;
   us_Error err;

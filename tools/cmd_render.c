@@ -82,6 +82,8 @@ int cmd_render(int argc, char **argv) {
   a.r = us_render_default_settings();
   int r = parse(argc, argv, &c, &a);
   if (r) return r < 0 ? CLI_EXIT_OK : r;
+  const char *inputs[2] = {a.file, a.plan};
+  if (cli_check_output("render", a.out, inputs, a.plan ? 2 : 1)) return CLI_EXIT_ERR;
   us_Structure *s = cli_load("render", a.file, &c);
   if (!s) return CLI_EXIT_ERR;
   us_Error err;

@@ -30,9 +30,10 @@ static int report(const us_Structure *s, const us_PlanFile *pf, const us_VerifyR
   } else if (rep->failed_step >= 0) {
     int k = rep->failed_step;
     printf("invalid: step %d (removing '%s'%s): the remaining %d bodies do not stand", k + 1,
-           s->bodies[pf->order[pf->group_start[k]]].id,
+           us_id_text(s->bodies[pf->order[pf->group_start[k]]].id).s,
            pf->group_start[k + 1] - pf->group_start[k] > 1 ? " and others" : "", rep->remaining);
-    if (rep->unstable_body >= 0) printf(" ('%s' cannot be held)", s->bodies[rep->unstable_body].id);
+    if (rep->unstable_body >= 0) printf(" ('%s' cannot be held)",
+                                        us_id_text(s->bodies[rep->unstable_body].id).s);
     printf("\n");
   } else {
     printf("invalid: incomplete order: %d bodies are never removed\n", rep->remaining);
@@ -53,9 +54,9 @@ static int check_removals(const us_Structure *s, const us_PlanFile *pf, us_Error
                                                 : "leave along a free direction");
     return CLI_EXIT_OK;
   }
-  printf("invalid: step %d: '%s' cannot %s", k + 1, s->bodies[pf->order[k]].id,
+  printf("invalid: step %d: '%s' cannot %s", k + 1, us_id_text(s->bodies[pf->order[k]].id).s,
          pf->removal == US_REMOVAL_UP ? "be lifted straight up" : "leave in any direction");
-  if (by >= 0) printf(" ('%s' is in the way)", s->bodies[by].id);
+  if (by >= 0) printf(" ('%s' is in the way)", us_id_text(s->bodies[by].id).s);
   if (by == US_GROUND) printf(" (the ground is in the way)");
   printf("\n");
   return CLI_EXIT_NO;

@@ -39,6 +39,12 @@ int cli_error(const char *cmd, const us_Error *err) {
   return CLI_EXIT_ERR;
 }
 
+int cli_check_output(const char *cmd, const char *out, const char *const *inputs, int n) {
+  us_Error err;
+  us_error_clear(&err);
+  return us_output_check(out, inputs, n, &err) ? cli_error(cmd, &err) : 0;
+}
+
 int cli_is_help(const char *arg) { return !strcmp(arg, "--help") || !strcmp(arg, "-h"); }
 
 int cli_parse_double(const char *s, double *out) {

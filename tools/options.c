@@ -5,6 +5,24 @@
 #include <stdio.h>
 #include <string.h>
 
+/* Enum words come from the library's name tables only (us_*_name), so each
+ * word is spelled once in the repository; the words of enum value i, until
+ * the table says "unknown". */
+const char *cli_method_word(int i) { return us_method_name((us_Method)i); }
+const char *cli_search_word(int i) { return us_search_name((us_Search)i); }
+const char *cli_order_word(int i) { return us_order_name((us_Order)i); }
+const char *cli_direction_word(int i) { return us_direction_name((us_Direction)i); }
+const char *cli_removal_word(int i) { return us_removal_name((us_Removal)i); }
+const char *cli_count_method_word(int i) { return us_count_method_name((us_CountMethod)i); }
+
+int cli_unknown(const char *cmd, const char *what, const char *value, CliWord word) {
+  char list[200] = "";
+  size_t len = 0;
+  for (int i = 0; i < 32 && strcmp(word(i), "unknown") && len < sizeof list; i++)
+    len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", i ? ", " : "", word(i));
+  return cli_fail(cmd, "unknown %s '%s' (%s)", what, value, list);
+}
+
 /* Returns 1 if argv[*i] was a common option (consumed), 0 if not, -1 on a
  * bad value (message printed). */
 int cli_common_option(const char *cmd, int argc, char **argv, int *i, CliCommon *c) {
@@ -13,7 +31,7 @@ int cli_common_option(const char *cmd, int argc, char **argv, int *i, CliCommon 
     if (!(v = cli_value(cmd, argc, argv, i))) return -1;
     us_Method m;
     if (us_method_parse(v, &m))
-      return cli_fail(cmd, "unknown method '%s' (lp, lpsolve, lcp, lcp-reuse)", v), -1;
+      return cli_unknown(cmd, "method", v, cli_method_word), -1;
     c->stab.method = m;
     return 1;
   }
@@ -26,19 +44,19 @@ int cli_common_option(const char *cmd, int argc, char **argv, int *i, CliCommon 
   if (!strcmp(a, "--search")) {
     if (!(v = cli_value(cmd, argc, argv, i))) return -1;
     if (us_search_parse(v, &c->plan.search))
-      return cli_fail(cmd, "unknown search '%s' (assemble, dfs, bfs, random)", v), -1;
+      return cli_unknown(cmd, "search", v, cli_search_word), -1;
     return 1;
   }
   if (!strcmp(a, "--order")) {
     if (!(v = cli_value(cmd, argc, argv, i))) return -1;
     if (us_order_parse(v, &c->plan.order))
-      return cli_fail(cmd, "unknown order '%s' (highest, lowest, input)", v), -1;
+      return cli_unknown(cmd, "order", v, cli_order_word), -1;
     return 1;
   }
   if (!strcmp(a, "--direction")) {
     if (!(v = cli_value(cmd, argc, argv, i))) return -1;
     if (us_direction_parse(v, &c->plan.direction))
-      return cli_fail(cmd, "unknown direction '%s' (down, up)", v), -1;
+      return cli_unknown(cmd, "direction", v, cli_direction_word), -1;
     return 1;
   }
   return 0;

@@ -12,6 +12,16 @@ typedef struct CliCommon {
 } CliCommon;
 
 void cli_common_init(CliCommon *c);
+/* "unknown WHAT 'VALUE' (w0, w1, ...)" with the words of an enum listed from
+ * its name table; returns CLI_EXIT_ERR. */
+typedef const char *(*CliWord)(int i);
+int cli_unknown(const char *cmd, const char *what, const char *value, CliWord word);
+const char *cli_method_word(int i);
+const char *cli_search_word(int i);
+const char *cli_order_word(int i);
+const char *cli_direction_word(int i);
+const char *cli_removal_word(int i);
+const char *cli_count_method_word(int i);
 int cli_common_option(const char *cmd, int argc, char **argv, int *i, CliCommon *c);
 /* Read and finalize a structure; prints the error and returns NULL. */
 us_Structure *cli_load(const char *cmd, const char *path, const CliCommon *c);

@@ -504,13 +504,33 @@ us_RenderSettings us_render_default_settings(void);
 us_Status us_render_svg(const us_Structure *s, const us_RenderSettings *r, const char *path,
                         us_Error *err);
 
-/* Atomic file writing shared by all writers: write to path.tmp.XXXXXX,
- * then rename. Returns a FILE* to write to; commit or abort. */
+/* An id quoted for a message (src/core/text.c): control characters, DEL,
+ * C1 controls, bidi overrides, U+FFFE/U+FFFF and invalid UTF-8 bytes as
+ * \xNN / \uNNNN escapes, a backslash as \\, cut at a character boundary
+ * after at most 80 bytes with "...". Returned by value so that
+ * printf("'%s'", us_id_text(id).s) works. Every message naming an id uses it. */
+typedef struct us_IdText {
+  char s[84];
+} us_IdText;
+us_IdText us_id_text(const char *id);
+
+/* Output files shared by all writers (src/core/file.c): the content goes to
+ * a temporary file and is put in place at commit, nothing on abort. A new or
+ * plain file is replaced by rename (keeping its mode and owner); a symlink is
+ * followed; a device, FIFO or hard-linked file is written through in place.
+ * A read-only file or a directory is refused (US_ERR_IO). Returns a FILE* to
+ * write to; commit or abort. */
 typedef struct us_AtomicFile us_AtomicFile;
 us_AtomicFile *us_atomic_open(const char *path, us_Error *err);
 void *us_atomic_stream(us_AtomicFile *af); /* FILE* */
 us_Status us_atomic_commit(us_AtomicFile *af, us_Error *err);
 void us_atomic_abort(us_AtomicFile *af);
+/* Can path be written, before any work is done? Its directory exists and is
+ * writable, or the file (symlinks followed) is writable; and it is none of
+ * the `ninputs` input files (same st_dev/st_ino: "output would overwrite
+ * input NAME"). US_OK or US_ERR_IO with a message; touches nothing. */
+us_Status us_output_check(const char *path, const char *const *inputs, int ninputs,
+                          us_Error *err);
 
 /* Monotonic clock in seconds. */
 double us_now(void);

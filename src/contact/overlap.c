@@ -24,8 +24,9 @@ static us_Status report(const us_Structure *s, int i, int j, const char *what, i
                         double depth, us_Error *err) {
   return us_error_set(err, US_ERR_INPUT,
                       "bodies '%s' and '%s' overlap (%s %d of '%s' is %g inside '%s')",
-                      s->bodies[i].id, s->bodies[j].id, what, k, s->bodies[owner].id, depth,
-                      s->bodies[owner == i ? j : i].id);
+                      us_id_text(s->bodies[i].id).s, us_id_text(s->bodies[j].id).s, what, k,
+                      us_id_text(s->bodies[owner].id).s, depth,
+                      us_id_text(s->bodies[owner == i ? j : i].id).s);
 }
 
 static int in_box(us_Vec2 p, const double bb[4], double tol) {
@@ -139,7 +140,8 @@ static us_Status coincident(const us_Structure *s, int i, int j, double tol, us_
         return us_error_set(err, US_ERR_INPUT,
                             "bodies '%s' and '%s' overlap (edge %d of '%s' lies on edge %d of "
                             "'%s' with both bodies on the same side)",
-                            a->id, b->id, e, a->id, f, b->id);
+                            us_id_text(a->id).s, us_id_text(b->id).s, e, us_id_text(a->id).s, f,
+                            us_id_text(b->id).s);
   }
   return US_OK;
 }

@@ -18,6 +18,11 @@
 int us_grow(void **arr, int *cap, int need, size_t elem);
 #define US_GROW(arr, cap, need) us_grow((void **)&(arr), &(cap), (need), sizeof(*(arr)))
 
+/* One UTF-8 character at s (text.c): its code point in *cp and its length
+ * in bytes; a malformed sequence is one byte with *cp = US_UTF8_INVALID. */
+#define US_UTF8_INVALID 0xFFFFFFFFu
+int us_utf8_next(const char *s, uint32_t *cp);
+
 /* splitmix64 (rng.c): the next 64 random bits of state *s, and a uniform
  * integer in [0, m) for m >= 1. */
 uint64_t us_rng_next(uint64_t *s);

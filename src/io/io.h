@@ -48,10 +48,12 @@ us_Status us_io_bool(const us_IoCtx *c, const char *where, const char *field, js
 
 /* Streaming JSON output: numbers with the fewest digits (15..17) that read
  * back to the same double; strings escaped. `bad` records a non-finite
- * number (JSON cannot hold it), which makes the writer fail. */
+ * number, `bad_text` a string that is not valid UTF-8 (JSON cannot hold
+ * either), which makes the writer fail. */
 typedef struct us_JsonOut {
   FILE *fp;
   int bad;
+  int bad_text;
 } us_JsonOut;
 void us_jo_number(us_JsonOut *o, double x);
 void us_jo_string(us_JsonOut *o, const char *s);

@@ -6,7 +6,9 @@
  * bit-exactly and stay readable (0.1, not 0.10000000000000001). JSON has no
  * NaN or infinity: such a number sets `bad` and prints null, and the caller
  * then abandons the file. Strings are escaped per RFC 8259 (quote,
- * backslash, control characters); other bytes pass through as UTF-8. */
+ * backslash, control characters); other characters pass through as UTF-8.
+ * A string that is not valid UTF-8 (an id given through the C API) sets
+ * `bad_text`: the file would not read back, so the caller abandons it. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,14 +31,18 @@ void us_jo_number(us_JsonOut *o, double x) {
 
 void us_jo_string(us_JsonOut *o, const char *s) {
   fputc('"', o->fp);
-  for (; *s; s++) {
-    unsigned char ch = (unsigned char)*s;
-    if (ch == '"' || ch == '\\')
-      fprintf(o->fp, "\\%c", ch);
-    else if (ch < 0x20)
-      fprintf(o->fp, "\\u%04x", ch);
+  while (*s) {
+    uint32_t c;
+    int n = us_utf8_next(s, &c);
+    if (c == '"' || c == '\\')
+      fprintf(o->fp, "\\%c", (char)c);
+    else if (c < 0x20)
+      fprintf(o->fp, "\\u%04x", (unsigned)c);
+    else if (c == US_UTF8_INVALID)
+      o->bad_text = 1, fputs("\\ufffd", o->fp);
     else
-      fputc(ch, o->fp);
+      fwrite(s, 1, (size_t)n, o->fp);
+    s += n;
   }
   fputc('"', o->fp);
 }

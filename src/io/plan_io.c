@@ -196,21 +196,35 @@ us_Status us_plan_write(const us_Structure *s, const us_Plan *p, const us_PlanSe
     return us_error_set(err, US_ERR_USAGE, "%s: plan does not match the structure", path);
   us_AtomicFile *af = us_atomic_open(path, err);
   if (!af) return err ? err->code : US_ERR_IO;
-  us_JsonOut o = {us_atomic_stream(af), 0};
+  us_JsonOut o = {us_atomic_stream(af), 0, 0};
   us_Status st = US_OK;
   write_header(&o, s, p, set);
   if (p->certs) st = write_steps(&o, s, p, set ? set->stability.cert_tol : 1e-6);
   if (!st) write_stats(&o, &p->stats);
   us_jo_raw(&o, "}\n");
-  if (st || o.bad) {
+  if (st || o.bad || o.bad_text) {
     us_atomic_abort(af);
     if (st) return us_error_set(err, st, "%s: out of memory writing the plan", path);
-    return us_error_set(err, US_ERR_INPUT, "%s: the plan holds a non-finite number", path);
+    return us_error_set(err, US_ERR_INPUT, "%s: the plan holds %s", path,
+                        o.bad ? "a non-finite number" : "an id that is not valid UTF-8");
   }
   return us_atomic_commit(af, err);
 }
 
 /* ------------------------------------------------------------------- read */
+
+/* The words of an enum come from its table (src/plan/names.c), never
+ * spelled here: "FIELD: expected one of "a", "b", ...". */
+static const char *status_word(int i) { return us_plan_status_name((us_PlanStatus)i); }
+static const char *removal_word(int i) { return us_removal_name((us_Removal)i); }
+
+static us_Status expected_word(const us_IoCtx *c, const char *field, const char *(*word)(int)) {
+  char list[160] = "";
+  size_t len = 0;
+  for (int i = 0; i < 16 && strcmp(word(i), "unknown") && len < sizeof list; i++)
+    len += (size_t)snprintf(list + len, sizeof list - len, "%s\"%s\"", i ? ", " : "", word(i));
+  return us_io_bad(c, "", "%s: expected one of %s", field, list);
+}
 
 static us_Status read_header(const us_IoCtx *c, json_t *root, us_PlanStatus *status) {
   us_Status st = us_io_check_keys(c, "", root, plan_keys);
@@ -224,7 +238,7 @@ static us_Status read_header(const us_IoCtx *c, json_t *root, us_PlanStatus *sta
   v = json_object_get(root, "status");
   if (!v) return us_io_bad(c, "", "missing field 'status'");
   if (!json_is_string(v) || us_plan_status_parse(json_string_value(v), status))
-    return us_io_bad(c, "", "status: expected one of \"found\", \"none\", \"unstable\", \"limit\"");
+    return expected_word(c, "status", status_word);
   return US_OK;
 }
 
@@ -235,12 +249,33 @@ static us_Status read_order_id(const us_IoCtx *c, const us_Structure *s, json_t 
   if (!json_is_string(v)) return us_io_bad(c, where, "expected a body id (string)");
   const char *id = json_string_value(v);
   int i = us_structure_find_body(s, id);
-  if (i < 0) return us_io_bad(c, where, "unknown body id '%.80s'", id);
+  if (i < 0) return us_io_bad(c, where, "unknown body id '%s'", us_id_text(id).s);
   if (s->bodies[i].fixed)
-    return us_io_bad(c, where, "body '%.80s' is fixed and cannot be removed", id);
-  if (first[i] >= 0) return us_io_bad(c, where, "body '%.80s' appears twice", id);
+    return us_io_bad(c, where, "body '%s' is fixed and cannot be removed", us_id_text(id).s);
+  if (first[i] >= 0) return us_io_bad(c, where, "body '%s' appears twice", us_id_text(id).s);
   first[i] = pos;
   *out = i;
+  return US_OK;
+}
+
+/* A list too long for the structure is most often a plan for another
+ * structure: name its first unknown id (entries and groups' members). */
+static us_Status first_unknown(const us_IoCtx *c, const us_Structure *s, json_t *arr,
+                               const char *field) {
+  char where[48];
+  for (size_t k = 0; k < json_array_size(arr); k++) {
+    json_t *v = json_array_get(arr, k);
+    size_t m = json_is_array(v) ? json_array_size(v) : 1;
+    for (size_t q = 0; q < m; q++) {
+      json_t *e = json_is_array(v) ? json_array_get(v, q) : v;
+      const char *id = json_string_value(e);
+      if (!id || us_structure_find_body(s, id) >= 0) continue;
+      if (json_is_array(v)) snprintf(where, sizeof where, "%s[%zu][%zu]", field, k, q);
+      else snprintf(where, sizeof where, "%s[%zu]", field, k);
+      return us_io_bad(c, where, "unknown body id '%s' (a plan for another structure?)",
+                       us_id_text(id).s);
+    }
+  }
   return US_OK;
 }
 
@@ -272,7 +307,9 @@ static us_Status read_order(const us_IoCtx *c, const us_Structure *s, json_t *ar
   if (!arr) return us_io_bad(c, "", "missing field 'order'");
   if (!json_is_array(arr)) return us_io_bad(c, "", "order: expected an array of body ids");
   size_t n = json_array_size(arr);
-  if (n > (size_t)s->nbody) return us_io_bad(c, "", "order: more entries (%zu) than bodies", n);
+  if (n > (size_t)s->nbody && first_unknown(c, s, arr, "order")) return US_ERR_INPUT;
+  if (n > (size_t)s->nbody)
+    return us_io_bad(c, "", "order: more entries (%zu) than bodies (%d)", n, s->nbody);
   int *first = us_malloc(((size_t)s->nbody + 1) * sizeof *first);
   out->order = us_malloc(((size_t)s->nbody + 1) * sizeof *out->order);
   out->group_start = us_malloc((n + 2) * sizeof *out->group_start);
@@ -295,7 +332,9 @@ static us_Status read_blocked(const us_IoCtx *c, const us_Structure *s, json_t *
   if (!arr) return US_OK;
   if (!json_is_array(arr)) return us_io_bad(c, "", "blocked: expected an array of body ids");
   size_t n = json_array_size(arr);
-  if (n > (size_t)s->nbody) return us_io_bad(c, "", "blocked: more entries than bodies");
+  if (n > (size_t)s->nbody && first_unknown(c, s, arr, "blocked")) return US_ERR_INPUT;
+  if (n > (size_t)s->nbody)
+    return us_io_bad(c, "", "blocked: more entries (%zu) than bodies (%d)", n, s->nbody);
   int *first = us_malloc(((size_t)s->nbody + 1) * sizeof *first);
   out->blocked = us_malloc((n + 1) * sizeof *out->blocked);
   us_Status st = first && out->blocked ? US_OK
@@ -315,7 +354,7 @@ static us_Status read_blocked(const us_IoCtx *c, const us_Structure *s, json_t *
 static us_Status read_removal(const us_IoCtx *c, json_t *v, us_Removal *out) {
   *out = US_REMOVAL_ANY;
   if (v && (!json_is_string(v) || us_removal_parse(json_string_value(v), out)))
-    return us_io_bad(c, "", "removal: expected one of \"any\", \"up\", \"free\"");
+    return expected_word(c, "removal", removal_word);
   return US_OK;
 }
 

@@ -141,7 +141,7 @@ static us_Status read_id(Reader *r, const char *where, json_t *b, const char **i
     return us_io_bad(&r->c, where, "id 'ground' is reserved for the ground");
   int other = us_structure_find_body(r->s, *id);
   if (other >= 0)
-    return us_io_bad(&r->c, where, "duplicate id '%.80s' (also bodies[%d])", *id, other);
+    return us_io_bad(&r->c, where, "duplicate id '%s' (also bodies[%d])", us_id_text(*id).s, other);
   return US_OK;
 }
 
@@ -152,7 +152,7 @@ static us_Status read_body(Reader *r, int k, json_t *b) {
   const char *id = NULL;
   us_Status st = read_id(r, where, b, &id);
   if (st) return st;
-  snprintf(where, sizeof where, "bodies[%d] (id '%.80s')", k, id);
+  snprintf(where, sizeof where, "bodies[%d] (id '%s')", k, us_id_text(id).s);
   BodyFields f;
   st = us_io_check_keys(&r->c, where, b, body_keys);
   if (!st) st = read_material(r, where, b, &f);
@@ -192,7 +192,7 @@ static us_Status read_side(Reader *r, const char *where, json_t *c, const char *
     return US_OK;
   }
   *out = us_structure_find_body(r->s, id);
-  if (*out < 0) return us_io_bad(&r->c, where, "%s: unknown body id '%.80s'", field, id);
+  if (*out < 0) return us_io_bad(&r->c, where, "%s: unknown body id '%s'", field, us_id_text(id).s);
   return US_OK;
 }
 

@@ -88,12 +88,12 @@ us_Status us_structure_write(const us_Structure *s, const char *path, us_Error *
     return us_error_set(err, US_ERR_INPUT, "%s: only dimension 2 can be written", path);
   us_AtomicFile *af = us_atomic_open(path, err);
   if (!af) return err ? err->code : US_ERR_IO;
-  us_JsonOut o = {us_atomic_stream(af), 0};
+  us_JsonOut o = {us_atomic_stream(af), 0, 0};
   write_structure(&o, s);
-  if (o.bad) {
+  if (o.bad || o.bad_text) {
     us_atomic_abort(af);
-    return us_error_set(err, US_ERR_INPUT,
-                        "%s: the structure holds a non-finite number (JSON cannot store it)", path);
+    return us_error_set(err, US_ERR_INPUT, "%s: the structure holds %s (JSON cannot store it)",
+                        path, o.bad ? "a non-finite number" : "an id that is not valid UTF-8");
   }
   return us_atomic_commit(af, err);
 }

@@ -5,7 +5,14 @@
  * Numbers: documents are parsed with JSON_DECODE_INT_AS_REAL, so every
  * number is a double; jansson itself rejects NaN, Infinity and numbers that
  * overflow a double, as syntax errors with a position. Duplicate keys in an
- * object are syntax errors too (JSON_REJECT_DUPLICATES). */
+ * object are syntax errors too (JSON_REJECT_DUPLICATES). A UTF-8 byte order
+ * mark at the start of a file (some Windows editors write one) is skipped.
+ *
+ * Text: jansson rejects invalid UTF-8, lone surrogates (\uD800) and NUL
+ * (\u0000) in strings as syntax errors with the line, so ids read from files
+ * are valid UTF-8. Control characters (\u001b, newlines) are accepted in ids;
+ * every message quotes ids through us_id_text and the SVG writer replaces
+ * what XML cannot hold, so they never reach a terminal or a file raw. */
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -26,6 +33,7 @@ us_Status us_io_bad(const us_IoCtx *c, const char *where, const char *fmt, ...) 
 
 json_t *us_io_parse_json(const us_IoCtx *c, const char *text, size_t len) {
   json_error_t je;
+  if (len >= 3 && !memcmp(text, "\xEF\xBB\xBF", 3)) text += 3, len -= 3; /* UTF-8 BOM */
   json_t *root = json_loadb(text, len, JSON_DECODE_INT_AS_REAL | JSON_REJECT_DUPLICATES, &je);
   if (root) return root;
   if (je.line > 0)
@@ -76,7 +84,7 @@ us_Status us_io_check_keys(const us_IoCtx *c, const char *where, json_t *obj,
     if (key[0] == '_') continue;
     int known = 0;
     for (int i = 0; allowed[i] && !known; i++) known = strcmp(key, allowed[i]) == 0;
-    if (!known) return us_io_bad(c, where, "unknown field '%.60s'", key);
+    if (!known) return us_io_bad(c, where, "unknown field '%s'", us_id_text(key).s);
   }
   return US_OK;
 }

@@ -57,7 +57,8 @@ us_Status us_model_mass_properties(us_Structure *s, us_Error *err) {
     else
       point_props(s, i);
     if (!b->fixed && !(b->mass > 0 && isfinite(b->mass) && isfinite(b->inertia)))
-      return us_error_set(err, US_ERR_INPUT, "body '%s': mass %g / inertia %g not usable", b->id,
+      return us_error_set(err, US_ERR_INPUT, "body '%s': mass %g / inertia %g not usable",
+                          us_id_text(b->id).s,
                           b->mass, b->inertia);
   }
   return US_OK;

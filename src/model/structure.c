@@ -57,7 +57,7 @@ static int add_body(us_Structure *s, const char *id, us_Error *err) {
     return -1;
   }
   if (US_GROW(s->bodies, s->cap_body, s->nbody + 1)) {
-    us_error_set(err, US_ERR_NOMEM, "out of memory adding body '%s'", id);
+    us_error_set(err, US_ERR_NOMEM, "out of memory adding body '%s'", us_id_text(id).s);
     return -1;
   }
   us_Body *b = &s->bodies[s->nbody];
@@ -66,8 +66,8 @@ static int add_body(us_Structure *s, const char *id, us_Error *err) {
   int r = b->id ? index_id(s, s->nbody) : -2;
   if (r < 0) {
     us_free(b->id);
-    if (r == -1) us_error_set(err, US_ERR_INPUT, "duplicate body id '%s'", id);
-    else us_error_set(err, US_ERR_NOMEM, "out of memory adding body '%s'", id);
+    if (r == -1) us_error_set(err, US_ERR_INPUT, "duplicate body id '%s'", us_id_text(id).s);
+    else us_error_set(err, US_ERR_NOMEM, "out of memory adding body '%s'", us_id_text(id).s);
     return -1;
   }
   b->friction = -1.0;
@@ -79,12 +79,12 @@ int us_structure_add_polygon(us_Structure *s, const char *id, int nvert, const d
                              double density, double mass, int fixed, double friction,
                              us_Error *err) {
   if (nvert < 0 || (nvert > 0 && !xy)) {
-    us_error_set(err, US_ERR_INPUT, "body '%s': bad polygon", id ? id : "?");
+    us_error_set(err, US_ERR_INPUT, "body '%s': bad polygon", us_id_text(id ? id : "?").s);
     return -1;
   }
   double *v = us_malloc((size_t)(nvert > 0 ? nvert : 1) * 2 * sizeof(double));
   if (!v) {
-    us_error_set(err, US_ERR_NOMEM, "out of memory adding body '%s'", id ? id : "?");
+    us_error_set(err, US_ERR_NOMEM, "out of memory adding body '%s'", us_id_text(id ? id : "?").s);
     return -1;
   }
   int i = add_body(s, id, err);
@@ -159,7 +159,8 @@ int us_structure_add_contact(us_Structure *s, int a, int b, const double *p, con
   len = sqrt(len);
   if (!(len > 1e-12) || !isfinite(len)) {
     us_error_set(err, US_ERR_INPUT, "contact %d (%s, %s): zero or non-finite normal",
-                 s->ncontact, a < 0 ? "ground" : s->bodies[a].id, s->bodies[b].id);
+                 s->ncontact, a < 0 ? "ground" : us_id_text(s->bodies[a].id).s,
+                 us_id_text(s->bodies[b].id).s);
     return -1;
   }
   if (US_GROW(s->contacts, s->cap_contact, s->ncontact + 1)) {

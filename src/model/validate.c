@@ -37,17 +37,17 @@ static us_Status check_globals(const us_Structure *s, us_Error *err) {
 /* Mass, density and friction of one body (either kind). */
 static us_Status check_material(const us_Body *b, us_Error *err) {
   if (b->mass_given && !b->fixed && !(isfinite(b->mass) && b->mass > 0))
-    return us_error_set(err, US_ERR_INPUT, "body '%s': mass %g must be finite and > 0", b->id,
-                        b->mass);
+    return us_error_set(err, US_ERR_INPUT, "body '%s': mass %g must be finite and > 0",
+                        us_id_text(b->id).s, b->mass);
   if (b->nvert > 0 && !b->mass_given && !(isfinite(b->density) && b->density > 0))
-    return us_error_set(err, US_ERR_INPUT, "body '%s': density %g must be finite and > 0", b->id,
-                        b->density);
+    return us_error_set(err, US_ERR_INPUT, "body '%s': density %g must be finite and > 0",
+                        us_id_text(b->id).s, b->density);
   if (!(b->friction < 0) && !isfinite(b->friction))
-    return us_error_set(err, US_ERR_INPUT, "body '%s': friction %g must be finite and >= 0", b->id,
-                        b->friction);
+    return us_error_set(err, US_ERR_INPUT, "body '%s': friction %g must be finite and >= 0",
+                        us_id_text(b->id).s, b->friction);
   if (!isfinite(b->inertia) || b->inertia < 0)
-    return us_error_set(err, US_ERR_INPUT, "body '%s': inertia %g must be finite and >= 0", b->id,
-                        b->inertia);
+    return us_error_set(err, US_ERR_INPUT, "body '%s': inertia %g must be finite and >= 0",
+                        us_id_text(b->id).s, b->inertia);
   return US_OK;
 }
 
@@ -56,39 +56,43 @@ static us_Status check_values(const us_Structure *s, const us_Body *b, us_Error 
   if (b->nvert == 0) {
     if (!explicit_ok)
       return us_error_set(err, US_ERR_INPUT,
-                          "body '%s' has no polygon (only allowed with explicit contacts)", b->id);
+                          "body '%s' has no polygon (only allowed with explicit contacts)",
+                          us_id_text(b->id).s);
     if (!isfinite(b->com[0]) || !isfinite(b->com[1]))
-      return us_error_set(err, US_ERR_INPUT, "body '%s': centre is not finite", b->id);
+      return us_error_set(err, US_ERR_INPUT, "body '%s': centre is not finite",
+                          us_id_text(b->id).s);
     if (!b->fixed && !(isfinite(b->mass) && b->mass > 0))
-      return us_error_set(err, US_ERR_INPUT, "body '%s': mass %g must be finite and > 0", b->id,
-                          b->mass);
+      return us_error_set(err, US_ERR_INPUT, "body '%s': mass %g must be finite and > 0",
+                          us_id_text(b->id).s, b->mass);
     return check_material(b, err);
   }
   if (b->nvert < 3 || !b->verts)
-    return us_error_set(err, US_ERR_INPUT, "body '%s': polygon has %d vertices (needs >= 3)", b->id,
-                        b->nvert);
+    return us_error_set(err, US_ERR_INPUT, "body '%s': polygon has %d vertices (needs >= 3)",
+                        us_id_text(b->id).s, b->nvert);
   for (int k = 0; k < 2 * b->nvert; k++)
     if (!isfinite(b->verts[k]))
       return us_error_set(err, US_ERR_INPUT, "body '%s': vertex %d has a non-finite coordinate",
-                          b->id, k / 2);
+                          us_id_text(b->id).s, k / 2);
   return check_material(b, err);
 }
 
 static us_Status defect_error(const us_Body *b, us_PolyDefect d, int i, int j, us_Error *err) {
   switch (d) {
     case US_POLY_NOMEM:
-      return us_error_set(err, US_ERR_NOMEM, "out of memory checking body '%s'", b->id);
+      return us_error_set(err, US_ERR_NOMEM, "out of memory checking body '%s'",
+                          us_id_text(b->id).s);
     case US_POLY_REPEATED_VERTEX:
       return us_error_set(err, US_ERR_INPUT,
-                          "body '%s': repeated vertex (vertices %d and %d coincide)", b->id, i, j);
+                          "body '%s': repeated vertex (vertices %d and %d coincide)",
+                          us_id_text(b->id).s, i, j);
     case US_POLY_EDGES_FOLD:
       return us_error_set(err, US_ERR_INPUT,
                           "body '%s': polygon folds back on itself (edges %d and %d overlap)",
-                          b->id, i, j);
+                          us_id_text(b->id).s, i, j);
     default:
       return us_error_set(err, US_ERR_INPUT,
-                          "body '%s': polygon is self-intersecting (edges %d and %d cross)", b->id,
-                          i, j);
+                          "body '%s': polygon is self-intersecting (edges %d and %d cross)",
+                          us_id_text(b->id).s, i, j);
   }
 }
 
@@ -114,12 +118,13 @@ static us_Status check_shape(const us_Structure *s, us_Body *b, double tol, us_E
     return defect_error(b, d, i, j, err);
   double area = us_poly_signed_area(b->verts, b->nvert);
   if (!(fabs(area) > tol * hypot(bb[2] - bb[0], bb[3] - bb[1])))
-    return us_error_set(err, US_ERR_INPUT, "body '%s': polygon has (almost) zero area (%g)", b->id,
-                        area);
+    return us_error_set(err, US_ERR_INPUT, "body '%s': polygon has (almost) zero area (%g)",
+                        us_id_text(b->id).s, area);
   if (d != US_POLY_SIMPLE) return defect_error(b, d, i, j, err);
   us_poly_make_ccw(b->verts, b->nvert);
   if (s->ground && bb[1] < -tol)
-    return us_error_set(err, US_ERR_INPUT, "body '%s' is below the ground (y = %g)", b->id, bb[1]);
+    return us_error_set(err, US_ERR_INPUT, "body '%s' is below the ground (y = %g)",
+                        us_id_text(b->id).s, bb[1]);
   return US_OK;
 }
 

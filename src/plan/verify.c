@@ -17,10 +17,10 @@ static us_Status check_order(const us_Structure *s, const int *order, int n, us_
       return us_error_set(err, US_ERR_INPUT, "step %d: no body with index %d", k + 1, b);
     if (s->bodies[b].fixed)
       return us_error_set(err, US_ERR_INPUT, "step %d: body '%s' is fixed and cannot be removed",
-                          k + 1, s->bodies[b].id);
+                          k + 1, us_id_text(s->bodies[b].id).s);
     if (us_bitset_get(seen, b))
       return us_error_set(err, US_ERR_INPUT, "step %d: body '%s' is removed twice", k + 1,
-                          s->bodies[b].id);
+                          us_id_text(s->bodies[b].id).s);
     us_bitset_set(seen, b);
   }
   return US_OK;

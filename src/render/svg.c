@@ -17,7 +17,8 @@
  * without an order, body ids as labels (show_labels); contact points as
  * dots (show_contacts); r->forces as arrows from each contact point along
  * the force on body b of the contact (f_n n + f_t t), the longest 12% of
- * the view's larger side. Every body has a <title> with its id (XML-escaped)
+ * the view's larger side. Every body has a <title> with its id (XML-escaped;
+ * characters XML cannot hold, such as controls and U+FFFF, become U+FFFD)
  * so viewers show it on hover; labels and numbers are sized to fit their
  * body and left out when they would be too small to read, and contact dots
  * and outlines thin out with the typical body size, so a wall of a
@@ -75,16 +76,28 @@ static int nsteps(const us_RenderSettings *r) { return r->group_start ? r->ngrou
 
 /* Write s with the five XML special characters escaped; other control
  * characters (not allowed in XML 1.0) become '?'. */
+/* XML 1.0 can hold tab, LF, CR, U+0020..U+D7FF, U+E000..U+FFFD and
+ * U+10000..U+10FFFF, nothing else, not even as a character reference. */
+static int xml_char(uint32_t c) {
+  return c == 0x9 || c == 0xA || c == 0xD || (c >= 0x20 && c <= 0xD7FF) ||
+         (c >= 0xE000 && c <= 0xFFFD) || (c >= 0x10000 && c <= 0x10FFFF);
+}
+
+/* User text (ids) as XML character data or attribute value: markup
+ * characters as entities, characters XML cannot hold (controls, U+FFFE,
+ * U+FFFF, invalid UTF-8) as U+FFFD, the replacement character. */
 static void put_escaped(FILE *fp, const char *s) {
-  for (; *s; s++) {
-    unsigned char c = (unsigned char)*s;
+  while (*s) {
+    uint32_t c;
+    int n = us_utf8_next(s, &c);
     if (c == '&') fputs("&amp;", fp);
     else if (c == '<') fputs("&lt;", fp);
     else if (c == '>') fputs("&gt;", fp);
     else if (c == '"') fputs("&quot;", fp);
     else if (c == '\'') fputs("&apos;", fp);
-    else if (c < 0x20 && c != '\t' && c != '\n' && c != '\r') fputc('?', fp);
-    else fputc(c, fp);
+    else if (c == US_UTF8_INVALID || !xml_char(c)) fputs("\xEF\xBF\xBD", fp);
+    else fwrite(s, 1, (size_t)n, fp);
+    s += n;
   }
 }
 
@@ -167,7 +180,7 @@ static us_Status check_settings(const us_Structure *s, const us_RenderSettings *
                           k, i, s->nbody - 1);
     if (step[i])
       return us_error_set(err, US_ERR_USAGE, "render: body '%s' appears twice in the order",
-                          s->bodies[i].id);
+                          us_id_text(s->bodies[i].id).s);
     step[i] = k + 1;
   }
   if (r->group_start) {

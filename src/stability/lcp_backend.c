@@ -327,7 +327,7 @@ static us_Status decide(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, d
     *verdict = US_UNSTABLE;
     w->last_body = worst;
     snprintf(note, note_sz, "LCP: bodies accelerate (net wrench %.2g W on '%s'%s)", res,
-             w->s->bodies[worst].id, fl ? "" : ", dual-cone proof");
+             us_id_text(w->s->bodies[worst].id).s, fl ? "" : ", dual-cone proof");
     return US_OK;
   }
   char why[64];
