@@ -10,6 +10,7 @@
  * with the LP's; a mismatch is reported and makes the exit status 1. */
 #include "core/core.h"
 #include "stability/lcp.h"
+#include "stability/lcp_sys.h"
 #include "stability/stability.h"
 #include "unstack/unstack.h"
 
@@ -97,12 +98,12 @@ static void dense_part(const us_Structure *s) {
     double t0 = us_now();
     int r = us_lcp_run(&p);
     long nnz = 0;
-    double fb = us_lcp_fac_bytes(&p, &nnz);
+    double fb = us_lcp_fac_bytes(&p.fac, &nnz);
     printf("  full wall from scratch: %s, %ld pivots, %.1f ms; clamped system %d of %d indices, "
            "factorization %.2f MB (LU entries %ld, border %d; a dense inverse: %.2f MB); "
            "operator %.2f MB\n",
-           r == US_LCP_SOLVED ? "solved" : "not solved", p.pivots, 1e3 * (us_now() - t0), p.k, k,
-           fb / 1e6, nnz, p.fac.m, 8.0 * p.k * p.k / 1e6,
+           r == US_LCP_SOLVED ? "solved" : "not solved", p.pivots, 1e3 * (us_now() - t0), p.fac.k, k,
+           fb / 1e6, nnz, p.fac.m, 8.0 * p.fac.k * p.fac.k / 1e6,
            (double)(12 * 8 * s->ncontact + 6 * 8 * s->nbody) / 1e6);
     us_free(idx);
   }

@@ -130,7 +130,7 @@ static void seed_from_forces(void) {
     CHECK_INT(us_lcp_seed(p), ==, US_LCP_SOLVED);
     if (round == 0) {
       CHECK_INT(p->pivots - piv0, ==, 0);
-      CHECK_INT(p->k, ==, 4); /* every contact carries force: all clamped */
+      CHECK_INT(p->fac.k, ==, 4); /* every contact carries force: all clamped */
     } else {
       CHECK(p->pivots - piv0 > 0);
     }
@@ -177,7 +177,7 @@ static void raw_pivot_limit(void) {
   ColumnLcp c;
   CHECK(column_lcp(&c) == 0);
   us_Lcp *p = &c.p;
-  p->max_pivots = 1;
+  p->set.max_pivots = 1;
   int all[4] = {0, 1, 2, 3};
   us_lcp_add(p, all, 4);
   CHECK_INT(us_lcp_run(p), ==, US_LCP_LIMIT);
