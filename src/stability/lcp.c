@@ -38,6 +38,12 @@
  * set may not rejoin at zero length (no cycling); an unbounded drive or an
  * endless streak is DEGENERATE, the pivot limit LIMIT. The caller then
  * settles the question another way (the LP).
+ * Infinite friction (mu = +inf): f_t is free, its condition a_t = 0
+ * whatever f_n; such an index is queued with the normals, has no bound
+ * event, stays when its normal leaves, and mu never multiplies anything
+ * for it (inf * 0 = NaN): every use of mu is guarded by `unbounded`.
+ * Settings: every limit and tolerance is a field of us_LcpSettings (lcp.h),
+ * read from p->set.
  * Sign conventions: a = A f + b; a_t f_t <= 0 (friction opposes sliding).
  */
 #include "lcp.h"

@@ -32,6 +32,11 @@
  * workspace has failed, a test that cannot reuse goes to the LP too
  * (a scratch run would fail again, at the full pivot limit). Skipped tests
  * are counted in info->lcp_skips; verdicts never depend on the policy.
+ * The thresholds above (1e-9 W, 1e-6 W, the reuse pivot limit, the
+ * back-off cap) are fields of us_LcpSettings (lcp.h), defaults unless a
+ * workspace is made by us_lcp_backend_create with others. A contact with
+ * mu = +inf is never clipped into a cone, and its dual cone is the ray
+ * a_t = 0, a_n >= 0.
  */
 #include "lcp_backend.h"
 
