@@ -833,10 +833,10 @@ static void settings_vary_limits(void) {
   unsigned long long saved = rng;
   rng = 0x2545f4914f6cdd1dULL; /* its own scenes, the differential's stay */
   us_Structure *scenes[12];
-  int n = 0;
-  scenes[n++] = running_bond(5, 4, 0.0);
-  scenes[n++] = running_bond(5, 4, 0.6);
-  while (n < 12) {
+  int n = 0, want = 2 + 10 / US_TEST_SHARE;
+  scenes[n++] = running_bond(4, 3, 0.0);
+  scenes[n++] = running_bond(4, 3, 0.6);
+  while (n < want) {
     us_Structure *r = random_scene(n % 2);
     if (r) scenes[n++] = r;
   }
