@@ -4,12 +4,16 @@
  * at a time, with and without friction; plus the size of the dense part
  * (the inverse of the clamped system) on the full wall.
  *
- * Usage: bench_lcp [rows cols] (default 10 10 and 20 20). Each method gets
+ * Usage: bench_lcp [rows cols [border_limit]] (default 10 10 and 20 20;
+ * the border limit of the LCP's factorization, us_LcpSettings, default
+ * 64, applies to both LCP methods and the full-wall solve). Each method gets
  * a budget of BUDGET seconds per structure (tests beyond it are skipped
  * and the count is printed). Every verdict of the LCP methods is compared
  * with the LP's; a mismatch is reported and makes the exit status 1. */
 #include "core/core.h"
 #include "stability/lcp.h"
+#include "stability/lcp_backend.h"
+#include "stability/lcp_sys.h"
 #include "stability/stability.h"
 #include "unstack/unstack.h"
 
@@ -24,8 +28,23 @@ typedef struct Row {
   long pivots, fallbacks, reused, stable;
 } Row;
 
+static us_LcpSettings lcp_set; /* the LCP methods' settings */
+
+static void *create_lcp(const us_Structure *s, const us_StabilitySettings *set, us_Error *err) {
+  return us_lcp_backend_create(s, set, &lcp_set, 0, err);
+}
+
+static void *create_lcp_reuse(const us_Structure *s, const us_StabilitySettings *set,
+                              us_Error *err) {
+  return us_lcp_backend_create(s, set, &lcp_set, 1, err);
+}
+
 static const us_Backend *backend(int k) {
-  return k == 0 ? &us_backend_clp : k == 1 ? &us_backend_lcp : &us_backend_lcp_reuse;
+  static us_Backend be[2];
+  if (k == 0) return &us_backend_clp;
+  be[k - 1] = k == 1 ? us_backend_lcp : us_backend_lcp_reuse;
+  be[k - 1].create = k == 1 ? create_lcp : create_lcp_reuse;
+  return &be[k - 1];
 }
 
 /* Bodies by decreasing height of the centre (the top comes off first). */
@@ -80,6 +99,7 @@ static void dense_part(const us_Structure *s) {
   if (us_lcp_sys_init(&y, s)) return;
   us_LcpOps ops = us_lcp_sys_ops(&y);
   if (us_lcp_init(&p, 2 * s->ncontact, &ops) == 0) {
+    us_lcp_configure(&p, &lcp_set);
     for (int c = 0; c < s->ncontact; c++)
       if (s->contacts[c].mu > 0) us_lcp_set_friction(&p, 2 * c + 1, 2 * c, s->contacts[c].mu);
     double W = s->weight > 0 ? s->weight : 1.0;
@@ -97,12 +117,12 @@ static void dense_part(const us_Structure *s) {
     double t0 = us_now();
     int r = us_lcp_run(&p);
     long nnz = 0;
-    double fb = us_lcp_fac_bytes(&p, &nnz);
+    double fb = us_lcp_fac_bytes(&p.fac, &nnz);
     printf("  full wall from scratch: %s, %ld pivots, %.1f ms; clamped system %d of %d indices, "
            "factorization %.2f MB (LU entries %ld, border %d; a dense inverse: %.2f MB); "
            "operator %.2f MB\n",
-           r == US_LCP_SOLVED ? "solved" : "not solved", p.pivots, 1e3 * (us_now() - t0), p.k, k,
-           fb / 1e6, nnz, p.fac.m, 8.0 * p.k * p.k / 1e6,
+           r == US_LCP_SOLVED ? "solved" : "not solved", p.pivots, 1e3 * (us_now() - t0), p.fac.k, k,
+           fb / 1e6, nnz, p.fac.m, 8.0 * p.fac.k * p.fac.k / 1e6,
            (double)(12 * 8 * s->ncontact + 6 * 8 * s->nbody) / 1e6);
     us_free(idx);
   }
@@ -152,11 +172,13 @@ static int bench(int rows, int cols, double mu) {
 
 int main(int argc, char **argv) {
   int sizes[2][2] = {{10, 10}, {20, 20}}, nsizes = 2;
-  if (argc == 3) {
+  if (argc == 3 || argc == 4) {
     sizes[0][0] = atoi(argv[1]);
     sizes[0][1] = atoi(argv[2]);
     nsizes = 1;
   }
+  lcp_set = us_lcp_default_settings();
+  if (argc == 4) lcp_set.factor.border_limit = atoi(argv[3]);
   int bad = 0;
   for (int i = 0; i < nsizes; i++) {
     bad |= bench(sizes[i][0], sizes[i][1], 0.0);

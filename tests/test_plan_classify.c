@@ -13,6 +13,7 @@
 #include "test.h"
 
 #include "stability/lcp.h" /* the LCP solver, driven directly by the Gauss tests */
+#include "stability/lcp_sys.h"
 
 #define PI 3.14159265358979323846
 

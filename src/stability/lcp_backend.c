@@ -32,27 +32,32 @@
  * workspace has failed, a test that cannot reuse goes to the LP too
  * (a scratch run would fail again, at the full pivot limit). Skipped tests
  * are counted in info->lcp_skips; verdicts never depend on the policy.
+ * The thresholds above (1e-9 W, 1e-6 W, the reuse pivot limit, the
+ * back-off cap) are fields of us_LcpSettings (lcp.h), defaults unless a
+ * workspace is made by us_lcp_backend_create with others. A contact with
+ * mu = +inf is never clipped into a cone, and its dual cone is the ray
+ * a_t = 0, a_n >= 0.
  */
+#include "lcp_backend.h"
+
 #include "lcp.h"
+#include "lcp_sys.h"
 #include "stability.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
-#define REUSE_PIVOTS 1000 /* pivot limit of a reused run: this + n / 4 */
-#define EQ_TOL 1e-9       /* stable: net wrench below this (units of W) */
-#define UNSTABLE_TOL 1e-6 /* frictionless unstable: net wrench above this */
-#define MAX_BACKOFF 20    /* at most 2^19 - 1 tests skipped after a failure */
-
 typedef struct LcpWs {
   const us_Structure *s;
   us_StabilitySettings set;
+  us_LcpSettings lset; /* limits and tolerances (lcp.h) */
   int reuse; /* the reuse backend */
   int valid; /* lcp holds the solution of the last sub-assembly */
   us_LcpSys sys;
   us_Lcp lcp;
   int *idx;   /* [2 ncontact + 1] */
+  unsigned char *cmark; /* [ncontact + 1] contacts listed, kept zero */
   void *lpws; /* CLP workspace, created on the first fallback */
   int last_body;
   int fails;          /* failed LCP runs (or seeds) in a row, lcp-reuse */
@@ -67,6 +72,7 @@ static void lcp_destroy(void *ws) {
   us_lcp_sys_free(&w->sys);
   if (w->lpws) us_backend_clp.destroy(w->lpws);
   us_free(w->idx);
+  us_free(w->cmark);
   us_free(w);
 }
 
@@ -74,15 +80,16 @@ static int lcp_setup(LcpWs *w, const us_Structure *s) {
   if (us_lcp_sys_init(&w->sys, s)) return -1;
   us_LcpOps ops = us_lcp_sys_ops(&w->sys);
   if (us_lcp_init(&w->lcp, 2 * s->ncontact, &ops)) return -1;
+  us_lcp_configure(&w->lcp, &w->lset);
   for (int c = 0; c < s->ncontact; c++)
     if (s->contacts[c].mu > 0) us_lcp_set_friction(&w->lcp, 2 * c + 1, 2 * c, s->contacts[c].mu);
-  w->lcp.max_pivots = w->set.max_pivots;
   w->idx = us_malloc((size_t)(2 * s->ncontact + 1) * sizeof(int));
-  return w->idx ? 0 : -1;
+  w->cmark = us_calloc((size_t)s->ncontact + 1, 1);
+  return w->idx && w->cmark ? 0 : -1;
 }
 
-static void *create(const us_Structure *s, const us_StabilitySettings *set, int reuse,
-                    us_Error *err) {
+void *us_lcp_backend_create(const us_Structure *s, const us_StabilitySettings *set,
+                            const us_LcpSettings *lcp, int reuse, us_Error *err) {
   if (s->dim != 2) {
     us_error_set(err, US_ERR_USAGE, "the LCP backends support 2D structures only");
     return NULL;
@@ -91,6 +98,8 @@ static void *create(const us_Structure *s, const us_StabilitySettings *set, int 
   if (w) {
     w->s = s;
     w->set = *set;
+    w->lset = lcp ? *lcp : us_lcp_default_settings();
+    if (set->max_pivots > 0) w->lset.max_pivots = set->max_pivots; /* the user's limit */
     w->reuse = reuse;
     w->last_body = -1;
   }
@@ -103,11 +112,11 @@ static void *create(const us_Structure *s, const us_StabilitySettings *set, int 
 }
 
 static void *create_scratch(const us_Structure *s, const us_StabilitySettings *set, us_Error *err) {
-  return create(s, set, 0, err);
+  return us_lcp_backend_create(s, set, NULL, 0, err);
 }
 
 static void *create_reuse(const us_Structure *s, const us_StabilitySettings *set, us_Error *err) {
-  return create(s, set, 1, err);
+  return us_lcp_backend_create(s, set, NULL, 1, err);
 }
 
 /* ------------------------------------------------------ mapping the test */
@@ -147,12 +156,12 @@ static us_LcpResult remove_bodies(LcpWs *w, const int *removed, int nremoved) {
     y->present[b] = 0;
     for (int q = y->adj_start[b]; q < y->adj_start[b + 1]; q++) {
       int c = y->adj[q];
-      if (!w->lcp.live[2 * c] || y->cmark[c]) continue;
-      y->cmark[c] = 1;
+      if (!w->lcp.live[2 * c] || w->cmark[c]) continue;
+      w->cmark[c] = 1;
       k += contact_indices(w, c, w->idx + k);
     }
   }
-  for (int j = 0; j < k; j++) y->cmark[w->idx[j] >> 1] = 0;
+  for (int j = 0; j < k; j++) w->cmark[w->idx[j] >> 1] = 0;
   return k ? us_lcp_fade(&w->lcp, w->idx, k) : US_LCP_SOLVED;
 }
 
@@ -185,14 +194,17 @@ static int prepare(LcpWs *w, const us_EqSystem *sys, const int *removed, int nre
 
 /* --------------------------------------------------------------- verdict */
 
-/* Clip round-off: normal forces >= 0, frictions inside their cones. */
+/* Clip round-off: normal forces >= 0, frictions inside their cones (a
+ * friction with mu = +inf is free: nothing to clip, and inf * 0 must not
+ * turn it into NaN). */
 static void clip_forces(LcpWs *w, const us_EqSystem *sys) {
   double *f = w->lcp.f;
   for (int ci = 0; ci < sys->ncontact; ci++) {
     int c = sys->contact[ci];
     if (f[2 * c] < 0) f[2 * c] = 0.0;
-    double lim = sys->mu[ci] * f[2 * c];
     if (w->lcp.kind[2 * c + 1] != US_LCP_FRICTION) f[2 * c + 1] = 0.0;
+    if (isinf(sys->mu[ci])) continue;
+    double lim = sys->mu[ci] * f[2 * c];
     f[2 * c + 1] = US_MAX(-lim, US_MIN(lim, f[2 * c + 1]));
   }
 }
@@ -224,7 +236,7 @@ static int frictionless(const us_EqSystem *sys) {
  * tests skip the LCP, j the number of failures in a row. */
 static void record_failure(LcpWs *w) {
   if (!w->reuse) return;
-  w->fails = US_MIN(w->fails + 1, MAX_BACKOFF);
+  w->fails = US_MIN(w->fails + 1, w->lset.max_backoff);
   w->skip = (1L << (w->fails - 1)) - 1;
 }
 
@@ -293,6 +305,14 @@ static const char *result_name(us_LcpResult r) {
  * cone test is not multiplied by arbitrarily large internal forces.)
  * This covers toppling and lifting off; sliding (a_n = 0, a_t != 0) does
  * not pass and goes to the LP. */
+/* a_c in the dual cone of contact c's cone, up to the slack: a_n >= mu
+ * |a_t|; with mu = +inf (the cone is the half-space f_n >= 0) the dual
+ * cone is the ray a_t = 0, a_n >= 0. */
+static int in_dual_cone(double an, double at, double mu, double slack) {
+  if (isinf(mu)) return fabs(at) <= slack && an >= -slack;
+  return !(an < mu * fabs(at) - slack);
+}
+
 static int dual_cone_proof(LcpWs *w, const us_EqSystem *sys, double energy) {
   us_Lcp *p = &w->lcp;
   us_lcp_refresh(p);
@@ -305,9 +325,9 @@ static int dual_cone_proof(LcpWs *w, const us_EqSystem *sys, double energy) {
       at = p->a[2 * c + 1];
       fa += p->f[2 * c + 1] * at;
     }
-    if (an < sys->mu[ci] * fabs(at) - 1e-12) return 0;
+    if (!in_dual_cone(an, at, sys->mu[ci], w->lset.cone_slack)) return 0;
   }
-  return energy > US_MAX(fa, 0.0) + 1e-10;
+  return energy > US_MAX(fa, 0.0) + w->lset.energy_slack;
 }
 
 static us_Status decide(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, double *f,
@@ -316,14 +336,14 @@ static us_Status decide(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, d
   int worst = -1;
   double energy = 0.0;
   double res = us_lcp_sys_residual(&w->sys, w->lcp.f, &worst, &energy);
-  if (res <= EQ_TOL) {
+  if (res <= w->lset.eq_tol) {
     *verdict = US_STABLE;
     write_forces(w, sys, f);
     snprintf(note, note_sz, "LCP: equilibrium (residual %.1e)", res);
     return US_OK;
   }
   int fl = frictionless(sys);
-  if (res >= UNSTABLE_TOL && (fl || dual_cone_proof(w, sys, energy))) {
+  if (res >= w->lset.unstable_tol && (fl || dual_cone_proof(w, sys, energy))) {
     *verdict = US_UNSTABLE;
     w->last_body = worst;
     snprintf(note, note_sz, "LCP: bodies accelerate (net wrench %.2g W on '%s'%s)", res,
@@ -355,8 +375,9 @@ static us_Status lcp_solve(void *ws, const us_EqSystem *sys, const int *added, i
   /* a repair after a one-body change needs tens of pivots; one that runs
    * long (the fade of the removed contacts, then the run) is cut short
    * sooner than a scratch solve (the LP settles it and reseeds the LCP) */
-  int auto_limit = w->set.max_pivots <= 0;
-  if (auto_limit) w->lcp.max_pivots = can_reuse ? REUSE_PIVOTS + w->lcp.n / 4 : 0;
+  int auto_limit = w->lset.max_pivots <= 0;
+  if (auto_limit)
+    w->lcp.set.max_pivots = can_reuse ? w->lset.reuse_pivots + w->lcp.n / w->lset.reuse_pivots_div : 0;
   int reused = prepare(w, sys, removed, nremoved, restart);
   if (can_reuse && !reused && w->scratch_failed) { /* the fade failed: no scratch run */
     info->pivots += w->lcp.pivots - piv0;
@@ -364,7 +385,7 @@ static us_Status lcp_solve(void *ws, const us_EqSystem *sys, const int *added, i
     record_failure(w);
     return fallback(w, sys, verdict, f, info, "repair failed", note, note_sz, err);
   }
-  if (auto_limit && !reused) w->lcp.max_pivots = 0;
+  if (auto_limit && !reused) w->lcp.set.max_pivots = 0;
   us_LcpResult r = us_lcp_run(&w->lcp);
   info->pivots += w->lcp.pivots - piv0;
   info->reused += reused;

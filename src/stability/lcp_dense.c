@@ -16,7 +16,9 @@
  * H_11 - H_1L H_L1 / H_LL (the Schur complement of the last pivot of H).
  * Invariant: H (k x k, leading dimension cap, row-major) is K^-1.
  */
-#include "lcp.h"
+#include "lcp_dense.h"
+
+#include "core/core.h"
 
 #include <math.h>
 #include <string.h>
@@ -118,12 +120,12 @@ static void swap_slots(us_DenseInv *d, int s, int t) {
   }
 }
 
-int us_dinv_delete(us_DenseInv *d, int s) {
+int us_dinv_delete(us_DenseInv *d, int s, double tiny) {
   int L = d->k - 1;
   swap_slots(d, s, L);
   size_t ld = (size_t)d->cap;
   const double *hl = d->H + (size_t)L * ld;
-  int bad = !(fabs(hl[L]) > 1e-300) || !isfinite(hl[L]);
+  int bad = !(fabs(hl[L]) > tiny) || !isfinite(hl[L]);
   double ihll = bad ? 0.0 : 1.0 / hl[L];
   for (int i = 0; i < L; i++) {
     double *h = d->H + (size_t)i * ld;

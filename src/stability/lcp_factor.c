@@ -7,7 +7,9 @@
  * The system. Members are the clamped indices (row a_i = 0, i.e. the row
  * A_{i,members}) and the frictions at their bound (row f_t - s mu f_n = 0);
  * the unknowns are the members' forces. Slots 0..k-1 order the members
- * (p->mem, p->pos), as the solver sees them.
+ * (mem, pos), as the solver sees them. This file owns the member list and
+ * each member's row; the solver says which row a member brings when it
+ * joins, and gets back the members a refactorization found dependent.
  *
  * Block LU (Gill, Murray, Saunders and Wright's bordering, as in block-LU
  * updates of the simplex basis). At a refactorization the members become
@@ -25,24 +27,22 @@
  * the border and O(m^2) with S^-1. The Schur pivot of an append equals the
  * pivot of K itself (alpha - v^T K^-1 u), so tiny-pivot refusals mean what
  * they meant with a dense inverse.
- * When the border grows past `limit` items the members are refactorized;
+ * When the border grows past `border_limit` items (or the changes since
+ * the last refactorization past update_per_member * k + update_base) the
+ * members are refactorized;
  * while the base is empty every member is an ADD item and S^-1 = K^-1
  * (small problems never refactorize).
  * Invariants: bpos[i] >= 0 (base slot) or ipos[i] >= 0 (border item) for
  * each member i, never both; a base slot whose member left is `gone` and
  * has a DEL item; the dense inverse has one row per item, in item order.
  */
-#include "lcp.h"
+#include "lcp_factor.h"
+
+#include "core/core.h"
 
 #include <math.h>
 #include <string.h>
 #include <suitesparse/klu.h>
-
-/* A pivot of the fresh LU below this (rows scaled to max 1) marks its
- * member as dependent on the others. Far below the solver's refusal
- * threshold on arrival (tol_piv relative), so that a member accepted once
- * is not deferred at the next refactorization and driven in again. */
-#define TINY_U 1e-9
 
 typedef struct Klu {
   klu_common c;
@@ -60,20 +60,35 @@ static void klu_allocator(void) {
 
 /* ------------------------------------------------------------ life cycle */
 
-int us_lcp_fac_init(us_Lcp *p) {
-  us_LcpFactor *F = &p->fac;
+us_LcpFactorSettings us_lcp_factor_default_settings(void) {
+  us_LcpFactorSettings s = {64, 4, 64, 1e-9, 1e-300};
+  return s;
+}
+
+int us_lcp_fac_init(us_LcpFactor *F, int n, const us_LcpOps *ops, const us_LcpFactorSettings *set) {
   memset(F, 0, sizeof *F);
   klu_allocator();
-  size_t n = (size_t)(p->n > 0 ? p->n : 1);
-  F->bpos = us_malloc(n * sizeof(int));
-  F->ipos = us_malloc(n * sizeof(int));
+  F->n = n;
+  F->ops = *ops;
+  F->set = set ? *set : us_lcp_factor_default_settings();
+  size_t m = (size_t)(n > 0 ? n : 1);
+  F->pos = us_malloc(m * sizeof(int));
+  F->row = us_calloc(m, 1);
+  F->bcoef = us_calloc(m, sizeof(double));
+  F->bnorm = us_malloc(m * sizeof(int));
+  F->bound_of = us_malloc(m * sizeof(int));
+  F->bpos = us_malloc(m * sizeof(int));
+  F->ipos = us_malloc(m * sizeof(int));
+  F->col = us_calloc(m, sizeof(double));
+  F->out = us_malloc(m * sizeof(int));
   Klu *K = us_calloc(1, sizeof *K);
   F->klu = K;
-  if (!F->bpos || !F->ipos || !K) return -1;
-  for (int i = 0; i < p->n; i++) F->bpos[i] = F->ipos[i] = -1;
+  if (!F->pos || !F->row || !F->bcoef || !F->bnorm || !F->bound_of || !F->bpos || !F->ipos || !F->col ||
+      !F->out || !K)
+    return -1;
+  for (int i = 0; i < n; i++) F->pos[i] = F->bound_of[i] = F->bpos[i] = F->ipos[i] = -1;
   klu_defaults(&K->c);
-  F->limit = 64;
-  return 0;
+  return us_lcp_fac_reserve(F, 8);
 }
 
 static void free_base(us_LcpFactor *F) {
@@ -102,8 +117,7 @@ static void free_item(us_LcpFactor *F, int b) {
 }
 
 /* Empty the border and the base; the members stay (slots unchanged). */
-static void clear(us_Lcp *p) {
-  us_LcpFactor *F = &p->fac;
+static void clear(us_LcpFactor *F) {
   for (int b = 0; b < F->m; b++) {
     if (F->item[b] >= 0) F->ipos[F->item[b]] = -1;
     free_item(F, b);
@@ -116,43 +130,45 @@ static void clear(us_Lcp *p) {
   free_base(F);
 }
 
-void us_lcp_fac_free(us_Lcp *p) {
-  us_LcpFactor *F = &p->fac;
-  if (F->bpos && F->ipos) clear(p);
-  us_free(F->klu);
-  us_free(F->bpos);
-  us_free(F->ipos);
-  us_free(F->item);
-  us_free(F->y);
-  us_free(F->vi);
-  us_free(F->vx);
-  us_free(F->vn);
-  us_free(F->w);
-  us_free(F->uc);
-  us_free(F->vr);
+void us_lcp_fac_free(us_LcpFactor *F) {
+  if (F->bpos && F->ipos) clear(F);
+  void *arrs[] = {F->klu, F->mem, F->pos,  F->row, F->bcoef, F->bnorm, F->bound_of, F->bpos, F->ipos,
+                  F->item, F->y,  F->vi,   F->vx,  F->vn,    F->w,        F->uc,   F->vr,
+                  F->col,  F->out};
+  for (size_t i = 0; i < sizeof arrs / sizeof arrs[0]; i++) us_free(arrs[i]);
   us_dinv_free(&F->S);
   memset(F, 0, sizeof *F);
 }
 
-void us_lcp_fac_reset(us_Lcp *p) {
-  clear(p);
-  p->k = 0;
+/* The row of member idx (bound_normal < 0: clamped). */
+static void set_row(us_LcpFactor *F, int idx, int bound_normal, double coef) {
+  F->row[idx] = bound_normal < 0 ? US_LCP_ROW_CLAMP : US_LCP_ROW_BOUND;
+  if (bound_normal < 0) return;
+  F->bcoef[idx] = coef;
+  F->bnorm[idx] = bound_normal;
+  F->bound_of[bound_normal] = idx;
 }
 
-/* Room for `need` members (slot arrays and the solver's slot scratch). */
-int us_lcp_fac_reserve(us_Lcp *p, int need) {
-  if (need <= p->cap) return 0;
-  int cap = US_MAX(US_MAX(need, 2 * p->cap), 8);
-  double **vecs[3] = {&p->dfm, &p->r, &p->e};
-  for (int v = 0; v < 3; v++) {
-    double *x = us_realloc(*vecs[v], (size_t)cap * sizeof(double));
-    if (!x) return -1;
-    *vecs[v] = x;
-  }
-  int *mem = us_realloc(p->mem, (size_t)cap * sizeof(int));
+/* Index c is no longer a member: forget its row. */
+static void unset_row(us_LcpFactor *F, int c) {
+  if (F->row[c] == US_LCP_ROW_BOUND) F->bound_of[F->bnorm[c]] = -1;
+  F->row[c] = US_LCP_ROW_NONE;
+  F->pos[c] = -1;
+}
+
+void us_lcp_fac_reset(us_LcpFactor *F) {
+  clear(F);
+  for (int s = 0; s < F->k; s++) unset_row(F, F->mem[s]);
+  F->k = 0;
+}
+
+int us_lcp_fac_reserve(us_LcpFactor *F, int need) {
+  if (need <= F->cap) return 0;
+  int cap = US_MAX(US_MAX(need, 2 * F->cap), 8);
+  int *mem = us_realloc(F->mem, (size_t)cap * sizeof(int));
   if (!mem) return -1;
-  p->mem = mem;
-  p->cap = cap;
+  F->mem = mem;
+  F->cap = cap;
   return 0;
 }
 
@@ -225,19 +241,18 @@ static double item_row_dot(const us_LcpFactor *F, int b, const double *x) {
 
 /* ---------------------------------------------------------------- solves */
 
-void us_lcp_fac_solve(us_Lcp *p, const double *r, double *x) {
-  us_LcpFactor *F = &p->fac;
+void us_lcp_fac_solve(us_LcpFactor *F, const double *r, double *x) {
   double *x0 = F->x0;
   if (F->n0 > 0) {
     memset(x0, 0, (size_t)F->n0 * sizeof(double));
-    for (int s = 0; s < p->k; s++) {
-      int c = p->mem[s];
+    for (int s = 0; s < F->k; s++) {
+      int c = F->mem[s];
       if (F->bpos[c] >= 0) x0[F->bpos[c]] = r[s];
     }
     (void)base_solve(F, x0); /* cannot fail once factorized */
   }
   for (int b = 0; b < F->m; b++) {
-    double rb = F->item[b] >= 0 ? r[p->pos[F->item[b]]] : 0.0;
+    double rb = F->item[b] >= 0 ? r[F->pos[F->item[b]]] : 0.0;
     F->w[b] = rb - (F->n0 > 0 ? item_row_dot(F, b, x0) : 0.0);
   }
   us_dinv_mult(&F->S, F->w, F->uc);
@@ -247,8 +262,8 @@ void us_lcp_fac_solve(us_Lcp *p, const double *r, double *x) {
     if (xb != 0.0 && y)
       for (int j = 0; j < F->n0; j++) x0[j] -= xb * y[j];
   }
-  for (int s = 0; s < p->k; s++) {
-    int c = p->mem[s];
+  for (int s = 0; s < F->k; s++) {
+    int c = F->mem[s];
     x[s] = F->bpos[c] >= 0 ? x0[F->bpos[c]] : F->uc[F->ipos[c]];
   }
 }
@@ -258,11 +273,10 @@ void us_lcp_fac_solve(us_Lcp *p, const double *r, double *x) {
 /* Border entries of a new item q with base column y_q and base row
  * (qi, qx, qn) (NULL qi: the DEL row e_{qdel}); du / dv give the corner
  * entries D(b, q) / D(q, b) of ADD items (NULL: zero). */
-static void border_entries(us_Lcp *p, const double *yq, const int *qi, const double *qx, int qn,
+static void border_entries(us_LcpFactor *F, const double *yq, const int *qi, const double *qx, int qn,
                            int qdel, const double *du, const double *dv) {
-  us_LcpFactor *F = &p->fac;
   for (int b = 0; b < F->m; b++) {
-    int add = F->item[b] >= 0, sb = add ? p->pos[F->item[b]] : -1;
+    int add = F->item[b] >= 0, sb = add ? F->pos[F->item[b]] : -1;
     double vb_yq = yq ? item_row_dot(F, b, yq) : 0.0;
     double vq_yb = 0.0;
     if (F->y[b]) vq_yb = qi ? sparse_dot(qi, qx, qn, F->y[b]) : F->y[b][qdel];
@@ -292,28 +306,27 @@ static int push_item(us_LcpFactor *F, int code, double *yq, int *qi, double *qx,
   return 0;
 }
 
-int us_lcp_fac_append(us_Lcp *p, int idx, const double *u, const double *v, double alpha,
-                      double tol) {
-  us_LcpFactor *F = &p->fac;
-  if (us_lcp_fac_reserve(p, p->k + 1) || reserve_item(F)) return -1;
+int us_lcp_fac_append(us_LcpFactor *F, int idx, int bound_normal, double coef, const double *u,
+                      const double *v, double alpha, double tol) {
+  if (us_lcp_fac_reserve(F, F->k + 1) || reserve_item(F)) return -1;
   /* base parts of u (dense solve) and v (kept sparse) */
   int nu = 0, nv = 0;
   int *qi = NULL;
   double *qx = NULL;
   if (F->n0 > 0) {
-    qi = us_malloc((size_t)p->k * 2 * sizeof(int));
-    qx = us_malloc((size_t)p->k * 2 * sizeof(double));
+    qi = us_malloc((size_t)F->k * 2 * sizeof(int));
+    qx = us_malloc((size_t)F->k * 2 * sizeof(double));
     if (!qi || !qx) {
       us_free(qi);
       us_free(qx);
       return -1;
     }
-    for (int s = 0; s < p->k; s++) { /* u entries first, at the back half */
-      int j = F->bpos[p->mem[s]];
+    for (int s = 0; s < F->k; s++) { /* u entries first, at the back half */
+      int j = F->bpos[F->mem[s]];
       if (j < 0) continue;
       if (u[s] != 0.0) {
-        qi[p->k + nu] = j;
-        qx[p->k + nu++] = u[s];
+        qi[F->k + nu] = j;
+        qx[F->k + nu++] = u[s];
       }
       if (v[s] != 0.0) {
         qi[nv] = j;
@@ -322,7 +335,7 @@ int us_lcp_fac_append(us_Lcp *p, int idx, const double *u, const double *v, doub
     }
   }
   int fail;
-  double *yq = base_column(F, qi ? qi + p->k : NULL, qx ? qx + p->k : NULL, nu, &fail);
+  double *yq = base_column(F, qi ? qi + F->k : NULL, qx ? qx + F->k : NULL, nu, &fail);
   if (fail) {
     us_free(qi);
     us_free(qx);
@@ -334,34 +347,38 @@ int us_lcp_fac_append(us_Lcp *p, int idx, const double *u, const double *v, doub
     double *tx = us_realloc(qx, (size_t)US_MAX(nv, 1) * sizeof(double));
     if (tx) qx = tx;
   }
-  border_entries(p, yq, qi, qx, nv, -1, u, v);
+  border_entries(F, yq, qi, qx, nv, -1, u, v);
   double a = alpha - (yq ? sparse_dot(qi, qx, nv, yq) : 0.0);
   int r = push_item(F, idx, yq, qi, qx, nv, a, tol);
   if (r) return r;
-  p->mem[p->k] = idx;
-  p->pos[idx] = p->k++;
+  us_lcp_fac_enlist(F, idx, bound_normal, coef);
   return 0;
 }
 
+void us_lcp_fac_enlist(us_LcpFactor *F, int idx, int bound_normal, double coef) {
+  F->mem[F->k] = idx;
+  F->pos[idx] = F->k++;
+  set_row(F, idx, bound_normal, coef);
+}
+
 /* Drop slot s from the slot list (the last member moves into s). */
-static void drop_slot(us_Lcp *p, int s) {
-  int L = p->k - 1, c = p->mem[s];
-  p->mem[s] = p->mem[L];
-  p->pos[p->mem[s]] = s;
-  p->pos[c] = -1;
-  p->k = L;
+static void drop_slot(us_LcpFactor *F, int s) {
+  int L = F->k - 1, c = F->mem[s];
+  F->mem[s] = F->mem[L];
+  F->pos[F->mem[s]] = s;
+  unset_row(F, c);
+  F->k = L;
 }
 
 /* A base member leaves: a DEL item. 0, 1 singular, -1 OOM. */
-static int delete_base(us_Lcp *p, int c) {
-  us_LcpFactor *F = &p->fac;
+static int delete_base(us_LcpFactor *F, int c) {
   if (reserve_item(F)) return -1;
   int i = F->bpos[c], fail;
   double one = 1.0;
   double *yq = base_column(F, &i, &one, 1, &fail);
   if (fail) return -1;
-  border_entries(p, yq, NULL, NULL, 0, i, NULL, NULL);
-  int r = push_item(F, -1 - i, yq, NULL, NULL, 0, -yq[i], 1e-300);
+  border_entries(F, yq, NULL, NULL, 0, i, NULL, NULL);
+  int r = push_item(F, -1 - i, yq, NULL, NULL, 0, -yq[i], F->set.singular_pivot);
   if (r) return r;
   F->gone[i] = 1;
   F->bpos[c] = -1;
@@ -370,7 +387,7 @@ static int delete_base(us_Lcp *p, int c) {
 
 /* An ADD item leaves the border. 0, or 1 if the rest looks singular. */
 static int delete_item(us_LcpFactor *F, int b) {
-  int L = F->m - 1, bad = us_dinv_delete(&F->S, b);
+  int L = F->m - 1, bad = us_dinv_delete(&F->S, b, F->set.singular_pivot);
   F->ipos[F->item[b]] = -1;
   free_item(F, b);
   if (b != L) {
@@ -390,45 +407,48 @@ static int delete_item(us_LcpFactor *F, int b) {
   return bad;
 }
 
-int us_lcp_fac_delete(us_Lcp *p, int s) {
-  us_LcpFactor *F = &p->fac;
-  int c = p->mem[s], r;
+int us_lcp_fac_delete(us_LcpFactor *F, int s, int *dep, int *ndep) {
+  int c = F->mem[s], r;
+  *ndep = 0;
   if (F->bpos[c] >= 0) {
-    r = delete_base(p, c);
+    r = delete_base(F, c);
     if (r < 0) return -1;
-    if (r > 0) clear(p); /* refused: rebuilt below */
+    if (r > 0) clear(F); /* refused: rebuilt below */
   } else {
     r = delete_item(F, F->ipos[c]);
   }
-  drop_slot(p, s);
-  if (r > 0) /* the rest looks singular: refactorize it from the members */
-    return us_lcp_fac_rebuild(p) < 0 ? -1 : 1;
+  drop_slot(F, s);
+  if (r > 0) { /* the rest looks singular: refactorize it from the members */
+    *ndep = us_lcp_fac_rebuild(F, dep);
+    return *ndep < 0 ? -1 : 1;
+  }
   return r;
 }
 
 /* ------------------------------------------------------ refactorization */
 
 /* Column j of K (member c in slot j) into (ri, rx); returns the count.
- * Clamped rows come from A's column through the operator. */
-static int k_column(us_Lcp *p, int c, int *ri, double *rx) {
+ * Clamped rows come from A's column through the operator, bound rows
+ * from their definition (1 at the friction, coef at its normal). */
+static int k_column(us_LcpFactor *F, int c, int *ri, double *rx) {
   double one = 1.0;
-  int nout = p->ops.apply(p->ops.ctx, &c, &one, 1, p->da, p->out), n = 0;
+  int nout = F->ops.apply(F->ops.ctx, &c, &one, 1, F->col, F->out), n = 0;
   for (int t = 0; t < nout; t++) {
-    int i = p->out[t];
-    if (p->live[i] && p->pos[i] >= 0 && p->state[i] == US_LCP_C && p->da[i] != 0.0) {
-      ri[n] = p->pos[i];
-      rx[n++] = p->da[i];
+    int i = F->out[t];
+    if (F->pos[i] >= 0 && F->row[i] == US_LCP_ROW_CLAMP && F->col[i] != 0.0) {
+      ri[n] = F->pos[i];
+      rx[n++] = F->col[i];
     }
-    p->da[i] = 0.0;
+    F->col[i] = 0.0;
   }
-  if (p->state[c] == US_LCP_BND) {
-    ri[n] = p->pos[c];
+  if (F->row[c] == US_LCP_ROW_BOUND) {
+    ri[n] = F->pos[c];
     rx[n++] = 1.0;
   }
-  int t = p->partner[c];
-  if (p->kind[c] == US_LCP_NORMAL && t >= 0 && p->pos[t] >= 0 && p->state[t] == US_LCP_BND) {
-    ri[n] = p->pos[t];
-    rx[n++] = -p->bsign[t] * p->mu[t];
+  int t = F->bound_of[c];
+  if (t >= 0) {
+    ri[n] = F->pos[t];
+    rx[n++] = F->bcoef[t];
   }
   for (int a = 1; a < n; a++) /* insertion sort by row: columns are short */
     for (int b = a; b > 0 && ri[b - 1] > ri[b]; b--) {
@@ -443,15 +463,15 @@ static int k_column(us_Lcp *p, int c, int *ri, double *rx) {
 }
 
 /* K over the members in compressed columns. 0 or -1 (OOM). */
-static int assemble(us_Lcp *p, int **Ap, int **Ai, double **Ax) {
-  int k = p->k, cap = 8 * k + 8, nnz = 0;
+static int assemble(us_LcpFactor *F, int **Ap, int **Ai, double **Ax) {
+  int k = F->k, cap = 8 * k + 8, nnz = 0;
   *Ap = us_malloc((size_t)(k + 1) * sizeof(int));
   *Ai = us_malloc((size_t)cap * sizeof(int));
   *Ax = us_malloc((size_t)cap * sizeof(double));
   if (!*Ap || !*Ai || !*Ax) return -1;
   (*Ap)[0] = 0;
   for (int j = 0; j < k; j++) {
-    int need = nnz + p->n + 2; /* a column lists at most n + 2 rows */
+    int need = nnz + F->n + 2; /* a column lists at most n + 2 rows */
     if (need > cap) {
       cap = US_MAX(2 * cap, need);
       int *ai = us_realloc(*Ai, (size_t)cap * sizeof(int));
@@ -460,7 +480,7 @@ static int assemble(us_Lcp *p, int **Ap, int **Ai, double **Ax) {
       if (ax) *Ax = ax;
       if (!ai || !ax) return -1;
     }
-    nnz += k_column(p, p->mem[j], *Ai + nnz, *Ax + nnz);
+    nnz += k_column(F, F->mem[j], *Ai + nnz, *Ax + nnz);
     (*Ap)[j + 1] = nnz;
   }
   return 0;
@@ -470,43 +490,42 @@ static int assemble(us_Lcp *p, int **Ap, int **Ai, double **Ax) {
  * row-scaled matrix <= tol; KLU keeps its column order, so U_jj belongs to
  * column Q[j]): (nearly) dependent on the others, as a tiny Schur pivot
  * would have shown on arrival. Their member indices go to out[]. */
-static int tiny_pivots(us_Lcp *p, Klu *K, double tol, int *out) {
+static int tiny_pivots(us_LcpFactor *F, Klu *K, double tol, int *out) {
   const double *ud = K->num->Udiag;
   int n = 0;
-  for (int j = 0; j < p->k; j++)
-    if (!(fabs(ud[j]) > tol)) out[n++] = p->mem[K->sym->Q[j]];
+  for (int j = 0; j < F->k; j++)
+    if (!(fabs(ud[j]) > tol)) out[n++] = F->mem[K->sym->Q[j]];
   return n;
 }
 
 /* Factorize K over the members as the new base. 0, -1 OOM, or the number
  * of members found (nearly) dependent, listed in bad[] (nothing kept). */
-static int factor(us_Lcp *p, int *bad) {
-  us_LcpFactor *F = &p->fac;
+static int factor(us_LcpFactor *F, int *bad) {
   Klu *K = F->klu;
-  int k = p->k, *Ap = NULL, *Ai = NULL, r = -1;
+  int k = F->k, *Ap = NULL, *Ai = NULL, r = -1;
   double *Ax = NULL;
-  clear(p);
+  clear(F);
   if (k == 0) return 0;
   F->bidx = us_malloc((size_t)k * sizeof(int));
   F->gone = us_calloc((size_t)k, 1);
   F->x0 = us_malloc((size_t)k * sizeof(double));
-  if (!F->bidx || !F->gone || !F->x0 || assemble(p, &Ap, &Ai, &Ax)) goto done;
+  if (!F->bidx || !F->gone || !F->x0 || assemble(F, &Ap, &Ai, &Ax)) goto done;
   K->sym = klu_analyze(k, Ap, Ai, &K->c);
   if (K->sym) K->num = klu_factor(Ap, Ai, Ax, K->sym, &K->c);
   if (!K->num) {
     if (K->c.status == KLU_SINGULAR) {
       int j = K->c.singular_col >= 0 && K->c.singular_col < k ? K->c.singular_col : k - 1;
-      bad[0] = p->mem[j];
+      bad[0] = F->mem[j];
       r = 1;
     }
     goto done;
   }
-  r = tiny_pivots(p, K, TINY_U, bad);
+  r = tiny_pivots(F, K, F->set.tiny_lu_pivot, bad);
   if (r) goto done;
   F->n0 = k;
   for (int j = 0; j < k; j++) {
-    F->bidx[j] = p->mem[j];
-    F->bpos[p->mem[j]] = j;
+    F->bidx[j] = F->mem[j];
+    F->bpos[F->mem[j]] = j;
   }
   F->refactors++;
 done:
@@ -517,29 +536,27 @@ done:
   return r;
 }
 
-int us_lcp_fac_rebuild(us_Lcp *p) {
+int us_lcp_fac_rebuild(us_LcpFactor *F, int *dep) {
+  int total = 0;
   for (;;) {
-    int nbad = factor(p, p->didx);
-    if (nbad <= 0) return nbad;
-    /* (nearly) dependent members: deferred, as if refused on arrival */
-    for (int j = 0; j < nbad; j++) {
-      int c = p->didx[j];
-      drop_slot(p, p->pos[c]);
-      p->state[c] = US_LCP_FREE;
-      p->deferred++;
-    }
+    int nbad = factor(F, dep + total);
+    if (nbad < 0) return -1;
+    if (nbad == 0) return total;
+    /* (nearly) dependent members leave, as if refused on arrival */
+    for (int j = 0; j < nbad; j++) drop_slot(F, F->pos[dep[total + j]]);
+    total += nbad;
   }
 }
 
-int us_lcp_fac_stale(const us_Lcp *p) {
-  return p->fac.m > p->fac.limit || p->fac.updates > 4L * p->k + 64;
+int us_lcp_fac_stale(const us_LcpFactor *F) {
+  return F->m > F->set.border_limit ||
+         F->updates > (long)F->set.update_per_member * F->k + F->set.update_base;
 }
 
 /* Bytes held by the factorization (for benchmarks and memory reports):
  * the LU entries (value and index) with the off-diagonal blocks, the
  * border columns Y and rows, and the dense inverse of the border. */
-double us_lcp_fac_bytes(const us_Lcp *p, long *lu_nnz) {
-  const us_LcpFactor *F = &p->fac;
+double us_lcp_fac_bytes(const us_LcpFactor *F, long *lu_nnz) {
   const Klu *K = F->klu;
   long nnz = 0;
   if (K && K->num) nnz = (long)K->num->lnz + K->num->unz + K->num->nzoff;

@@ -18,7 +18,7 @@
  * M^-1 = 0. A body with zero inertia (a point body whose contacts all act
  * at its centre) gets no rotational freedom: its torque rows are zero.
  */
-#include "lcp.h"
+#include "lcp_sys.h"
 
 #include <math.h>
 #include <string.h>
