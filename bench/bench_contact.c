@@ -45,7 +45,7 @@ static int run(const char *name, us_Structure *s, us_Error *err) {
   us_ContactSettings cs = {s->contact_tol};
   for (int k = 0; k < 3 && st == US_OK; k++) {
     t0 = us_now();
-    st = us_detect_contacts(s, &cs, err);
+    st = us_structure_detect_contacts(s, &cs, err);
     double t = us_now() - t0;
     best = t < best ? t : best;
   }

@@ -53,11 +53,25 @@ static int inside(const us_Structure *s, int i, us_Vec2 p) {
   return us_point_polygon_depth(p, b->verts, b->nvert) > 0;
 }
 
+/* A body's own size (bounding-box diagonal). */
+static double body_size(const us_Structure *s, int i) {
+  return us_poly_diameter(s->bodies[i].verts, s->bodies[i].nvert);
+}
+
+/* The documented tolerance of contact k: the smaller body's size * 1e-6
+ * (the body's own against the ground) unless contact_tol is set. */
+static double pair_tol(const us_Structure *s, const us_Contact *c) {
+  if (s->contact_tol > 0) return s->contact_tol;
+  double sz = body_size(s, c->b);
+  if (c->a != US_GROUND) sz = US_MIN(sz, body_size(s, c->a));
+  return 1e-6 * sz;
+}
+
 /* Generic properties of every contact (see the file comment). */
 static int contacts_sane(const us_Structure *s) {
-  double tol = s->contact_tol, step = 1e-3 * s->scale;
   for (int k = 0; k < s->ncontact; k++) {
     const us_Contact *c = &s->contacts[k];
+    double tol = pair_tol(s, c), step = 1e3 * tol;
     us_Vec2 p = us_v2(c->p[0], c->p[1]), n = us_v2(c->n[0], c->n[1]);
     int ok = fabs(us_v2_norm(n) - 1.0) < 1e-12 && c->mu >= 0 && c->b >= 0 && c->a != c->b;
     for (int side = 0; side < 2; side++) {
@@ -457,7 +471,7 @@ static void deterministic(void) {
   CHECK(copy);
   memcpy(copy, s->contacts, (size_t)n * sizeof *copy);
   us_ContactSettings cs = {0};
-  us_Status st = us_detect_contacts(s, &cs, &err);
+  us_Status st = us_structure_detect_contacts(s, &cs, &err);
   int same =
       st == US_OK && s->ncontact == n && !memcmp(copy, s->contacts, (size_t)n * sizeof *copy);
   us_free(copy);
@@ -499,7 +513,8 @@ static void arch(void) {
   us_structure_free(s);
 }
 
-/* Clockwise input to a direct call: outward normals are still right. */
+/* Clockwise input: the structure-level call orients it (outward normals
+ * are right); detection alone, which only reads, refuses it. */
 static void direct_call_clockwise(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
@@ -507,7 +522,12 @@ static void direct_call_clockwise(void) {
   CHECK(add_poly(s, "cw", 4, cw, &err) == 0);
   CHECK(add_box(s, "top", 0, 1, 1, 2, &err) == 1);
   us_ContactSettings cs = {1e-6};
-  CHECK_OK(us_detect_contacts(s, &cs, &err), &err);
+  us_ContactList l = {0};
+  CHECK(us_detect_contacts(s, &cs, &l, &err) == US_ERR_INPUT);
+  CHECK(strstr(err.msg, "body 'cw'") != NULL);
+  CHECK_INT(l.n, ==, 0);
+  us_contact_list_free(&l);
+  CHECK_OK(us_structure_detect_contacts(s, &cs, &err), &err);
   CHECK_INT(count_pair(s, 0, 1), ==, 2);
   CHECK_NEAR(normal_from(s, find_at(s, 0, 1, 0, 1), 0).y, 1.0, 1e-12);
   us_structure_free(s);

@@ -1,6 +1,8 @@
 /* Broad phase of contact detection: sort and sweep over axis-aligned boxes.
  *
- * Every polygon body gets its box inflated by tol. The boxes are sorted by
+ * Every polygon body gets its box inflated by its own tolerance (at least
+ * the tolerance of any pair it belongs to, which is the smaller of the two
+ * bodies' own). The boxes are sorted by
  * their low end along the axis on which the box centres spread most (x for
  * a wide wall, y for a tall column), ties broken by body index so the order
  * is deterministic; a sweep then compares each box only with the following
@@ -34,14 +36,15 @@ static int pair_cmp(const void *pa, const void *pb) {
 }
 
 /* Fill boxes of polygon bodies; returns their count. */
-static int make_boxes(const us_Structure *s, double tol, Box *bx) {
+static int make_boxes(const us_Structure *s, const double *tol, Box *bx) {
   int n = 0;
   for (int i = 0; i < s->nbody; i++) {
     const us_Body *b = &s->bodies[i];
     if (b->nvert < 3) continue;
     double bb[4];
     us_poly_bbox(b->verts, b->nvert, bb);
-    bx[n] = (Box){{bb[0] - tol, bb[1] - tol}, {bb[2] + tol, bb[3] + tol}, i};
+    double t = tol[i];
+    bx[n] = (Box){{bb[0] - t, bb[1] - t}, {bb[2] + t, bb[3] + t}, i};
     n++;
   }
   return n;
@@ -79,8 +82,8 @@ static int sweep(const us_Structure *s, const Box *bx, int n, int ax, us_BodyPai
   return 0;
 }
 
-us_Status us_broadphase(const us_Structure *s, double tol, us_BodyPair **pairs, int *npairs,
-                        us_Error *err) {
+us_Status us_broadphase(const us_Structure *s, const double *tol, us_BodyPair **pairs,
+                        int *npairs, us_Error *err) {
   *pairs = NULL;
   *npairs = 0;
   int cap = 0;
