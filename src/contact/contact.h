@@ -39,12 +39,25 @@ int us_cand_push(us_CandList *l, int a, int b, us_Vec2 p, us_Vec2 n);
 us_Status us_broadphase(const us_Structure *s, const double *tol, us_BodyPair **pairs,
                         int *npairs, us_Error *err);
 
+/* One detection run: the structure, each body's own tolerance and each
+ * polygon's edge index, built on first use with the body's own tolerance
+ * as padding (at least any pair tolerance of the body), kept to the end. */
+typedef struct us_Detect {
+  const us_Structure *s;
+  const double *tol;
+  us_EdgeGrid *grid;
+  unsigned char *built;
+} us_Detect;
+
+/* Body i's edge index; NULL when out of memory. */
+us_EdgeGrid *us_detect_grid(us_Detect *d, int i);
+
 /* Interpenetration of bodies i and j beyond tol: US_ERR_INPUT naming both. */
-us_Status us_pair_overlap(const us_Structure *s, int i, int j, double tol, us_Error *err);
+us_Status us_pair_overlap(us_Detect *d, int i, int j, double tol, us_Error *err);
 
 /* Vertex-on-edge contacts between i and j, duplicates merged, appended to
  * out in a deterministic order. */
-us_Status us_pair_contacts(const us_Structure *s, int i, int j, double tol, us_CandList *out,
+us_Status us_pair_contacts(us_Detect *d, int i, int j, double tol, us_CandList *out,
                            us_Error *err);
 
 #endif

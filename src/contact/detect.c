@@ -47,17 +47,31 @@ static int ground_contacts(const us_Structure *s, const double *tol, us_CandList
   return 0;
 }
 
+us_EdgeGrid *us_detect_grid(us_Detect *d, int i) {
+  const us_Body *b = &d->s->bodies[i];
+  if (!d->built[i] && us_edge_grid_init(&d->grid[i], b->verts, b->nvert, d->tol[i])) return NULL;
+  d->built[i] = 1;
+  return &d->grid[i];
+}
+
 static us_Status pair_phase(const us_Structure *s, const double *tol, us_CandList *out,
                             us_Error *err) {
   us_BodyPair *pairs = NULL;
-  int np = 0;
-  us_Status st = us_broadphase(s, tol, &pairs, &np, err);
+  int np = 0, nb = s->nbody > 0 ? s->nbody : 1;
+  us_Detect d = {s, tol, us_calloc((size_t)nb, sizeof(us_EdgeGrid)), us_calloc((size_t)nb, 1)};
+  us_Status st = d.grid && d.built
+                     ? us_broadphase(s, tol, &pairs, &np, err)
+                     : us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
   for (int k = 0; !st && k < np; k++) {
     int i = pairs[k].i, j = pairs[k].j;
     double t = US_MIN(tol[i], tol[j]);
-    st = us_pair_overlap(s, i, j, t, err);
-    if (!st) st = us_pair_contacts(s, i, j, t, out, err);
+    st = us_pair_overlap(&d, i, j, t, err);
+    if (!st) st = us_pair_contacts(&d, i, j, t, out, err);
   }
+  for (int i = 0; d.built && i < s->nbody; i++)
+    if (d.built[i]) us_edge_grid_free(&d.grid[i]);
+  us_free(d.grid);
+  us_free(d.built);
   us_free(pairs);
   return st;
 }

@@ -106,4 +106,29 @@ typedef enum us_PolyDefect {
 } us_PolyDefect;
 us_PolyDefect us_poly_check_simple(const double *xy, int n, double tol, int *i, int *j);
 
+/* Edge index of one polygon (edgegrid.c): the edges whose bounding boxes,
+ * padded by `pad`, meet a query box, and point in polygon, at a cost that
+ * follows the edges near the query instead of all n. Polygons of at most
+ * US_EDGE_GRID_MIN edges are scanned whole. The polygon array must outlive
+ * the index. Not thread-safe (queries write the result buffer). */
+#define US_EDGE_GRID_MIN 32
+typedef struct us_EdgeGrid {
+  const double *xy;
+  int n;
+  double pad;
+  double lo[2], h[2]; /* grid origin and cell sizes */
+  int nx, ny;
+  int *start, *items; /* cell c lists items[start[c] .. start[c+1]); NULL: no grid */
+  int *stamp, qid;    /* per-edge mark of the last query that took it */
+  int *out, nout;     /* result of the last query, increasing edge indices */
+} us_EdgeGrid;
+/* 0, or -1 when out of memory (nothing to free then). */
+int us_edge_grid_init(us_EdgeGrid *g, const double *xy, int n, double pad);
+void us_edge_grid_free(us_EdgeGrid *g);
+/* Edges whose padded boxes meet box {xmin, ymin, xmax, ymax}: their count,
+ * indices in g->out, increasing. */
+int us_edge_grid_query(us_EdgeGrid *g, const double box[4]);
+/* Point in polygon for a point not within pad of the boundary (1 inside). */
+int us_edge_grid_inside(us_EdgeGrid *g, us_Vec2 q);
+
 #endif
