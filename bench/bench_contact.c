@@ -42,7 +42,7 @@ static int run(const char *name, us_Structure *s, us_Error *err) {
     return 1;
   }
   double best = 1e30;
-  us_ContactSettings cs = {s->contact_tol};
+  us_ContactSettings cs = {s->contact_tol, 0};
   for (int k = 0; k < 3 && st == US_OK; k++) {
     t0 = us_now();
     st = us_structure_detect_contacts(s, &cs, err);

@@ -521,7 +521,7 @@ static void direct_call_clockwise(void) {
   double cw[8] = {0, 0, 0, 1, 1, 1, 1, 0};
   CHECK(add_poly(s, "cw", 4, cw, &err) == 0);
   CHECK(add_box(s, "top", 0, 1, 1, 2, &err) == 1);
-  us_ContactSettings cs = {1e-6};
+  us_ContactSettings cs = {1e-6, 0};
   us_ContactList l = {0};
   CHECK(us_detect_contacts(s, &cs, &l, &err) == US_ERR_INPUT);
   CHECK(strstr(err.msg, "body 'cw'") != NULL);

@@ -210,6 +210,10 @@ typedef struct us_ContactSettings {
    * 1e-6 times the smaller of the two bodies' bounding-box diagonals (a
    * body against the ground: its own diagonal), with no absolute floor. */
   double tol;
+  /* 1: the slow reference for tests: every pair of bodies, every edge
+   * against every vertex, duplicates against every earlier contact
+   * (quadratic); the contacts must be the same as with 0 (default). */
+  int reference;
 } us_ContactSettings;
 
 /* Detected contacts: a, b, p and n filled (normal from a into b); mu is -1

@@ -179,3 +179,22 @@ us_Status us_broadphase(const us_Structure *s, const double *tol, us_BodyPair **
   qsort(*pairs, (size_t)*npairs, sizeof **pairs, pair_cmp);
   return US_OK;
 }
+
+us_Status us_broadphase_all(const us_Structure *s, us_BodyPair **pairs, int *npairs,
+                            us_Error *err) {
+  int cap = 0;
+  *pairs = NULL;
+  *npairs = 0;
+  for (int i = 0; i < s->nbody; i++)
+    for (int j = i + 1; j < s->nbody; j++) {
+      const us_Body *a = &s->bodies[i], *b = &s->bodies[j];
+      if (a->nvert < 3 || b->nvert < 3 || (a->fixed && b->fixed)) continue;
+      if (push_pair(pairs, npairs, &cap, i, j)) {
+        us_free(*pairs);
+        *pairs = NULL;
+        *npairs = 0;
+        return us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
+      }
+    }
+  return US_OK;
+}

@@ -38,12 +38,16 @@ int us_cand_push(us_CandList *l, int a, int b, us_Vec2 p, us_Vec2 n);
  * and sweep along the axis where the box centres spread most. */
 us_Status us_broadphase(const us_Structure *s, const double *tol, us_BodyPair **pairs,
                         int *npairs, us_Error *err);
+/* The reference: every pair of polygon bodies but two fixed ones. */
+us_Status us_broadphase_all(const us_Structure *s, us_BodyPair **pairs, int *npairs,
+                            us_Error *err);
 
 /* One detection run: the structure, each body's own tolerance and each
  * polygon's edge index, built on first use with the body's own tolerance
  * as padding (at least any pair tolerance of the body), kept to the end. */
 typedef struct us_Detect {
   const us_Structure *s;
+  int reference; /* us_ContactSettings.reference: no index, no filter */
   const double *tol;
   us_EdgeGrid *grid;
   unsigned char *built;

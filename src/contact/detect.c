@@ -49,19 +49,25 @@ static int ground_contacts(const us_Structure *s, const double *tol, us_CandList
 
 us_EdgeGrid *us_detect_grid(us_Detect *d, int i) {
   const us_Body *b = &d->s->bodies[i];
-  if (!d->built[i] && us_edge_grid_init(&d->grid[i], b->verts, b->nvert, d->tol[i])) return NULL;
+  double pad = d->reference ? INFINITY : d->tol[i];
+  if (!d->built[i] && us_edge_grid_init(&d->grid[i], b->verts, b->nvert, pad)) return NULL;
   d->built[i] = 1;
   return &d->grid[i];
 }
 
-static us_Status pair_phase(const us_Structure *s, const double *tol, us_CandList *out,
-                            us_Error *err) {
+static us_Status pair_phase(const us_Structure *s, int reference, const double *tol,
+                            us_CandList *out, us_Error *err) {
   us_BodyPair *pairs = NULL;
   int np = 0, nb = s->nbody > 0 ? s->nbody : 1;
-  us_Detect d = {s, tol, us_calloc((size_t)nb, sizeof(us_EdgeGrid)), us_calloc((size_t)nb, 1)};
-  us_Status st = d.grid && d.built
-                     ? us_broadphase(s, tol, &pairs, &np, err)
-                     : us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
+  us_Detect d = {s, reference, tol, us_calloc((size_t)nb, sizeof(us_EdgeGrid)),
+                 us_calloc((size_t)nb, 1)};
+  us_Status st = US_OK;
+  if (!d.grid || !d.built)
+    st = us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
+  else if (reference)
+    st = us_broadphase_all(s, &pairs, &np, err);
+  else
+    st = us_broadphase(s, tol, &pairs, &np, err);
   for (int k = 0; !st && k < np; k++) {
     int i = pairs[k].i, j = pairs[k].j;
     double t = US_MIN(tol[i], tol[j]);
@@ -118,7 +124,7 @@ us_Status us_detect_contacts(const us_Structure *s, const us_ContactSettings *se
   us_CandList l = {NULL, 0, 0};
   if (ground_contacts(s, tol, &l))
     st = us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
-  if (!st) st = pair_phase(s, tol, &l, err);
+  if (!st) st = pair_phase(s, set && set->reference, tol, &l, err);
   if (!st) st = to_list(&l, out, err);
   us_free(l.c);
   us_free(tol);

@@ -144,6 +144,17 @@ static int dup_of_kept(const us_Cand *cd, const Key *key, int m, int r, const un
 /* Drop, in generation order, every candidate from `from` on that
  * duplicates an earlier kept one. Candidates are sorted along the axis of
  * larger spread so that only those within tol along it are compared. */
+/* The reference: every earlier kept candidate is compared. */
+static void drop_duplicates_slow(us_CandList *l, int from, double tol) {
+  int n = from;
+  for (int c = from; c < l->n; c++) {
+    int dup = 0;
+    for (int k = from; k < n && !dup; k++) dup = duplicates(&l->c[k], &l->c[c], tol);
+    if (!dup) l->c[n++] = l->c[c];
+  }
+  l->n = n;
+}
+
 static int drop_duplicates(us_CandList *l, int from, double tol) {
   int m = l->n - from;
   if (m < 2) return 0;
@@ -189,8 +200,11 @@ static int vertices_on_edges(us_Detect *d, int ia, int ib, double tol, us_CandLi
 us_Status us_pair_contacts(us_Detect *d, int i, int j, double tol, us_CandList *out,
                            us_Error *err) {
   int from = out->n;
-  if (vertices_on_edges(d, i, j, tol, out) || vertices_on_edges(d, j, i, tol, out) ||
-      drop_duplicates(out, from, tol))
+  if (vertices_on_edges(d, i, j, tol, out) || vertices_on_edges(d, j, i, tol, out))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
+  if (d->reference)
+    drop_duplicates_slow(out, from, tol);
+  else if (drop_duplicates(out, from, tol))
     return us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
   return US_OK;
 }

@@ -21,7 +21,8 @@
  * Small polygons (at most US_EDGE_GRID_MIN edges) and grids that would list
  * too many cells per edge (long diagonal edges) keep no grid: queries then
  * filter all edges by box, and inside uses the full crossing rule, so the
- * answers are the same either way. Cost: building O(n + listed entries);
+ * answers are the same either way (pad = inf keeps no grid and every
+ * query returns every edge: the reference for tests). Cost: building O(n + listed entries);
  * a query O(cells met + edges listed there). */
 #include "geometry.h"
 
@@ -125,7 +126,7 @@ int us_edge_grid_init(us_EdgeGrid *g, const double *xy, int n, double pad) {
   g->pad = pad;
   g->stamp = us_calloc((size_t)(n > 0 ? n : 1), sizeof *g->stamp);
   g->out = us_malloc((size_t)(n > 0 ? n : 1) * sizeof *g->out);
-  if (!g->stamp || !g->out || (n > US_EDGE_GRID_MIN && build(g) < 0)) {
+  if (!g->stamp || !g->out || (n > US_EDGE_GRID_MIN && isfinite(pad) && build(g) < 0)) {
     us_edge_grid_free(g);
     return -1;
   }

@@ -259,7 +259,7 @@ us_Status us_structure_detect_contacts(us_Structure *s, const us_ContactSettings
                                        us_Error *err) {
   for (int i = 0; i < s->nbody; i++)
     if (s->bodies[i].nvert >= 3) us_poly_make_ccw(s->bodies[i].verts, s->bodies[i].nvert);
-  us_ContactSettings own = {s->contact_tol};
+  us_ContactSettings own = {s->contact_tol, 0};
   us_ContactList l = {NULL, 0, 0};
   us_Status st = us_detect_contacts(s, set ? set : &own, &l, err);
   if (!st) st = install(s, &l, err);
