@@ -226,18 +226,21 @@ static us_Structure *star(int n, double turn) {
   for (int k = 0; k < n; k++) {
     double r = k % 2 ? 0.6 : 1.0, a = turn + 2 * pi * k / n;
     xy[2 * k] = 5 + r * cos(a);
-    xy[2 * k + 1] = 1 + r * sin(a);
+    xy[2 * k + 1] = 2 + r * sin(a);
   }
   us_Structure *s = us_structure_new(2);
   us_BodyDef d = us_default_body_def();
   d.id = "star", d.nvert = n, d.xy = xy;
   us_Error err;
   us_structure_add_body(s, &d, &err);
-  double top = -INFINITY, right = -INFINITY;
-  for (int k = 0; k < n; k++) top = fmax(top, xy[2 * k + 1]), right = fmax(right, xy[2 * k]);
+  int t = 0, r = 0; /* the top and the rightmost vertex */
+  for (int k = 1; k < n; k++) {
+    if (xy[2 * k + 1] > xy[2 * t + 1]) t = k;
+    if (xy[2 * k] > xy[2 * r]) r = k;
+  }
+  scene_box(s, "cap", xy[2 * t] - 0.5, xy[2 * t + 1], 1, 1, 1);
+  scene_box(s, "side", xy[2 * r], xy[2 * r + 1] - 0.5, 1, 1, 1);
   us_free(xy);
-  scene_box(s, "cap", 4.5, top, 1, 1, 1);
-  scene_box(s, "side", right, 0.5, 1, 1, 1);
   return scene_seal(s);
 }
 
@@ -256,6 +259,7 @@ static void reference_many_vertices(void) {
     CHECK(s);
     stars++;
     int ok = same_as_reference(s) && s->ncontact >= 2;
+    if (!ok) fprintf(stderr, "  star %d: %d contacts\n", n, s->ncontact);
     us_structure_free(s);
     CHECK(ok);
   }
