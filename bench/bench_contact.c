@@ -20,7 +20,13 @@ static us_Structure *wall(int rows, int cols, double shift, us_Error *err) {
       snprintf(id, sizeof id, "b%d_%d", r, c);
       double x0 = c * w + (r % 2) * shift * w, y0 = r * h;
       double xy[8] = {x0, y0, x0 + w, y0, x0 + w, y0 + h, x0, y0 + h};
-      if (us_structure_add_polygon(s, id, 4, xy, 1.0, 0.0, 0, -1.0, err) < 0) {
+      if (us_structure_add_body(s,
+                                &(us_BodyDef){.id = id,
+                                              .nvert = 4,
+                                              .xy = xy,
+                                              .density = 1.0,
+                                              .friction = -1.0},
+                                err) < 0) {
         us_structure_free(s);
         return NULL;
       }

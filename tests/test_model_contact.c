@@ -10,7 +10,11 @@
 #include "test.h"
 
 static int add_poly(us_Structure *s, const char *id, int n, const double *xy, us_Error *err) {
-  return us_structure_add_polygon(s, id, n, xy, 1.0, 0.0, 0, -1.0, err);
+  return us_structure_add_body(
+      s,
+      &(us_BodyDef){
+          .id = id, .nvert = n, .xy = xy, .density = 1.0, .friction = -1.0},
+      err);
 }
 
 static int add_box(us_Structure *s, const char *id, double x0, double y0, double x1, double y1,
@@ -341,8 +345,16 @@ static void friction_rule(void) {
   us_Structure *s = us_structure_new(2);
   s->friction = 0.6;
   double a[8] = {0, 0, 1, 0, 1, 1, 0, 1}, b[8] = {0, 1, 1, 1, 1, 2, 0, 2};
-  CHECK(us_structure_add_polygon(s, "a", 4, a, 1, 0, 0, 0.3, &err) == 0);
-  CHECK(us_structure_add_polygon(s, "b", 4, b, 1, 0, 0, 0.9, &err) == 1);
+  CHECK(us_structure_add_body(
+            s,
+            &(us_BodyDef){
+                .id = "a", .nvert = 4, .xy = a, .density = 1, .friction = 0.3},
+            &err) == 0);
+  CHECK(us_structure_add_body(
+            s,
+            &(us_BodyDef){
+                .id = "b", .nvert = 4, .xy = b, .density = 1, .friction = 0.9},
+            &err) == 1);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   for (int k = 0; k < s->ncontact; k++) CHECK_NEAR(s->contacts[k].mu, 0.3, 0);
   us_structure_free(s);
@@ -352,8 +364,22 @@ static void fixed_bodies(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
   double p1[8] = {0, 0, 1, 0, 1, 1, 0, 1}, p2[8] = {1, 0, 2, 0, 2, 1, 1, 1};
-  CHECK(us_structure_add_polygon(s, "pier1", 4, p1, 1, 0, 1, -1, &err) == 0);
-  CHECK(us_structure_add_polygon(s, "pier2", 4, p2, 1, 0, 1, -1, &err) == 1);
+  CHECK(us_structure_add_body(s,
+                              &(us_BodyDef){.id = "pier1",
+                                            .nvert = 4,
+                                            .xy = p1,
+                                            .density = 1,
+                                            .fixed = 1,
+                                            .friction = -1},
+                              &err) == 0);
+  CHECK(us_structure_add_body(s,
+                              &(us_BodyDef){.id = "pier2",
+                                            .nvert = 4,
+                                            .xy = p2,
+                                            .density = 1,
+                                            .fixed = 1,
+                                            .friction = -1},
+                              &err) == 1);
   CHECK(add_box(s, "deck", 0.5, 1, 1.5, 1.2, &err) == 2);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_INT(count_pair(s, US_GROUND, 0), ==, 0);
