@@ -85,6 +85,24 @@ static void non_finite(void) {
   us_structure_free(s);
 }
 
+/* Coordinates whose area overflows: said so, naming the body (was
+ * "polygon has (almost) zero area (inf)"). */
+static void huge_coordinates(void) {
+  const double big[2][8] = {{0, 0, 1e308, 0, 1e308, 1e308, 0, 1e308},
+                            {-1e308, 0, 1e308, 0, 1e308, 1, -1e308, 1}};
+  for (int k = 0; k < 2; k++) {
+    us_Error err;
+    us_Structure *s = us_structure_new(2);
+    us_BodyDef d = us_default_body_def();
+    d.id = "x";
+    d.nvert = 4;
+    d.xy = big[k];
+    CHECK(us_structure_add_body(s, &d, &err) == 0);
+    CHECK(scene_fails_with(s, "body 'x': coordinates too large", "overflows"));
+    us_structure_free(s);
+  }
+}
+
 static void below_ground(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
@@ -344,6 +362,6 @@ static void finalize_again(void) {
 }
 
 US_TEST_MAIN(T(finalize_again), T(self_intersecting), T(zero_area), T(too_few_vertices), T(non_finite),
-             T(below_ground), T(duplicate_id), T(bad_materials), T(repeated_vertex),
+             T(huge_coordinates), T(below_ground), T(duplicate_id), T(bad_materials), T(repeated_vertex),
              T(l_shape_body), T(made_ccw), T(mass_properties), T(point_bodies),
              T(empty_and_all_fixed), T(out_of_memory))

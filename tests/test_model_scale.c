@@ -191,7 +191,7 @@ static void reference_piles(void) {
 /* A comb of `teeth` teeth (1 wide, pitch 2) standing on the ground, a
  * plate on the teeth and, when `blocks`, a small block in every other gap
  * resting on the comb's valley floor. */
-static us_Structure *comb(int teeth, int blocks) {
+static us_Structure *comb_unsealed(int teeth, int blocks) {
   int nv = 2 + 4 * teeth;
   double w = 2.0 * teeth - 1.0, *xy = us_malloc((size_t)nv * 2 * sizeof *xy);
   if (!xy) return NULL;
@@ -215,7 +215,12 @@ static us_Structure *comb(int teeth, int blocks) {
     snprintf(id, sizeof id, "g%d", t);
     scene_box(s, id, 2.0 * t + 1.25, 1, 0.5, 0.5, 1);
   }
-  return scene_seal(s);
+  return s;
+}
+
+static us_Structure *comb(int teeth, int blocks) {
+  us_Structure *s = comb_unsealed(teeth, blocks);
+  return s ? scene_seal(s) : NULL;
 }
 
 /* A star of n vertices (radii alternating 1 and 0.6, rotated) with a unit
@@ -286,5 +291,29 @@ static void reference_overlap_message(void) {
   CHECK(!strcmp(e1.msg, e2.msg));
 }
 
+/* Out of memory at every allocation of finalizing a comb (its edge grid,
+ * the duplicate search): US_ERR_NOMEM or the full answer, nothing leaks. */
+static void out_of_memory_comb(void) {
+  us_Structure *ref = comb(13, 1);
+  CHECK(ref);
+  int nref = ref->ncontact, failures = 0, done = 0;
+  us_structure_free(ref);
+  for (long n = 0; n < 2000 && !done; n++) {
+    us_Structure *s = comb_unsealed(13, 1);
+    CHECK(s);
+    us_Error err;
+    us_alloc_fail_after(n);
+    us_Status st = us_structure_finalize(s, &err);
+    us_alloc_fail_after(-1);
+    done = st == US_OK;
+    int ok = done ? s->ncontact == nref : st == US_ERR_NOMEM;
+    failures += !done;
+    us_structure_free(s);
+    CHECK(ok);
+  }
+  CHECK(done && failures > 0);
+}
+
 US_TEST_MAIN(T(far_away_changes_nothing), T(tiny_gap_is_a_gap), T(scaled_copies_agree),
-             T(reference_piles), T(reference_many_vertices), T(reference_overlap_message))
+             T(reference_piles), T(reference_many_vertices), T(reference_overlap_message),
+             T(out_of_memory_comb))
