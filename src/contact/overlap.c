@@ -12,7 +12,15 @@
  * Equal polygons on top of each other have no point strictly inside the
  * other, hence the coincident-edge test: collinear edges (within tol) with
  * the same outward normal overlapping for more than tol. Depth is the
- * distance from the point to the other polygon's boundary. */
+ * distance from the point to the other polygon's boundary.
+ *
+ * Cost: every test asks the other polygon's edge index (geometry/
+ * edgegrid.c) for the edges near a point or an edge. A point with an edge
+ * within tol is not deeper than tol; any other point is decided by a ray
+ * through the index. The exact depth (a scan of the whole polygon) is only
+ * computed for a point found deep, which ends the check with an error. So
+ * a pair costs about its vertices plus the cut points, not their product
+ * (a comb of 100,000 vertices under a plate). */
 #include "contact.h"
 
 #include <math.h>

@@ -124,9 +124,13 @@ int us_edge_grid_init(us_EdgeGrid *g, const double *xy, int n, double pad) {
   g->xy = xy;
   g->n = n;
   g->pad = pad;
-  g->stamp = us_calloc((size_t)(n > 0 ? n : 1), sizeof *g->stamp);
-  g->out = us_malloc((size_t)(n > 0 ? n : 1) * sizeof *g->out);
-  if (!g->stamp || !g->out || (n > US_EDGE_GRID_MIN && isfinite(pad) && build(g) < 0)) {
+  if (n <= US_EDGE_GRID_MIN) { /* scanned whole, nothing to allocate */
+    g->out = g->small;
+    return 0;
+  }
+  g->stamp = us_calloc((size_t)n, sizeof *g->stamp);
+  g->out = us_malloc((size_t)n * sizeof *g->out);
+  if (!g->stamp || !g->out || (isfinite(pad) && build(g) < 0)) {
     us_edge_grid_free(g);
     return -1;
   }
@@ -137,7 +141,7 @@ void us_edge_grid_free(us_EdgeGrid *g) {
   us_free(g->start);
   us_free(g->items);
   us_free(g->stamp);
-  us_free(g->out);
+  if (g->out != g->small) us_free(g->out);
   memset(g, 0, sizeof *g);
 }
 

@@ -121,6 +121,7 @@ typedef struct us_EdgeGrid {
   int *start, *items; /* cell c lists items[start[c] .. start[c+1]); NULL: no grid */
   int *stamp, qid;    /* per-edge mark of the last query that took it */
   int *out, nout;     /* result of the last query, increasing edge indices */
+  int small[US_EDGE_GRID_MIN]; /* out for small polygons (no allocation) */
 } us_EdgeGrid;
 /* 0, or -1 when out of memory (nothing to free then). */
 int us_edge_grid_init(us_EdgeGrid *g, const double *xy, int n, double pad);
