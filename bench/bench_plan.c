@@ -62,7 +62,14 @@ static us_Structure *with_friction(us_Structure *s, double mu) {
   c->friction = mu;
   for (int i = 0; i < s->nbody; i++) {
     const us_Body *b = &s->bodies[i];
-    us_structure_add_polygon(c, b->id, b->nvert, b->verts, b->density, 0, b->fixed, -1, NULL);
+    us_structure_add_body(c,
+                          &(us_BodyDef){.id = b->id,
+                                        .nvert = b->nvert,
+                                        .xy = b->verts,
+                                        .density = b->density,
+                                        .fixed = b->fixed,
+                                        .friction = -1},
+                          NULL);
   }
   if (us_structure_finalize(c, NULL)) {
     us_structure_free(c);

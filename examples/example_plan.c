@@ -14,7 +14,11 @@
 static int box(us_Structure *s, const char *id, double x0, double y0, double x1, double y1,
                double density, us_Error *err) {
   double v[8] = {x0, y0, x1, y0, x1, y1, x0, y1};
-  return us_structure_add_polygon(s, id, 4, v, density, 0, 0, -1, err);
+  return us_structure_add_body(
+      s,
+      &(us_BodyDef){
+          .id = id, .nvert = 4, .xy = v, .density = density, .friction = -1},
+      err);
 }
 
 int main(void) {

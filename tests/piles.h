@@ -76,7 +76,13 @@ static inline void pile_rect(Pile *p, double x0, double x1, double top, int clos
 static inline void pile_poly(Pile *p, int nv, const double *xy, double density) {
   char id[16];
   snprintf(id, sizeof id, "p%d", p->nbody++);
-  us_structure_add_polygon(p->s, id, nv, xy, density, 0.0, 0, -1.0, NULL);
+  us_structure_add_body(p->s,
+                        &(us_BodyDef){.id = id,
+                                      .nvert = nv,
+                                      .xy = xy,
+                                      .density = density,
+                                      .friction = -1.0},
+                        NULL);
 }
 
 static inline void pile_box(Pile *p, double x0, double y0, double w, double h, double density) {

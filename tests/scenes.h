@@ -15,7 +15,11 @@ static inline int scene_box(us_Structure *s, const char *id, double x0, double y
                             double h, double density) {
   double xy[8] = {x0, y0, x0 + w, y0, x0 + w, y0 + h, x0, y0 + h};
   us_Error err;
-  return us_structure_add_polygon(s, id, 4, xy, density, 0.0, 0, -1.0, &err);
+  return us_structure_add_body(
+      s,
+      &(us_BodyDef){
+          .id = id, .nvert = 4, .xy = xy, .density = density, .friction = -1.0},
+      &err);
 }
 
 /* Finalize; NULL (and the structure freed) on error. */
@@ -60,8 +64,16 @@ static inline us_Structure *scene_leaning(double mu) {
   s->friction = mu;
   double l[8] = {0, 0, 0.4, 0, 1.0, 1.5, 1.0, 2.0};
   double r[8] = {1.6, 0, 2.0, 0, 1.0, 2.0, 1.0, 1.5};
-  us_structure_add_polygon(s, "left", 4, l, 1, 0, 0, -1, NULL);
-  us_structure_add_polygon(s, "right", 4, r, 1, 0, 0, -1, NULL);
+  us_structure_add_body(
+      s,
+      &(us_BodyDef){
+          .id = "left", .nvert = 4, .xy = l, .density = 1, .friction = -1},
+      NULL);
+  us_structure_add_body(
+      s,
+      &(us_BodyDef){
+          .id = "right", .nvert = 4, .xy = r, .density = 1, .friction = -1},
+      NULL);
   return scene_seal(s);
 }
 

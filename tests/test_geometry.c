@@ -168,8 +168,10 @@ static void simple_large(void) {
 
 static void tolerance_scales(void) {
   CHECK_NEAR(us_geom_tol(100.0), 100.0 * US_GEOM_TOL_REL, 1e-18);
-  CHECK_NEAR(us_geom_tol(1e-9), US_GEOM_TOL_MIN, 0);
-  CHECK(us_geom_tol(0.0) > 0);
+  /* no absolute floor: a body 1e-9 across gets 1e-15 */
+  CHECK_NEAR(us_geom_tol(1e-9), 1e-9 * US_GEOM_TOL_REL, 1e-30);
+  CHECK(us_geom_tol(1e-300) > 0);
+  CHECK(us_geom_tol(0.0) == 0 && us_geom_tol(INFINITY) == 0);
 }
 
 US_TEST_MAIN(T(rectangle_props), T(rectangle_far_away), T(l_shape_props), T(orientation),

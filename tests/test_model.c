@@ -8,7 +8,11 @@
 static int add_box(us_Structure *s, const char *id, double x0, double y0, double x1, double y1,
                    us_Error *err) {
   double xy[8] = {x0, y0, x1, y0, x1, y1, x0, y1};
-  return us_structure_add_polygon(s, id, 4, xy, 1.0, 0.0, 0, -1.0, err);
+  return us_structure_add_body(
+      s,
+      &(us_BodyDef){
+          .id = id, .nvert = 4, .xy = xy, .density = 1.0, .friction = -1.0},
+      err);
 }
 
 
@@ -17,7 +21,12 @@ static void self_intersecting(void) {
   us_Structure *s = us_structure_new(2);
   double bow[8] = {0, 0, 1, 1, 1, 0, 0, 1};
   CHECK(add_box(s, "ok", 2, 0, 3, 1, &err) >= 0);
-  CHECK(us_structure_add_polygon(s, "b3", 4, bow, 1, 0, 0, -1, &err) >= 0);
+  CHECK(
+      us_structure_add_body(
+          s,
+          &(us_BodyDef){
+              .id = "b3", .nvert = 4, .xy = bow, .density = 1, .friction = -1},
+          &err) >= 0);
   CHECK(scene_fails_with(s, "'b3'", "self-intersecting (edges 0 and 2 cross)"));
   us_structure_free(s);
 }
@@ -27,7 +36,13 @@ static void zero_area(void) {
   us_Structure *s = us_structure_new(2);
   double flat[8] = {0, 0, 1, 0, 2, 0, 3, 1e-12};
   CHECK(add_box(s, "ok", 4, 0, 5, 1, &err) >= 0);
-  CHECK(us_structure_add_polygon(s, "flat", 4, flat, 1, 0, 0, -1, &err) >= 0);
+  CHECK(us_structure_add_body(s,
+                              &(us_BodyDef){.id = "flat",
+                                            .nvert = 4,
+                                            .xy = flat,
+                                            .density = 1,
+                                            .friction = -1},
+                              &err) >= 0);
   CHECK(scene_fails_with(s, "'flat'", "zero area"));
   us_structure_free(s);
 }
@@ -36,7 +51,12 @@ static void too_few_vertices(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
   double seg[4] = {0, 0, 1, 0};
-  CHECK(us_structure_add_polygon(s, "seg", 2, seg, 1, 0, 0, -1, &err) >= 0);
+  CHECK(
+      us_structure_add_body(
+          s,
+          &(us_BodyDef){
+              .id = "seg", .nvert = 2, .xy = seg, .density = 1, .friction = -1},
+          &err) >= 0);
   CHECK(scene_fails_with(s, "'seg'", "2 vertices"));
   us_structure_free(s);
 }
@@ -45,14 +65,42 @@ static void non_finite(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
   double xy[8] = {0, 0, 1, 0, 1, NAN, 0, 1};
-  CHECK(us_structure_add_polygon(s, "nan", 4, xy, 1, 0, 0, -1, &err) >= 0);
+  CHECK(
+      us_structure_add_body(
+          s,
+          &(us_BodyDef){
+              .id = "nan", .nvert = 4, .xy = xy, .density = 1, .friction = -1},
+          &err) >= 0);
   CHECK(scene_fails_with(s, "'nan'", "vertex 2 has a non-finite"));
   us_structure_free(s);
   s = us_structure_new(2);
   xy[5] = INFINITY;
-  CHECK(us_structure_add_polygon(s, "inf", 4, xy, 1, 0, 0, -1, &err) >= 0);
+  CHECK(
+      us_structure_add_body(
+          s,
+          &(us_BodyDef){
+              .id = "inf", .nvert = 4, .xy = xy, .density = 1, .friction = -1},
+          &err) >= 0);
   CHECK(scene_fails_with(s, "'inf'", "non-finite"));
   us_structure_free(s);
+}
+
+/* Coordinates whose area overflows: said so, naming the body (was
+ * "polygon has (almost) zero area (inf)"). */
+static void huge_coordinates(void) {
+  const double big[2][8] = {{0, 0, 1e308, 0, 1e308, 1e308, 0, 1e308},
+                            {-1e308, 0, 1e308, 0, 1e308, 1, -1e308, 1}};
+  for (int k = 0; k < 2; k++) {
+    us_Error err;
+    us_Structure *s = us_structure_new(2);
+    us_BodyDef d = us_default_body_def();
+    d.id = "x";
+    d.nvert = 4;
+    d.xy = big[k];
+    CHECK(us_structure_add_body(s, &d, &err) == 0);
+    CHECK(scene_fails_with(s, "body 'x': coordinates too large", "overflows"));
+    us_structure_free(s);
+  }
 }
 
 static void below_ground(void) {
@@ -112,7 +160,12 @@ static void repeated_vertex(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
   double xy[10] = {0, 0, 2, 0, 2, 2, 2, 2, 0, 2};
-  CHECK(us_structure_add_polygon(s, "rep", 5, xy, 1, 0, 0, -1, &err) >= 0);
+  CHECK(
+      us_structure_add_body(
+          s,
+          &(us_BodyDef){
+              .id = "rep", .nvert = 5, .xy = xy, .density = 1, .friction = -1},
+          &err) >= 0);
   CHECK(scene_fails_with(s, "'rep'", "vertices 2 and 3 coincide"));
   us_structure_free(s);
 }
@@ -122,7 +175,11 @@ static void l_shape_body(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
   double L[12] = {0, 0, 3, 0, 3, 1, 1, 1, 1, 3, 0, 3};
-  CHECK(us_structure_add_polygon(s, "L", 6, L, 2.0, 0, 0, -1, &err) == 0);
+  CHECK(us_structure_add_body(
+            s,
+            &(us_BodyDef){
+                .id = "L", .nvert = 6, .xy = L, .density = 2.0, .friction = -1},
+            &err) == 0);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   const us_Body *b = &s->bodies[0];
   CHECK_NEAR(b->mass, 2.0 * (3.0 + 2.0), 1e-12);
@@ -137,7 +194,11 @@ static void made_ccw(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
   double cw[8] = {0, 0, 0, 1, 2, 1, 2, 0};
-  CHECK(us_structure_add_polygon(s, "cw", 4, cw, 1, 0, 0, -1, &err) >= 0);
+  CHECK(us_structure_add_body(
+            s,
+            &(us_BodyDef){
+                .id = "cw", .nvert = 4, .xy = cw, .density = 1, .friction = -1},
+            &err) >= 0);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   const us_Body *b = &s->bodies[0];
   double a2 = 0;
@@ -154,9 +215,22 @@ static void mass_properties(void) {
   us_Structure *s = us_structure_new(2);
   double w = 2.0, h = 0.5;
   double xy[8] = {1, 0, 1 + w, 0, 1 + w, h, 1, h};
-  CHECK(us_structure_add_polygon(s, "dens", 4, xy, 3.0, 0.0, 0, -1, &err) == 0);
+  CHECK(us_structure_add_body(s,
+                              &(us_BodyDef){.id = "dens",
+                                            .nvert = 4,
+                                            .xy = xy,
+                                            .density = 3.0,
+                                            .friction = -1},
+                              &err) == 0);
   double xy2[8] = {1, h, 1 + w, h, 1 + w, 2 * h, 1, 2 * h};
-  CHECK(us_structure_add_polygon(s, "given", 4, xy2, 3.0, 7.0, 0, -1, &err) == 1);
+  CHECK(us_structure_add_body(s,
+                              &(us_BodyDef){.id = "given",
+                                            .nvert = 4,
+                                            .xy = xy2,
+                                            .density = 3.0,
+                                            .mass = 7.0,
+                                            .friction = -1},
+                              &err) == 1);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   const us_Body *a = &s->bodies[0], *b = &s->bodies[1];
   CHECK_NEAR(a->mass, 3.0 * w * h, 1e-12);
@@ -215,11 +289,18 @@ static void empty_and_all_fixed(void) {
   us_Structure *s = us_structure_new(2);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_INT(s->ncontact, ==, 0);
-  CHECK(s->contact_tol > 0 && s->scale > 0);
+  CHECK(s->contact_tol == 0 && s->scale > 0); /* tolerances stay per pair */
   us_structure_free(s);
   s = us_structure_new(2);
   double xy[8] = {0, 0, 1, 0, 1, 1, 0, 1};
-  CHECK(us_structure_add_polygon(s, "pier", 4, xy, 1, 0, 1, -1, &err) == 0);
+  CHECK(us_structure_add_body(s,
+                              &(us_BodyDef){.id = "pier",
+                                            .nvert = 4,
+                                            .xy = xy,
+                                            .density = 1,
+                                            .fixed = 1,
+                                            .friction = -1},
+                              &err) == 0);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_INT(s->ncontact, ==, 0); /* fixed bodies take no ground contacts */
   us_structure_free(s);
@@ -281,6 +362,6 @@ static void finalize_again(void) {
 }
 
 US_TEST_MAIN(T(finalize_again), T(self_intersecting), T(zero_area), T(too_few_vertices), T(non_finite),
-             T(below_ground), T(duplicate_id), T(bad_materials), T(repeated_vertex),
+             T(huge_coordinates), T(below_ground), T(duplicate_id), T(bad_materials), T(repeated_vertex),
              T(l_shape_body), T(made_ccw), T(mass_properties), T(point_bodies),
              T(empty_and_all_fixed), T(out_of_memory))

@@ -10,7 +10,11 @@
 #include "test.h"
 
 static int add_poly(us_Structure *s, const char *id, int n, const double *xy, us_Error *err) {
-  return us_structure_add_polygon(s, id, n, xy, 1.0, 0.0, 0, -1.0, err);
+  return us_structure_add_body(
+      s,
+      &(us_BodyDef){
+          .id = id, .nvert = n, .xy = xy, .density = 1.0, .friction = -1.0},
+      err);
 }
 
 static int add_box(us_Structure *s, const char *id, double x0, double y0, double x1, double y1,
@@ -53,11 +57,25 @@ static int inside(const us_Structure *s, int i, us_Vec2 p) {
   return us_point_polygon_depth(p, b->verts, b->nvert) > 0;
 }
 
+/* A body's own size (bounding-box diagonal). */
+static double body_size(const us_Structure *s, int i) {
+  return us_poly_diameter(s->bodies[i].verts, s->bodies[i].nvert);
+}
+
+/* The documented tolerance of contact k: the smaller body's size * 1e-6
+ * (the body's own against the ground) unless contact_tol is set. */
+static double pair_tol(const us_Structure *s, const us_Contact *c) {
+  if (s->contact_tol > 0) return s->contact_tol;
+  double sz = body_size(s, c->b);
+  if (c->a != US_GROUND) sz = US_MIN(sz, body_size(s, c->a));
+  return 1e-6 * sz;
+}
+
 /* Generic properties of every contact (see the file comment). */
 static int contacts_sane(const us_Structure *s) {
-  double tol = s->contact_tol, step = 1e-3 * s->scale;
   for (int k = 0; k < s->ncontact; k++) {
     const us_Contact *c = &s->contacts[k];
+    double tol = pair_tol(s, c), step = 1e3 * tol;
     us_Vec2 p = us_v2(c->p[0], c->p[1]), n = us_v2(c->n[0], c->n[1]);
     int ok = fabs(us_v2_norm(n) - 1.0) < 1e-12 && c->mu >= 0 && c->b >= 0 && c->a != c->b;
     for (int side = 0; side < 2; side++) {
@@ -327,8 +345,16 @@ static void friction_rule(void) {
   us_Structure *s = us_structure_new(2);
   s->friction = 0.6;
   double a[8] = {0, 0, 1, 0, 1, 1, 0, 1}, b[8] = {0, 1, 1, 1, 1, 2, 0, 2};
-  CHECK(us_structure_add_polygon(s, "a", 4, a, 1, 0, 0, 0.3, &err) == 0);
-  CHECK(us_structure_add_polygon(s, "b", 4, b, 1, 0, 0, 0.9, &err) == 1);
+  CHECK(us_structure_add_body(
+            s,
+            &(us_BodyDef){
+                .id = "a", .nvert = 4, .xy = a, .density = 1, .friction = 0.3},
+            &err) == 0);
+  CHECK(us_structure_add_body(
+            s,
+            &(us_BodyDef){
+                .id = "b", .nvert = 4, .xy = b, .density = 1, .friction = 0.9},
+            &err) == 1);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   for (int k = 0; k < s->ncontact; k++) CHECK_NEAR(s->contacts[k].mu, 0.3, 0);
   us_structure_free(s);
@@ -338,8 +364,22 @@ static void fixed_bodies(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
   double p1[8] = {0, 0, 1, 0, 1, 1, 0, 1}, p2[8] = {1, 0, 2, 0, 2, 1, 1, 1};
-  CHECK(us_structure_add_polygon(s, "pier1", 4, p1, 1, 0, 1, -1, &err) == 0);
-  CHECK(us_structure_add_polygon(s, "pier2", 4, p2, 1, 0, 1, -1, &err) == 1);
+  CHECK(us_structure_add_body(s,
+                              &(us_BodyDef){.id = "pier1",
+                                            .nvert = 4,
+                                            .xy = p1,
+                                            .density = 1,
+                                            .fixed = 1,
+                                            .friction = -1},
+                              &err) == 0);
+  CHECK(us_structure_add_body(s,
+                              &(us_BodyDef){.id = "pier2",
+                                            .nvert = 4,
+                                            .xy = p2,
+                                            .density = 1,
+                                            .fixed = 1,
+                                            .friction = -1},
+                              &err) == 1);
   CHECK(add_box(s, "deck", 0.5, 1, 1.5, 1.2, &err) == 2);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_INT(count_pair(s, US_GROUND, 0), ==, 0);
@@ -457,7 +497,7 @@ static void deterministic(void) {
   CHECK(copy);
   memcpy(copy, s->contacts, (size_t)n * sizeof *copy);
   us_ContactSettings cs = {0};
-  us_Status st = us_detect_contacts(s, &cs, &err);
+  us_Status st = us_structure_detect_contacts(s, &cs, &err);
   int same =
       st == US_OK && s->ncontact == n && !memcmp(copy, s->contacts, (size_t)n * sizeof *copy);
   us_free(copy);
@@ -499,15 +539,21 @@ static void arch(void) {
   us_structure_free(s);
 }
 
-/* Clockwise input to a direct call: outward normals are still right. */
+/* Clockwise input: the structure-level call orients it (outward normals
+ * are right); detection alone, which only reads, refuses it. */
 static void direct_call_clockwise(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
   double cw[8] = {0, 0, 0, 1, 1, 1, 1, 0};
   CHECK(add_poly(s, "cw", 4, cw, &err) == 0);
   CHECK(add_box(s, "top", 0, 1, 1, 2, &err) == 1);
-  us_ContactSettings cs = {1e-6};
-  CHECK_OK(us_detect_contacts(s, &cs, &err), &err);
+  us_ContactSettings cs = {1e-6, 0};
+  us_ContactList l = {0};
+  CHECK(us_detect_contacts(s, &cs, &l, &err) == US_ERR_INPUT);
+  CHECK(strstr(err.msg, "body 'cw'") != NULL);
+  CHECK_INT(l.n, ==, 0);
+  us_contact_list_free(&l);
+  CHECK_OK(us_structure_detect_contacts(s, &cs, &err), &err);
   CHECK_INT(count_pair(s, 0, 1), ==, 2);
   CHECK_NEAR(normal_from(s, find_at(s, 0, 1, 0, 1), 0).y, 1.0, 1e-12);
   us_structure_free(s);

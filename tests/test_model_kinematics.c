@@ -19,7 +19,14 @@ static us_Bitset g_all;     /* every movable body */
 
 static int poly(us_Structure *s, const char *id, int n, const double *xy, int fixed) {
   us_Error err;
-  return us_structure_add_polygon(s, id, n, xy, 1.0, 0.0, fixed, -1.0, &err);
+  return us_structure_add_body(s,
+                               &(us_BodyDef){.id = id,
+                                             .nvert = n,
+                                             .xy = xy,
+                                             .density = 1.0,
+                                             .fixed = fixed,
+                                             .friction = -1.0},
+                               &err);
 }
 
 static int fixed_box(us_Structure *s, const char *id, double x0, double y0, double w, double h) {

@@ -91,10 +91,25 @@ static us_Structure *scene(us_Error *err) {
   const char *ids[3] = {"low", "a&<b>\"q'", "top"};
   for (int i = 0; i < 3; i++) {
     double y0 = 0.5 * i, xy[8] = {0, y0, 1, y0, 1, y0 + 0.5, 0, y0 + 0.5};
-    if (us_structure_add_polygon(s, ids[i], 4, xy, 1, 0, 0, -1, err) < 0) goto fail;
+    if (us_structure_add_body(s,
+                              &(us_BodyDef){.id = ids[i],
+                                            .nvert = 4,
+                                            .xy = xy,
+                                            .density = 1,
+                                            .friction = -1},
+                              err) < 0)
+      goto fail;
   }
   double pier[8] = {1, 0, 2, 0, 2, 1.5, 1, 1.5};
-  if (us_structure_add_polygon(s, "pier", 4, pier, 1, 0, 1, -1, err) < 0) goto fail;
+  if (us_structure_add_body(s,
+                            &(us_BodyDef){.id = "pier",
+                                          .nvert = 4,
+                                          .xy = pier,
+                                          .density = 1,
+                                          .fixed = 1,
+                                          .friction = -1},
+                            err) < 0)
+    goto fail;
   if (us_structure_finalize(s, err)) goto fail;
   return s;
 fail:
@@ -256,9 +271,14 @@ static void point_bodies(void) {
   CHECK(s != NULL);
   double c1[3] = {0, 1, 0}, c2[3] = {2, 1, 0};
   double sq[8] = {3, 0, 4, 0, 4, 1, 3, 1};
-  int ok = us_structure_add_point_body(s, "p1", 1, c1, 0, &err) >= 0 &&
-           us_structure_add_point_body(s, "p2", 1, c2, 0, &err) >= 0 &&
-           us_structure_add_polygon(s, "sq", 4, sq, 1, 0, 0, -1, &err) >= 0;
+  int ok =
+      us_structure_add_point_body(s, "p1", 1, c1, 0, &err) >= 0 &&
+      us_structure_add_point_body(s, "p2", 1, c2, 0, &err) >= 0 &&
+      us_structure_add_body(
+          s,
+          &(us_BodyDef){
+              .id = "sq", .nvert = 4, .xy = sq, .density = 1, .friction = -1},
+          &err) >= 0;
   us_RenderSettings r = us_render_default_settings();
   us_Status st = tmp_path("points.svg", path, sizeof path) ? us_render_svg(s, &r, path, &err)
                                                            : US_ERR_IO;

@@ -109,7 +109,11 @@ static void cone_and_sign(void) {
 static int add_box(us_Structure *s, const char *id, double x0, double y0, double w, double h) {
   double xy[8] = {x0, y0, x0 + w, y0, x0 + w, y0 + h, x0, y0 + h};
   us_Error err;
-  return us_structure_add_polygon(s, id, 4, xy, 1, 0.0, 0, -1.0, &err);
+  return us_structure_add_body(
+      s,
+      &(us_BodyDef){
+          .id = id, .nvert = 4, .xy = xy, .density = 1, .friction = -1.0},
+      &err);
 }
 
 /* Solver forces of a 2 x 2 brick stack minus its top-right brick. */

@@ -346,7 +346,11 @@ static int add_box(us_Structure *s, double x0, double y0, double w, double h) {
   snprintf(id, sizeof id, "b%d", s->nbody);
   double xy[8] = {x0, y0, x0 + w, y0, x0 + w, y0 + h, x0, y0 + h};
   us_Error err;
-  return us_structure_add_polygon(s, id, 4, xy, 1.0, 0.0, 0, -1.0, &err);
+  return us_structure_add_body(
+      s,
+      &(us_BodyDef){
+          .id = id, .nvert = 4, .xy = xy, .density = 1.0, .friction = -1.0},
+      &err);
 }
 
 static us_Structure *sealed(us_Structure *s) {
@@ -647,7 +651,13 @@ static void random_wedges(us_Structure *s) {
     double xy[8] = {x[k], y0, x[k + 1], y0, x[k + 1] + sl[k + 1] * h, y1, x[k] + sl[k] * h, y1};
     char id[32];
     snprintf(id, sizeof id, "w%d", s->nbody);
-    us_structure_add_polygon(s, id, 4, xy, uniform(0.5, 2.0), 0.0, 0, -1.0, &err);
+    us_structure_add_body(s,
+                          &(us_BodyDef){.id = id,
+                                        .nvert = 4,
+                                        .xy = xy,
+                                        .density = uniform(0.5, 2.0),
+                                        .friction = -1.0},
+                          &err);
   }
   if (rnd() < 0.5) add_box(s, uniform(0, n * width - 1.5), base + h, 1.5, uniform(0.2, 0.5));
 }

@@ -24,7 +24,11 @@ static int add_box(us_Structure *s, double x0, double y0, double w, double h) {
   char id[24];
   snprintf(id, sizeof id, "b%d", s->nbody);
   us_Error err;
-  return us_structure_add_polygon(s, id, 4, xy, 1, 0.0, 0, -1.0, &err);
+  return us_structure_add_body(
+      s,
+      &(us_BodyDef){
+          .id = id, .nvert = 4, .xy = xy, .density = 1, .friction = -1.0},
+      &err);
 }
 
 /* Verdicts of both backends on one workspace each. */
@@ -200,8 +204,20 @@ static void backends_agree_leaning(void) {
     double l[8] = {0, 0, foot, 0, 1, top, 1, top + ext};
     double r[8] = {2 - foot, 0, 2, 0, 1, top + ext, 1, top};
     us_Error err;
-    CHECK(us_structure_add_polygon(s, "left", 4, l, 1, 0, 0, -1, &err) == 0);
-    CHECK(us_structure_add_polygon(s, "right", 4, r, uniform(0.5, 2), 0, 0, -1, &err) == 1);
+    CHECK(us_structure_add_body(s,
+                                &(us_BodyDef){.id = "left",
+                                              .nvert = 4,
+                                              .xy = l,
+                                              .density = 1,
+                                              .friction = -1},
+                                &err) == 0);
+    CHECK(us_structure_add_body(s,
+                                &(us_BodyDef){.id = "right",
+                                              .nvert = 4,
+                                              .xy = r,
+                                              .density = uniform(0.5, 2),
+                                              .friction = -1},
+                                &err) == 1);
     CHECK_OK(us_structure_finalize(s, &err), &err);
     Pair p;
     CHECK(pair_open(&p, s) == 0);

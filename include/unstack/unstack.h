@@ -130,7 +130,9 @@ typedef struct us_Structure {
   double gravity[3];    /* default (0, -9.81, 0) */
   double friction;      /* default contact coefficient (0.5) */
   int ground;           /* 1: the half-plane y <= 0 is a fixed support */
-  double contact_tol;   /* <= 0 before finalize: derived from the size */
+  double contact_tol;   /* > 0: one length tolerance for every contact and
+                           shape test; <= 0 (default): each follows the
+                           bodies involved (see us_ContactSettings) */
   int nbody;
   us_Body *bodies;
   int ncontact;
@@ -148,9 +150,29 @@ typedef struct us_Structure {
 us_Structure *us_structure_new(int dim);
 void us_structure_free(us_Structure *s);
 
-/* Add a polygon body (2D). xy holds 2*nvert coordinates, any orientation.
- * mass <= 0 means: use density (density <= 0 means 1). friction < 0: not
- * given. Returns the body index or -1 (err set: duplicate id, OOM, ...). */
+/* Description of a polygon body (2D) for us_structure_add_body. Start from
+ * us_default_body_def() and set what differs. */
+typedef struct us_BodyDef {
+  const char *id;    /* required: unique, not "ground" (copied) */
+  int nvert;         /* required: number of vertices (>= 3 to finalize) */
+  const double *xy;  /* required: 2*nvert coordinates, any orientation (copied) */
+  double density;    /* default 1; used when mass is not given */
+  double mass;       /* default 0: not given, density * area */
+  int fixed;         /* default 0; 1: terrain or pier, never moves */
+  double friction;   /* default -1: not given, the structure's coefficient */
+} us_BodyDef;
+
+/* The defaults above: id NULL, nvert 0, xy NULL, density 1, mass 0,
+ * fixed 0, friction -1. */
+us_BodyDef us_default_body_def(void);
+
+/* Add a polygon body. Returns the body index or -1 (err set: empty,
+ * reserved or duplicate id, bad vertex array, OOM). */
+int us_structure_add_body(us_Structure *s, const us_BodyDef *def, us_Error *err);
+
+/* Thin wrapper of us_structure_add_body kept for old callers: the fields
+ * of us_BodyDef in order (density <= 0 means 1, mass <= 0 means not
+ * given). Prefer us_structure_add_body. */
 int us_structure_add_polygon(us_Structure *s, const char *id, int nvert, const double *xy,
                              double density, double mass, int fixed, double friction,
                              us_Error *err);
@@ -165,7 +187,7 @@ int us_structure_add_contact(us_Structure *s, int a, int b, const double *p, con
 int us_structure_find_body(const us_Structure *s, const char *id); /* index or -1 */
 
 /* Validate geometry (>=3 vertices, finite, non-zero area, simple, not below
- * the ground, no interpenetration beyond contact_tol), compute mass
+ * the ground, no interpenetration beyond the pair's tolerance), compute mass
  * properties, and detect contacts unless explicit contacts were given.
  * Messages name the body ids. */
 us_Status us_structure_finalize(us_Structure *s, us_Error *err);
@@ -184,14 +206,40 @@ int us_structure_movable_set(const us_Structure *s, us_Bitset *out);
 /* ---------------------------------------------------------------- contacts */
 
 typedef struct us_ContactSettings {
-  double tol;        /* <= 0: 1e-6 * structure scale (at least 1e-9) */
+  /* > 0: this length tolerance for every pair. <= 0: each pair's own,
+   * 1e-6 times the smaller of the two bodies' bounding-box diagonals (a
+   * body against the ground: its own diagonal), with no absolute floor. */
+  double tol;
+  /* 1: the slow reference for tests: every pair of bodies, every edge
+   * against every vertex, duplicates against every earlier contact
+   * (quadratic); the contacts must be the same as with 0 (default). */
+  int reference;
 } us_ContactSettings;
 
-/* Detect vertex-on-edge contacts between all bodies and with the ground,
- * replacing s->contacts. Broad phase: sort and sweep along the axis of
- * larger spread. Reports
- * interpenetration beyond tol as US_ERR_INPUT naming both bodies. */
-us_Status us_detect_contacts(us_Structure *s, const us_ContactSettings *set, us_Error *err);
+/* Detected contacts: a, b, p and n filled (normal from a into b); mu is -1
+ * (the friction rule applies when installed) and t is left zero. */
+typedef struct us_ContactList {
+  us_Contact *c;
+  int n, cap;
+} us_ContactList;
+
+/* Detect vertex-on-edge contacts between all polygon bodies and with the
+ * ground into `out` (caller-owned, zero-initialised or reused; its old
+ * entries are dropped); the structure is not changed. Polygons must be
+ * counter-clockwise (as finalize leaves them). Broad phase over bodies,
+ * then over the edges of each candidate pair, so the cost is near-linear
+ * in the total number of vertices. Interpenetration beyond the pair's
+ * tolerance is US_ERR_INPUT naming both bodies. */
+us_Status us_detect_contacts(const us_Structure *s, const us_ContactSettings *set,
+                             us_ContactList *out, us_Error *err);
+void us_contact_list_free(us_ContactList *l);
+
+/* Orient the polygons counter-clockwise, detect contacts with the given
+ * settings (NULL: s->contact_tol) and replace s->contacts by them. On error
+ * the structure's contacts are left as they were (after an out-of-memory
+ * while installing them, they are cleared). */
+us_Status us_structure_detect_contacts(us_Structure *s, const us_ContactSettings *set,
+                                       us_Error *err);
 
 /* --------------------------------------------------------------- stability */
 

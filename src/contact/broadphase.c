@@ -1,12 +1,24 @@
 /* Broad phase of contact detection: sort and sweep over axis-aligned boxes.
  *
- * Every polygon body gets its box inflated by tol. The boxes are sorted by
+ * Every polygon body gets its box inflated by its own tolerance (at least
+ * the tolerance of any pair it belongs to, which is the smaller of the two
+ * bodies' own). The boxes are sorted by
  * their low end along the axis on which the box centres spread most (x for
  * a wide wall, y for a tall column), ties broken by body index so the order
  * is deterministic; a sweep then compares each box only with the following
  * boxes that start before it ends, and keeps the pairs that also overlap on
  * the other axis. Pairs of two fixed bodies are dropped (no contact between
- * them matters). The pair list is finally sorted by (i, j). */
+ * them matters). The pair list is finally sorted by (i, j).
+ *
+ * Boxes of long thin bodies lying at an angle (the voussoirs of an arch of
+ * many thin blocks) overlap the boxes of thousands of neighbours they are
+ * nowhere near. So a pair whose boxes overlap is kept only if no edge
+ * normal of either polygon separates them by more than twice the pair's
+ * tolerance (the projections of two polygons on any axis are intervals;
+ * a gap between them bounds the distance between the polygons from below,
+ * so such a pair can have neither contacts nor overlap). The test is run
+ * for polygons of at most SEP_MAX_VERTS vertices together, to keep it
+ * cheap; larger pairs go to the narrow phase as they are. */
 #include "contact.h"
 
 #include <math.h>
@@ -15,6 +27,8 @@
 typedef struct Box {
   double lo[2], hi[2];
   int body;
+  us_Vec2 axis;  /* unit normal of the body's longest edge */
+  double alo, ahi; /* the body's own projection on it */
 } Box;
 
 /* Order by the low end on one axis, then by body index (a total order, so
@@ -33,15 +47,32 @@ static int pair_cmp(const void *pa, const void *pb) {
   return (a->j > b->j) - (a->j < b->j);
 }
 
+static void project(const us_Body *b, us_Vec2 n, double *lo, double *hi);
+
+/* The normal of b's longest edge, tried first: for a long thin block it is
+ * the axis that separates it from the parallel blocks beside it. */
+static void long_axis(const us_Body *b, Box *x) {
+  double best = 0.0;
+  for (int e = 0; e < b->nvert; e++) {
+    us_Vec2 d = us_v2_sub(us_poly_vertex(b->verts, b->nvert, e + 1),
+                          us_poly_vertex(b->verts, b->nvert, e));
+    double l = us_v2_norm(d);
+    if (l > best) best = l, x->axis = us_v2(d.y / l, -d.x / l);
+  }
+  project(b, x->axis, &x->alo, &x->ahi);
+}
+
 /* Fill boxes of polygon bodies; returns their count. */
-static int make_boxes(const us_Structure *s, double tol, Box *bx) {
+static int make_boxes(const us_Structure *s, const double *tol, Box *bx) {
   int n = 0;
   for (int i = 0; i < s->nbody; i++) {
     const us_Body *b = &s->bodies[i];
     if (b->nvert < 3) continue;
     double bb[4];
     us_poly_bbox(b->verts, b->nvert, bb);
-    bx[n] = (Box){{bb[0] - tol, bb[1] - tol}, {bb[2] + tol, bb[3] + tol}, i};
+    double t = tol[i];
+    bx[n] = (Box){{bb[0] - t, bb[1] - t}, {bb[2] + t, bb[3] + t}, i, us_v2(0, 0), 0, 0};
+    long_axis(b, &bx[n]);
     n++;
   }
   return n;
@@ -59,6 +90,50 @@ static int choose_axis(const Box *bx, int n) {
   return n > 0 && hi[1] - lo[1] > hi[0] - lo[0] ? 1 : 0;
 }
 
+#define SEP_MAX_VERTS 24
+
+/* Interval of polygon b's projections on axis n. */
+static void project(const us_Body *b, us_Vec2 n, double *lo, double *hi) {
+  *lo = INFINITY;
+  *hi = -INFINITY;
+  for (int k = 0; k < b->nvert; k++) {
+    double d = n.x * b->verts[2 * k] + n.y * b->verts[2 * k + 1];
+    *lo = US_MIN(*lo, d);
+    *hi = US_MAX(*hi, d);
+  }
+}
+
+/* Does some edge normal of a separate a and b by more than gap? */
+static int normal_separates(const us_Body *a, const us_Body *b, double gap) {
+  for (int e = 0; e < a->nvert; e++) {
+    us_Vec2 p = us_poly_vertex(a->verts, a->nvert, e), q = us_poly_vertex(a->verts, a->nvert, e + 1);
+    us_Vec2 n = us_v2(q.y - p.y, p.x - q.x);
+    double len = us_v2_norm(n), alo, ahi, blo, bhi;
+    if (!(len > 0)) continue;
+    n = us_v2_scale(n, 1.0 / len);
+    project(a, n, &alo, &ahi);
+    project(b, n, &blo, &bhi);
+    if (blo - ahi > gap || alo - bhi > gap) return 1;
+  }
+  return 0;
+}
+
+/* Does the longest-edge axis of x separate the other body by > gap? */
+static int long_axis_separates(const Box *x, const us_Body *other, double gap) {
+  double lo, hi;
+  project(other, x->axis, &lo, &hi);
+  return lo - x->ahi > gap || x->alo - hi > gap;
+}
+
+static int separated(const us_Structure *s, const double *tol, const Box *x, const Box *y) {
+  int i = x->body, j = y->body;
+  const us_Body *a = &s->bodies[i], *b = &s->bodies[j];
+  if (a->nvert + b->nvert > SEP_MAX_VERTS) return 0;
+  double gap = 2.0 * US_MIN(tol[i], tol[j]);
+  if (long_axis_separates(x, b, gap) || long_axis_separates(y, a, gap)) return 1;
+  return normal_separates(a, b, gap) || normal_separates(b, a, gap);
+}
+
 static int push_pair(us_BodyPair **pairs, int *np, int *cap, int a, int b) {
   if (US_GROW(*pairs, *cap, *np + 1)) return -1;
   (*pairs)[*np].i = US_MIN(a, b);
@@ -67,20 +142,21 @@ static int push_pair(us_BodyPair **pairs, int *np, int *cap, int a, int b) {
   return 0;
 }
 
-static int sweep(const us_Structure *s, const Box *bx, int n, int ax, us_BodyPair **pairs, int *np,
-                 int *cap) {
+static int sweep(const us_Structure *s, const double *tol, const Box *bx, int n, int ax,
+                 us_BodyPair **pairs, int *np, int *cap) {
   int other = 1 - ax;
   for (int k = 0; k < n; k++)
     for (int m = k + 1; m < n && bx[m].lo[ax] <= bx[k].hi[ax]; m++) {
       if (bx[m].lo[other] > bx[k].hi[other] || bx[k].lo[other] > bx[m].hi[other]) continue;
       if (s->bodies[bx[k].body].fixed && s->bodies[bx[m].body].fixed) continue;
+      if (separated(s, tol, &bx[k], &bx[m])) continue;
       if (push_pair(pairs, np, cap, bx[k].body, bx[m].body)) return -1;
     }
   return 0;
 }
 
-us_Status us_broadphase(const us_Structure *s, double tol, us_BodyPair **pairs, int *npairs,
-                        us_Error *err) {
+us_Status us_broadphase(const us_Structure *s, const double *tol, us_BodyPair **pairs,
+                        int *npairs, us_Error *err) {
   *pairs = NULL;
   *npairs = 0;
   int cap = 0;
@@ -92,7 +168,7 @@ us_Status us_broadphase(const us_Structure *s, double tol, us_BodyPair **pairs, 
   int n = make_boxes(s, tol, bx);
   int ax = choose_axis(bx, n);
   qsort(bx, (size_t)n, sizeof *bx, ax ? box_cmp_y : box_cmp_x);
-  int rc = sweep(s, bx, n, ax, pairs, npairs, &cap);
+  int rc = sweep(s, tol, bx, n, ax, pairs, npairs, &cap);
   us_free(bx);
   if (rc) {
     us_free(*pairs);
@@ -101,5 +177,24 @@ us_Status us_broadphase(const us_Structure *s, double tol, us_BodyPair **pairs, 
     return us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
   }
   qsort(*pairs, (size_t)*npairs, sizeof **pairs, pair_cmp);
+  return US_OK;
+}
+
+us_Status us_broadphase_all(const us_Structure *s, us_BodyPair **pairs, int *npairs,
+                            us_Error *err) {
+  int cap = 0;
+  *pairs = NULL;
+  *npairs = 0;
+  for (int i = 0; i < s->nbody; i++)
+    for (int j = i + 1; j < s->nbody; j++) {
+      const us_Body *a = &s->bodies[i], *b = &s->bodies[j];
+      if (a->nvert < 3 || b->nvert < 3 || (a->fixed && b->fixed)) continue;
+      if (push_pair(pairs, npairs, &cap, i, j)) {
+        us_free(*pairs);
+        *pairs = NULL;
+        *npairs = 0;
+        return us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
+      }
+    }
   return US_OK;
 }

@@ -5,7 +5,6 @@
 #define US_CONTACT_H
 
 #include "geometry/geometry.h"
-#include "model/model.h"
 
 /* cos of the largest angle between two normals still taken as the same
  * direction (1e-3 rad): used to merge duplicates and spot coincident
@@ -33,19 +32,36 @@ typedef struct us_CandList {
 /* Append; 0 or -1 on OOM. */
 int us_cand_push(us_CandList *l, int a, int b, us_Vec2 p, us_Vec2 n);
 
-/* Pairs of polygon bodies whose boxes (inflated by tol) overlap, except
- * pairs of two fixed bodies; sorted by (i, j). *pairs is allocated (free
- * with us_free) even when empty. Sort and sweep along the axis where the
- * box centres spread most. */
-us_Status us_broadphase(const us_Structure *s, double tol, us_BodyPair **pairs, int *npairs,
-                        us_Error *err);
+/* Pairs of polygon bodies whose boxes, each inflated by its body's own
+ * tolerance tol[i], overlap, except pairs of two fixed bodies; sorted by
+ * (i, j). *pairs is allocated (free with us_free) even when empty. Sort
+ * and sweep along the axis where the box centres spread most. */
+us_Status us_broadphase(const us_Structure *s, const double *tol, us_BodyPair **pairs,
+                        int *npairs, us_Error *err);
+/* The reference: every pair of polygon bodies but two fixed ones. */
+us_Status us_broadphase_all(const us_Structure *s, us_BodyPair **pairs, int *npairs,
+                            us_Error *err);
+
+/* One detection run: the structure, each body's own tolerance and each
+ * polygon's edge index, built on first use with the body's own tolerance
+ * as padding (at least any pair tolerance of the body), kept to the end. */
+typedef struct us_Detect {
+  const us_Structure *s;
+  int reference; /* us_ContactSettings.reference: no index, no filter */
+  const double *tol;
+  us_EdgeGrid *grid;
+  unsigned char *built;
+} us_Detect;
+
+/* Body i's edge index; NULL when out of memory. */
+us_EdgeGrid *us_detect_grid(us_Detect *d, int i);
 
 /* Interpenetration of bodies i and j beyond tol: US_ERR_INPUT naming both. */
-us_Status us_pair_overlap(const us_Structure *s, int i, int j, double tol, us_Error *err);
+us_Status us_pair_overlap(us_Detect *d, int i, int j, double tol, us_Error *err);
 
 /* Vertex-on-edge contacts between i and j, duplicates merged, appended to
  * out in a deterministic order. */
-us_Status us_pair_contacts(const us_Structure *s, int i, int j, double tol, us_CandList *out,
+us_Status us_pair_contacts(us_Detect *d, int i, int j, double tol, us_CandList *out,
                            us_Error *err);
 
 #endif

@@ -1,89 +1,139 @@
-/* Contact detection: replaces a structure's contacts by the vertex-on-edge
- * contacts of its polygons with each other and with the ground.
+/* Contact detection: the vertex-on-edge contacts of a structure's polygons
+ * with each other and with the ground, returned as a list. The structure is
+ * only read (us_structure_detect_contacts in model/structure.c installs the
+ * list), so detection does not depend on the structure builder.
  *
- * Steps: polygons are made counter-clockwise in place (as validation
- * does); the tolerance (settings, else 1e-6 * scale, at least 1e-9); ground
- * contacts (every vertex of a movable body with |y| <= tol, normal (0, 1),
- * a = US_GROUND), in body then vertex order; the broad phase (broadphase.c)
- * gives candidate pairs sorted by (i, j), never two fixed bodies; for each
- * pair the overlap check (overlap.c, US_ERR_INPUT naming both bodies) and
- * the vertex-on-edge contacts (pair.c). Contacts are added only when all
- * pairs passed, through us_structure_add_contact so the friction rule
- * applies; on error the structure's contacts are left as they were (except
- * after an out-of-memory while adding, when they are cleared). Bodies
- * without geometry are ignored. The output order depends only on the input. */
+ * Tolerances follow the bodies involved, never the whole structure: a body's
+ * own tolerance is US_GEOM_TOL_REL times its bounding-box diagonal, a pair's
+ * is the smaller of the two bodies' own, and a body's contacts with the
+ * ground use its own. A tolerance given in the settings (> 0) replaces all
+ * of them. So adding a body far away changes no contact, and scaling every
+ * coordinate scales every tolerance with it.
+ *
+ * Steps: ground contacts (every vertex of a movable body with |y| <= its
+ * tolerance, normal (0, 1), a = US_GROUND), in body then vertex order; the
+ * broad phase (broadphase.c) gives candidate pairs sorted by (i, j), never
+ * two fixed bodies; for each pair the overlap check (overlap.c, US_ERR_INPUT
+ * naming both bodies) and the vertex-on-edge contacts (pair.c). Polygons
+ * must be counter-clockwise (finalize makes them so): a clockwise one is
+ * US_ERR_INPUT. Bodies without geometry are ignored. On error the list is
+ * left empty. The output order depends only on the input. */
 #include "contact.h"
 
 #include <math.h>
+#include <string.h>
 
-/* Bounding-box diagonal of all polygons (1 if none). */
-static double polygon_scale(const us_Structure *s) {
-  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+/* Each body's own tolerance (the settings' when given). */
+static double *body_tols(const us_Structure *s, double given) {
+  double *tol = us_malloc((size_t)(s->nbody > 0 ? s->nbody : 1) * sizeof *tol);
+  if (!tol) return NULL;
   for (int i = 0; i < s->nbody; i++) {
     const us_Body *b = &s->bodies[i];
-    for (int k = 0; k < b->nvert; k++)
-      for (int d = 0; d < 2; d++) {
-        lo[d] = US_MIN(lo[d], b->verts[2 * k + d]);
-        hi[d] = US_MAX(hi[d], b->verts[2 * k + d]);
-      }
+    tol[i] = given > 0 ? given : us_geom_tol(us_poly_diameter(b->verts, b->nvert));
   }
-  double diag = hypot(hi[0] - lo[0], hi[1] - lo[1]);
-  return diag > 0 && isfinite(diag) ? diag : 1.0;
+  return tol;
 }
 
-static int ground_contacts(const us_Structure *s, double tol, us_CandList *out) {
+static int ground_contacts(const us_Structure *s, const double *tol, us_CandList *out) {
   if (!s->ground) return 0;
   for (int i = 0; i < s->nbody; i++) {
     const us_Body *b = &s->bodies[i];
     if (b->fixed || b->nvert < 3) continue;
     for (int k = 0; k < b->nvert; k++) {
       us_Vec2 v = us_poly_vertex(b->verts, b->nvert, k);
-      if (fabs(v.y) <= tol && us_cand_push(out, US_GROUND, i, v, us_v2(0, 1))) return -1;
+      if (fabs(v.y) <= tol[i] && us_cand_push(out, US_GROUND, i, v, us_v2(0, 1))) return -1;
     }
   }
   return 0;
 }
 
-static us_Status pair_phase(const us_Structure *s, double tol, us_CandList *out, us_Error *err) {
+us_EdgeGrid *us_detect_grid(us_Detect *d, int i) {
+  const us_Body *b = &d->s->bodies[i];
+  double pad = d->reference ? INFINITY : d->tol[i];
+  if (!d->built[i] && us_edge_grid_init(&d->grid[i], b->verts, b->nvert, pad)) return NULL;
+  d->built[i] = 1;
+  return &d->grid[i];
+}
+
+static us_Status pair_phase(const us_Structure *s, int reference, const double *tol,
+                            us_CandList *out, us_Error *err) {
   us_BodyPair *pairs = NULL;
-  int np = 0;
-  us_Status st = us_broadphase(s, tol, &pairs, &np, err);
+  int np = 0, nb = s->nbody > 0 ? s->nbody : 1;
+  us_Detect d = {s, reference, tol, us_calloc((size_t)nb, sizeof(us_EdgeGrid)),
+                 us_calloc((size_t)nb, 1)};
+  us_Status st = US_OK;
+  if (!d.grid || !d.built)
+    st = us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
+  else if (reference)
+    st = us_broadphase_all(s, &pairs, &np, err);
+  else
+    st = us_broadphase(s, tol, &pairs, &np, err);
   for (int k = 0; !st && k < np; k++) {
-    st = us_pair_overlap(s, pairs[k].i, pairs[k].j, tol, err);
-    if (!st) st = us_pair_contacts(s, pairs[k].i, pairs[k].j, tol, out, err);
+    int i = pairs[k].i, j = pairs[k].j;
+    double t = US_MIN(tol[i], tol[j]);
+    st = us_pair_overlap(&d, i, j, t, err);
+    if (!st) st = us_pair_contacts(&d, i, j, t, out, err);
   }
+  for (int i = 0; d.built && i < s->nbody; i++)
+    if (d.built[i]) us_edge_grid_free(&d.grid[i]);
+  us_free(d.grid);
+  us_free(d.built);
   us_free(pairs);
   return st;
 }
 
-static us_Status install(us_Structure *s, const us_CandList *l, us_Error *err) {
-  s->ncontact = 0;
-  s->explicit_contacts = 0;
-  for (int k = 0; k < l->n; k++) {
-    const us_Cand *c = &l->c[k];
-    double p[3] = {c->p.x, c->p.y, 0.0}, n[3] = {c->n.x, c->n.y, 0.0};
-    if (us_structure_add_contact(s, c->a, c->b, p, n, -1.0, err) < 0) {
-      s->ncontact = 0;
-      return err ? err->code : US_ERR_NOMEM;
-    }
+static us_Status check_input(const us_Structure *s, us_Error *err) {
+  if (s->dim != 2) return us_error_set(err, US_ERR_INPUT, "contact detection needs dim 2");
+  for (int i = 0; i < s->nbody; i++) {
+    const us_Body *b = &s->bodies[i];
+    if (b->nvert >= 3 && us_poly_signed_area(b->verts, b->nvert) < 0)
+      return us_error_set(err, US_ERR_INPUT,
+                          "body '%s': polygon is clockwise (contact detection needs the "
+                          "counter-clockwise order that finalize gives)",
+                          us_id_text(b->id).s);
   }
   return US_OK;
 }
 
-us_Status us_detect_contacts(us_Structure *s, const us_ContactSettings *set, us_Error *err) {
-  if (s->dim != 2) return us_error_set(err, US_ERR_INPUT, "contact detection needs dim 2");
-  /* outward normals assume counter-clockwise polygons (finalize already
-   * made them so; a direct call on a fresh structure may not have) */
-  for (int i = 0; i < s->nbody; i++)
-    if (s->bodies[i].nvert >= 3) us_poly_make_ccw(s->bodies[i].verts, s->bodies[i].nvert);
-  double tol =
-      set && set->tol > 0 ? set->tol : us_geom_tol(s->scale > 0 ? s->scale : polygon_scale(s));
+/* Move the candidates into the caller's list (a, b, p, n; mu = -1). */
+static us_Status to_list(const us_CandList *l, us_ContactList *out, us_Error *err) {
+  if (US_GROW(out->c, out->cap, l->n > 0 ? l->n : 1))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
+  for (int k = 0; k < l->n; k++) {
+    us_Contact *c = &out->c[k];
+    memset(c, 0, sizeof *c);
+    c->a = l->c[k].a;
+    c->b = l->c[k].b;
+    c->p[0] = l->c[k].p.x;
+    c->p[1] = l->c[k].p.y;
+    c->n[0] = l->c[k].n.x;
+    c->n[1] = l->c[k].n.y;
+    c->mu = -1.0;
+  }
+  out->n = l->n;
+  return US_OK;
+}
+
+us_Status us_detect_contacts(const us_Structure *s, const us_ContactSettings *set,
+                             us_ContactList *out, us_Error *err) {
+  out->n = 0;
+  us_Status st = check_input(s, err);
+  if (st) return st;
+  double *tol = body_tols(s, set ? set->tol : 0.0);
+  if (!tol) return us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
   us_CandList l = {NULL, 0, 0};
-  us_Status st = US_OK;
   if (ground_contacts(s, tol, &l))
     st = us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
-  if (!st) st = pair_phase(s, tol, &l, err);
-  if (!st) st = install(s, &l, err);
+  if (!st) st = pair_phase(s, set && set->reference, tol, &l, err);
+  if (!st) st = to_list(&l, out, err);
   us_free(l.c);
+  us_free(tol);
   return st;
+}
+
+void us_contact_list_free(us_ContactList *l) {
+  if (!l) return;
+  us_free(l->c);
+  l->c = NULL;
+  l->n = l->cap = 0;
 }

@@ -23,8 +23,12 @@
  *
  * Candidates of a pair are collected as: vertices of j on edges of i, then
  * vertices of i on edges of j, each in vertex then edge order; a candidate
- * within tol of an earlier one with the same normal (same a) or the
- * opposite normal (swapped a and b) is a duplicate and dropped. Corner on
+ * within tol of an earlier kept one with the same normal (same a) or the
+ * opposite normal (swapped a and b) is a duplicate and dropped. Only the
+ * edges near a vertex are tested (the polygon's edge index, geometry/
+ * edgegrid.c) and duplicates are searched among candidates within tol along
+ * the axis of larger spread, so a pair costs about its vertices plus its
+ * contacts, not their product. Corner on
  * corner (diagonal boxes, an apex on a block's corner) keeps every edge
  * normal at that point that separates the two corners (for diagonal boxes
  * both the vertical and the horizontal one): the contact normal of two
@@ -32,6 +36,7 @@
 #include "contact.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 int us_cand_push(us_CandList *l, int a, int b, us_Vec2 p, us_Vec2 n) {
   if (US_GROW(l->c, l->cap, l->n + 1)) return -1;
@@ -96,37 +101,110 @@ static int vertex_on_edge(const us_Body *A, int e, const us_Body *B, int k, doub
   return face_ok(v, prev, next, p0, dir, *n, len, tol);
 }
 
-static int is_duplicate(const us_CandList *l, int from, int a, us_Vec2 p, us_Vec2 n, double tol) {
-  for (int k = from; k < l->n; k++) {
-    const us_Cand *c = &l->c[k];
-    if (us_v2_dist(c->p, p) > tol) continue;
-    double dot = us_v2_dot(c->n, n);
-    if (c->a == a ? dot >= US_CONTACT_NORMAL_COS : dot <= -US_CONTACT_NORMAL_COS) return 1;
+/* Is c (later) a duplicate of d (earlier)? Within tol, same normal from
+ * the same owner or the opposite normal from the other body. */
+static int duplicates(const us_Cand *d, const us_Cand *c, double tol) {
+  if (us_v2_dist(d->p, c->p) > tol) return 0;
+  double dot = us_v2_dot(d->n, c->n);
+  return d->a == c->a ? dot >= US_CONTACT_NORMAL_COS : dot <= -US_CONTACT_NORMAL_COS;
+}
+
+typedef struct Key {
+  double x;
+  int idx;
+} Key;
+
+static int key_cmp(const void *pa, const void *pb) {
+  const Key *a = pa, *b = pb;
+  if (a->x != b->x) return a->x < b->x ? -1 : 1;
+  return (a->idx > b->idx) - (a->idx < b->idx);
+}
+
+/* The axis (0 x, 1 y) along which the points spread most. */
+static int spread_axis(const us_Cand *c, int m) {
+  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+  for (int k = 0; k < m; k++) {
+    lo[0] = US_MIN(lo[0], c[k].p.x), hi[0] = US_MAX(hi[0], c[k].p.x);
+    lo[1] = US_MIN(lo[1], c[k].p.y), hi[1] = US_MAX(hi[1], c[k].p.y);
   }
+  return hi[1] - lo[1] > hi[0] - lo[0];
+}
+
+/* Is candidate c a duplicate of a kept earlier one? Scan the neighbours
+ * of its place r in the sorted keys while they are within tol. */
+static int dup_of_kept(const us_Cand *cd, const Key *key, int m, int r, const unsigned char *keep,
+                       double tol) {
+  int c = key[r].idx;
+  for (int dir = -1; dir <= 1; dir += 2)
+    for (int q = r + dir; q >= 0 && q < m && fabs(key[q].x - key[r].x) <= tol; q += dir)
+      if (key[q].idx < c && keep[key[q].idx] && duplicates(&cd[key[q].idx], &cd[c], tol)) return 1;
   return 0;
 }
 
-/* Vertices of body ib on edges of body ia. */
-static int vertices_on_edges(const us_Structure *s, int ia, int ib, double tol, int from,
-                             us_CandList *out) {
-  const us_Body *A = &s->bodies[ia], *B = &s->bodies[ib];
+/* Drop, in generation order, every candidate from `from` on that
+ * duplicates an earlier kept one. Candidates are sorted along the axis of
+ * larger spread so that only those within tol along it are compared. */
+/* The reference: every earlier kept candidate is compared. */
+static void drop_duplicates_slow(us_CandList *l, int from, double tol) {
+  int n = from;
+  for (int c = from; c < l->n; c++) {
+    int dup = 0;
+    for (int k = from; k < n && !dup; k++) dup = duplicates(&l->c[k], &l->c[c], tol);
+    if (!dup) l->c[n++] = l->c[c];
+  }
+  l->n = n;
+}
+
+static int drop_duplicates(us_CandList *l, int from, double tol) {
+  int m = l->n - from;
+  if (m < 2) return 0;
+  us_Cand *cd = l->c + from;
+  Key *key = us_malloc((size_t)m * sizeof *key);
+  int *pos = us_malloc((size_t)m * sizeof *pos);
+  unsigned char *keep = us_malloc((size_t)m);
+  if (!key || !pos || !keep) {
+    us_free(key), us_free(pos), us_free(keep);
+    return -1;
+  }
+  int ax = spread_axis(cd, m), n = 0;
+  for (int k = 0; k < m; k++) key[k] = (Key){ax ? cd[k].p.y : cd[k].p.x, k};
+  qsort(key, (size_t)m, sizeof *key, key_cmp);
+  for (int r = 0; r < m; r++) pos[key[r].idx] = r;
+  for (int c = 0; c < m; c++) keep[c] = !dup_of_kept(cd, key, m, pos[c], keep, tol);
+  for (int c = 0; c < m; c++)
+    if (keep[c]) cd[n++] = cd[c];
+  l->n = from + n;
+  us_free(key), us_free(pos), us_free(keep);
+  return 0;
+}
+
+/* Vertices of body ib on edges of body ia: for each vertex of ib (in
+ * order), the edges of ia near it (from ia's edge index, in order). */
+static int vertices_on_edges(us_Detect *d, int ia, int ib, double tol, us_CandList *out) {
+  const us_Body *A = &d->s->bodies[ia], *B = &d->s->bodies[ib];
+  us_EdgeGrid *g = us_detect_grid(d, ia);
+  if (!g) return -1;
   double bb[4];
   us_poly_bbox(A->verts, A->nvert, bb);
   for (int k = 0; k < B->nvert; k++) {
     us_Vec2 v = us_poly_vertex(B->verts, B->nvert, k), n;
     if (v.x < bb[0] - tol || v.x > bb[2] + tol || v.y < bb[1] - tol || v.y > bb[3] + tol) continue;
-    for (int e = 0; e < A->nvert; e++) {
-      if (!vertex_on_edge(A, e, B, k, tol, &n) || is_duplicate(out, from, ia, v, n, tol)) continue;
-      if (us_cand_push(out, ia, ib, v, n)) return -1;
-    }
+    double box[4] = {v.x - tol, v.y - tol, v.x + tol, v.y + tol};
+    int m = us_edge_grid_query(g, box);
+    for (int q = 0; q < m; q++)
+      if (vertex_on_edge(A, g->out[q], B, k, tol, &n) && us_cand_push(out, ia, ib, v, n)) return -1;
   }
   return 0;
 }
 
-us_Status us_pair_contacts(const us_Structure *s, int i, int j, double tol, us_CandList *out,
+us_Status us_pair_contacts(us_Detect *d, int i, int j, double tol, us_CandList *out,
                            us_Error *err) {
   int from = out->n;
-  if (vertices_on_edges(s, i, j, tol, from, out) || vertices_on_edges(s, j, i, tol, from, out))
+  if (vertices_on_edges(d, i, j, tol, out) || vertices_on_edges(d, j, i, tol, out))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
+  if (d->reference)
+    drop_duplicates_slow(out, from, tol);
+  else if (drop_duplicates(out, from, tol))
     return us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
   return US_OK;
 }

@@ -63,7 +63,12 @@ us_Status us_gen_add(us_Structure *s, const us_GenSettings *g, int k, int nvert,
   us_Error local;
   snprintf(id, sizeof id, "b%d", k + 1);
   if (!err) err = &local; /* callers may pass NULL; we still need the code */
-  if (us_structure_add_polygon(s, id, nvert, xy, g->density, 0.0, 0, -1.0, err) < 0)
+  us_BodyDef d = us_default_body_def();
+  d.id = id;
+  d.nvert = nvert;
+  d.xy = xy;
+  d.density = g->density;
+  if (us_structure_add_body(s, &d, err) < 0)
     return err->code;
   return US_OK;
 }

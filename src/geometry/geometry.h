@@ -5,8 +5,9 @@
  * (edge i joins vertex i to vertex (i+1) % n). Counter-clockwise polygons
  * have positive signed area; the outward normal of a CCW edge with direction
  * (dx, dy) is (dy, -dx) / |d|. Every comparison that needs a tolerance takes
- * it as an argument: a length, normally us_geom_tol(scale) of the structure,
- * so that results do not depend on the units. */
+ * it as an argument: a length, normally us_geom_tol(size) of the bodies
+ * involved (a pair's own size), so that results do not depend on the units
+ * nor on anything far away. */
 #ifndef US_GEOMETRY_H
 #define US_GEOMETRY_H
 
@@ -14,10 +15,10 @@
 
 #include <math.h>
 
-/* Default length tolerance: relative to the structure's characteristic size
- * (its bounding-box diagonal), with an absolute floor for tiny scenes. */
+/* Default length tolerance: relative to the size (bounding-box diagonal)
+ * of the bodies involved, with no absolute floor, so that a structure and
+ * its copy scaled by any power of ten get the same answers. */
 #define US_GEOM_TOL_REL 1e-6
-#define US_GEOM_TOL_MIN 1e-9
 
 typedef struct us_Vec2 {
   double x, y;
@@ -49,8 +50,11 @@ static inline us_Vec2 us_poly_vertex(const double *xy, int n, int i) {
   return us_v2(xy[2 * k], xy[2 * k + 1]);
 }
 
-/* The default tolerance for a structure of the given size. */
-double us_geom_tol(double scale);
+/* The default tolerance for a body (or pair) of the given size: size *
+ * US_GEOM_TOL_REL; 0 when size is not positive and finite. */
+double us_geom_tol(double size);
+/* Bounding-box diagonal of a polygon (0 for n < 1; may be inf on overflow). */
+double us_poly_diameter(const double *xy, int n);
 
 /* Signed area (> 0 counter-clockwise). n >= 3 for a meaningful value. */
 double us_poly_signed_area(const double *xy, int n);
@@ -101,5 +105,31 @@ typedef enum us_PolyDefect {
   US_POLY_NOMEM
 } us_PolyDefect;
 us_PolyDefect us_poly_check_simple(const double *xy, int n, double tol, int *i, int *j);
+
+/* Edge index of one polygon (edgegrid.c): the edges whose bounding boxes,
+ * padded by `pad`, meet a query box, and point in polygon, at a cost that
+ * follows the edges near the query instead of all n. Polygons of at most
+ * US_EDGE_GRID_MIN edges are scanned whole. The polygon array must outlive
+ * the index. Not thread-safe (queries write the result buffer). */
+#define US_EDGE_GRID_MIN 32
+typedef struct us_EdgeGrid {
+  const double *xy;
+  int n;
+  double pad;
+  double lo[2], h[2]; /* grid origin and cell sizes */
+  int nx, ny;
+  int *start, *items; /* cell c lists items[start[c] .. start[c+1]); NULL: no grid */
+  int *stamp, qid;    /* per-edge mark of the last query that took it */
+  int *out, nout;     /* result of the last query, increasing edge indices */
+  int small[US_EDGE_GRID_MIN]; /* out for small polygons (no allocation) */
+} us_EdgeGrid;
+/* 0, or -1 when out of memory (nothing to free then). */
+int us_edge_grid_init(us_EdgeGrid *g, const double *xy, int n, double pad);
+void us_edge_grid_free(us_EdgeGrid *g);
+/* Edges whose padded boxes meet box {xmin, ymin, xmax, ymax}: their count,
+ * indices in g->out, increasing. */
+int us_edge_grid_query(us_EdgeGrid *g, const double box[4]);
+/* Point in polygon for a point not within pad of the boundary (1 inside). */
+int us_edge_grid_inside(us_EdgeGrid *g, us_Vec2 q);
 
 #endif

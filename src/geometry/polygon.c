@@ -11,9 +11,15 @@
 
 #include <math.h>
 
-double us_geom_tol(double scale) {
-  double t = US_GEOM_TOL_REL * (scale > 0 && isfinite(scale) ? scale : 1.0);
-  return t > US_GEOM_TOL_MIN ? t : US_GEOM_TOL_MIN;
+double us_geom_tol(double size) {
+  return size > 0 && isfinite(size) ? US_GEOM_TOL_REL * size : 0.0;
+}
+
+double us_poly_diameter(const double *xy, int n) {
+  if (n < 1) return 0.0;
+  double bb[4];
+  us_poly_bbox(xy, n, bb);
+  return hypot(bb[2] - bb[0], bb[3] - bb[1]);
 }
 
 double us_poly_signed_area(const double *xy, int n) {

@@ -123,8 +123,15 @@ static us_Status add_polygon_body(Reader *r, const char *where, const char *id, 
   double *xy = NULL;
   int n = 0;
   us_Status st = read_polygon(r, where, json_object_get(b, "polygon"), &xy, &n);
-  if (!st && us_structure_add_polygon(r->s, id, n, xy, f->density, f->mass, f->fixed, f->friction,
-                                      r->c.err) < 0)
+  if (!st && us_structure_add_body(r->s,
+                                   &(us_BodyDef){.id = id,
+                                                 .nvert = n,
+                                                 .xy = xy,
+                                                 .density = f->density,
+                                                 .mass = f->mass,
+                                                 .fixed = f->fixed,
+                                                 .friction = f->friction},
+                                   r->c.err) < 0)
     st = r->c.err->code;
   us_free(xy);
   return st;

@@ -16,7 +16,8 @@ us_Status us_model_validate(us_Structure *s, us_Error *err);
  * inertia about it, for every polygon body. */
 us_Status us_model_mass_properties(us_Structure *s, us_Error *err);
 
-/* structure.c: bounding box, scale, total weight; derive contact_tol. */
+/* structure.c: bounding box, scale and total weight (contact_tol is left
+ * as the caller set it). */
 void us_model_measure(us_Structure *s);
 
 /* Fill the tangent basis of a contact from its normal. */

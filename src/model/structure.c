@@ -1,11 +1,17 @@
 /* The structure model: building a structure body by body, and sealing it
- * with finalize (validate, mass properties, measure, detect contacts).
+ * with finalize, a pipeline of steps that each only read what the previous
+ * ones wrote: validate -> mass properties -> measure -> detect -> install.
+ * Detection (contact/) returns a contact list and never calls back here;
+ * this file installs the list, so the dependency runs one way only.
  *
  * Invariants after finalize: polygons are counter-clockwise and simple;
  * movable bodies have mass > 0 and finite inertia; every contact has a unit
- * normal pointing from a into b, a tangent basis, and mu >= 0; contact_tol
- * > 0 and scale > 0. Fixed bodies keep their geometry and take no mass. */
+ * normal pointing from a into b, a tangent basis, and mu >= 0; scale > 0.
+ * contact_tol keeps the caller's value (<= 0: tolerances per pair). Fixed
+ * bodies keep their geometry and take no mass. */
 #include "model.h"
+
+#include "geometry/geometry.h"
 
 #include <math.h>
 #include <string.h>
@@ -75,10 +81,18 @@ static int add_body(us_Structure *s, const char *id, us_Error *err) {
   return s->nbody++;
 }
 
-int us_structure_add_polygon(us_Structure *s, const char *id, int nvert, const double *xy,
-                             double density, double mass, int fixed, double friction,
-                             us_Error *err) {
-  if (nvert < 0 || (nvert > 0 && !xy)) {
+us_BodyDef us_default_body_def(void) {
+  us_BodyDef d;
+  memset(&d, 0, sizeof d);
+  d.density = 1.0;
+  d.friction = -1.0;
+  return d;
+}
+
+int us_structure_add_body(us_Structure *s, const us_BodyDef *def, us_Error *err) {
+  const char *id = def->id;
+  int nvert = def->nvert;
+  if (nvert < 0 || (nvert > 0 && !def->xy)) {
     us_error_set(err, US_ERR_INPUT, "body '%s': bad polygon", us_id_text(id ? id : "?").s);
     return -1;
   }
@@ -93,15 +107,22 @@ int us_structure_add_polygon(us_Structure *s, const char *id, int nvert, const d
     return -1;
   }
   us_Body *b = &s->bodies[i];
-  if (nvert > 0) memcpy(v, xy, (size_t)nvert * 2 * sizeof(double));
+  if (nvert > 0) memcpy(v, def->xy, (size_t)nvert * 2 * sizeof(double));
   b->verts = v;
   b->nvert = nvert;
-  b->density = density > 0 ? density : 1.0;
-  b->mass = mass;
-  b->mass_given = mass > 0;
-  b->fixed = fixed != 0;
-  b->friction = friction;
+  b->density = def->density > 0 ? def->density : 1.0;
+  b->mass = def->mass;
+  b->mass_given = def->mass > 0;
+  b->fixed = def->fixed != 0;
+  b->friction = def->friction;
   return i;
+}
+
+int us_structure_add_polygon(us_Structure *s, const char *id, int nvert, const double *xy,
+                             double density, double mass, int fixed, double friction,
+                             us_Error *err) {
+  us_BodyDef d = {id, nvert, xy, density, mass, fixed, friction};
+  return us_structure_add_body(s, &d, err);
 }
 
 int us_structure_add_point_body(us_Structure *s, const char *id, double mass,
@@ -217,25 +238,50 @@ void us_model_measure(us_Structure *s) {
   double g = sqrt(s->gravity[0] * s->gravity[0] + s->gravity[1] * s->gravity[1] +
                   s->gravity[2] * s->gravity[2]);
   s->weight = g * mass > 0 ? g * mass : 1.0;
-  if (!(s->contact_tol > 0)) s->contact_tol = US_MAX(1e-6 * s->scale, 1e-9);
+}
+
+/* Replace the structure's contacts by a detected list (friction rule and
+ * tangent basis through us_structure_add_contact). */
+static us_Status install(us_Structure *s, const us_ContactList *l, us_Error *err) {
+  s->ncontact = 0;
+  s->explicit_contacts = 0;
+  for (int k = 0; k < l->n; k++) {
+    const us_Contact *c = &l->c[k];
+    if (us_structure_add_contact(s, c->a, c->b, c->p, c->n, -1.0, err) < 0) {
+      s->ncontact = 0;
+      return US_ERR_NOMEM; /* the only failure left: the list is valid */
+    }
+  }
+  s->contacts_detected = 1;
+  return US_OK;
+}
+
+us_Status us_structure_detect_contacts(us_Structure *s, const us_ContactSettings *set,
+                                       us_Error *err) {
+  for (int i = 0; i < s->nbody; i++)
+    if (s->bodies[i].nvert >= 3) us_poly_make_ccw(s->bodies[i].verts, s->bodies[i].nvert);
+  us_ContactSettings own = {s->contact_tol, 0};
+  us_ContactList l = {NULL, 0, 0};
+  us_Status st = us_detect_contacts(s, set ? set : &own, &l, err);
+  if (!st) st = install(s, &l, err);
+  us_contact_list_free(&l);
+  return st;
 }
 
 us_Status us_structure_finalize(us_Structure *s, us_Error *err) {
   us_Status st = us_model_validate(s, err);
   if (st) return st;
+  us_model_measure(s); /* scale: the fallback radius of point bodies */
   st = us_model_mass_properties(s, err);
   if (st) return st;
-  us_model_measure(s);
   /* contacts added by the caller are explicit; detected ones are redone,
    * so finalizing again after adding bodies sees the new bodies */
   if (s->ncontact > 0 && !s->contacts_detected) s->explicit_contacts = 1;
   if (!s->explicit_contacts) {
-    us_ContactSettings cs = {s->contact_tol};
-    st = us_detect_contacts(s, &cs, err);
+    st = us_structure_detect_contacts(s, NULL, err);
     if (st) return st;
-    s->contacts_detected = 1;
   }
-  us_model_measure(s);
+  us_model_measure(s); /* weight, and the bbox with contact points */
   s->finalized = 1;
   return US_OK;
 }

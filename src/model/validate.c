@@ -4,14 +4,17 @@
  *
  * Two passes. The first checks values that need no tolerance (finite
  * numbers, vertex counts, masses, densities, friction, point bodies only
- * with explicit contacts). Then the structure is measured (bounding box ->
- * scale -> contact_tol), and the second pass checks shapes against that
- * tolerance: the polygon must be simple, its area must exceed
- * tol * diameter (the body is on average thicker than the tolerance), and
- * with a ground no vertex may lie below y = -tol. Polygons are made
- * counter-clockwise in place (vertex 0 is kept). On error contact_tol is
- * restored, so a failed call leaves the structure as it was apart from
- * orientation. */
+ * with explicit contacts). The second checks each polygon's shape against
+ * the body's own tolerance (contact_tol when the caller set one, else
+ * US_GEOM_TOL_REL times the body's bounding-box diagonal: the tolerance
+ * contact detection uses for the body against the ground, and at least the
+ * one of any pair it belongs to). First the size and area must be finite
+ * (huge coordinates overflow: said so, not reported as a zero area); then
+ * the polygon must be simple, its area must exceed tol * diameter (the body
+ * is on average thicker than the tolerance), and with a ground no vertex
+ * may lie below y = -tol. Polygons are made counter-clockwise in place
+ * (vertex 0 is kept). Interpenetration of two bodies is checked by contact
+ * detection (contact/overlap.c) with the pair's tolerance. */
 #include "geometry/geometry.h"
 #include "model.h"
 
@@ -109,15 +112,20 @@ static int crosses_properly(const us_Body *b, int i, int j) {
  * thinner than tol always has vertices or edges within tol of each other,
  * so the area is judged before those defects are reported (the clearer
  * message), but after a proper crossing (a bow-tie may have zero area). */
-static us_Status check_shape(const us_Structure *s, us_Body *b, double tol, us_Error *err) {
+static us_Status check_shape(const us_Structure *s, us_Body *b, us_Error *err) {
   double bb[4];
   us_poly_bbox(b->verts, b->nvert, bb);
+  double diam = hypot(bb[2] - bb[0], bb[3] - bb[1]);
+  if (!isfinite(diam) || !isfinite(us_poly_signed_area(b->verts, b->nvert)))
+    return us_error_set(err, US_ERR_INPUT, "body '%s': coordinates too large, the area overflows",
+                        us_id_text(b->id).s);
+  double tol = s->contact_tol > 0 ? s->contact_tol : us_geom_tol(diam);
   int i = -1, j = -1;
   us_PolyDefect d = us_poly_check_simple(b->verts, b->nvert, tol, &i, &j);
   if (d == US_POLY_NOMEM || (d == US_POLY_EDGES_CROSS && crosses_properly(b, i, j)))
     return defect_error(b, d, i, j, err);
   double area = us_poly_signed_area(b->verts, b->nvert);
-  if (!(fabs(area) > tol * hypot(bb[2] - bb[0], bb[3] - bb[1])))
+  if (!(fabs(area) > tol * diam))
     return us_error_set(err, US_ERR_INPUT, "body '%s': polygon has (almost) zero area (%g)",
                         us_id_text(b->id).s, area);
   if (d != US_POLY_SIMPLE) return defect_error(b, d, i, j, err);
@@ -131,12 +139,7 @@ static us_Status check_shape(const us_Structure *s, us_Body *b, double tol, us_E
 us_Status us_model_validate(us_Structure *s, us_Error *err) {
   us_Status st = check_globals(s, err);
   for (int i = 0; !st && i < s->nbody; i++) st = check_values(s, &s->bodies[i], err);
-  if (st) return st;
-  double tol0 = s->contact_tol;
-  us_model_measure(s); /* the tolerance scales with the structure */
-  double tol = s->contact_tol;
   for (int i = 0; !st && i < s->nbody; i++)
-    if (s->bodies[i].nvert > 0) st = check_shape(s, &s->bodies[i], tol, err);
-  if (st) s->contact_tol = tol0;
+    if (s->bodies[i].nvert > 0) st = check_shape(s, &s->bodies[i], err);
   return st;
 }
