@@ -4,7 +4,9 @@
  * added/removed bookkeeping (through a spying backend), order independence
  * and out-of-memory paths. Every STABLE verdict is checked to come with a
  * passing certificate; no test looks at particular force values. */
-#include "stability/stability.h"
+#include "stability/backend.h"
+#include "stability/certificate.h"
+#include "stability/lp_gen.h"
 #include "scenes.h"
 #include "test.h"
 

@@ -6,6 +6,7 @@
  * normal pointing from a into b, a tangent basis, and mu >= 0; contact_tol
  * > 0 and scale > 0. Fixed bodies keep their geometry and take no mass. */
 #include "model.h"
+#include "massprops.h"
 
 #include <math.h>
 #include <string.h>
@@ -213,8 +214,7 @@ void us_model_measure(us_Structure *s) {
   memcpy(s->bbox, bb, sizeof bb);
   double d = hypot(bb[2] - bb[0], bb[3] - bb[1]);
   s->scale = d > 0 ? d : 1.0;
-  double g = sqrt(s->gravity[0] * s->gravity[0] + s->gravity[1] * s->gravity[1] +
-                  s->gravity[2] * s->gravity[2]);
+  double g = us_gravity_norm(s->gravity); /* no overflow: massprops.h */
   s->weight = g * mass > 0 ? g * mass : 1.0;
   if (!(s->contact_tol > 0)) s->contact_tol = US_MAX(1e-6 * s->scale, 1e-9);
 }

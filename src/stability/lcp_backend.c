@@ -33,8 +33,8 @@
  * (a scratch run would fail again, at the full pivot limit). Skipped tests
  * are counted in info->lcp_skips; verdicts never depend on the policy.
  */
+#include "backend.h"
 #include "lcp.h"
-#include "stability.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -191,8 +191,9 @@ static void clip_forces(LcpWs *w, const us_EqSystem *sys) {
   for (int ci = 0; ci < sys->ncontact; ci++) {
     int c = sys->contact[ci];
     if (f[2 * c] < 0) f[2 * c] = 0.0;
-    double lim = sys->mu[ci] * f[2 * c];
     if (w->lcp.kind[2 * c + 1] != US_LCP_FRICTION) f[2 * c + 1] = 0.0;
+    if (isinf(sys->mu[ci])) continue; /* no bound (and inf * 0 would be NaN) */
+    double lim = sys->mu[ci] * f[2 * c];
     f[2 * c + 1] = US_MAX(-lim, US_MIN(lim, f[2 * c + 1]));
   }
 }
@@ -305,7 +306,8 @@ static int dual_cone_proof(LcpWs *w, const us_EqSystem *sys, double energy) {
       at = p->a[2 * c + 1];
       fa += p->f[2 * c + 1] * at;
     }
-    if (an < sys->mu[ci] * fabs(at) - 1e-12) return 0;
+    double need = at == 0.0 ? 0.0 : sys->mu[ci] * fabs(at); /* mu = inf: a_t must be 0 */
+    if (an < need - 1e-12) return 0;
   }
   return energy > US_MAX(fa, 0.0) + 1e-10;
 }

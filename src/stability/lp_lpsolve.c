@@ -1,8 +1,9 @@
 /* The reference stability backend: the same statics feasibility LP as
  * lp_clp.c, solved by lp_solve 5.5, from scratch for every test.
  *
- * Formulation: the cone-edge form of equilibrium.c (G l = rhs, l >= 0,
- * zero objective; exact in 2D, mu = 0 gives one column n per contact).
+ * Formulation: the cone-generator form of lp_gen.h (G l = rhs, l >= 0,
+ * zero objective; exact in 2D; unit generators whatever mu, so mu up to
+ * 1e300 or INFINITY leaves every entry of G of the wrenches' size).
  * lp_solve's default bounds are exactly l in [0, inf), so no variable needs
  * set_unbounded. The model is built column by column (add_columnex, which
  * suits our column-major G) after sizing it once with resize_lp; rows are
@@ -12,13 +13,15 @@
  * (delete_lp); solutions are copied out with get_variables into our own
  * buffer. lp_solve reports OOM as NOMEMORY (or a NULL lprec).
  */
-#include "stability.h"
+#include "backend.h"
+#include "lp_gen.h"
 
 #include <lp_lib.h>
 #include <stdio.h>
 #include <string.h>
 
 typedef struct LpsWs {
+  us_LpSettings set;
   us_EqGen gen;
   double *col;      /* [1 + 6] one column with the objective entry first */
   int *rowno;
@@ -27,12 +30,12 @@ typedef struct LpsWs {
 } LpsWs;
 
 static void *lps_create(const us_Structure *s, const us_StabilitySettings *set, us_Error *err) {
-  US_UNUSED(set);
   if (s->dim != 2) {
     us_error_set(err, US_ERR_USAGE, "the LP backends support 2D structures only");
     return NULL;
   }
   LpsWs *w = us_calloc(1, sizeof *w);
+  if (w) w->set = us_lp_settings_resolve(&set->lp);
   if (w) w->col = us_malloc(8 * sizeof(double));
   if (w) w->rowno = us_malloc(8 * sizeof(int));
   if (!w || !w->col || !w->rowno) {
@@ -77,15 +80,6 @@ fail:
   return NULL;
 }
 
-/* No column at all (no active contact can carry load): the bodies stand
- * only if nothing pushes them, i.e. rhs = 0. Solvers disagree on empty
- * models (lp_solve does not run them), so this is decided here. */
-static us_Verdict no_columns_verdict(const us_EqSystem *sys) {
-  for (int r = 0; r < sys->nbody * sys->nw; r++)
-    if (sys->rhs[r] != 0.0) return US_UNSTABLE;
-  return US_STABLE;
-}
-
 static us_Status lps_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
                            const int *removed, int nremoved, int restart, us_Verdict *verdict,
                            double *f, us_StabilityInfo *info, char *note, size_t note_sz,
@@ -93,12 +87,13 @@ static us_Status lps_solve(void *ws, const us_EqSystem *sys, const int *added, i
   US_UNUSED(added), US_UNUSED(nadded), US_UNUSED(removed), US_UNUSED(nremoved);
   US_UNUSED(restart), US_UNUSED(info);
   LpsWs *w = ws;
-  int r = us_eq_generators(sys, &w->gen);
+  int r = us_eq_generators(sys, w->set.n_column_mu, &w->gen);
   if (r == -2) return us_error_set(err, US_ERR_USAGE, "the LP backends support 2D only");
   if (r || US_GROW(w->sol, w->cap_col, w->gen.ncol + 1))
     return us_error_set(err, US_ERR_NOMEM, "out of memory building the LP");
   if (w->gen.ncol == 0) {
-    *verdict = no_columns_verdict(sys);
+    /* lp_solve does not run empty models: decided here */
+    *verdict = us_eq_no_columns_verdict(sys);
     snprintf(note, note_sz, "no active contact");
     return US_OK;
   }

@@ -14,9 +14,13 @@
  * diagnosis). An empty sub-assembly (no movable body) is stable with no
  * forces and never reaches the backend. After a backend error the
  * workspace forgets its last sub-assembly, so the next call restarts the
- * backend. us_StabilityResult arrays are reused across calls.
+ * backend. us_StabilityResult arrays are reused across calls: a result
+ * must be initialized (us_stability_result_init, or zeroed) before its
+ * first test, and every field is rewritten by each test.
  */
-#include "stability.h"
+#include "backend.h"
+#include "certificate.h"
+#include "lp_gen.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -69,13 +73,45 @@ const char *us_verdict_name(us_Verdict v) {
   return "unknown";
 }
 
+/* Default tolerances of the LP backends (us_LpSettings documents them). */
+#define LP_PRIMAL_TOL 1e-9
+#define LP_WARM_ACCEPT 1e-9
+#define LP_WARM_CHANGES 8
+#define LP_WARM_BODY_DIV 16
+#define LP_FARKAS_SLACK 1e-9
+#define LP_N_COLUMN_MU 1.0
+#define CERT_TOL 1e-6
+
+us_LpSettings us_lp_default_settings(void) {
+  us_LpSettings l;
+  l.primal_tol = LP_PRIMAL_TOL;
+  l.warm_accept = LP_WARM_ACCEPT;
+  l.warm_changes = LP_WARM_CHANGES;
+  l.warm_body_div = LP_WARM_BODY_DIV;
+  l.farkas_slack = LP_FARKAS_SLACK;
+  l.n_column_mu = LP_N_COLUMN_MU;
+  return l;
+}
+
+us_LpSettings us_lp_settings_resolve(const us_LpSettings *in) {
+  us_LpSettings d = us_lp_default_settings(), r = *in;
+  if (!(r.primal_tol > 0)) r.primal_tol = d.primal_tol;
+  if (!(r.warm_accept > 0)) r.warm_accept = d.warm_accept;
+  if (r.warm_changes <= 0) r.warm_changes = d.warm_changes;
+  if (r.warm_body_div <= 0) r.warm_body_div = d.warm_body_div;
+  if (!(r.farkas_slack > 0)) r.farkas_slack = d.farkas_slack;
+  if (!(r.n_column_mu > 0)) r.n_column_mu = d.n_column_mu;
+  return r;
+}
+
 us_StabilitySettings us_stability_default_settings(void) {
   us_StabilitySettings s;
   memset(&s, 0, sizeof s);
   s.method = US_METHOD_LP;
-  s.cert_tol = 1e-6;
+  s.cert_tol = CERT_TOL;
   s.max_pivots = 0;
   s.verbose = 0;
+  s.lp = us_lp_default_settings();
   return s;
 }
 
@@ -84,6 +120,14 @@ void us_forces_free(us_Forces *f) {
   us_free(f->contact);
   us_free(f->f);
   memset(f, 0, sizeof *f);
+}
+
+void us_stability_result_init(us_StabilityResult *r) {
+  if (!r) return;
+  memset(r, 0, sizeof *r);
+  r->verdict = US_UNDECIDED;
+  r->check.worst_body = r->check.worst_contact = -1;
+  r->unstable_body = -1;
 }
 
 void us_stability_result_free(us_StabilityResult *r) {
