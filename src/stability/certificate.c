@@ -72,8 +72,8 @@ double us_cone_distance(double fn, double ft, double mu) {
     double h = hypot(1.0, mu);
     c = 1.0 / h, s = mu / h;
   }
-  if (fn * c + ft * s <= 0.0) return hypot(fn, ft); /* nearest point: the apex */
   if (fn >= 0.0 && ft * c <= fn * s) return 0.0;      /* inside */
+  if (fn * c + ft * s <= 0.0) return hypot(fn, ft); /* nearest point: the apex */
   return ft * c - fn * s;                             /* nearest point on the edge */
 }
 
