@@ -33,7 +33,7 @@
 typedef struct Units {
   double inv_w;   /* 1 / W */
   double inv_l;   /* 1 / L */
-  double inv_m;   /* 1 / M */
+  double m;       /* M (divided by, not inverted: 1 / M may overflow) */
   double gdir[3]; /* unit gravity direction */
 } Units;
 
@@ -41,7 +41,7 @@ static Units units_of(const us_Structure *s) {
   Units u;
   double g = us_gravity_norm(s->gravity), m = us_movable_mass(s), w = m * g;
   u.inv_w = w > 0 && isfinite(w) ? 1.0 / w : 1.0;
-  u.inv_m = m > 0 && isfinite(m) ? 1.0 / m : 1.0;
+  u.m = m > 0 && isfinite(m) ? m : 1.0;
   u.inv_l = s->scale > 0 ? 1.0 / s->scale : 1.0;
   for (int j = 0; j < 3; j++) u.gdir[j] = g > 0 && isfinite(g) ? s->gravity[j] / g : 0.0;
   return u;
@@ -157,7 +157,7 @@ static void residuals(const us_Structure *s, const Units *u, const us_Bitset *pr
     const us_Body *b = &s->bodies[i];
     if (b->fixed || !us_bitset_get(present, i)) continue;
     const double *a = acc + 6 * (size_t)i;
-    double share = b->mass * u->inv_m;
+    double share = b->mass / u->m;
     double F[3] = {a[0] + share * u->gdir[0], a[1] + share * u->gdir[1],
                    a[2] + share * u->gdir[2]};
     double fr = norm3(F), tr = norm3(a + 3);

@@ -63,6 +63,7 @@ static lprec *lps_load(LpsWs *w, const us_EqSystem *sys) {
   lprec *lp = make_lp(g->nrow, 0);
   if (!lp) return NULL;
   set_verbose(lp, NEUTRAL);
+  set_scaling(lp, SCALE_NONE);
   if (!resize_lp(lp, g->nrow, g->ncol)) goto fail;
   for (int j = 0; j < g->ncol; j++) {
     int n = 0;

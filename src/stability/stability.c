@@ -40,6 +40,7 @@ struct us_Stability {
   double *f;               /* normalized forces from the backend */
   int cap_f;
   double *acc;             /* certificate scratch: 6 * nbody */
+  unsigned char *held;     /* [nbody] row blocks touched by some contact */
   unsigned char *seen;     /* certificate scratch: ncontact */
   us_StabilityInfo info;
 };
@@ -169,6 +170,7 @@ void us_stability_free(us_Stability *w) {
   us_free(w->f);
   us_free(w->acc);
   us_free(w->seen);
+  us_free(w->held);
   us_free(w);
 }
 
@@ -194,7 +196,8 @@ static int alloc_arrays(us_Stability *w) {
   w->removed = us_malloc(nb * sizeof(int));
   w->acc = us_malloc(6 * nb * sizeof(double));
   w->seen = us_malloc(nc);
-  return !w->added || !w->removed || !w->acc || !w->seen ? -1 : 0;
+  w->held = us_malloc(nb);
+  return !w->added || !w->removed || !w->acc || !w->seen || !w->held ? -1 : 0;
 }
 
 us_Stability *us_stability_new_backend(const us_Structure *s, const us_StabilitySettings *set,
@@ -324,6 +327,22 @@ static us_Status certify(us_Stability *w, us_StabilityResult *res, us_Error *err
   return US_OK;
 }
 
+/* A present body that no active contact touches falls as soon as it has
+ * weight, however small: decided exactly here, before any solver whose
+ * tolerance could absorb a tiny weight. Returns the body, or -1. */
+static int unheld_body(us_Stability *w) {
+  const us_EqSystem *e = &w->eq;
+  memset(w->held, 0, (size_t)e->nbody);
+  for (size_t j = 0; j < 2 * (size_t)e->ncontact * (size_t)e->dim; j++)
+    if (e->blk[j] >= 0) w->held[e->blk[j]] = 1;
+  for (int r = 0; r < e->nbody; r++) {
+    if (w->held[r]) continue;
+    for (int k = 0; k < e->nw; k++)
+      if (e->rhs[(size_t)r * (size_t)e->nw + (size_t)k] != 0.0) return e->body[r];
+  }
+  return -1;
+}
+
 static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err) {
   if (us_bitset_count(&w->cur) == 0) { /* nothing can fall */
     res->verdict = US_STABLE;
@@ -333,6 +352,13 @@ static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err)
   }
   if (us_eq_build(&w->eq, &w->cur))
     return us_error_set(err, US_ERR_NOMEM, "out of memory building the equilibrium system");
+  int loose = unheld_body(w);
+  if (loose >= 0) {
+    res->verdict = US_UNSTABLE;
+    res->unstable_body = loose;
+    snprintf(res->note, sizeof res->note, "a body with weight touches nothing");
+    return US_OK;
+  }
   us_Status st = run_backend(w, res, err);
   if (st) return st;
   if (res->verdict == US_STABLE) return certify(w, res, err);
