@@ -7,7 +7,10 @@
  * lp_solve's default bounds are exactly l in [0, inf), so no variable needs
  * set_unbounded. The model is built column by column (add_columnex, which
  * suits our column-major G) after sizing it once with resize_lp; rows are
- * then made equalities with their right-hand sides.
+ * then made equalities with their right-hand sides. lp_solve's own
+ * scaling is off: the system is normalized already (lp_gen.h), and its
+ * default geometric scaling turned the unit cone edges of very wide cones
+ * (mu >= 1e8, entries down to 1 / mu) into numerical failures.
  *
  * Memory: the lprec and everything it returns belong to lp_solve
  * (delete_lp); solutions are copied out with get_variables into our own
