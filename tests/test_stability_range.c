@@ -56,7 +56,7 @@ static int all_methods(us_Structure *s, int want, const char *what, double x) {
 static us_Structure *pyramid(int rows, double mu) {
   us_Structure *s = us_structure_new(2);
   s->friction = mu;
-  char id[16];
+  char id[32];
   for (int r = 0; r < rows; r++)
     for (int k = 0; k < rows - r; k++) {
       snprintf(id, sizeof id, "p%d_%d", r, k);
