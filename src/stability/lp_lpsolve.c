@@ -7,10 +7,12 @@
  * lp_solve's default bounds are exactly l in [0, inf), so no variable needs
  * set_unbounded. The model is built column by column (add_columnex, which
  * suits our column-major G) after sizing it once with resize_lp; rows are
- * then made equalities with their right-hand sides. lp_solve's own
- * scaling is off: the system is normalized already (lp_gen.h), and its
- * default geometric scaling turned the unit cone edges of very wide cones
- * (mu >= 1e8, entries down to 1 / mu) into numerical failures.
+ * then made equalities with their right-hand sides. lp_solve's default
+ * scaling runs first (it is measurably faster on ordinary structures); when
+ * it ends in a numerical failure the model is solved again unscaled: the
+ * system is normalized already (lp_gen.h), and the geometric scaling is
+ * what turned the unit cone edges of very wide cones (mu >= 1e8, entries
+ * down to 1 / mu) into numerical failures.
  *
  * Memory: the lprec and everything it returns belong to lp_solve
  * (delete_lp); solutions are copied out with get_variables into our own
@@ -61,12 +63,12 @@ static void lps_destroy(void *ws) {
 }
 
 /* Build the lprec of G l = rhs. NULL when lp_solve runs out of memory. */
-static lprec *lps_load(LpsWs *w, const us_EqSystem *sys) {
+static lprec *lps_load(LpsWs *w, const us_EqSystem *sys, int scaled) {
   const us_EqGen *g = &w->gen;
   lprec *lp = make_lp(g->nrow, 0);
   if (!lp) return NULL;
   set_verbose(lp, NEUTRAL);
-  set_scaling(lp, SCALE_NONE);
+  if (!scaled) set_scaling(lp, SCALE_NONE);
   if (!resize_lp(lp, g->nrow, g->ncol)) goto fail;
   for (int j = 0; j < g->ncol; j++) {
     int n = 0;
@@ -101,9 +103,15 @@ static us_Status lps_solve(void *ws, const us_EqSystem *sys, const int *added, i
     snprintf(note, note_sz, "no active contact");
     return US_OK;
   }
-  lprec *lp = lps_load(w, sys);
+  lprec *lp = lps_load(w, sys, 1);
   if (!lp) return us_error_set(err, US_ERR_NOMEM, "lp_solve could not build the model");
   int ret = solve(lp);
+  if (ret == NUMFAILURE) { /* once more without lp_solve's scaling */
+    delete_lp(lp);
+    lp = lps_load(w, sys, 0);
+    if (!lp) return us_error_set(err, US_ERR_NOMEM, "lp_solve could not build the model");
+    ret = solve(lp);
+  }
   us_Status st = US_OK;
   if (ret == OPTIMAL) {
     get_variables(lp, w->sol);
