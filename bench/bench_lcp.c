@@ -14,7 +14,8 @@
 #include "stability/lcp.h"
 #include "stability/lcp_backend.h"
 #include "stability/lcp_sys.h"
-#include "stability/stability.h"
+#include "stability/backend.h"
+#include "stability/equilibrium.h"
 #include "unstack/unstack.h"
 
 #include <stdio.h>

@@ -138,8 +138,7 @@ static void bad_materials(void) {
   s->bodies[0].density = 1.0;
   s->bodies[0].friction = NAN;
   CHECK(scene_fails_with(s, "'d'", "friction"));
-  s->bodies[0].friction = INFINITY;
-  CHECK(scene_fails_with(s, "'d'", "friction"));
+  /* INFINITY is allowed: no sliding (docs/format.md) */
   s->bodies[0].friction = 0.0; /* zero friction is allowed */
   s->bodies[0].mass_given = 1;
   s->bodies[0].mass = NAN;

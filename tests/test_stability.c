@@ -4,7 +4,9 @@
  * added/removed bookkeeping (through a spying backend), order independence
  * and out-of-memory paths. Every STABLE verdict is checked to come with a
  * passing certificate; no test looks at particular force values. */
-#include "stability/stability.h"
+#include "stability/backend.h"
+#include "stability/certificate.h"
+#include "stability/lp_gen.h"
 #include "scenes.h"
 #include "test.h"
 
@@ -455,7 +457,7 @@ static void order_independence(void) {
   us_Bitset p;
   CHECK(us_bitset_init(&p, s->nbody) == 0);
   us_StabilityResult res = {0};
-  int nstable = 0, nunstable = 0, nempty = 0;
+  int nstable = 0, nunstable = 0, nempty = 0, nloose = 0;
   for (int t = 0; t < 150; t++) {
     random_subset(&p);
     if (t % 7 == 3) us_bitset_fill(&p);
@@ -466,9 +468,11 @@ static void order_independence(void) {
     nstable += res.verdict == US_STABLE;
     nunstable += res.verdict == US_UNSTABLE;
     nempty += us_bitset_count(&p) - us_bitset_get(&p, 0) == 0;
+    /* a body touching nothing is decided by the front end */
+    nloose += strcmp(res.note, "a body with weight touches nothing") == 0;
   }
   CHECK_INT(spy.errors, ==, 0);
-  CHECK_INT(spy.calls, ==, 150 - nempty);
+  CHECK_INT(spy.calls, ==, 150 - nempty - nloose);
   CHECK(nstable > 10 && nunstable > 10); /* the sample exercises both */
   CHECK_INT(us_stability_info(w)->tests, ==, 150);
   us_stability_result_free(&res);

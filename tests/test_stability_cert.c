@@ -3,7 +3,9 @@
  * a flipped normal, a scaled force, a force moved to an inactive contact, a
  * duplicated contact, friction outside the cone, swapped forces (right
  * total, wrong torque) and non-finite values. */
-#include "stability/stability.h"
+#include "stability/backend.h"
+#include "stability/certificate.h"
+#include "stability/lp_gen.h"
 #include "test.h"
 
 /* Point body of mass m at (cx, 0.5) on ground contacts at xl < xr. */

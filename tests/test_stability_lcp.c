@@ -8,7 +8,8 @@
 #include "stability/lcp.h"
 #include "stability/lcp_backend.h"
 #include "stability/lcp_sys.h"
-#include "stability/stability.h"
+#include "stability/backend.h"
+#include "stability/equilibrium.h"
 #include "lcp_dense.h"
 #include "test.h"
 

@@ -9,7 +9,9 @@
  *  - a 1,000-brick running-bond wall: verdicts and the time per test,
  *    cold and after removing one brick (printed; US_LP_BENCH=N sets the
  *    number of one-brick steps timed). */
-#include "stability/stability.h"
+#include "stability/backend.h"
+#include "stability/certificate.h"
+#include "stability/lp_gen.h"
 #include "test.h"
 
 static unsigned long rng_state = 2024;

@@ -3,6 +3,7 @@
 #include "options.h"
 
 #include <limits.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -31,7 +32,8 @@ static const char help[] =
     "  -o, --output FILE     structure file to write (required)\n"
     "  --block-width X       block width (default 1; not for random, stacker)\n"
     "  --block-height Y      block height (default 0.5)\n"
-    "  --friction MU         Coulomb coefficient written to the file (default 0.5)\n"
+    "  --friction MU         Coulomb coefficient written to the file (default 0.5;\n"
+    "                        'infinite': no sliding)\n"
     "  --density D           density of every block (default 1)\n"
     "  --max-tries N         random, stacker: attempts before giving up (default 10000)\n"
     "\n"
@@ -90,7 +92,10 @@ static int parse_option(int argc, char **argv, int *i, us_GenSettings *g, double
     *ip = (int)n;
   } else if (real_option(name, g, &dp)) {
     if (!(v = cli_value("generate", argc, argv, i))) return CLI_EXIT_ERR;
-    if (cli_parse_double(v, dp)) return cli_fail("generate", "%s needs a number, got '%s'", name, v);
+    if (dp == &g->friction && !strcmp(v, "infinite"))
+      *dp = INFINITY; /* no sliding */
+    else if (cli_parse_double(v, dp))
+      return cli_fail("generate", "%s needs a number, got '%s'", name, v);
   } else {
     return cli_fail("generate", "unknown option '%s'", name);
   }

@@ -260,12 +260,32 @@ typedef enum us_Verdict {
 } us_Verdict;
 const char *us_verdict_name(us_Verdict v);
 
+/* Tolerances and limits of the LP backends (lp, lpsolve, and the LP that
+ * settles the LCP's open cases). The LP works in normalized units: forces
+ * in units of the total weight, torques of weight * size. */
+typedef struct us_LpSettings {
+  double primal_tol;    /* CLP primal feasibility tolerance (default 1e-9) */
+  double warm_accept;   /* a warm-started CLP run is kept when its sum of primal
+                           infeasibilities is at most this (default 1e-9) */
+  int warm_changes;     /* CLP starts from the previous basis only when at most
+                           warm_changes + nbody / warm_body_div bodies changed */
+  int warm_body_div;    /* (defaults 8 and 16; larger jumps start cold) */
+  double farkas_slack;  /* slack, relative to |rhs . y|, accepted when checking
+                           a Farkas ray before naming a body (default 1e-9) */
+  double n_column_mu;   /* contacts with mu above this also get the generator n
+                           besides the two cone edges (default 1) */
+} us_LpSettings;
+us_LpSettings us_lp_default_settings(void);
+
 typedef struct us_StabilitySettings {
   us_Method method;
   double cert_tol;    /* certificate tolerance, relative (default 1e-6) */
   int max_pivots;     /* LCP pivot limit; <= 0: automatic */
   int verbose;
+  us_LpSettings lp;   /* the LP backends (us_lp_default_settings) */
 } us_StabilitySettings;
+/* Defaults; us_stability_new and us_stability_test expect settings that
+ * started from here (or a zeroed struct: zero LP fields mean defaults). */
 us_StabilitySettings us_stability_default_settings(void);
 
 /* Contact forces of one sub-assembly: for each active contact, `dim`
@@ -282,7 +302,8 @@ typedef struct us_CertCheck {
   int ok;
   double max_force_residual;   /* relative to the structure's weight */
   double max_torque_residual;  /* relative to weight * scale */
-  double max_cone_violation;   /* relative to weight */
+  double max_cone_violation;   /* distance of a force from its friction cone,
+                                  relative to weight (does not grow with mu) */
   double max_sign_violation;   /* negative normal force, relative to weight */
   int worst_body;              /* body with the largest residual, or -1 */
   int worst_contact;           /* contact with the largest violation, or -1 */
@@ -306,6 +327,10 @@ typedef struct us_StabilityResult {
   int unstable_body;       /* evidence when unstable, if known, else -1 */
   char note[128];          /* evidence text (solver status), may be empty */
 } us_StabilityResult;
+/* A result owns its force arrays and reuses them from test to test: call
+ * init (or zero it) once before its first use, free when done. An
+ * uninitialized result must never reach us_stability_test. */
+void us_stability_result_init(us_StabilityResult *r);
 void us_stability_result_free(us_StabilityResult *r);
 
 typedef struct us_Stability us_Stability; /* opaque workspace */
@@ -316,7 +341,9 @@ void us_stability_free(us_Stability *w);
 /* Test the sub-assembly `present` (bits over body indices; fixed bodies are
  * always present, their bits are ignored). Incremental: the workspace
  * remembers the last sub-assembly and tells the backend which bodies were
- * added or removed. Returns US_OK and fills res, or an error. */
+ * added or removed. res must be initialized (us_stability_result_init or
+ * zeroed; a result of an earlier test is fine). Returns US_OK and fills
+ * res, or an error. */
 us_Status us_stability_test(us_Stability *w, const us_Bitset *present, us_StabilityResult *res,
                             us_Error *err);
 const us_StabilityInfo *us_stability_info(const us_Stability *w);

@@ -43,7 +43,7 @@
  * coefficients), so a workspace must not outlive a change of mu.
  */
 #include "core/core.h"
-#include "stability/stability.h" /* us_certificate_check_buf */
+#include "stability/certificate.h" /* us_certificate_check_buf */
 
 #include <math.h>
 #include <string.h>

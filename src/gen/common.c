@@ -40,8 +40,8 @@ us_Status us_gen_check_positive(double v, const char *what, const char *name, us
 
 us_Status us_gen_check_common(const us_GenSettings *g, const char *what, us_Error *err) {
   if (!g) return us_error_set(err, US_ERR_USAGE, "%s: no settings given", what);
-  if (!(g->friction >= 0) || !isfinite(g->friction))
-    return us_error_set(err, US_ERR_USAGE, "%s: friction must be finite and >= 0, got %g", what,
+  if (!(g->friction >= 0)) /* INFINITY allowed: no sliding */
+    return us_error_set(err, US_ERR_USAGE, "%s: friction must be >= 0 or infinite, got %g", what,
                         g->friction);
   return us_gen_check_positive(g->density, what, "density", err);
 }

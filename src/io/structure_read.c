@@ -9,7 +9,9 @@
  * prefixed with the file name. Type and range checks happen here, before
  * the structure builder sees a value, because the builder gives some
  * values a meaning (mass <= 0: "use the density") that a file must not
- * reach by accident. Unknown keys are errors unless they start with '_'. */
+ * reach by accident. Unknown keys are errors unless they start with '_'.
+ * A friction coefficient is a number >= 0 or the string "infinite" (no
+ * sliding: mu = INFINITY, which JSON numbers cannot hold). */
 #include <limits.h>
 #include <math.h>
 #include <string.h>
@@ -31,6 +33,17 @@ typedef struct Reader {
   int explicit_contacts;
 } Reader;
 
+/* A friction field: a number >= 0, or "infinite" (INFINITY). */
+static us_Status read_friction(Reader *r, const char *where, json_t *v, double *out) {
+  if (json_is_string(v)) {
+    if (strcmp(json_string_value(v), "infinite") != 0)
+      return us_io_bad(&r->c, where, "friction: expected a number >= 0 or \"infinite\"");
+    *out = INFINITY;
+    return US_OK;
+  }
+  return us_io_sign_number(&r->c, where, "friction", v, 0, out);
+}
+
 static us_Status read_globals(Reader *r, json_t *root) {
   us_Status st = us_io_check_keys(&r->c, "", root, top_keys);
   json_t *v;
@@ -43,7 +56,7 @@ static us_Status read_globals(Reader *r, json_t *root) {
   if (!st && (v = json_object_get(root, "gravity")))
     st = us_io_vec2(&r->c, "", "gravity", v, r->s->gravity);
   if (!st && (v = json_object_get(root, "friction")))
-    st = us_io_sign_number(&r->c, "", "friction", v, 0, &r->s->friction);
+    st = read_friction(r, "", v, &r->s->friction);
   if (!st && (v = json_object_get(root, "ground")))
     st = us_io_bool(&r->c, "", "ground", v, &r->s->ground);
   return st;
@@ -85,7 +98,7 @@ static us_Status read_material(Reader *r, const char *where, json_t *b, BodyFiel
   if (!st && (v = json_object_get(b, "mass")))
     st = us_io_sign_number(&r->c, where, "mass", v, 1, &f->mass);
   if (!st && (v = json_object_get(b, "friction")))
-    st = us_io_sign_number(&r->c, where, "friction", v, 0, &f->friction);
+    st = read_friction(r, where, v, &f->friction);
   if (!st && (v = json_object_get(b, "fixed")))
     st = us_io_bool(&r->c, where, "fixed", v, &f->fixed);
   if (!st && (v = json_object_get(b, "inertia")))
@@ -233,7 +246,7 @@ static us_Status read_contact(Reader *r, int k, json_t *c) {
   if (!st) st = us_io_vec2(&r->c, where, "point", v, p);
   if (!st) st = read_normal(r, where, c, n);
   if (!st && (v = json_object_get(c, "friction")))
-    st = us_io_sign_number(&r->c, where, "friction", v, 0, &mu);
+    st = read_friction(r, where, v, &mu);
   if (!st && us_structure_add_contact(r->s, a, b, p, n, mu, r->c.err) < 0) st = r->c.err->code;
   return st;
 }

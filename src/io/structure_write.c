@@ -8,10 +8,22 @@
  * reading the file back gives bit-identical coordinates. Only what the
  * reader needs is written: density when it is not the default 1, mass when
  * it was given, friction when the body has its own, and the contacts only
- * when they were explicit (detected contacts are re-detected on reading). */
+ * when they were explicit (detected contacts are re-detected on reading).
+ * An infinite friction coefficient is written as the string "infinite"
+ * (JSON numbers cannot hold it), which the reader maps back to INFINITY. */
 #include <math.h>
 
 #include "io.h"
+
+/* `lead` then the friction field (", " inside a line, ",\n  " at the top). */
+static void write_friction(us_JsonOut *o, const char *lead, double mu) {
+  us_jo_raw(o, lead);
+  us_jo_raw(o, "\"friction\": ");
+  if (isinf(mu) && mu > 0)
+    us_jo_raw(o, "\"infinite\"");
+  else
+    us_jo_number(o, mu);
+}
 
 static void write_material(us_JsonOut *o, const us_Body *b) {
   if (b->mass_given && b->mass > 0) {
@@ -22,10 +34,7 @@ static void write_material(us_JsonOut *o, const us_Body *b) {
     us_jo_number(o, b->density);
   }
   if (b->fixed) us_jo_raw(o, ", \"fixed\": true");
-  if (b->friction >= 0) {
-    us_jo_raw(o, ", \"friction\": ");
-    us_jo_number(o, b->friction);
-  }
+  if (b->friction >= 0) write_friction(o, ", ", b->friction);
 }
 
 static void write_body(us_JsonOut *o, const us_Body *b) {
@@ -53,16 +62,14 @@ static void write_body(us_JsonOut *o, const us_Body *b) {
 static void write_contact(us_JsonOut *o, const us_Structure *s, const us_Contact *c) {
   us_jo_raw(o, "    {");
   us_jo_contact_fields(o, s, c);
-  us_jo_raw(o, ", \"friction\": ");
-  us_jo_number(o, c->mu);
+  write_friction(o, ", ", c->mu);
   us_jo_raw(o, "}");
 }
 
 static void write_structure(us_JsonOut *o, const us_Structure *s) {
   us_jo_raw(o, "{\n  \"dimension\": 2,\n  \"gravity\": ");
   us_jo_vec2(o, s->gravity);
-  us_jo_raw(o, ",\n  \"friction\": ");
-  us_jo_number(o, s->friction);
+  write_friction(o, ",\n  ", s->friction);
   us_jo_raw(o, s->ground ? ",\n  \"ground\": true,\n  \"bodies\": ["
                          : ",\n  \"ground\": false,\n  \"bodies\": [");
   for (int i = 0; i < s->nbody; i++) {

@@ -12,10 +12,22 @@
  * it only has to be positive and of the right size for the torque
  * residuals), or r = the structure's scale (1 if unmeasured) when the body
  * has no contacts. Fixed bodies are computed alike but their mass and
- * inertia are never used (they are infinite). */
+ * inertia are never used (they are infinite).
+ *
+ * Representable weights: the stability layer works with the shares
+ * m_i / M and the unit gravity direction, so body masses and gravity may
+ * span the whole double range; what must exist in floating point is each
+ * body's mass (density * area must not overflow) and the total weight
+ * W = M |g| in newtons, which the reported forces are multiples of: it
+ * must be a finite, positive, normal number (a subnormal W would leave
+ * the reported forces with too few digits to re-check). Anything else is
+ * rejected here with the values that broke it. */
+#include "massprops.h"
+
 #include "geometry/geometry.h"
 #include "model.h"
 
+#include <float.h>
 #include <math.h>
 
 static void polygon_props(us_Body *b) {
@@ -49,6 +61,47 @@ static void point_props(const us_Structure *s, int i) {
   b->inertia = m * r * r / 3.0;
 }
 
+double us_gravity_norm(const double *g) { return hypot(hypot(g[0], g[1]), g[2]); }
+
+double us_movable_mass(const us_Structure *s) {
+  double m = 0.0;
+  for (int i = 0; i < s->nbody; i++)
+    if (!s->bodies[i].fixed) m += s->bodies[i].mass;
+  return m;
+}
+
+double us_total_weight(const us_Structure *s) {
+  return us_movable_mass(s) * us_gravity_norm(s->gravity);
+}
+
+/* A movable body's mass and inertia must be finite and positive. */
+static us_Status check_body(const us_Body *b, us_Error *err) {
+  if (b->fixed) return US_OK;
+  if (isinf(b->mass) && !b->mass_given && b->nvert >= 3)
+    return us_error_set(err, US_ERR_INPUT, "body '%s': density %g * area %g overflows",
+                        us_id_text(b->id).s,
+                        b->density, fabs(us_poly_signed_area(b->verts, b->nvert)));
+  if (!(b->mass > 0 && isfinite(b->mass) && isfinite(b->inertia)))
+    return us_error_set(err, US_ERR_INPUT, "body '%s': mass %g / inertia %g not usable",
+                        us_id_text(b->id).s,
+                        b->mass, b->inertia);
+  return US_OK;
+}
+
+/* The total weight must be a finite, positive, normal number. */
+static us_Status check_weight(const us_Structure *s, us_Error *err) {
+  double m = us_movable_mass(s), g = us_gravity_norm(s->gravity), w = m * g;
+  if (us_structure_movable_count(s) == 0 || g == 0.0) return US_OK; /* nothing has weight */
+  if (isinf(m))
+    return us_error_set(err, US_ERR_INPUT, "the total mass of the movable bodies overflows "
+                        "(more than %g)", DBL_MAX);
+  if (!isfinite(w) || !(w >= DBL_MIN))
+    return us_error_set(err, US_ERR_INPUT, "total weight: mass %g * gravity %g %s", m, g,
+                        isfinite(w) ? "is below the smallest normal number (2.2e-308)"
+                                    : "overflows");
+  return US_OK;
+}
+
 us_Status us_model_mass_properties(us_Structure *s, us_Error *err) {
   for (int i = 0; i < s->nbody; i++) {
     us_Body *b = &s->bodies[i];
@@ -56,10 +109,8 @@ us_Status us_model_mass_properties(us_Structure *s, us_Error *err) {
       polygon_props(b);
     else
       point_props(s, i);
-    if (!b->fixed && !(b->mass > 0 && isfinite(b->mass) && isfinite(b->inertia)))
-      return us_error_set(err, US_ERR_INPUT, "body '%s': mass %g / inertia %g not usable",
-                          us_id_text(b->id).s,
-                          b->mass, b->inertia);
+    us_Status st = check_body(b, err);
+    if (st) return st;
   }
-  return US_OK;
+  return check_weight(s, err);
 }

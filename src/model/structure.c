@@ -10,6 +10,7 @@
  * contact_tol keeps the caller's value (<= 0: tolerances per pair). Fixed
  * bodies keep their geometry and take no mass. */
 #include "model.h"
+#include "massprops.h"
 
 #include "geometry/geometry.h"
 
@@ -235,8 +236,7 @@ void us_model_measure(us_Structure *s) {
   memcpy(s->bbox, bb, sizeof bb);
   double d = hypot(bb[2] - bb[0], bb[3] - bb[1]);
   s->scale = d > 0 ? d : 1.0;
-  double g = sqrt(s->gravity[0] * s->gravity[0] + s->gravity[1] * s->gravity[1] +
-                  s->gravity[2] * s->gravity[2]);
+  double g = us_gravity_norm(s->gravity); /* no overflow: massprops.h */
   s->weight = g * mass > 0 ? g * mass : 1.0;
 }
 

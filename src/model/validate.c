@@ -25,14 +25,14 @@ static us_Status check_globals(const us_Structure *s, us_Error *err) {
     return us_error_set(err, US_ERR_INPUT, "dimension %d is not supported (only 2)", s->dim);
   for (int k = 0; k < 3; k++)
     if (!isfinite(s->gravity[k])) return us_error_set(err, US_ERR_INPUT, "gravity is not finite");
-  if (!isfinite(s->friction) || s->friction < 0)
-    return us_error_set(err, US_ERR_INPUT, "default friction %g must be finite and >= 0",
+  if (isnan(s->friction) || s->friction < 0) /* INFINITY: no sliding */
+    return us_error_set(err, US_ERR_INPUT, "default friction %g must be >= 0 or infinite",
                         s->friction);
   if (isnan(s->contact_tol) || isinf(s->contact_tol))
     return us_error_set(err, US_ERR_INPUT, "contact tolerance is not finite");
   for (int k = 0; k < s->ncontact; k++)
     if (!isfinite(s->contacts[k].p[0]) || !isfinite(s->contacts[k].p[1]) ||
-        !isfinite(s->contacts[k].mu) || s->contacts[k].mu < 0)
+        isnan(s->contacts[k].mu) || s->contacts[k].mu < 0)
       return us_error_set(err, US_ERR_INPUT, "contact %d: non-finite point or bad friction", k);
   return US_OK;
 }
@@ -45,8 +45,8 @@ static us_Status check_material(const us_Body *b, us_Error *err) {
   if (b->nvert > 0 && !b->mass_given && !(isfinite(b->density) && b->density > 0))
     return us_error_set(err, US_ERR_INPUT, "body '%s': density %g must be finite and > 0",
                         us_id_text(b->id).s, b->density);
-  if (!(b->friction < 0) && !isfinite(b->friction))
-    return us_error_set(err, US_ERR_INPUT, "body '%s': friction %g must be finite and >= 0",
+  if (isnan(b->friction))
+    return us_error_set(err, US_ERR_INPUT, "body '%s': friction %g must be >= 0 or infinite",
                         us_id_text(b->id).s, b->friction);
   if (!isfinite(b->inertia) || b->inertia < 0)
     return us_error_set(err, US_ERR_INPUT, "body '%s': inertia %g must be finite and >= 0",

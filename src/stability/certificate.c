@@ -3,19 +3,49 @@
  *
  * Algorithm: derived again straight from the structure, sharing no code
  * with the equilibrium system or any solver. One pass over the forces
- * accumulates, per body, gravity (m g at the centre of mass, so no torque)
- * plus each contact force F = f_n n + f_t1 t1 (+ f_t2 t2) at p on body b and
- * -F on body a, with torques (p - com) x F about that body's centre of
- * mass; a second pass over the bodies takes the worst residuals. All
- * measures are relative: forces to the total weight W, torques to
- * W * scale. A force on a contact that is not active in the sub-assembly
- * (a side absent, or both sides fixed), a contact listed twice, a bad
- * index or a non-finite value makes the check fail outright.
+ * accumulates, per body, each contact force F = f_n n + f_t1 t1 (+ f_t2 t2)
+ * at p on body b and -F on body a, with torques (p - com) x F about that
+ * body's centre of mass; a second pass over the bodies adds gravity
+ * (m g at the centre of mass, so no torque) and takes the worst residuals.
+ *
+ * Units: everything is normalized before it is added, so that no legal
+ * input overflows or underflows: forces are divided by the total weight
+ * W = M |g| first, gravity enters as the share m_i / M times the unit
+ * direction g / |g|, and lever arms are divided by the structure's scale
+ * L. The residuals are therefore relative to W (forces) and W L (torques).
+ * The cone measure is the Euclidean distance of the force from its cone,
+ * relative to W: it does not grow with mu (mu |f_n| - |f_t| would, and
+ * would reject a correct force of a nearly flat cone on round-off). A
+ * contact with mu = INFINITY has the half-space f_n >= 0 as its cone.
+ *
+ * A force on a contact that is not active in the sub-assembly (a side
+ * absent, or both sides fixed), a contact listed twice, a bad index or a
+ * non-finite value makes the check fail outright.
  */
-#include "stability.h"
+#include "certificate.h"
+
+#include "model/massprops.h"
 
 #include <math.h>
 #include <string.h>
+
+/* The normalization of one check. */
+typedef struct Units {
+  double inv_w;   /* 1 / W */
+  double inv_l;   /* 1 / L */
+  double m;       /* M (divided by, not inverted: 1 / M may overflow) */
+  double gdir[3]; /* unit gravity direction */
+} Units;
+
+static Units units_of(const us_Structure *s) {
+  Units u;
+  double g = us_gravity_norm(s->gravity), m = us_movable_mass(s), w = m * g;
+  u.inv_w = w > 0 && isfinite(w) ? 1.0 / w : 1.0;
+  u.m = m > 0 && isfinite(m) ? m : 1.0;
+  u.inv_l = s->scale > 0 ? 1.0 / s->scale : 1.0;
+  for (int j = 0; j < 3; j++) u.gdir[j] = g > 0 && isfinite(g) ? s->gravity[j] / g : 0.0;
+  return u;
+}
 
 static int side_in(const us_Structure *s, const us_Bitset *present, int i) {
   return i < 0 || s->bodies[i].fixed || us_bitset_get(present, i);
@@ -31,14 +61,29 @@ static int usable(const us_Structure *s, const us_Bitset *present, int c) {
          (side_moves(s, k->a) || side_moves(s, k->b));
 }
 
-static double norm3(const double *v) { return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+static double norm3(const double *v) { return hypot(hypot(v[0], v[1]), v[2]); }
 
-/* Add force F at p to body i's accumulator (force, torque about com). */
-static void push(const us_Structure *s, double *acc, int i, const double *p, const double *F,
-                 double sign) {
+double us_cone_distance(double fn, double ft, double mu) {
+  ft = fabs(ft);
+  double c = 1.0, s = 0.0; /* cone edge direction (cos a, sin a), a = atan(mu) */
+  if (isinf(mu)) {
+    c = 0.0, s = 1.0;
+  } else if (mu > 0) {
+    double h = hypot(1.0, mu);
+    c = 1.0 / h, s = mu / h;
+  }
+  if (fn >= 0.0 && ft * c <= fn * s) return 0.0;      /* inside */
+  if (fn * c + ft * s <= 0.0) return hypot(fn, ft); /* nearest point: the apex */
+  return ft * c - fn * s;                             /* nearest point on the edge */
+}
+
+/* Add normalized force F at p to body i's accumulator (force, torque
+ * about com / L). */
+static void push(const us_Structure *s, const Units *u, double *acc, int i, const double *p,
+                 const double *F, double sign) {
   if (!side_moves(s, i)) return;
   const double *c = s->bodies[i].com;
-  double r[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+  double r[3] = {(p[0] - c[0]) * u->inv_l, (p[1] - c[1]) * u->inv_l, (p[2] - c[2]) * u->inv_l};
   double *a = acc + 6 * (size_t)i;
   for (int j = 0; j < 3; j++) a[j] += sign * F[j];
   a[3] += sign * (r[1] * F[2] - r[2] * F[1]);
@@ -46,21 +91,21 @@ static void push(const us_Structure *s, double *acc, int i, const double *p, con
   a[5] += sign * (r[0] * F[1] - r[1] * F[0]);
 }
 
-/* Cone and sign measures of one force (absolute, newtons); F gets the
+/* Cone and sign measures of one force (normalized); F gets the normalized
  * force vector. Returns 0, or -1 if a component is not finite. */
-static int one_force(const us_Structure *s, const us_Contact *k, const double *f, double *F,
-                     double *cone, double *sign) {
+static int one_force(const us_Structure *s, const Units *u, const us_Contact *k, const double *f,
+                     double *F, double *cone, double *sign) {
   int dim = s->dim;
-  double ft2 = 0.0;
-  for (int j = 0; j < dim; j++)
+  double fc[3] = {0.0, 0.0, 0.0};
+  for (int j = 0; j < dim; j++) {
     if (!isfinite(f[j])) return -1;
-  for (int j = 0; j < 3; j++) F[j] = f[0] * k->n[j];
-  for (int t = 1; t < dim; t++) {
-    ft2 += f[t] * f[t];
-    for (int j = 0; j < 3; j++) F[j] += f[t] * k->t[t - 1][j];
+    fc[j] = f[j] * u->inv_w;
   }
-  *cone = US_MAX(sqrt(ft2) - k->mu * f[0], 0.0);
-  *sign = US_MAX(-f[0], 0.0);
+  for (int j = 0; j < 3; j++) F[j] = fc[0] * k->n[j];
+  for (int t = 1; t < dim; t++)
+    for (int j = 0; j < 3; j++) F[j] += fc[t] * k->t[t - 1][j];
+  *cone = us_cone_distance(fc[0], hypot(fc[1], fc[2]), k->mu);
+  *sign = US_MAX(-fc[0], 0.0);
   return 0;
 }
 
@@ -76,9 +121,9 @@ static us_CertCheck failed_check(void) {
 
 /* Pass 1: forces into the accumulators; cone and sign measures. Returns 0,
  * or -1 (r->worst_contact set) for an unusable contact or bad value. */
-static int add_forces(const us_Structure *s, const us_Bitset *present, const us_Forces *f,
-                      double *acc, unsigned char *seen, us_CertCheck *r) {
-  double inv_w = 1.0 / s->weight, worst = 0.0; /* -1 unless something is violated */
+static int add_forces(const us_Structure *s, const Units *u, const us_Bitset *present,
+                      const us_Forces *f, double *acc, unsigned char *seen, us_CertCheck *r) {
+  double worst = 0.0; /* -1 unless something is violated */
   for (int i = 0; i < f->ncontact; i++) {
     int c = f->contact[i];
     if (!usable(s, present, c) || seen[c]) {
@@ -88,14 +133,14 @@ static int add_forces(const us_Structure *s, const us_Bitset *present, const us_
     seen[c] = 1;
     const us_Contact *k = &s->contacts[c];
     double F[3], cone, sign;
-    if (one_force(s, k, f->f + (size_t)i * (size_t)s->dim, F, &cone, &sign)) {
+    if (one_force(s, u, k, f->f + (size_t)i * (size_t)s->dim, F, &cone, &sign)) {
       r->worst_contact = c;
       return -1;
     }
-    push(s, acc, k->b, k->p, F, 1.0);
-    push(s, acc, k->a, k->p, F, -1.0);
-    r->max_cone_violation = US_MAX(r->max_cone_violation, cone * inv_w);
-    r->max_sign_violation = US_MAX(r->max_sign_violation, sign * inv_w);
+    push(s, u, acc, k->b, k->p, F, 1.0);
+    push(s, u, acc, k->a, k->p, F, -1.0);
+    r->max_cone_violation = US_MAX(r->max_cone_violation, cone);
+    r->max_sign_violation = US_MAX(r->max_sign_violation, sign);
     if (cone + sign > worst) {
       worst = cone + sign;
       r->worst_contact = c;
@@ -105,16 +150,17 @@ static int add_forces(const us_Structure *s, const us_Bitset *present, const us_
 }
 
 /* Pass 2: gravity and the residual of every present movable body. */
-static void residuals(const us_Structure *s, const us_Bitset *present, const double *acc,
-                      us_CertCheck *r) {
-  double inv_w = 1.0 / s->weight, inv_wl = 1.0 / (s->weight * s->scale), worst = -1.0;
+static void residuals(const us_Structure *s, const Units *u, const us_Bitset *present,
+                      const double *acc, us_CertCheck *r) {
+  double worst = -1.0;
   for (int i = 0; i < s->nbody; i++) {
     const us_Body *b = &s->bodies[i];
     if (b->fixed || !us_bitset_get(present, i)) continue;
     const double *a = acc + 6 * (size_t)i;
-    double F[3] = {a[0] + b->mass * s->gravity[0], a[1] + b->mass * s->gravity[1],
-                   a[2] + b->mass * s->gravity[2]};
-    double fr = norm3(F) * inv_w, tr = norm3(a + 3) * inv_wl;
+    double share = b->mass / u->m;
+    double F[3] = {a[0] + share * u->gdir[0], a[1] + share * u->gdir[1],
+                   a[2] + share * u->gdir[2]};
+    double fr = norm3(F), tr = norm3(a + 3);
     if (!isfinite(fr) || !isfinite(tr)) fr = tr = INFINITY;
     r->max_force_residual = US_MAX(r->max_force_residual, fr);
     r->max_torque_residual = US_MAX(r->max_torque_residual, tr);
@@ -137,13 +183,14 @@ int us_certificate_check_buf(const us_Structure *s, const us_Bitset *present,
     *out = failed_check();
     return -1;
   }
-  if (add_forces(s, present, f, acc, seen, &r)) {
+  Units u = units_of(s);
+  if (add_forces(s, &u, present, f, acc, seen, &r)) {
     int c = r.worst_contact;
     *out = failed_check();
     out->worst_contact = c;
     return -1;
   }
-  residuals(s, present, acc, &r);
+  residuals(s, &u, present, acc, &r);
   r.ok = r.max_force_residual <= tol && r.max_torque_residual <= tol &&
          r.max_cone_violation <= tol && r.max_sign_violation <= tol;
   *out = r;

@@ -7,14 +7,22 @@
  * exerts on each of the contact's two bodies. Each build is
  * O(#bodies + #contacts); arrays grow once and are reused between builds.
  *
- * Sign conventions (see stability.h): the unit component k of contact c
+ * Sign conventions (see equilibrium.h): the unit component k of contact c
  * (direction d = n for k = 0, d = t[k-1] otherwise) pushes body b with +d
  * at p and body a with -d at p. A body's wrench rows are (force, torque
  * about its centre of mass / length_scale), forces in units of the total
  * weight W. rhs = minus the normalized gravity wrench, so A f = rhs is
  * equilibrium. Gravity acts at the centre of mass: no torque about it.
+ *
+ * Normalization without overflow: body i's gravity row is -(m_i / M) g^,
+ * the mass share times the unit direction g^ = g / |g| (|g| by hypot), so
+ * masses up to DBL_MAX and gravity components up to DBL_MAX give rows of
+ * magnitude at most 1; W = M |g| itself is only used to report newtons
+ * (finalize guarantees it is finite and normal).
  */
-#include "stability.h"
+#include "lp_gen.h"
+
+#include "model/massprops.h"
 
 #include <math.h>
 #include <string.h>
@@ -24,7 +32,10 @@ int us_eq_init(us_EqSystem *e, const us_Structure *s) {
   e->s = s;
   e->dim = s->dim;
   e->nw = s->dim == 3 ? 6 : 3;
-  e->force_scale = s->weight > 0 ? s->weight : 1.0;
+  double g = us_gravity_norm(s->gravity), m = us_movable_mass(s), w = m * g;
+  e->force_scale = w > 0 && isfinite(w) ? w : 1.0;
+  e->mass_total = m > 0 && isfinite(m) ? m : 1.0;
+  for (int j = 0; j < 3; j++) e->gdir[j] = g > 0 && isfinite(g) ? s->gravity[j] / g : 0.0;
   e->length_scale = s->scale > 0 ? s->scale : 1.0;
   /* row_of_body has a fixed size: allocate it now */
   e->row_of_body = us_malloc((size_t)(s->nbody > 0 ? s->nbody : 1) * sizeof(int));
@@ -136,7 +147,6 @@ static void write_contact(us_EqSystem *e, int ci, int c) {
 /* Number the present movable bodies and write their gravity rows. */
 static void number_bodies(us_EqSystem *e, const us_Bitset *present) {
   const us_Structure *s = e->s;
-  double inv_w = 1.0 / e->force_scale;
   e->nbody = 0;
   for (int i = 0; i < s->nbody; i++) {
     const us_Body *b = &s->bodies[i];
@@ -149,7 +159,8 @@ static void number_bodies(us_EqSystem *e, const us_Bitset *present) {
     e->body[r] = i;
     double *rhs = e->rhs + (size_t)r * (size_t)e->nw;
     memset(rhs, 0, (size_t)e->nw * sizeof(double));
-    for (int j = 0; j < e->dim; j++) rhs[j] = -b->mass * s->gravity[j] * inv_w;
+    double share = b->mass / e->mass_total;
+    for (int j = 0; j < e->dim; j++) rhs[j] = -share * e->gdir[j];
   }
 }
 
@@ -188,14 +199,16 @@ void us_eq_mult(const us_EqSystem *e, const double *x, double *y) {
   }
 }
 
-/* ---- the 2D friction cone by its two edges (shared by the LP backends) ----
+/* ---- the 2D friction cone by its generators (shared by the LP backends) ----
  *
  * In 2D the cone {f_n >= 0, |f_t| <= mu f_n} is exactly the set of
- * l1 (n + mu t) + l2 (n - mu t) with l1, l2 >= 0, so the feasibility LP
- * becomes G l = rhs, l >= 0 with only equality rows. Generator column
- * (c, +) = column (c, 0) + mu column (c, 1) of A, (c, -) likewise with
- * -mu; a frictionless contact (mu = 0) gets one column, n. Back to
- * components: f_n = l1 + l2, f_t = mu (l1 - l2). */
+ * l+ e+ + l- e- with l+-, >= 0 and e+- = cos(a) n +- sin(a) t, a = atan(mu),
+ * so the feasibility LP becomes G l = rhs, l >= 0 with only equality rows
+ * (lp_gen.h). Generator column = cos(a) column (c, 0) +- sin(a) column
+ * (c, 1) of A; the column n (cos = 1, sin = 0) is added for mu = 0 alone
+ * and for wide cones. Back to components: f_n = sum cos * l, f_t = sum
+ * +-sin * l. Unit generators keep every entry of G within the size of the
+ * wrenches whatever mu (mu = 1e300 or INFINITY included). */
 
 void us_eq_gen_free(us_EqGen *g) {
   us_free(g->start);
@@ -232,17 +245,39 @@ static int gen_reserve(us_EqGen *g, int ncol, int nnz) {
   return 0;
 }
 
-/* Append generator column of active contact ci with sign sg (0: n only). */
+/* (cos a, sin a) of a = atan(mu): the edge directions of the cone. */
+static void edge_angle(double mu, double *c, double *s) {
+  if (isinf(mu)) {
+    *c = 0.0, *s = 1.0;
+    return;
+  }
+  double h = hypot(1.0, mu);
+  *c = 1.0 / h, *s = mu / h;
+}
+
+/* Components (along n, along t) of generator sg of a contact with mu. */
+static void gen_coef(double mu, int sg, double *cn, double *ct) {
+  if (sg == 0) {
+    *cn = 1.0, *ct = 0.0;
+    return;
+  }
+  double c, s;
+  edge_angle(mu, &c, &s);
+  *cn = c, *ct = (double)sg * s;
+}
+
+/* Append generator column of active contact ci with sign sg (0: n). */
 static void gen_column(const us_EqSystem *e, us_EqGen *g, int ci, int sg) {
   size_t jn = (size_t)ci * 2, jt = jn + 1;
-  double m = (double)sg * e->mu[ci];
+  double cn, ct;
+  gen_coef(e->mu[ci], sg, &cn, &ct);
   int nnz = g->start[g->ncol];
   for (size_t side = 0; side < 2; side++) {
     int blk = e->blk[2 * jn + side];
     if (blk < 0) continue;
     const double *wn = e->w + (2 * jn + side) * 3, *wt = e->w + (2 * jt + side) * 3;
     for (int r = 0; r < 3; r++) {
-      double v = wn[r] + m * wt[r];
+      double v = cn * wn[r] + ct * wt[r];
       if (v == 0.0) continue; /* exact zeros only: keeps the matrix honest */
       g->row[nnz] = blk * 3 + r;
       g->val[nnz++] = v;
@@ -253,23 +288,36 @@ static void gen_column(const us_EqSystem *e, us_EqGen *g, int ci, int sg) {
   g->start[++g->ncol] = nnz;
 }
 
-int us_eq_generators(const us_EqSystem *e, us_EqGen *g) {
+/* Which generators contact ci gets: bit 0 the column n, bit 1 the edges. */
+static int gen_kinds(double mu, double n_column_mu) {
+  if (!(mu > 0)) return 1;
+  return 2 | (mu > n_column_mu ? 1 : 0);
+}
+
+int us_eq_generators(const us_EqSystem *e, double n_column_mu, us_EqGen *g) {
   if (e->dim != 2) return -2;
   int ncol = 0;
-  for (int c = 0; c < e->ncontact; c++) ncol += e->mu[c] > 0 ? 2 : 1;
+  for (int c = 0; c < e->ncontact; c++) {
+    int k = gen_kinds(e->mu[c], n_column_mu);
+    ncol += (k & 1) + (k & 2);
+  }
   if (gen_reserve(g, ncol, ncol * 6)) return -1;
   g->ncol = 0;
   g->nrow = e->nbody * 3;
   g->start[0] = 0;
   for (int c = 0; c < e->ncontact; c++) {
-    if (e->mu[c] > 0) {
+    int k = gen_kinds(e->mu[c], n_column_mu);
+    if (k & 1) gen_column(e, g, c, 0);
+    if (k & 2) {
       gen_column(e, g, c, 1);
       gen_column(e, g, c, -1);
-    } else {
-      gen_column(e, g, c, 0);
     }
   }
   return 0;
+}
+
+int us_eq_gen_slot(const us_EqGen *g, int j) {
+  return g->col_sign[j] == 0 ? 0 : g->col_sign[j] > 0 ? 1 : 2;
 }
 
 void us_eq_gen_forces(const us_EqSystem *e, const us_EqGen *g, const double *l, double *f) {
@@ -277,12 +325,21 @@ void us_eq_gen_forces(const us_EqSystem *e, const us_EqGen *g, const double *l, 
   for (int j = 0; j < g->ncol; j++) {
     int c = g->col_contact[j];
     double x = l[j] > 0 ? l[j] : 0.0; /* solver round-off below the bound */
-    f[2 * c] += x;
-    f[2 * c + 1] += (double)g->col_sign[j] * e->mu[c] * x;
+    double cn, ct;
+    gen_coef(e->mu[c], g->col_sign[j], &cn, &ct);
+    f[2 * c] += cn * x;
+    f[2 * c + 1] += ct * x;
   }
 }
 
-int us_eq_gen_farkas_body(const us_EqSystem *e, const us_EqGen *g, const double *y) {
+us_Verdict us_eq_no_columns_verdict(const us_EqSystem *e) {
+  for (int r = 0; r < e->nbody * e->nw; r++)
+    if (e->rhs[r] != 0.0) return US_UNSTABLE;
+  return US_STABLE;
+}
+
+int us_eq_gen_farkas_body(const us_EqSystem *e, const us_EqGen *g, const double *y,
+                          double slack) {
   double by = 0.0, ymax = 0.0;
   int nrow = e->nbody * 3;
   for (int r = 0; r < nrow; r++) {
@@ -291,11 +348,11 @@ int us_eq_gen_farkas_body(const us_EqSystem *e, const us_EqGen *g, const double 
   }
   if (!(ymax > 0) || !isfinite(by) || by == 0.0) return -1;
   /* orient y so that b.y < 0; then every column must have g.y >= 0 */
-  double sg = by < 0 ? 1.0 : -1.0, slack = 1e-9 * fabs(by);
+  double sg = by < 0 ? 1.0 : -1.0, tol = slack * fabs(by);
   for (int j = 0; j < g->ncol; j++) {
     double gy = 0.0;
     for (int k = g->start[j]; k < g->start[j + 1]; k++) gy += g->val[k] * y[g->row[k]];
-    if (sg * gy < -slack) return -1;
+    if (sg * gy < -tol) return -1;
   }
   int best = -1;
   double bn = -1.0;

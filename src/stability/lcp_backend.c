@@ -42,7 +42,7 @@
 
 #include "lcp.h"
 #include "lcp_sys.h"
-#include "stability.h"
+#include "backend.h"
 
 #include <math.h>
 #include <stdio.h>

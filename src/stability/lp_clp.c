@@ -1,24 +1,27 @@
 /* The default stability backend: the statics feasibility LP solved by CLP
  * (COIN-OR) through its C interface, from scratch for every test.
  *
- * Formulation (2D, exact): the cone-edge form of equilibrium.c,
- * G l = rhs with l >= 0 and a zero objective: two non-negative multipliers
- * per frictional contact (one when mu = 0), equality rows only. The
+ * Formulation (2D, exact): the cone-generator form of lp_gen.h,
+ * G l = rhs with l >= 0 and a zero objective: unit-length generators of
+ * every contact's cone (n alone when mu = 0, the two edges, plus n for
+ * wide cones; mu = INFINITY gives n, +t, -t), equality rows only. The
  * sub-assembly stands iff the LP is feasible. Compared with f_n >= 0, f_t
  * free plus two cone rows per contact this halves the rows and makes every
  * solution satisfy the cones up to the bound tolerance.
  *
  * Robustness: the system is already normalized (forces in units of the
- * total weight, torques divided by the structure's scale), CLP scales
- * rows and columns on top, and the primal tolerance is tightened to 1e-9
- * so that accepted solutions pass the certificate check (1e-6) with room.
+ * total weight, gravity rows of size m_i / M <= 1, torques divided by the
+ * structure's scale, generator columns of unit length whatever mu), CLP
+ * scales rows and columns on top, and the primal tolerance is tightened
+ * (us_LpSettings.primal_tol, 1e-9) so that accepted solutions pass the
+ * certificate check (1e-6) with room.
  * The dual simplex is run without presolve: a zero objective makes the
  * slack basis dual feasible, and on infeasibility its dual ray is a
  * Farkas certificate, from which we name the body with the largest virtual
  * motion (verified against G before use).
  *
  * Reuse: CLP's basis status of every column (keyed by structure contact
- * and cone edge) and row (keyed by body and wrench component) is kept
+ * and generator) and row (keyed by body and wrench component) is kept
  * after each solve; the next sub-assembly's model starts from those
  * statuses (new columns at their bound, new rows basic) unless the front
  * end asks for a restart. With a zero objective every basis is dual
@@ -28,7 +31,8 @@
  * Memory: the model and the ray belong to CLP (Clp_deleteModel,
  * Clp_freeRay); our column buffers are kept and reused between tests.
  */
-#include "stability.h"
+#include "backend.h"
+#include "lp_gen.h"
 
 #include <coin/Clp_C_Interface.h>
 #include <stdio.h>
@@ -39,9 +43,10 @@ typedef struct ClpWs {
   double *bounds;   /* [nrow] row bounds (rhs) */
   double *sol;      /* [ncol] copy of the column solution */
   int cap_row, cap_col;
+  us_LpSettings set;
   int last_body;    /* evidence of the last unstable verdict */
   /* basis of the previous solve, valid where *_stamp == stamp */
-  unsigned char *col_st, *row_st; /* [2 * s->ncontact], [3 * s->nbody] */
+  unsigned char *col_st, *row_st; /* [3 * s->ncontact], [3 * s->nbody] */
   int *col_stamp, *row_stamp;
   int stamp;
   unsigned char *st; /* [ncol + nrow] status handed to CLP */
@@ -63,15 +68,15 @@ static void clp_destroy(void *ws) {
 }
 
 static void *clp_create(const us_Structure *s, const us_StabilitySettings *set, us_Error *err) {
-  US_UNUSED(set);
   if (s->dim != 2) {
     us_error_set(err, US_ERR_USAGE, "the LP backends support 2D structures only");
     return NULL;
   }
   ClpWs *w = us_calloc(1, sizeof *w);
-  size_t nc = 2 * (size_t)(s->ncontact > 0 ? s->ncontact : 1);
+  size_t nc = 3 * (size_t)(s->ncontact > 0 ? s->ncontact : 1);
   size_t nr = 3 * (size_t)(s->nbody > 0 ? s->nbody : 1);
   if (w) {
+    w->set = us_lp_settings_resolve(&set->lp);
     w->last_body = -1;
     w->stamp = 1;
     w->col_st = us_malloc(nc);
@@ -105,7 +110,7 @@ static int clp_reserve(ClpWs *w, int nrow, int ncol) {
 
 /* Keys of column j and row r of the current system in the basis maps. */
 static size_t col_key(const us_EqSystem *sys, const us_EqGen *g, int j) {
-  return 2 * (size_t)sys->contact[g->col_contact[j]] + (g->col_sign[j] < 0);
+  return 3 * (size_t)sys->contact[g->col_contact[j]] + (size_t)us_eq_gen_slot(g, j);
 }
 
 static size_t row_key(const us_EqSystem *sys, int r) {
@@ -161,7 +166,7 @@ static Clp_Simplex *clp_load(ClpWs *w, const us_EqSystem *sys) {
   /* NULL column bounds / objective: l in [0, inf), objective zero */
   Clp_loadProblem(m, g->ncol, g->nrow, g->start, g->row, g->val, NULL, NULL, NULL, w->bounds,
                   w->bounds);
-  Clp_setPrimalTolerance(m, 1e-9);
+  Clp_setPrimalTolerance(m, w->set.primal_tol);
   return m;
 }
 
@@ -169,18 +174,9 @@ static Clp_Simplex *clp_load(ClpWs *w, const us_EqSystem *sys) {
 static int clp_evidence(Clp_Simplex *m, ClpWs *w, const us_EqSystem *sys) {
   double *ray = Clp_infeasibilityRay(m);
   if (!ray) return -1;
-  int body = us_eq_gen_farkas_body(sys, &w->gen, ray);
+  int body = us_eq_gen_farkas_body(sys, &w->gen, ray, w->set.farkas_slack);
   Clp_freeRay(m, ray);
   return body;
-}
-
-/* No column at all (no active contact can carry load): the bodies stand
- * only if nothing pushes them, i.e. rhs = 0. Solvers disagree on empty
- * models (lp_solve does not run them), so this is decided here. */
-static us_Verdict no_columns_verdict(const us_EqSystem *sys) {
-  for (int r = 0; r < sys->nbody * sys->nw; r++)
-    if (sys->rhs[r] != 0.0) return US_UNSTABLE;
-  return US_STABLE;
 }
 
 /* Load and solve with the dual simplex, from the previous basis if `warm`
@@ -194,7 +190,7 @@ static Clp_Simplex *clp_run(ClpWs *w, const us_EqSystem *sys, int warm, us_Stabi
   if (warm && warm_start(m, w, sys)) {
     Clp_dual(m, 0);
     int status = Clp_status(m);
-    if ((status == 0 && Clp_sumPrimalInfeasibilities(m) <= 1e-9) || status == 1) {
+    if ((status == 0 && Clp_sumPrimalInfeasibilities(m) <= w->set.warm_accept) || status == 1) {
       info->reused++;
       return m;
     }
@@ -213,16 +209,18 @@ static us_Status clp_solve(void *ws, const us_EqSystem *sys, const int *added, i
   US_UNUSED(added), US_UNUSED(removed);
   ClpWs *w = ws;
   w->last_body = -1;
-  int r = us_eq_generators(sys, &w->gen);
+  int r = us_eq_generators(sys, w->set.n_column_mu, &w->gen);
   if (r == -2) return us_error_set(err, US_ERR_USAGE, "the LP backends support 2D only");
   if (r || clp_reserve(w, w->gen.nrow, w->gen.ncol))
     return us_error_set(err, US_ERR_NOMEM, "out of memory building the LP");
   if (w->gen.ncol == 0) {
-    *verdict = no_columns_verdict(sys);
+    /* solvers disagree on empty models: decided here */
+    *verdict = us_eq_no_columns_verdict(sys);
     snprintf(note, note_sz, "no active contact");
     return US_OK;
   }
-  int warm = !restart && nadded + nremoved <= 8 + sys->nbody / 16;
+  int warm = !restart && nadded + nremoved <= w->set.warm_changes +
+                                             sys->nbody / w->set.warm_body_div;
   Clp_Simplex *m = clp_run(w, sys, warm, info);
   if (!m) return us_error_set(err, US_ERR_NOMEM, "CLP could not create a model");
   int status = Clp_status(m);

@@ -1,24 +1,32 @@
 /* The reference stability backend: the same statics feasibility LP as
  * lp_clp.c, solved by lp_solve 5.5, from scratch for every test.
  *
- * Formulation: the cone-edge form of equilibrium.c (G l = rhs, l >= 0,
- * zero objective; exact in 2D, mu = 0 gives one column n per contact).
+ * Formulation: the cone-generator form of lp_gen.h (G l = rhs, l >= 0,
+ * zero objective; exact in 2D; unit generators whatever mu, so mu up to
+ * 1e300 or INFINITY leaves every entry of G of the wrenches' size).
  * lp_solve's default bounds are exactly l in [0, inf), so no variable needs
  * set_unbounded. The model is built column by column (add_columnex, which
  * suits our column-major G) after sizing it once with resize_lp; rows are
- * then made equalities with their right-hand sides.
+ * then made equalities with their right-hand sides. lp_solve's default
+ * scaling runs first (it is measurably faster on ordinary structures); when
+ * it ends in a numerical failure the model is solved again unscaled: the
+ * system is normalized already (lp_gen.h), and the geometric scaling is
+ * what turned the unit cone edges of very wide cones (mu >= 1e8, entries
+ * down to 1 / mu) into numerical failures.
  *
  * Memory: the lprec and everything it returns belong to lp_solve
  * (delete_lp); solutions are copied out with get_variables into our own
  * buffer. lp_solve reports OOM as NOMEMORY (or a NULL lprec).
  */
-#include "stability.h"
+#include "backend.h"
+#include "lp_gen.h"
 
 #include <lp_lib.h>
 #include <stdio.h>
 #include <string.h>
 
 typedef struct LpsWs {
+  us_LpSettings set;
   us_EqGen gen;
   double *col;      /* [1 + 6] one column with the objective entry first */
   int *rowno;
@@ -27,12 +35,12 @@ typedef struct LpsWs {
 } LpsWs;
 
 static void *lps_create(const us_Structure *s, const us_StabilitySettings *set, us_Error *err) {
-  US_UNUSED(set);
   if (s->dim != 2) {
     us_error_set(err, US_ERR_USAGE, "the LP backends support 2D structures only");
     return NULL;
   }
   LpsWs *w = us_calloc(1, sizeof *w);
+  if (w) w->set = us_lp_settings_resolve(&set->lp);
   if (w) w->col = us_malloc(8 * sizeof(double));
   if (w) w->rowno = us_malloc(8 * sizeof(int));
   if (!w || !w->col || !w->rowno) {
@@ -55,11 +63,12 @@ static void lps_destroy(void *ws) {
 }
 
 /* Build the lprec of G l = rhs. NULL when lp_solve runs out of memory. */
-static lprec *lps_load(LpsWs *w, const us_EqSystem *sys) {
+static lprec *lps_load(LpsWs *w, const us_EqSystem *sys, int scaled) {
   const us_EqGen *g = &w->gen;
   lprec *lp = make_lp(g->nrow, 0);
   if (!lp) return NULL;
   set_verbose(lp, NEUTRAL);
+  if (!scaled) set_scaling(lp, SCALE_NONE);
   if (!resize_lp(lp, g->nrow, g->ncol)) goto fail;
   for (int j = 0; j < g->ncol; j++) {
     int n = 0;
@@ -77,15 +86,6 @@ fail:
   return NULL;
 }
 
-/* No column at all (no active contact can carry load): the bodies stand
- * only if nothing pushes them, i.e. rhs = 0. Solvers disagree on empty
- * models (lp_solve does not run them), so this is decided here. */
-static us_Verdict no_columns_verdict(const us_EqSystem *sys) {
-  for (int r = 0; r < sys->nbody * sys->nw; r++)
-    if (sys->rhs[r] != 0.0) return US_UNSTABLE;
-  return US_STABLE;
-}
-
 static us_Status lps_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
                            const int *removed, int nremoved, int restart, us_Verdict *verdict,
                            double *f, us_StabilityInfo *info, char *note, size_t note_sz,
@@ -93,18 +93,25 @@ static us_Status lps_solve(void *ws, const us_EqSystem *sys, const int *added, i
   US_UNUSED(added), US_UNUSED(nadded), US_UNUSED(removed), US_UNUSED(nremoved);
   US_UNUSED(restart), US_UNUSED(info);
   LpsWs *w = ws;
-  int r = us_eq_generators(sys, &w->gen);
+  int r = us_eq_generators(sys, w->set.n_column_mu, &w->gen);
   if (r == -2) return us_error_set(err, US_ERR_USAGE, "the LP backends support 2D only");
   if (r || US_GROW(w->sol, w->cap_col, w->gen.ncol + 1))
     return us_error_set(err, US_ERR_NOMEM, "out of memory building the LP");
   if (w->gen.ncol == 0) {
-    *verdict = no_columns_verdict(sys);
+    /* lp_solve does not run empty models: decided here */
+    *verdict = us_eq_no_columns_verdict(sys);
     snprintf(note, note_sz, "no active contact");
     return US_OK;
   }
-  lprec *lp = lps_load(w, sys);
+  lprec *lp = lps_load(w, sys, 1);
   if (!lp) return us_error_set(err, US_ERR_NOMEM, "lp_solve could not build the model");
   int ret = solve(lp);
+  if (ret == NUMFAILURE) { /* once more without lp_solve's scaling */
+    delete_lp(lp);
+    lp = lps_load(w, sys, 0);
+    if (!lp) return us_error_set(err, US_ERR_NOMEM, "lp_solve could not build the model");
+    ret = solve(lp);
+  }
   us_Status st = US_OK;
   if (ret == OPTIMAL) {
     get_variables(lp, w->sol);

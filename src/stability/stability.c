@@ -14,9 +14,13 @@
  * diagnosis). An empty sub-assembly (no movable body) is stable with no
  * forces and never reaches the backend. After a backend error the
  * workspace forgets its last sub-assembly, so the next call restarts the
- * backend. us_StabilityResult arrays are reused across calls.
+ * backend. us_StabilityResult arrays are reused across calls: a result
+ * must be initialized (us_stability_result_init, or zeroed) before its
+ * first test, and every field is rewritten by each test.
  */
-#include "stability.h"
+#include "backend.h"
+#include "certificate.h"
+#include "lp_gen.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -36,6 +40,7 @@ struct us_Stability {
   double *f;               /* normalized forces from the backend */
   int cap_f;
   double *acc;             /* certificate scratch: 6 * nbody */
+  unsigned char *held;     /* [nbody] row blocks touched by some contact */
   unsigned char *seen;     /* certificate scratch: ncontact */
   us_StabilityInfo info;
 };
@@ -69,13 +74,45 @@ const char *us_verdict_name(us_Verdict v) {
   return "unknown";
 }
 
+/* Default tolerances of the LP backends (us_LpSettings documents them). */
+#define LP_PRIMAL_TOL 1e-9
+#define LP_WARM_ACCEPT 1e-9
+#define LP_WARM_CHANGES 8
+#define LP_WARM_BODY_DIV 16
+#define LP_FARKAS_SLACK 1e-9
+#define LP_N_COLUMN_MU 1.0
+#define CERT_TOL 1e-6
+
+us_LpSettings us_lp_default_settings(void) {
+  us_LpSettings l;
+  l.primal_tol = LP_PRIMAL_TOL;
+  l.warm_accept = LP_WARM_ACCEPT;
+  l.warm_changes = LP_WARM_CHANGES;
+  l.warm_body_div = LP_WARM_BODY_DIV;
+  l.farkas_slack = LP_FARKAS_SLACK;
+  l.n_column_mu = LP_N_COLUMN_MU;
+  return l;
+}
+
+us_LpSettings us_lp_settings_resolve(const us_LpSettings *in) {
+  us_LpSettings d = us_lp_default_settings(), r = *in;
+  if (!(r.primal_tol > 0)) r.primal_tol = d.primal_tol;
+  if (!(r.warm_accept > 0)) r.warm_accept = d.warm_accept;
+  if (r.warm_changes <= 0) r.warm_changes = d.warm_changes;
+  if (r.warm_body_div <= 0) r.warm_body_div = d.warm_body_div;
+  if (!(r.farkas_slack > 0)) r.farkas_slack = d.farkas_slack;
+  if (!(r.n_column_mu > 0)) r.n_column_mu = d.n_column_mu;
+  return r;
+}
+
 us_StabilitySettings us_stability_default_settings(void) {
   us_StabilitySettings s;
   memset(&s, 0, sizeof s);
   s.method = US_METHOD_LP;
-  s.cert_tol = 1e-6;
+  s.cert_tol = CERT_TOL;
   s.max_pivots = 0;
   s.verbose = 0;
+  s.lp = us_lp_default_settings();
   return s;
 }
 
@@ -84,6 +121,14 @@ void us_forces_free(us_Forces *f) {
   us_free(f->contact);
   us_free(f->f);
   memset(f, 0, sizeof *f);
+}
+
+void us_stability_result_init(us_StabilityResult *r) {
+  if (!r) return;
+  memset(r, 0, sizeof *r);
+  r->verdict = US_UNDECIDED;
+  r->check.worst_body = r->check.worst_contact = -1;
+  r->unstable_body = -1;
 }
 
 void us_stability_result_free(us_StabilityResult *r) {
@@ -125,6 +170,7 @@ void us_stability_free(us_Stability *w) {
   us_free(w->f);
   us_free(w->acc);
   us_free(w->seen);
+  us_free(w->held);
   us_free(w);
 }
 
@@ -150,7 +196,8 @@ static int alloc_arrays(us_Stability *w) {
   w->removed = us_malloc(nb * sizeof(int));
   w->acc = us_malloc(6 * nb * sizeof(double));
   w->seen = us_malloc(nc);
-  return !w->added || !w->removed || !w->acc || !w->seen ? -1 : 0;
+  w->held = us_malloc(nb);
+  return !w->added || !w->removed || !w->acc || !w->seen || !w->held ? -1 : 0;
 }
 
 us_Stability *us_stability_new_backend(const us_Structure *s, const us_StabilitySettings *set,
@@ -280,6 +327,22 @@ static us_Status certify(us_Stability *w, us_StabilityResult *res, us_Error *err
   return US_OK;
 }
 
+/* A present body that no active contact touches falls as soon as it has
+ * weight, however small: decided exactly here, before any solver whose
+ * tolerance could absorb a tiny weight. Returns the body, or -1. */
+static int unheld_body(us_Stability *w) {
+  const us_EqSystem *e = &w->eq;
+  memset(w->held, 0, (size_t)e->nbody);
+  for (size_t j = 0; j < 2 * (size_t)e->ncontact * (size_t)e->dim; j++)
+    if (e->blk[j] >= 0) w->held[e->blk[j]] = 1;
+  for (int r = 0; r < e->nbody; r++) {
+    if (w->held[r]) continue;
+    for (int k = 0; k < e->nw; k++)
+      if (e->rhs[(size_t)r * (size_t)e->nw + (size_t)k] != 0.0) return e->body[r];
+  }
+  return -1;
+}
+
 static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err) {
   if (us_bitset_count(&w->cur) == 0) { /* nothing can fall */
     res->verdict = US_STABLE;
@@ -289,6 +352,13 @@ static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err)
   }
   if (us_eq_build(&w->eq, &w->cur))
     return us_error_set(err, US_ERR_NOMEM, "out of memory building the equilibrium system");
+  int loose = unheld_body(w);
+  if (loose >= 0) {
+    res->verdict = US_UNSTABLE;
+    res->unstable_body = loose;
+    snprintf(res->note, sizeof res->note, "a body with weight touches nothing");
+    return US_OK;
+  }
   us_Status st = run_backend(w, res, err);
   if (st) return st;
   if (res->verdict == US_STABLE) return certify(w, res, err);

@@ -1,0 +1,46 @@
+/* The interface every stability backend implements (lp_clp.c,
+ * lp_lpsolve.c, lcp_backend.c), in the settings / workspace / solve shape.
+ *
+ * The front end (stability.c) owns the public workspace: it tracks the
+ * last tested sub-assembly, builds the equilibrium system of the next one
+ * (equilibrium.h), hands the backend the list of bodies added and removed
+ * since its previous call (computation reuse), scales the forces back to
+ * newtons and re-checks them without any solver (certificate.h).
+ */
+#ifndef US_STABILITY_BACKEND_H
+#define US_STABILITY_BACKEND_H
+
+#include "core/core.h"
+#include "equilibrium.h"
+
+/* A stability backend. The workspace is the backend's own state and may
+ * keep the last sub-assembly's solution for reuse. */
+typedef struct us_Backend {
+  const char *name;
+  void *(*create)(const us_Structure *s, const us_StabilitySettings *set, us_Error *err);
+  void (*destroy)(void *ws);
+  /* Decide the sub-assembly `sys`. added / removed: bodies that changed
+   * since this backend's previous solve (restart = 1: no previous state to
+   * reuse, e.g. first call). On stable, write dim * ncontact normalized
+   * forces to f. */
+  us_Status (*solve)(void *ws, const us_EqSystem *sys, const int *added, int nadded,
+                     const int *removed, int nremoved, int restart, us_Verdict *verdict,
+                     double *f, us_StabilityInfo *info, char *note, size_t note_sz,
+                     us_Error *err);
+  /* Optional (NULL: unknown). After an unstable verdict: the body the
+   * backend's evidence points at (e.g. largest virtual motion in a Farkas
+   * ray), else -1. */
+  int (*unstable_body)(void *ws);
+} us_Backend;
+
+extern const us_Backend us_backend_clp;     /* lp_clp.c */
+extern const us_Backend us_backend_lpsolve; /* lp_lpsolve.c */
+extern const us_Backend us_backend_lcp;     /* lcp_backend.c (from scratch) */
+extern const us_Backend us_backend_lcp_reuse;
+
+/* A workspace on a given backend (tests, benchmarks); us_stability_new picks
+ * the backend from set->method. */
+us_Stability *us_stability_new_backend(const us_Structure *s, const us_StabilitySettings *set,
+                                       const us_Backend *be, us_Error *err);
+
+#endif
