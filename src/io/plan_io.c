@@ -224,7 +224,8 @@ static us_Status read_header(const us_IoCtx *c, json_t *root, us_PlanStatus *sta
   v = json_object_get(root, "status");
   if (!v) return us_io_bad(c, "", "missing field 'status'");
   if (!json_is_string(v) || us_plan_status_parse(json_string_value(v), status))
-    return us_io_bad(c, "", "status: expected one of \"found\", \"none\", \"unstable\", \"limit\"");
+    return us_io_bad(c, "", "status: expected one of \"found\", \"none\", \"unstable\", \"limit\", "
+                     "\"undecided\"");
   return US_OK;
 }
 
