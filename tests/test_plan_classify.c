@@ -9,6 +9,7 @@
  * stability coincide (LP and LCP verdicts on every sub-assembly, and the
  * LCP's accelerations from different starting points), argument errors
  * and out-of-memory paths. */
+#include "plan/hook.h"
 #include "scenes.h"
 #include "test.h"
 
@@ -770,6 +771,61 @@ static void argument_errors(void) {
   us_structure_free(s);
 }
 
+/* --------------------------------------------------------- undecided */
+
+static void all_undecided(void *user, const us_Bitset *node, us_StabilityResult *res) {
+  (void)node;
+  if (user) ++*(long *)user;
+  res->verdict = US_UNDECIDED;
+  snprintf(res->note, sizeof res->note, "test hook");
+}
+
+/* Tests that cannot be decided never decide a class: with every test of
+ * the planner undecided (the test-only hook, src/plan/hook.h) the column
+ * neither stands nor falls, top-down is unknown, and the sequence and
+ * group classes are undecided, not none; with a certificate tolerance no
+ * rounding meets (1e-300) the friction probes of the ramp are undecided
+ * too. */
+static void undecided_tests_decide_no_class(void) {
+  us_Structure *s = scene_column(3);
+  CHECK(s);
+  us_Classification c;
+  long calls = 0;
+  us_plan_set_test_hook(all_undecided, &calls);
+  int ok = classify(s, NULL, &c);
+  us_plan_set_test_hook(NULL, NULL);
+  CHECK(ok);
+  CHECK(calls >= 3);
+  CHECK(!c.stands && c.stands_undecided);
+  CHECK_INT(c.unstable_body, ==, -1);
+  CHECK(c.stands_frictionless); /* the friction probes are not hooked */
+  CHECK_INT(c.topdown, ==, -1);
+  CHECK_INT(c.dfs_status, ==, US_PLAN_UNDECIDED);
+  CHECK(c.dfs_undecided >= 1);
+  CHECK_INT(c.sequence_status, ==, US_PLAN_UNDECIDED);
+  CHECK(!c.sequence);
+  CHECK_INT(c.group_status, ==, US_PLAN_UNDECIDED);
+  CHECK_INT(c.min_group, ==, 0);
+  CHECK(c.undecided);
+  us_classification_free(&c);
+  /* decided: the same column, no hook */
+  CHECK(classify(s, NULL, &c));
+  CHECK(c.stands && !c.stands_undecided && !c.undecided && c.topdown == 1);
+  us_classification_free(&c);
+  us_structure_free(s);
+  s = ramp(30 * PI / 180, 0.8);
+  CHECK(s);
+  us_ClassifySettings set = us_classify_default_settings();
+  set.stability.cert_tol = 1e-300;
+  CHECK(classify(s, &set, &c));
+  CHECK(!c.stands && c.stands_undecided);
+  CHECK(c.friction_undecided >= 1);
+  CHECK(c.undecided);
+  CHECK(c.sequence_status == US_PLAN_UNDECIDED);
+  us_classification_free(&c);
+  us_structure_free(s);
+}
+
 /* Fail the n-th allocation for every n until classify succeeds: every
  * failure is out of memory (or a backend's report of it), with nothing
  * leaked and an empty result. */
@@ -804,4 +860,5 @@ US_TEST_MAIN(T(column_is_topdown), T(cantilever_needs_backtracking),
              T(leaning_slabs_need_friction_and_pairs), T(arch_needs_a_group),
              T(ramp_needs_tan_alpha), T(overhang_stands_for_no_mu), T(topdown_probe_limit), T(time_limit_leaves_classes_unknown), T(count_refusal_is_reported),
              T(classes_match_brute_force), T(frictionless_verdicts_agree),
-             T(frictionless_accelerations_unique), T(argument_errors), T(out_of_memory_is_clean))
+             T(frictionless_accelerations_unique), T(argument_errors), T(undecided_tests_decide_no_class),
+             T(out_of_memory_is_clean))
