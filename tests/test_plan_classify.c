@@ -302,11 +302,14 @@ static void time_limit_leaves_classes_unknown(void) {
   us_Classification c;
   CHECK(classify(s, &set, &c));
   CHECK(c.stands);
-  CHECK_INT(c.sequence_status, ==, US_PLAN_NONE);
-  CHECK(c.nblocked > 0);
+  /* the sequence search usually finishes in time (none, a proof); on a
+     loaded machine it may be cut too: then nothing past it is known */
+  CHECK(c.sequence_status == US_PLAN_NONE || c.sequence_status == US_PLAN_LIMIT);
+  CHECK(c.sequence_status == US_PLAN_LIMIT || c.nblocked > 0);
   CHECK_INT(c.group_status, ==, US_PLAN_LIMIT);
   CHECK_INT(c.min_group, ==, 0);
-  CHECK(c.group_bound >= 1 && c.group_bound < 20);
+  if (c.sequence_status == US_PLAN_NONE) CHECK(c.group_bound >= 1 && c.group_bound < 20);
+  else CHECK_INT(c.group_bound, ==, 0);
   us_classification_free(&c);
   us_structure_free(s);
   s = scene_column(4);
