@@ -209,9 +209,10 @@ static void text_group(const us_Classification *c, const ClassifyArgs *a) {
            c->nbody);
     return;
   case US_PLAN_UNDECIDED:
-    printf("group: undecided (K > %d", c->group_bound);
-    if (c->min_group > 0) printf(", K <= %d", c->min_group);
-    printf("; some tests could not be decided)\n");
+    printf("group: undecided (");
+    if (c->group_bound > 0) printf("K > %d; ", c->group_bound);
+    if (c->min_group > 0) printf("K <= %d; ", c->min_group);
+    printf("some tests could not be decided)\n");
     return;
   default: break;
   }
