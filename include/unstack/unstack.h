@@ -363,7 +363,8 @@ typedef struct us_PlanSettings {
 us_PlanSettings us_plan_default_settings(void);
 
 typedef struct us_PlanStats {
-  long tests;            /* stability tests run: stable + unstable + undecided */
+  long tests;            /* stability tests run: stable + unstable + undecided,
+                            plus the certificate re-tests of a found plan */
   long stable;
   long unstable;
   long undecided;        /* tests whose verdict was undecided (taken as "not known
