@@ -563,7 +563,7 @@ static int oom_sweep(const us_Structure *s, us_CountMethod m, const char *want) 
     long live = us_alloc_fail_after(k);
     us_Count c;
     us_Error err;
-    us_Status st = us_count_subgraphs(s, &set, &c, &err);
+    us_Status st = us_count_subgraphs(s, &set, &c, k & 1 ? NULL : &err); /* NULL err too */
     us_alloc_fail_after(-1);
     int ok = st == US_OK ? c.value && !strcmp(c.value, want) : st == US_ERR_NOMEM;
     us_count_free(&c);

@@ -9,6 +9,7 @@
  * stability coincide (LP and LCP verdicts on every sub-assembly, and the
  * LCP's accelerations from different starting points), argument errors
  * and out-of-memory paths. */
+#include "plan/hook.h"
 #include "scenes.h"
 #include "test.h"
 
@@ -16,6 +17,17 @@
 #include "stability/lcp_sys.h"
 
 #define PI 3.14159265358979323846
+
+/* Sanitizer builds look for memory errors, not statistics (CMakeLists.txt):
+ * the random differential tests run a quarter or a third of their cases
+ * there; the checks that every kind of case occurred stay. */
+#ifdef US_TEST_SANITIZED
+#define BRUTE_TRIALS 150
+#define GAUSS_TRIALS 20
+#else
+#define BRUTE_TRIALS 600
+#define GAUSS_TRIALS 60
+#endif
 
 /* ----------------------------------------------------------------- scenes */
 
@@ -306,11 +318,14 @@ static void time_limit_leaves_classes_unknown(void) {
   us_Classification c;
   CHECK(classify(s, &set, &c));
   CHECK(c.stands);
-  CHECK_INT(c.sequence_status, ==, US_PLAN_NONE);
-  CHECK(c.nblocked > 0);
+  /* the sequence search usually finishes in time (none, a proof); on a
+     loaded machine it may be cut too: then nothing past it is known */
+  CHECK(c.sequence_status == US_PLAN_NONE || c.sequence_status == US_PLAN_LIMIT);
+  CHECK(c.sequence_status == US_PLAN_LIMIT || c.nblocked > 0);
   CHECK_INT(c.group_status, ==, US_PLAN_LIMIT);
   CHECK_INT(c.min_group, ==, 0);
-  CHECK(c.group_bound >= 1 && c.group_bound < 20);
+  if (c.sequence_status == US_PLAN_NONE) CHECK(c.group_bound >= 1 && c.group_bound < 20);
+  else CHECK_INT(c.group_bound, ==, 0);
   us_classification_free(&c);
   us_structure_free(s);
   s = scene_column(4);
@@ -486,15 +501,15 @@ static long ref_count(const us_Structure *s) {
   return count;
 }
 
-/* Every class against brute force on random piles (at most 40 of them
+/* Every class against brute force on random piles (at most a fifteenth of them
  * unstable: they are most draws and all alike). */
 static void classes_match_brute_force(void) {
   int seen[4] = {0, 0, 0, 0}, tried = 0; /* topdown, backtracking, groups, unstable */
   unsigned long long rng = 2026;
-  for (int trial = 0; trial < 600; trial++) {
+  for (int trial = 0; trial < BRUTE_TRIALS; trial++) {
     us_Structure *s = random_pile(4 + trial % 6, trial % 3 ? 0.6 : 0.0, &rng);
     if (!s) continue;
-    if (seen[3] >= 40 && !full_stands(s)) { /* quota of unstable piles reached */
+    if (seen[3] >= BRUTE_TRIALS / 15 && !full_stands(s)) { /* quota of unstable piles reached */
       us_structure_free(s);
       continue;
     }
@@ -517,7 +532,7 @@ static void classes_match_brute_force(void) {
   }
   printf("brute force: %d piles: %d top-down, %d backtracking, %d groups, %d unstable\n", tried,
          seen[0], seen[1], seen[2], seen[3]);
-  CHECK(tried >= 200);
+  CHECK(tried >= BRUTE_TRIALS / 3);
   CHECK(seen[0] > 0 && seen[1] > 0 && seen[2] > 0 && seen[3] > 0);
 }
 
@@ -530,7 +545,7 @@ static void classes_match_brute_force(void) {
 static void frictionless_verdicts_agree(void) {
   long subsets = 0, stable = 0, tests = 0, fallbacks = 0;
   unsigned long long rng = 1994;
-  for (int trial = 0; trial < 60; trial++) {
+  for (int trial = 0; trial < GAUSS_TRIALS; trial++) {
     us_Structure *s = random_pile(3 + trial % 6, 0.0, &rng);
     if (!s) continue;
     signed char *lp = all_verdicts(s, US_METHOD_LP, NULL);
@@ -719,7 +734,7 @@ static void frictionless_accelerations_unique(void) {
   Runs tot;
   memset(&tot, 0, sizeof tot);
   unsigned long long rng = 1829;
-  for (int trial = 0; trial < 60; trial++) {
+  for (int trial = 0; trial < GAUSS_TRIALS; trial++) {
     us_Structure *s = random_pile(3 + trial % 6, 0.0, &rng);
     if (!s) continue;
     Gauss g;
@@ -786,9 +801,64 @@ static void argument_errors(void) {
   us_structure_free(s);
 }
 
+/* --------------------------------------------------------- undecided */
+
+static void all_undecided(void *user, const us_Bitset *node, us_StabilityResult *res) {
+  (void)node;
+  if (user) ++*(long *)user;
+  res->verdict = US_UNDECIDED;
+  snprintf(res->note, sizeof res->note, "test hook");
+}
+
+/* Tests that cannot be decided never decide a class: with every test of
+ * the planner undecided (the test-only hook, src/plan/hook.h) the column
+ * neither stands nor falls, top-down is unknown, and the sequence and
+ * group classes are undecided, not none; with a certificate tolerance no
+ * rounding meets (1e-300) the friction probes of the ramp are undecided
+ * too. */
+static void undecided_tests_decide_no_class(void) {
+  us_Structure *s = scene_column(3);
+  CHECK(s);
+  us_Classification c;
+  long calls = 0;
+  us_plan_set_test_hook(all_undecided, &calls);
+  int ok = classify(s, NULL, &c);
+  us_plan_set_test_hook(NULL, NULL);
+  CHECK(ok);
+  CHECK(calls >= 3);
+  CHECK(!c.stands && c.stands_undecided);
+  CHECK_INT(c.unstable_body, ==, -1);
+  CHECK(c.stands_frictionless); /* the friction probes are not hooked */
+  CHECK_INT(c.topdown, ==, -1);
+  CHECK_INT(c.dfs_status, ==, US_PLAN_UNDECIDED);
+  CHECK(c.dfs_undecided >= 1);
+  CHECK_INT(c.sequence_status, ==, US_PLAN_UNDECIDED);
+  CHECK(!c.sequence);
+  CHECK_INT(c.group_status, ==, US_PLAN_UNDECIDED);
+  CHECK_INT(c.min_group, ==, 0);
+  CHECK(c.undecided);
+  us_classification_free(&c);
+  /* decided: the same column, no hook */
+  CHECK(classify(s, NULL, &c));
+  CHECK(c.stands && !c.stands_undecided && !c.undecided && c.topdown == 1);
+  us_classification_free(&c);
+  us_structure_free(s);
+  s = ramp(30 * PI / 180, 0.8);
+  CHECK(s);
+  us_ClassifySettings set = us_classify_default_settings();
+  set.stability.cert_tol = 1e-300;
+  CHECK(classify(s, &set, &c));
+  CHECK(!c.stands && c.stands_undecided);
+  CHECK(c.friction_undecided >= 1);
+  CHECK(c.undecided);
+  CHECK(c.sequence_status == US_PLAN_UNDECIDED);
+  us_classification_free(&c);
+  us_structure_free(s);
+}
+
 /* Fail the n-th allocation for every n until classify succeeds: every
  * failure is out of memory (or a backend's report of it), with nothing
- * leaked and an empty result. */
+ * leaked and an empty result; odd n with a NULL error pointer. */
 static void out_of_memory_is_clean(void) {
   us_Structure *scenes[2] = {scene_leaning(0.5), arch(6, 3.0, 0.6, 0.5)};
   CHECK(scenes[0] && scenes[1]);
@@ -798,7 +868,7 @@ static void out_of_memory_is_clean(void) {
       us_Classification c;
       us_Error err;
       us_alloc_fail_after(n);
-      us_Status st = us_classify(scenes[k], NULL, &c, &err);
+      us_Status st = us_classify(scenes[k], NULL, &c, n & 1 ? NULL : &err); /* NULL err too */
       us_alloc_fail_after(-1);
       if (st == US_OK) {
         CHECK(c.count != NULL && c.min_group > 1);
@@ -820,4 +890,5 @@ US_TEST_MAIN(T(column_is_topdown), T(cantilever_needs_backtracking),
              T(leaning_slabs_need_friction_and_pairs), T(arch_needs_a_group),
              T(ramp_needs_tan_alpha), T(overhang_stands_for_no_mu), T(topdown_probe_limit), T(time_limit_leaves_classes_unknown), T(count_refusal_is_reported),
              T(classes_match_brute_force), T(frictionless_verdicts_agree),
-             T(frictionless_accelerations_unique), T(argument_errors), T(out_of_memory_is_clean))
+             T(frictionless_accelerations_unique), T(argument_errors), T(undecided_tests_decide_no_class),
+             T(out_of_memory_is_clean))

@@ -1,7 +1,8 @@
 /* Shared pieces of the command-line tool: one entry per subcommand, option
  * parsing helpers, exit codes. Exit 0: success (stable / plan found);
  * 1: negative outcome (unstable / no plan / verify failed); 2: usage or
- * input error, with a message on stderr. */
+ * input error, with a message on stderr; 3: undecided (the answer depends
+ * on a stability test that could not be decided). */
 #ifndef US_CLI_H
 #define US_CLI_H
 
@@ -10,6 +11,7 @@
 #define CLI_EXIT_OK 0
 #define CLI_EXIT_NO 1
 #define CLI_EXIT_ERR 2
+#define CLI_EXIT_UNDECIDED 3
 
 int cmd_check(int argc, char **argv);
 int cmd_plan(int argc, char **argv);

@@ -17,7 +17,8 @@ static const char help[] =
     "  --contact-tol T   contact detection tolerance (default 1e-6 x size)\n"
     "  --forces          print the certificate forces\n"
     "\n"
-    "exit: 0 stable, 1 unstable, 2 usage or input error\n";
+    "exit: 0 stable, 1 unstable, 2 usage or input error, 3 undecided (a solver\n"
+    "limit was hit and no fallback decided, or the certificate failed)\n";
 
 static void print_forces(const us_Structure *s, const us_Forces *f) {
   int dim = s->dim;
@@ -46,7 +47,7 @@ static int report(const us_Structure *s, const us_StabilityResult *res, int forc
                                       us_id_text(s->bodies[res->unstable_body].id).s);
   if (res->note[0]) printf(" (%s)", res->note);
   printf("\n");
-  return CLI_EXIT_NO;
+  return res->verdict == US_UNDECIDED ? CLI_EXIT_UNDECIDED : CLI_EXIT_NO;
 }
 
 int cmd_check(int argc, char **argv) {

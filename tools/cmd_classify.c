@@ -28,7 +28,8 @@ static const char help[] =
     "                    (default 60; 0: none); a class cut there is unknown\n"
     "  --contact-tol T   contact detection tolerance (default 1e-6 x size)\n"
     "\n"
-    "exit: 0 classified, 2 usage or input error\n";
+    "exit: 0 classified, 2 usage or input error, 3 some class is undecided (a\n"
+    "stability test it rests on could not be decided)\n";
 
 #define TEXT_IDS 20 /* blocked bodies named in the text output */
 
@@ -94,12 +95,23 @@ static void text_stands(const us_Structure *s, const us_Classification *c, const
     printf("stands: yes (%s, certificate re-checked)\n", method);
     return;
   }
+  if (c->stands_undecided) {
+    printf("stands: undecided (%s: the test could not be decided)\n", method);
+    return;
+  }
   printf("stands: no (%s", method);
   if (c->unstable_body >= 0) printf(": body "), put_body(s, c->unstable_body), printf(" cannot be held");
   printf(")\n");
 }
 
 static void text_friction(const us_Classification *c) {
+  if (c->friction_undecided > 0 && !c->stands_frictionless) {
+    printf("friction: undecided (%d of %d probes could not be decided", c->friction_undecided,
+           c->friction_probes);
+    if (c->stands_some_mu) printf("; stands with mu = %.6f, mu* may be lower", c->mu_critical);
+    printf(")\n");
+    return;
+  }
   if (c->stands_frictionless)
     printf("friction: stands frictionless (mu* = 0, %d probe%s)\n", c->friction_probes,
            c->friction_probes == 1 ? "" : "s");
@@ -132,6 +144,9 @@ static void text_topdown(const us_Classification *c) {
            "backtracking)\n", c->dfs_tests);
   } else if (c->dfs_status == US_PLAN_UNSTABLE) {
     printf("no (the full structure does not stand)\n");
+  } else if (c->dfs_undecided > 0) {
+    printf("undecided (%ld of the source's DFS's %ld tests could not be decided)\n",
+           c->dfs_undecided, c->dfs_tests);
   } else if (c->topdown == -1) {
     printf("unknown (limit: the source's DFS stopped at %ld tests before any move failed)\n",
            c->dfs_tests);
@@ -166,6 +181,10 @@ static void text_sequence(const us_Structure *s, const us_Classification *c,
     printf("sequence: unknown (time limit of %g s, %ld tests)\n", a->set.time_limit,
            c->sequence_tests);
     return;
+  case US_PLAN_UNDECIDED:
+    printf("sequence: undecided (none found; some of its %ld tests could not be decided)\n",
+           c->sequence_tests);
+    return;
   default: break;
   }
   printf("sequence: none; blocked: ");
@@ -188,6 +207,12 @@ static void text_group(const us_Classification *c, const ClassifyArgs *a) {
   case US_PLAN_NONE:
     printf("group: K > %d (the planner's bound; K <= %d, all bodies at once)\n", c->group_bound,
            c->nbody);
+    return;
+  case US_PLAN_UNDECIDED:
+    printf("group: undecided (");
+    if (c->group_bound > 0) printf("K > %d; ", c->group_bound);
+    if (c->min_group > 0) printf("K <= %d; ", c->min_group);
+    printf("some tests could not be decided)\n");
     return;
   default: break;
   }
@@ -230,20 +255,21 @@ static void json_friction(const us_Classification *c) {
          json_bool(c->stands_frictionless), json_bool(c->stands_some_mu));
   if (isfinite(c->mu_critical)) printf("%.6f", c->mu_critical);
   else printf("null");
-  printf(", \"friction_probes\": %d, \"strong_equals_weak\": %s", c->friction_probes,
-         json_bool(c->strong_equals_weak));
+  printf(", \"friction_probes\": %d, \"friction_undecided\": %d, \"strong_equals_weak\": %s",
+         c->friction_probes, c->friction_undecided, json_bool(c->strong_equals_weak));
 }
 
 static void json_topdown(const us_Classification *c, long max_tests) {
   printf(", \"topdown\": %s", c->topdown < 0 ? "null" : json_bool(c->topdown));
-  printf(", \"dfs\": {\"status\": \"%s\", \"tests\": %ld, \"rejected\": %ld, \"backtracks\": %ld, "
-         "\"max_tests\": %ld}", us_plan_status_name(c->dfs_status), c->dfs_tests, c->rejected,
-         c->backtracks, max_tests);
+  printf(", \"dfs\": {\"status\": \"%s\", \"tests\": %ld, \"undecided\": %ld, \"rejected\": %ld, "
+         "\"backtracks\": %ld, \"max_tests\": %ld}", us_plan_status_name(c->dfs_status),
+         c->dfs_tests, c->dfs_undecided, c->rejected, c->backtracks, max_tests);
 }
 
 static void json_sequence(const us_Structure *s, const us_Classification *c) {
   printf(", \"sequence\": %s, \"sequence_status\": \"%s\", \"sequence_tests\": %ld, "
-         "\"buildable\": %d, \"blocked\": [", c->sequence_status == US_PLAN_LIMIT ? "null"
+         "\"buildable\": %d, \"blocked\": [",
+         c->sequence_status == US_PLAN_LIMIT || c->sequence_status == US_PLAN_UNDECIDED ? "null"
          : json_bool(c->sequence), us_plan_status_name(c->sequence_status), c->sequence_tests,
          c->nbuildable);
   for (int k = 0; k < c->nblocked; k++) {
@@ -280,8 +306,8 @@ static void print_json(const us_Structure *s, const us_Classification *c, const 
   printf("{\"file\": ");
   put_string(a->file);
   printf(", \"method\": \"%s\", \"bodies\": %d, \"contacts\": %d, \"stands\": %s, "
-         "\"unstable_body\": ", us_method_name(a->set.stability.method), c->nbody, s->ncontact,
-         json_bool(c->stands));
+         "\"stands_undecided\": %s, \"unstable_body\": ", us_method_name(a->set.stability.method),
+         c->nbody, s->ncontact, json_bool(c->stands), json_bool(c->stands_undecided));
   json_body_or_null(s, c->unstable_body);
   json_friction(c);
   json_topdown(c, a->set.max_tests);
@@ -289,6 +315,7 @@ static void print_json(const us_Structure *s, const us_Classification *c, const 
   json_sequence(s, c);
   json_group(c);
   json_count(c);
+  printf(", \"undecided\": %s", json_bool(c->undecided));
   printf(", \"seconds\": %.6f, \"times\": {\"stands\": %.6f, \"friction\": %.6f, \"topdown\": %.6f, "
          "\"sequence\": %.6f, \"group\": %.6f, \"count\": %.6f}}\n", c->seconds, c->t_stands,
          c->t_friction, c->t_topdown, c->t_sequence, c->t_group, c->t_count);
@@ -310,7 +337,7 @@ int cmd_classify(int argc, char **argv) {
   if (us_classify(s, &a.set, &c, &err) == US_OK) {
     if (a.json) print_json(s, &c, &a);
     else print_text(s, &c, &a);
-    code = CLI_EXIT_OK;
+    code = c.undecided ? CLI_EXIT_UNDECIDED : CLI_EXIT_OK;
   } else {
     cli_error("classify", &err);
   }

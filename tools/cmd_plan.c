@@ -39,12 +39,15 @@ static const char help[] =
     "  --stats             print the search statistics\n"
     "  --contact-tol T     contact detection tolerance (default 1e-6 x size)\n"
     "\n"
-    "exit: 0 order found, 1 no order (none, unstable, limit), 2 usage or input error\n";
+    "exit: 0 order found, 1 no order (none, unstable, limit), 2 usage or input\n"
+    "error, 3 undecided (no order found, and none or unstable would rest on\n"
+    "stability tests that could not be decided)\n";
 
 static void print_stats(const us_PlanStats *st) {
-  printf("statistics:\n  tests %ld (stable %ld, unstable %ld), revisited %ld, expanded %ld, "
-         "max depth %ld\n",
-         st->tests, st->stable, st->unstable, st->revisited, st->nodes_expanded, st->max_depth);
+  printf("statistics:\n  tests %ld (stable %ld, unstable %ld, undecided %ld), revisited %ld, "
+         "expanded %ld, max depth %ld\n",
+         st->tests, st->stable, st->unstable, st->undecided, st->revisited, st->nodes_expanded,
+         st->max_depth);
   printf("  backtracks %ld; rules: ground saved %ld tests, union saved %ld, exact checks %ld, "
          "greedy checks %ld, components %ld\n",
          st->backtracks, st->saved_ground, st->saved_union, st->exact_checks, st->greedy_checks,
@@ -65,6 +68,17 @@ static void print_ids(const us_Structure *s, const int *v, int n, int max) {
   for (int k = 0; k < n && k < max; k++) printf("%s%s",
                                                 k ? ", " : "", us_id_text(s->bodies[v[k]].id).s);
   if (n > max) printf(" and %d more", n - max);
+}
+
+/* Why no answer is proven, and what the greedy reached. */
+static void print_undecided(const us_Structure *s, const us_Plan *p) {
+  printf("  %ld stability test%s could not be decided (taken as not standing); the first: %s\n",
+         p->stats.undecided, p->stats.undecided == 1 ? "" : "s", p->note);
+  if (!p->blocked) return;
+  printf("  the greedy placed %d of %d bodies; not reached: ", p->nbuildable,
+         p->nbuildable + p->nblocked);
+  print_ids(s, p->blocked, p->nblocked, 20);
+  printf("\n");
 }
 
 static void print_summary(const us_Structure *s, const us_Plan *p, const CliCommon *c,
@@ -92,6 +106,7 @@ static void print_summary(const us_Structure *s, const us_Plan *p, const CliComm
     print_ids(s, p->blocked, p->nblocked, 20);
     printf("\n");
   }
+  if (p->status == US_PLAN_UNDECIDED) print_undecided(s, p);
   if (p->status == US_PLAN_NONE && p->blocked) {
     printf("  cannot be removed with steps of up to %d bod%s: ", p->max_group > 0 ? p->max_group : 1,
            p->max_group > 1 ? "ies" : "y");
@@ -184,7 +199,9 @@ int cmd_plan(int argc, char **argv) {
     if (!a.out || us_plan_write(s, &p, &c.plan, a.out, &err) == US_OK) {
       print_summary(s, &p, &c, a.out);
       if (a.stats) print_stats(&p.stats);
-      code = p.status == US_PLAN_FOUND ? CLI_EXIT_OK : CLI_EXIT_NO;
+      code = p.status == US_PLAN_FOUND       ? CLI_EXIT_OK
+             : p.status == US_PLAN_UNDECIDED ? CLI_EXIT_UNDECIDED
+                                             : CLI_EXIT_NO;
     }
     us_plan_free(&p);
   }

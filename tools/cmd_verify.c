@@ -15,7 +15,24 @@ static const char help[] =
     "  --method M        lp (CLP, default), lpsolve, lcp, lcp-reuse\n"
     "  --contact-tol T   contact detection tolerance (default 1e-6 x size)\n"
     "\n"
-    "exit: 0 every step stands and all bodies are removed, 1 not, 2 usage or input error\n";
+    "exit: 0 every step stands and all bodies are removed, 1 not, 2 usage or input\n"
+    "error, 3 undecided (a step's test could not be decided and no later step\n"
+    "falls)\n";
+
+/* A test that could not be decided: "step k: undecided (reason)". */
+static int report_undecided(const us_Structure *s, const us_PlanFile *pf,
+                            const us_VerifyReport *rep) {
+  int k = rep->undecided_step;
+  if (k < 0) {
+    printf("undecided: the full structure: its test could not be decided (%s)\n", rep->note);
+  } else {
+    printf("undecided: step %d (removing '%s'%s): undecided (%s)\n", k + 1,
+           s->bodies[pf->order[pf->group_start[k]]].id,
+           pf->group_start[k + 1] - pf->group_start[k] > 1 ? " and others" : "", rep->note);
+  }
+  printf("  (no later step falls; %d tests)\n", rep->steps_checked);
+  return CLI_EXIT_UNDECIDED;
+}
 
 static int report(const us_Structure *s, const us_PlanFile *pf, const us_VerifyReport *rep) {
   if (rep->ok) {
@@ -25,6 +42,7 @@ static int report(const us_Structure *s, const us_PlanFile *pf, const us_VerifyR
            rep->max_force_residual, rep->max_torque_residual);
     return CLI_EXIT_OK;
   }
+  if (rep->undecided) return report_undecided(s, pf, rep);
   if (rep->full_unstable) {
     printf("invalid: the full structure does not stand\n");
   } else if (rep->failed_step >= 0) {

@@ -140,6 +140,7 @@ typedef struct us_Classification {
   int nbody;               /* movable bodies */
   /* 1. */
   int stands;              /* the full structure stands with its own friction */
+  int stands_undecided;    /* its test was undecided (stands = 0 proves nothing) */
   int unstable_body;       /* !stands: the body the test names, or -1 */
   /* 2. */
   int stands_frictionless; /* stands with every mu = 0 */
@@ -147,16 +148,23 @@ typedef struct us_Classification {
   double mu_critical;      /* the smallest such mu to 1e-7 (0 when frictionless,
                               INFINITY when none up to 1e3) */
   int friction_probes;
+  int friction_undecided;  /* probes whose test was undecided (taken as not standing:
+                              mu_critical is then an upper bound, and "stands for
+                              no mu" or "not frictionless" is unproven) */
   /* 3. */
   int topdown;             /* 1 yes, 0 no, -1 unknown (the DFS hit max_tests or
-                              time_limit before any move failed) */
-  us_PlanStatus dfs_status;/* the plain DFS: found, none, unstable or limit */
+                              time_limit before any move failed, or one of its
+                              tests was undecided) */
+  us_PlanStatus dfs_status;/* the plain DFS: found, none, unstable, limit or
+                              undecided */
   long dfs_tests;          /* its stability tests */
+  long dfs_undecided;      /* ... of which undecided */
   long rejected;           /* moves it tested and found unstable */
   long backtracks;         /* dead ends it stepped back from */
   /* 4. */
   us_PlanStatus sequence_status; /* found, none (a proof), unstable (the full
-                              structure does not stand) or limit (unknown) */
+                              structure does not stand), limit (unknown) or
+                              undecided (none or unstable rest on undecided tests) */
   int sequence;            /* sequence_status == US_PLAN_FOUND */
   long sequence_tests;
   int nbuildable;          /* none: the size of a maximal buildable
@@ -166,13 +174,18 @@ typedef struct us_Classification {
   us_PlanStatus group_status; /* found: min_group is the smallest K;
                               unstable: no K (the full structure does not
                               stand); none: K > group_bound, the planner's
-                              bound (64); limit: unknown, K > group_bound */
+                              bound (64); limit: unknown, K > group_bound;
+                              undecided: some test was undecided, K > group_bound
+                              and, when min_group > 0, K <= min_group */
   int min_group;           /* found: the smallest K with an order of steps of
-                              at most K bodies; else 0 */
+                              at most K bodies; undecided: an upper bound or 0;
+                              else 0 */
   int group_bound;         /* see group_status */
   long group_tests;
   /* 6. */
   int strong_equals_weak;  /* stands frictionless: strong = weak there */
+  int undecided;           /* some class above is undecided because a stability test
+                              was (the fields say which) */
   /* the bound on a search's tests */
   us_CountStatus count_status;
   char *count;             /* decimal digits when exact, else NULL */

@@ -393,7 +393,13 @@ typedef enum us_PlanStatus {
   US_PLAN_FOUND = 0,
   US_PLAN_NONE,      /* proven: no order with steps of at most max_group bodies */
   US_PLAN_UNSTABLE,  /* the full structure does not stand */
-  US_PLAN_LIMIT      /* max_tests or time_limit reached */
+  US_PLAN_LIMIT,     /* max_tests or time_limit reached */
+  US_PLAN_UNDECIDED  /* no order found, but the answer depends on stability
+                        tests that could not be decided (us_Verdict
+                        US_UNDECIDED; stats.undecided > 0, the first one's
+                        reason in us_Plan.note): neither none nor unstable
+                        is proven. A found plan only ever uses nodes tested
+                        certified stable. */
 } us_PlanStatus;
 /* Names of the planner's enums (the words of the plan files and the CLI);
  * parse returns 0, or -1 for an unknown word. */
@@ -432,9 +438,12 @@ typedef struct us_PlanSettings {
 us_PlanSettings us_plan_default_settings(void);
 
 typedef struct us_PlanStats {
-  long tests;            /* stability tests run */
+  long tests;            /* stability tests run: stable + unstable + undecided,
+                            plus the certificate re-tests of a found plan */
   long stable;
   long unstable;
+  long undecided;        /* tests whose verdict was undecided (taken as "not known
+                            stable": never part of a found plan, never a proof) */
   long revisited;        /* nodes skipped because already known (memo rule) */
   long nodes_expanded;
   long max_depth;
@@ -472,20 +481,33 @@ typedef struct us_Plan {
      (no order with steps of at most max_group bodies reaches them all) */
   int nbuildable, *buildable;
   int nblocked, *blocked;
+  char note[128];        /* stats.undecided > 0: the first undecided test's reason */
   us_PlanStats stats;
 } us_Plan;
 void us_plan_free(us_Plan *p);
 
+/* Plan a removal order. Outcomes (found, none, unstable, limit, undecided)
+ * are in out->status; errors (bad settings, out of memory, backend
+ * failures) are returned, out is then empty. err may be NULL. */
 us_Status us_plan(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
                   us_Error *err);
 
 /* Re-check a removal order step by step: the full structure, then the
  * remainder after every removal, each with a fresh stability test whose
- * certificate is re-checked. */
+ * certificate is re-checked. A test that cannot be decided does not stop
+ * the walk: a later step that falls still proves the order invalid; when
+ * none falls the report is undecided. err may be NULL. */
 typedef struct us_VerifyReport {
   int ok;              /* every step stands and the order removes all bodies */
   int full_unstable;   /* the full structure does not stand */
   int failed_step;     /* 0-based removal after which the remainder falls, or -1 */
+  int undecided;       /* some test was undecided and nothing proves the order
+                          invalid (then !ok, !full_unstable, failed_step == -1,
+                          !incomplete): neither valid nor invalid is proven */
+  int undecided_step;  /* undecided: the first undecided test, -1 the full
+                          structure, else the 0-based removal (step) after which
+                          it was made */
+  char note[128];      /* undecided: that test's reason */
   int incomplete;      /* the order leaves movable bodies in place */
   int remaining;       /* bodies left after the failing step / at the end */
   int unstable_body;   /* evidence from the test, or -1 */

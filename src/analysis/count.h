@@ -21,7 +21,7 @@ typedef struct us_CGraph {
   long nedge;          /* edges of the component, those at G included */
 } us_CGraph;
 
-void us_cgraph_free(us_CGraph *g);
+void us_cgraph_free(us_CGraph *g); /* count_run.c */
 
 /* One count in progress: the structure (for coordinates), the settings,
  * the start time and the result, whose work / peak / status / note the
@@ -34,7 +34,7 @@ typedef struct us_CountRun {
   us_Count *out;
 } us_CountRun;
 
-/* Refuse: out->status = st, out->note = why. */
+/* The run limits (count_run.c). Refuse: out->status = st, out->note = why. */
 void us_count_refuse(us_CountRun *run, us_CountStatus st, const char *why);
 /* One unit of work (out->work++); every 1024 units the clock is read. 1
  * when the time limit is reached (status and note set), else 0. */

@@ -35,7 +35,7 @@
  *
  * Cost: at most n(n+1)/2 single-body tests (each body fails at most once
  * per growth of its part); about n on stacks built bottom-up. */
-#include "search.h"
+#include "assemble.h"
 
 #include <string.h>
 

@@ -9,7 +9,9 @@
  * guarantees each node is tested once (BFS's own visited set, kept
  * whatever the culling rules say). Children are tested with the ground
  * and union rules (rules.c). */
-#include "search.h"
+#include "rescue.h"
+#include "rules.h"
+#include "searches.h"
 
 #include <string.h>
 

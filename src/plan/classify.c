@@ -39,6 +39,13 @@
  *      has zero accelerations) and weak stability (some has) coincide:
  *      docs/classify.md gives the proof (Gauss's principle of least
  *      constraint); reported when class 2 says frictionless.
+ * Undecided tests (us_Verdict US_UNDECIDED) never decide a class: the
+ * stands class says undecided; the friction bisection takes them as not
+ * standing (its mu* stays a certified upper bound) and counts them; the
+ * top-down probe with one is unknown (the move it skipped may have been
+ * fine); the planner reports sequence and group searches that may rest on
+ * one as undecided, and a K found past one as an upper bound only.
+ * out->undecided says whether any class is undecided.
  * The count of connected sub-assemblies containing the ground
  * (us_count_subgraphs, with a short time limit) bounds the tests of a
  * search with the ground rule and a memo.
@@ -46,6 +53,7 @@
  * Every step writes its own fields of the classification and its time;
  * the first error stops the driver and empties the result. */
 #include "core/core.h"
+#include "hook.h"
 
 #include <math.h>
 #include <string.h>
@@ -89,17 +97,21 @@ static us_Status failed(const us_Error *err) {
 
 static us_Status classify_stands(const us_Structure *s, const us_ClassifySettings *set,
                                  us_Classification *out, us_Error *err) {
+  us_Bitset full = {0};
+  if (us_structure_movable_set(s, &full))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory classifying");
   us_Stability *w = us_stability_new(s, &set->stability, err);
-  if (!w) return failed(err);
   us_StabilityResult res;
   memset(&res, 0, sizeof res);
-  us_Status st = us_stability_test_full(w, &res, err);
+  us_Status st = w ? us_plan_stability_test(w, &full, &res, err) : failed(err);
   if (!st) {
     out->stands = res.verdict == US_STABLE;
-    out->unstable_body = out->stands ? -1 : res.unstable_body;
+    out->stands_undecided = res.verdict == US_UNDECIDED;
+    out->unstable_body = res.verdict == US_UNSTABLE ? res.unstable_body : -1;
   }
   us_stability_result_free(&res);
   us_stability_free(w);
+  us_bitset_free(&full);
   return st;
 }
 
@@ -114,6 +126,7 @@ static us_Status classify_friction(const us_Structure *s, const us_ClassifySetti
     out->stands_some_mu = fr.stands;
     out->mu_critical = fr.mu_critical;
     out->friction_probes = fr.probes;
+    out->friction_undecided = fr.undecided;
     out->strong_equals_weak = fr.stands_frictionless;
   }
   us_friction_result_free(&fr);
@@ -135,6 +148,7 @@ static us_PlanSettings probe_settings(const us_ClassifySettings *set, us_Search 
 
 /* 1 top-down, 0 not, -1 unknown; see the file head. */
 static int topdown_verdict(const us_Classification *c) {
+  if (c->dfs_undecided > 0) return -1; /* a move it skipped may have been fine */
   int clean = c->rejected == 0 && c->backtracks == 0;
   if (c->dfs_status == US_PLAN_FOUND) return clean;
   if (c->dfs_status == US_PLAN_LIMIT) return clean ? -1 : 0;
@@ -153,6 +167,7 @@ static us_Status classify_topdown(const us_Structure *s, const us_ClassifySettin
   if (st) return st;
   out->dfs_status = plan.status;
   out->dfs_tests = plan.stats.tests;
+  out->dfs_undecided = plan.stats.undecided;
   /* the full structure's own test is the one unstable test of UNSTABLE */
   out->rejected = plan.stats.unstable - (plan.status == US_PLAN_UNSTABLE);
   out->backtracks = plan.stats.backtracks;
@@ -203,9 +218,12 @@ static us_Status classify_group(const us_Structure *s, const us_ClassifySettings
   out->group_tests = plan.stats.tests;
   out->group_status = plan.status;
   /* found: the K of the order; none or limit: the largest K that failed
-     (at least 1: step 4 proved K = 1 fails) */
-  out->group_bound = US_MAX(plan.max_group, 1);
+     (at least 1: step 4 proved K = 1 fails); an undecided test makes a
+     failed K unproven, and a found K only an upper bound */
+  int sure = plan.stats.undecided == 0;
+  out->group_bound = sure ? US_MAX(plan.max_group, 1) : 1;
   out->min_group = plan.status == US_PLAN_FOUND ? plan.max_group : 0;
+  if (!sure && plan.status == US_PLAN_FOUND) out->group_status = US_PLAN_UNDECIDED;
   if (plan.status == US_PLAN_UNSTABLE) /* step 4 saw it stand */
     st = us_error_set(err, US_ERR_SOLVER, "classify: the group search found the full structure "
                       "unstable after the sequence search found it standing");
@@ -268,6 +286,9 @@ us_Status us_classify(const us_Structure *s, const us_ClassifySettings *set,
     *steps[k].t = us_now() - t;
   }
   out->seconds = us_now() - t0;
+  out->undecided = out->stands_undecided || out->friction_undecided > 0 ||
+                   out->dfs_undecided > 0 || out->sequence_status == US_PLAN_UNDECIDED ||
+                   out->group_status == US_PLAN_UNDECIDED;
   if (st) us_classification_free(out);
   return st;
 }

@@ -11,13 +11,13 @@
  * revisit. With the memo rule off nothing enters `dead` (the plain search
  * of the source, exponential on dead sub-graphs).
  *
- * Greedy rule: at the first backtrack, the search stops
- * guessing. The root is live (decided exactly by the driver), so the path
- * can always be finished from it; a binary search over the path's depths
- * with greedy-assembly checks (one-sided: a node the greedy rebuilds is
- * live, one it cannot is merely unknown) finds a deep node to finish from
- * in log2(depth) checks, and the greedy's order finishes the path. Going
- * up the same, with greedy assembly continued from the node (rules.c).
+ * Greedy rule: at the first backtrack the search stops guessing and
+ * finishes through the rescue (rescue.c): a deep node of its path that
+ * greedy assembly rebuilds, or the root's exact order.
+ *
+ * Undecided tests: a child whose test was undecided is not known stable,
+ * so it is rejected like an unstable one (and marked dead); the driver
+ * turns a `none` into `undecided` when any test was undecided.
  *
  * Random search (the source's suggestion): the candidate order is shuffled
  * at every restart, and a run is cut after a budget of tests that follows
@@ -26,7 +26,9 @@
  * order), so the search stays complete: its runs grow without bound.
  * With the greedy rule a run whose budget is used up is not restarted but
  * rescued like a backtrack. */
-#include "search.h"
+#include "rescue.h"
+#include "rules.h"
+#include "searches.h"
 
 #include <string.h>
 
@@ -74,57 +76,6 @@ static int greedy_applies(const us_SearchCtx *ctx) {
 static int child_verdict(us_SearchCtx *ctx, us_Error *err) {
   if (us_plan_is_goal(ctx, &ctx->cur)) return 1;
   return us_plan_node_test(ctx, &ctx->cur, err);
-}
-
-/* Rewind the path to depth d. */
-static void rewind_to(us_SearchCtx *ctx, int d) {
-  while (ctx->npath > d) us_plan_toggle(&ctx->cur, ctx->path[--ctx->npath]);
-}
-
-/* The node at depth d of the current path, into ctx->scratch. */
-static void node_at(us_SearchCtx *ctx, int d) {
-  us_bitset_copy(&ctx->scratch, &ctx->cur);
-  for (int k = ctx->npath - 1; k >= d; k--) us_plan_toggle(&ctx->scratch, ctx->path[k]);
-}
-
-/* The moves from the root to the goal by the exact decision (the root is
- * live): its removal order, or reversed going up. */
-static int root_moves(us_SearchCtx *ctx, int *seq, int *nseq, us_Error *err) {
-  int r = us_plan_node_live(ctx, &ctx->part, seq, nseq, err);
-  if (r == 1 && ctx->set->direction == US_DIR_UP)
-    for (int i = 0, j = *nseq - 1; i < j; i++, j--) {
-      int t = seq[i];
-      seq[i] = seq[j];
-      seq[j] = t;
-    }
-  return r;
-}
-
-int us_plan_rescue(us_SearchCtx *ctx, int top_dead, us_Error *err) {
-  int lo = 0, hi = top_dead ? ctx->npath : ctx->npath + 1; /* lo passes, hi unknown */
-  int *seq = us_malloc(((size_t)ctx->s->nbody + 1) * sizeof(int)), nseq = 0, r = 0;
-  if (!seq) return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), -1;
-  while (hi - lo > 1 && r >= 0) {
-    int mid = lo + (hi - lo) / 2;
-    node_at(ctx, mid);
-    r = us_plan_node_greedy(ctx, &ctx->scratch, NULL, NULL, err);
-    if (r == 1) lo = mid;
-    if (r == 0) hi = mid;
-  }
-  node_at(ctx, lo);
-  if (r >= 0 && lo > 0) r = us_plan_node_greedy(ctx, &ctx->scratch, seq, &nseq, err);
-  if (r >= 0 && lo == 0) r = root_moves(ctx, seq, &nseq, err);
-  if (r == 0) us_error_set(err, US_ERR_SOLVER, "live node check not reproducible"), r = -1;
-  if (r == 1) {
-    rewind_to(ctx, lo);
-    for (int k = 0; k < nseq; k++) {
-      ctx->path[ctx->npath++] = seq[k];
-      us_plan_toggle(&ctx->cur, seq[k]);
-    }
-    r = US_PLAN_FOUND;
-  }
-  us_free(seq);
-  return r;
 }
 
 /* Try the child reached by moving b: 1 descended, 0 rejected, <0 stop. */
@@ -209,7 +160,7 @@ int us_plan_random(us_SearchCtx *ctx, us_Error *err) {
     ctx->budget_end = ctx->st->tests + luby(i) * unit;
     r = dfs_run(ctx, next, err);
     if (r == -3) {
-      rewind_to(ctx, 0);
+      us_plan_rewind(ctx, 0);
       ctx->st->restarts++;
     }
   }

@@ -30,7 +30,9 @@
  * answer and, when it can be emptied, its removal order as a slice of
  * `body` with step ends marked in `end`. Orders of a set are concatenations
  * of its parts' orders, so a whole plan is read off the memo. */
-#include "search.h"
+#include "assemble.h"
+#include "exact.h"
+#include "order.h"
 
 #include <string.h>
 

@@ -1,10 +1,10 @@
 /* The planner's enum names: one table per enum, used by the plan files
  * (src/io) and the command-line tool, so a word is spelled in one place. */
-#include "search.h"
+#include "core/core.h"
 
 #include <string.h>
 
-static const char *const status_names[] = {"found", "none", "unstable", "limit"};
+static const char *const status_names[] = {"found", "none", "unstable", "limit", "undecided"};
 static const char *const search_names[] = {"assemble", "dfs", "bfs", "random"};
 static const char *const order_names[] = {"highest", "lowest", "input"};
 static const char *const direction_names[] = {"down", "up"};
@@ -30,7 +30,7 @@ static int parse_in(const char *const *t, int n, const char *w, int *out) {
     return 0;                                                                  \
   }
 
-US_NAMES(plan_status, us_PlanStatus, status_names, 4)
+US_NAMES(plan_status, us_PlanStatus, status_names, 5)
 US_NAMES(search, us_Search, search_names, 4)
 US_NAMES(order, us_Order, order_names, 3)
 US_NAMES(direction, us_Direction, direction_names, 2)

@@ -7,7 +7,7 @@
  * first), so both directions mirror the same intuition: a structure comes
  * apart top-down and goes up bottom-up. Only the bodies of the part being
  * planned are candidates. */
-#include "search.h"
+#include "order.h"
 
 #include <stdlib.h>
 

@@ -18,7 +18,12 @@
  * With certificates, each structure along the order is tested once more
  * (the search keeps no forces, so memory stays independent of the path
  * length); those tests are counted in the statistics like the others. */
-#include "search.h"
+#include "assemble.h"
+#include "exact.h"
+#include "hook.h"
+#include "order.h"
+#include "rules.h"
+#include "searches.h"
 
 #include <string.h>
 
@@ -49,42 +54,6 @@ void us_plan_free(us_Plan *p) {
   p->certs = NULL;
   p->order = p->group_start = p->buildable = p->blocked = NULL;
   p->nsteps = p->ngroups = p->nbuildable = p->nblocked = 0;
-}
-
-/* ------------------------------------------------------- search helpers */
-
-int us_plan_is_goal(const us_SearchCtx *ctx, const us_Bitset *node) {
-  if (ctx->set->direction == US_DIR_UP) return us_bitset_equal(node, &ctx->part);
-  for (int i = 0; i < node->nwords; i++)
-    if (node->w[i]) return 0;
-  return 1;
-}
-
-int us_plan_can_move(const us_SearchCtx *ctx, const us_Bitset *node, int b) {
-  int down = ctx->set->direction == US_DIR_DOWN;
-  if (us_bitset_get(node, b) != down) return 0;
-  /* placing b is removing it, reversed: the same question */
-  return !ctx->kin || us_kinematics_can_remove(ctx->kin, node, b);
-}
-
-static int limit_reached(const us_SearchCtx *ctx) {
-  const us_PlanSettings *set = ctx->set;
-  if (set->max_tests > 0 && ctx->st->tests >= set->max_tests) return 1;
-  return set->time_limit > 0 && us_now() - ctx->t_start >= set->time_limit;
-}
-
-int us_plan_test(us_SearchCtx *ctx, const us_Bitset *node, us_Error *err) {
-  if (limit_reached(ctx)) return -2;
-  if (ctx->exact_end > 0 && ctx->st->tests >= ctx->exact_end) return -2;
-  if (ctx->budget_end > 0 && ctx->st->tests >= ctx->budget_end) return -3;
-  if (us_stability_test(ctx->stab, node, &ctx->res, err)) return -1;
-  ctx->st->tests++;
-  int stable = ctx->res.verdict == US_STABLE;
-  if (stable)
-    ctx->st->stable++;
-  else
-    ctx->st->unstable++;
-  return stable;
 }
 
 /* ------------------------------------------------------------ set-up */
@@ -371,7 +340,7 @@ static us_Status collect_certificates(us_SearchCtx *ctx, us_Plan *out, us_Error 
   for (int k = 0; k <= out->ngroups && !st; k++) {
     for (int q = k > 0 ? out->group_start[k - 1] : 0; k > 0 && q < out->group_start[k]; q++)
       us_bitset_clear(&node, out->order[q]);
-    st = us_stability_test(ctx->stab, &node, &ctx->res, err);
+    st = us_plan_stability_test(ctx->stab, &node, &ctx->res, err);
     ctx->st->tests++;
     if (!st && ctx->res.verdict != US_STABLE)
       st = us_error_set(err, US_ERR_SOLVER, "step %d no longer tests stable", k);
@@ -393,20 +362,40 @@ static void finish_stats(us_SearchCtx *ctx, us_PlanStats *st, double t_search) {
                     (ctx->exact ? us_exact_bytes(ctx->exact) : 0);
 }
 
+/* A none or unstable that an undecided test may have decided is no proof
+ * (search.c): the answer is undecided. */
+static int downgrade(const us_SearchCtx *ctx, int r) {
+  int proof = r == US_PLAN_NONE || r == US_PLAN_UNSTABLE;
+  return proof && ctx->st->undecided > 0 ? US_PLAN_UNDECIDED : r;
+}
+
+/* The search after set-up: the full structure's test, then the search;
+ * a status, or < 0 (err set). */
+static int run(us_SearchCtx *ctx, us_Plan *out, double *t_search, us_Error *err) {
+  int full = us_plan_test(ctx, &ctx->full, err);
+  out->stats.time_setup = us_now() - ctx->t_start;
+  *t_search = us_now();
+  int r = full < 0 ? full : full == 0 ? US_PLAN_UNSTABLE : run_search(ctx, out, err);
+  return r == -2 ? US_PLAN_LIMIT : r < 0 ? r : downgrade(ctx, r);
+}
+
 us_Status us_plan(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
                   us_Error *err) {
+  us_Error local;
+  if (!err) err = &local;
+  us_error_clear(err);
+  if (!out) return us_error_set(err, US_ERR_USAGE, "us_plan: NULL argument");
   memset(out, 0, sizeof *out);
   if (!s || !set) return us_error_set(err, US_ERR_USAGE, "us_plan: NULL argument");
   us_Status st = check_settings(set, err);
   if (st) return st;
   us_SearchCtx ctx;
   st = ctx_init(&ctx, s, set, &out->stats, err);
-  int full = st ? -1 : us_plan_test(&ctx, &ctx.full, err);
-  out->stats.time_setup = us_now() - ctx.t_start;
+  ctx.note = out->note;
+  ctx.note_sz = sizeof out->note;
   double t_search = us_now();
-  int r = full < 0 ? full : full == 0 ? US_PLAN_UNSTABLE : run_search(&ctx, out, err);
-  if (r == -2) r = US_PLAN_LIMIT;
-  if (!st && r < 0) st = err && err->code ? err->code : US_ERR_SOLVER;
+  int r = st ? -1 : run(&ctx, out, &t_search, err);
+  if (!st && r < 0) st = err->code ? err->code : US_ERR_SOLVER;
   if (!st) out->status = (us_PlanStatus)r;
   if (!st && r != US_PLAN_FOUND) drop_order(out);
   if (!st && r == US_PLAN_FOUND && set->certificates) st = collect_certificates(&ctx, out, err);

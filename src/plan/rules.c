@@ -24,7 +24,9 @@
  *           never backtrack pay nothing for it.
  * The memo rule (nodes known dead are not tested again) lives in the
  * searches themselves; the components rule in the driver (plan.c). */
-#include "search.h"
+#include "exact.h"
+#include "assemble.h"
+#include "rules.h"
 
 #include <string.h>
 

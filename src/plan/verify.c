@@ -2,11 +2,17 @@
  * every removal with a fresh stability workspace, each verdict carrying its
  * re-checked certificate. The first removal after which the remainder does
  * not stand is reported; an order that leaves bodies in place is
- * incomplete. Input mistakes in the order (unknown, fixed or repeated
- * bodies) are errors, not outcomes. */
+ * incomplete. A test that cannot be decided (us_Verdict US_UNDECIDED) is
+ * neither: the walk notes the first and goes on, since a later remainder
+ * that falls still proves the order invalid; when none falls the answer
+ * is undecided, never "valid" and never "does not stand". Input mistakes
+ * in the order (unknown, fixed or repeated bodies) are errors, not
+ * outcomes. Every entry point accepts a NULL error pointer. */
 #include "core/core.h"
 #include "contact/kinematics.h"
+#include "hook.h"
 
+#include <stdio.h>
 #include <string.h>
 
 static us_Status check_order(const us_Structure *s, const int *order, int n, us_Bitset *seen,
@@ -34,17 +40,28 @@ static void note_step(us_VerifyReport *rep, const us_StabilityResult *res) {
     rep->max_torque_residual = res->check.max_torque_residual;
 }
 
+/* The first undecided test: where and why. */
+static void note_undecided(us_VerifyReport *rep, const us_StabilityResult *res, int k,
+                           int *seen) {
+  if ((*seen)++) return;
+  rep->undecided_step = k;
+  snprintf(rep->note, sizeof rep->note, "%s", res->note[0] ? res->note : "no reason given");
+}
+
 /* Walk the order step by step (gs: step offsets, NULL: one body a step);
- * stops at the first remainder that does not stand. */
+ * stops at the first remainder that does not stand. An undecided test is
+ * noted and the walk goes on: a later fall still proves the order invalid. */
 static us_Status walk(us_Stability *w, us_Bitset *node, const int *order, const int *gs,
                       int nsteps, us_VerifyReport *rep, us_StabilityResult *res, us_Error *err) {
+  int undecided = 0;
   for (int k = -1; k < nsteps; k++) {
     for (int q = k < 0 ? 0 : gs ? gs[k] : k; k >= 0 && q < (gs ? gs[k + 1] : k + 1); q++)
       us_bitset_clear(node, order[q]);
-    us_Status st = us_stability_test(w, node, res, err);
+    us_Status st = us_plan_stability_test(w, node, res, err);
     if (st) return st;
     note_step(rep, res);
-    if (res->verdict != US_STABLE) {
+    if (res->verdict == US_UNDECIDED) note_undecided(rep, res, k, &undecided);
+    if (res->verdict == US_UNSTABLE) {
       rep->full_unstable = k < 0;
       rep->failed_step = k < 0 ? -1 : k;
       rep->remaining = us_bitset_count(node);
@@ -54,7 +71,8 @@ static us_Status walk(us_Stability *w, us_Bitset *node, const int *order, const 
   }
   rep->remaining = us_bitset_count(node);
   rep->incomplete = rep->remaining > 0;
-  rep->ok = !rep->incomplete;
+  rep->undecided = undecided && !rep->incomplete;
+  rep->ok = !rep->incomplete && !undecided;
   return US_OK;
 }
 
@@ -77,6 +95,9 @@ us_Status us_verify_order(const us_Structure *s, const us_StabilitySettings *set
 us_Status us_verify_steps(const us_Structure *s, const us_StabilitySettings *set, const int *order,
                           int n, const int *group_start, int ngroups, us_VerifyReport *rep,
                           us_Error *err) {
+  us_Error local;
+  if (!err) err = &local;
+  us_error_clear(err);
   if (!s || !set || !rep || (n > 0 && !order))
     return us_error_set(err, US_ERR_USAGE, "us_verify_steps: NULL argument");
   memset(rep, 0, sizeof *rep);
@@ -90,7 +111,7 @@ us_Status us_verify_steps(const us_Structure *s, const us_StabilitySettings *set
   us_Status st = check_order(s, order, n, &seen, err);
   if (!st) st = check_steps(group_start, ngroups, n, err);
   us_Stability *w = st ? NULL : us_stability_new(s, set, err);
-  if (!st && !w) st = err && err->code ? err->code : US_ERR_NOMEM;
+  if (!st && !w) st = err->code ? err->code : US_ERR_NOMEM;
   us_StabilityResult res;
   memset(&res, 0, sizeof res);
   if (!st) st = walk(w, &node, order, group_start, group_start ? ngroups : n, rep, &res, err);
@@ -105,14 +126,23 @@ us_Status us_verify_steps(const us_Structure *s, const us_StabilitySettings *set
  * straight up, or along some free direction) past the bodies still there? */
 us_Status us_verify_removals(const us_Structure *s, us_Removal removal, const int *order, int n,
                              int *failed_step, int *blocker, us_Error *err) {
+  us_Error local;
+  if (!err) err = &local;
+  us_error_clear(err);
+  if (!s || !failed_step || !blocker || (n > 0 && !order))
+    return us_error_set(err, US_ERR_USAGE, "us_verify_removals: NULL argument");
   *failed_step = -1;
   *blocker = -1;
   if (removal == US_REMOVAL_ANY) return US_OK;
-  us_Kinematics *k = us_kinematics_new(s, removal, err);
   us_Bitset node = {0};
+  if (us_bitset_init(&node, s->nbody)) return us_error_set(err, US_ERR_NOMEM, "out of memory");
+  us_Status st = check_order(s, order, n, &node, err);
+  us_bitset_free(&node);
+  if (st) return st;
+  us_Kinematics *k = us_kinematics_new(s, removal, err);
   if (!k || us_structure_movable_set(s, &node)) {
     us_kinematics_free(k);
-    return k ? us_error_set(err, US_ERR_NOMEM, "out of memory") : (err ? err->code : US_ERR_NOMEM);
+    return k || !err->code ? us_error_set(err, US_ERR_NOMEM, "out of memory") : err->code;
   }
   for (int q = 0; q < n && *failed_step < 0; q++) {
     if (!us_kinematics_can_remove(k, &node, order[q])) {

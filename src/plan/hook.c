@@ -1,0 +1,25 @@
+/* The planner's stability test with the test-only verdict hook (hook.h):
+ * the backend's verdict first, then the hook, which may only weaken it
+ * (stable -> unstable or undecided; unstable -> undecided). */
+#include "hook.h"
+
+static us_PlanTestHook hook_fn;
+static void *hook_user;
+
+void us_plan_set_test_hook(us_PlanTestHook fn, void *user) {
+  hook_fn = fn;
+  hook_user = fn ? user : NULL;
+}
+
+/* Verdicts ordered by strength: stable, then unstable, then undecided. */
+static int strength(us_Verdict v) { return v == US_STABLE ? 2 : v == US_UNSTABLE ? 1 : 0; }
+
+us_Status us_plan_stability_test(us_Stability *w, const us_Bitset *node, us_StabilityResult *res,
+                                 us_Error *err) {
+  us_Status st = us_stability_test(w, node, res, err);
+  if (st || !hook_fn) return st;
+  us_Verdict before = res->verdict;
+  hook_fn(hook_user, node, res);
+  if (strength(res->verdict) > strength(before)) res->verdict = before;
+  return US_OK;
+}

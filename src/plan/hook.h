@@ -1,0 +1,28 @@
+/* The one stability test of the planner, plan verification and
+ * classification (hook.c), with a test-only hook on its verdicts.
+ *
+ * The hook exists so that tests can make chosen tests undecided (or
+ * unstable) deterministically, whatever the backends do: an undecided
+ * verdict is rare and depends on the solvers, but the planner must handle
+ * it soundly (never a found plan through it, never a proof of `none` or
+ * `unstable` resting on it). It may only weaken verdicts: a hook that
+ * turns an undecided or unstable verdict into stable would let a test
+ * claim a certificate that was never checked, so such a change is ignored.
+ * The hook is process-wide and not thread-safe: tests set it, run, and
+ * clear it (fn NULL). Library users never need it. */
+#ifndef US_PLAN_HOOK_H
+#define US_PLAN_HOOK_H
+
+#include "core/core.h"
+
+/* Called after every stability test of the planner with the node tested
+ * and its result; may set res->verdict to US_UNSTABLE or US_UNDECIDED (and
+ * res->note to a reason). */
+typedef void (*us_PlanTestHook)(void *user, const us_Bitset *node, us_StabilityResult *res);
+void us_plan_set_test_hook(us_PlanTestHook fn, void *user);
+
+/* us_stability_test, then the hook when one is set. */
+us_Status us_plan_stability_test(us_Stability *w, const us_Bitset *node, us_StabilityResult *res,
+                                 us_Error *err);
+
+#endif
