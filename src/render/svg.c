@@ -73,12 +73,21 @@ static int nsteps(const us_RenderSettings *r) { return r->group_start ? r->ngrou
 
 /* ----------------------------------------------------------- utilities */
 
+/* U+FFFE and U+FFFF (UTF-8 EF BF BE / EF BF BF): valid UTF-8, which the
+ * reader accepts, but not XML 1.0 characters. */
+static int xml_nonchar(const unsigned char *s) {
+  return s[0] == 0xEF && s[1] == 0xBF && (s[2] == 0xBE || s[2] == 0xBF);
+}
+
 /* Write s with the five XML special characters escaped; other control
- * characters (not allowed in XML 1.0) become '?'. */
+ * characters and U+FFFE/U+FFFF (not allowed in XML 1.0) become '?'. */
 static void put_escaped(FILE *fp, const char *s) {
   for (; *s; s++) {
     unsigned char c = (unsigned char)*s;
-    if (c == '&') fputs("&amp;", fp);
+    if (xml_nonchar((const unsigned char *)s)) {
+      fputc('?', fp);
+      s += 2;
+    } else if (c == '&') fputs("&amp;", fp);
     else if (c == '<') fputs("&lt;", fp);
     else if (c == '>') fputs("&gt;", fp);
     else if (c == '"') fputs("&quot;", fp);
