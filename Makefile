@@ -55,13 +55,13 @@ FUZZ_FLAGS   ?= -max_len=8192 -timeout=20 -rss_limit_mb=2048 -print_final_stats=
 fuzz-build:
 	@bash scripts/deps.sh fuzz
 	@CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUS_FUZZ=ON >/dev/null
-	@cmake --build $(FUZZ_BUILD) -j$(JOBS) --target $(addprefix fuzz_,$(FUZZ_TARGETS))
+	@cmake --build $(FUZZ_BUILD) -j$(JOBS) --target $(addprefix fuzz_,$(FUZZ_TARGETS)) -- --no-print-directory
 
 fuzz: fuzz-build
 	@found=0; for t in $(FUZZ_TARGETS); do \
 	  mkdir -p $(FUZZ_OUT)/$$t/corpus $(FUZZ_OUT)/$$t/findings; \
 	  echo "fuzz_$$t: $(FUZZ_TIME) s, new inputs in $(FUZZ_OUT)/$$t/corpus"; \
-	  $(FUZZ_BUILD)/fuzz_$$t $(FUZZ_FLAGS) -max_total_time=$(FUZZ_TIME) \
+	  OPENBLAS_NUM_THREADS=1 $(FUZZ_BUILD)/fuzz_$$t $(FUZZ_FLAGS) -max_total_time=$(FUZZ_TIME) \
 	    -dict=tests/fuzz/json.dict -artifact_prefix=$(FUZZ_OUT)/$$t/findings/ \
 	    $(FUZZ_OUT)/$$t/corpus tests/fuzz/corpus/$$t 2>$(FUZZ_OUT)/$$t/log \
 	    || { found=1; echo "fuzz_$$t: FINDING in $(FUZZ_OUT)/$$t/findings/ (log: $(FUZZ_OUT)/$$t/log)"; }; \
