@@ -35,6 +35,12 @@ const char *fz_path(int slot, const char *name);
 /* The whole file as a malloc'ed buffer, its length in *len; NULL on error. */
 char *fz_slurp(const char *path, size_t *len);
 
+/* The structure text of an input of `pipeline` or `oom` (after their
+ * control bytes): a NUL byte, then a box pile (boxes.c); else the text of
+ * a structure file. malloc'ed; the caller frees. */
+char *fz_boxes_text(const uint8_t *d, size_t size);
+char *fz_structure_text(const uint8_t *d, size_t size);
+
 /* Within the caps (bodies, vertices)? */
 int fz_small(const us_Structure *s);
 /* The first difference between two structures (ids, geometry, masses,

@@ -74,6 +74,15 @@ for s in 0 1 2 3; do
   done
 done
 
+# box piles (a NUL byte, friction, then x/width/height bytes per box)
+hex() { printf "$(printf '\\x%02x' "$@")"; }
+hex 0 0 0 16  0 4 3  2 4 3  1 4 3 > "$out/pipeline/seed-boxes-column.bin"
+hex 1 0 0 16  0 8 2  6 8 2  12 4 2 > "$out/pipeline/seed-boxes-dfs.bin"
+hex 0 1 0 0   0 4 3  2 4 3  4 4 3  6 4 3 > "$out/pipeline/seed-boxes-mu0.bin"
+hex 2 2 0 12  0 4 67  4 12 1  14 2 1  3 4 130 > "$out/pipeline/seed-boxes-cantilever.bin"
+hex 3 3 0 32  0 4 1  4 4 1  2 4 1  6 4 1  4 4 1  8 4 1  1 6 2  7 6 2 > "$out/pipeline/seed-boxes-pile.bin"
+hex 12 0 0 255  0 2 7  2 2 7  0 4 1  1 2 7 > "$out/pipeline/seed-boxes-sticky.bin"
+
 # ---- oom: phase, N (little-endian), control bytes, structure
 for f in "$sd/seed-gen-column3.json" "$sd/seed-gen-arch5.json" "$sd/seed-data-explicit.json"; do
   b=$(basename "$f" .json)
@@ -83,6 +92,12 @@ for f in "$sd/seed-gen-column3.json" "$sd/seed-gen-arch5.json" "$sd/seed-data-ex
       { printf "\\x$(printf %02x $phase)\\x$(printf %02x $n)\\x00"; ctl $((phase * 37)) $phase; cat "$f"; } \
         > "$out/oom/seed-$b-p$phase-n$n.json"
     done
+  done
+done
+for phase in 1 2 3; do
+  for n in 5 40; do
+    { hex $phase $n 0 $((phase * 37)) $phase; cat "$out/pipeline/seed-boxes-pile.bin"; } \
+      > "$out/oom/seed-boxes-p$phase-n$n.bin"
   done
 done
 echo "corpus: $(ls "$out/structure" | wc -l) structure, $(ls "$out/pipeline" | wc -l) pipeline, $(ls "$out/oom" | wc -l) oom"

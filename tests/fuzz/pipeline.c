@@ -237,6 +237,7 @@ static void run(Run *r, const char *text, uint8_t c0, uint8_t c1) {
 }
 
 void fz_pipeline(const char *text, uint8_t c0, uint8_t c1, int oom_phase, long oom_n) {
+  if (getenv("FZ_DUMP")) fprintf(stderr, "structure:\n%s\nctl %u %u\n", text, c0, c1);
   static Run r; /* large; one at a time */
   memset(&r, 0, sizeof r);
   r.phase = oom_phase;
