@@ -3,8 +3,8 @@
  *
  * Input: two control bytes, then the text of a structure file, or a NUL
  * byte and the bytes of a box pile (boxes.c). Control byte 0:
- * search (bits 0-1: assemble, dfs, bfs, random), step size (bits 2-3: 1, 1,
- * 2, auto), removal kinematics of the graph searches (bits 4-5: any, up,
+ * search (bits 0-1: assemble, dfs, bfs, random), step size of the assemble search
+ * (bits 2-3: 1, 1, 2, auto), removal kinematics of the graph searches (bits 4-5: any, up,
  * free, any), direction (bit 6), certificates (bit 7). Byte 1: the plan's
  * method (bits 0-1), body order (bits 2-3), culling rules switched off
  * (bits 3-7, XOR-ed out of all rules) and the random seed. */

@@ -50,6 +50,7 @@ static void enter_phase(Run *r, int phase) {
 /* Record or compare one call; 1 when it succeeded and the run goes on. */
 static int call(Run *r, const char *what, us_Status st, const us_Error *err, int outcome) {
   fz_check_error(what, st, err);
+  if (st && getenv("FZ_DUMP")) fprintf(stderr, "%s: %s: %s\n", what, us_status_name(st), err->msg);
   int k = r->ncall++;
   if (k >= MAX_CALLS) fz_finding("more than %d calls", MAX_CALLS);
   if (!r->oom) {
@@ -111,6 +112,7 @@ static void check_methods(Run *r, const us_Structure *s, int v[US_METHOD_COUNT])
     v[m] = r->stopped ? -1 : full_verdict(r, s, (us_Method)m);
   }
   if (r->oom) return;
+  if (getenv("FZ_DUMP")) fprintf(stderr, "verdicts %d %d %d %d\n", v[0], v[1], v[2], v[3]);
   for (int a = 0; a < US_METHOD_COUNT; a++)
     for (int b = 0; b < US_METHOD_COUNT; b++)
       if (v[a] == US_STABLE && v[b] == US_UNSTABLE)
@@ -124,8 +126,10 @@ static us_PlanSettings plan_settings(uint8_t c0, uint8_t c1) {
   static const int groups[4] = {1, 1, 2, 0};
   us_PlanSettings set = us_plan_default_settings();
   set.search = (us_Search)(c0 & 3);
-  set.max_group = groups[(c0 >> 2) & 3];
-  set.removal = set.search == US_SEARCH_ASSEMBLE ? US_REMOVAL_ANY : (us_Removal)(((c0 >> 4) & 3) % 3);
+  /* steps of several bodies need assemble; kinematics need a graph search */
+  int assemble = set.search == US_SEARCH_ASSEMBLE;
+  set.max_group = assemble ? groups[(c0 >> 2) & 3] : 1;
+  set.removal = assemble ? US_REMOVAL_ANY : (us_Removal)(((c0 >> 4) & 3) % 3);
   set.direction = (us_Direction)((c0 >> 6) & 1);
   set.certificates = (c0 >> 7) & 1;
   set.stability.method = (us_Method)(c1 & 3);
@@ -212,6 +216,10 @@ static void plan(Run *r, const us_Structure *s, uint8_t c0, uint8_t c1, const in
   enter_phase(r, 2);
   us_Status st = us_plan(s, &set, &p, &err);
   if (!call(r, "plan", st, &err, st ? -1 : (int)p.status)) return;
+  if (!r->oom && getenv("FZ_DUMP"))
+    fprintf(stderr, "plan %s with %s: %s, %d removals in %d steps\n", us_search_name(set.search),
+            us_method_name(set.stability.method), us_plan_status_name(p.status), p.nsteps,
+            p.group_start ? p.ngroups : p.nsteps);
   if (!r->oom) check_plan_status(&p, &set, v);
   enter_phase(r, 3);
   plan_file(r, s, &p, &set);

@@ -38,7 +38,7 @@ static int run_dir(const char *dir, int *count) {
   while ((e = readdir(d)) != NULL) {
     if (e->d_name[0] == '.') continue;
     if (n == cap) names = realloc(names, (size_t)(cap = cap ? 2 * cap : 64) * sizeof *names);
-    names[n++] = strdup(e->d_name);
+    if (!names || !(names[n++] = strdup(e->d_name))) abort();
   }
   closedir(d);
   qsort(names, (size_t)n, sizeof *names, by_name);
