@@ -6,7 +6,7 @@ JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
 CLI    = $(BUILD)/unstack
 OUT   ?= demo-out
 
-.PHONY: all deps build asan demo test test-release test-asan bench clean
+.PHONY: all deps build asan demo test test-release test-asan bench clean fuzz fuzz-build
 
 all: build
 
@@ -43,5 +43,30 @@ test: test-release test-asan
 bench: build
 	bash bench/run.sh $(BUILD)
 
+# libFuzzer (docs/fuzzing.md): clang builds the targets of tests/fuzz/ into
+# $(FUZZ_BUILD); each runs FUZZ_TIME seconds from its seed corpus. New
+# inputs and findings go to $(FUZZ_OUT), never into the repository.
+FUZZ_BUILD   ?= build-fuzz
+FUZZ_OUT     ?= $(FUZZ_BUILD)/out
+FUZZ_TIME    ?= 60
+FUZZ_TARGETS ?= structure pipeline oom
+FUZZ_FLAGS   ?= -max_len=8192 -timeout=20 -rss_limit_mb=2048 -print_final_stats=1
+
+fuzz-build:
+	@bash scripts/deps.sh fuzz
+	@CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUS_FUZZ=ON >/dev/null
+	@cmake --build $(FUZZ_BUILD) -j$(JOBS) --target $(addprefix fuzz_,$(FUZZ_TARGETS)) -- --no-print-directory
+
+fuzz: fuzz-build
+	@found=0; for t in $(FUZZ_TARGETS); do \
+	  mkdir -p $(FUZZ_OUT)/$$t/corpus $(FUZZ_OUT)/$$t/findings; \
+	  echo "fuzz_$$t: $(FUZZ_TIME) s, new inputs in $(FUZZ_OUT)/$$t/corpus"; \
+	  OPENBLAS_NUM_THREADS=1 $(FUZZ_BUILD)/fuzz_$$t $(FUZZ_FLAGS) -max_total_time=$(FUZZ_TIME) \
+	    -dict=tests/fuzz/json.dict -artifact_prefix=$(FUZZ_OUT)/$$t/findings/ \
+	    $(FUZZ_OUT)/$$t/corpus tests/fuzz/corpus/$$t 2>$(FUZZ_OUT)/$$t/log \
+	    || { found=1; echo "fuzz_$$t: FINDING in $(FUZZ_OUT)/$$t/findings/ (log: $(FUZZ_OUT)/$$t/log)"; }; \
+	  tail -n 3 $(FUZZ_OUT)/$$t/log; \
+	done; exit $$found
+
 clean:
-	rm -rf $(BUILD) $(ASAN) $(OUT)
+	rm -rf $(BUILD) $(ASAN) $(OUT) $(FUZZ_BUILD)

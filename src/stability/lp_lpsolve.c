@@ -14,6 +14,15 @@
  * what turned the unit cone edges of very wide cones (mu >= 1e8, entries
  * down to 1 / mu) into numerical failures.
  *
+ * Cycling: lp_solve's default simplex (dual phase 1, then primal) can loop
+ * forever on degenerate systems (a 5-body structure found by fuzzing,
+ * tests/fuzz/corpus/pipeline/crash-lpsolve-cycle.json). Every solve has a
+ * time limit growing with the model (2 s + 10 ms per column, far above
+ * the normal time); a run that hits it is retried once with the primal
+ * simplex, and a second time-out is UNDECIDED, never a verdict. A
+ * SUBOPTIMAL answer is a feasible point (the objective is zero), so it is
+ * a stable claim like OPTIMAL, re-checked by the certificate.
+ *
  * Memory: the lprec and everything it returns belong to lp_solve
  * (delete_lp); solutions are copied out with get_variables into our own
  * buffer. lp_solve reports OOM as NOMEMORY (or a NULL lprec).
@@ -86,6 +95,18 @@ fail:
   return NULL;
 }
 
+/* solve() with the time limit and the primal retry (see Cycling above). */
+static int lps_run(lprec *lp, int ncol) {
+  long limit = 2 + ncol / 100;
+  set_timeout(lp, limit);
+  int ret = solve(lp);
+  if (ret != TIMEOUT) return ret;
+  set_simplextype(lp, SIMPLEX_PRIMAL_PRIMAL);
+  default_basis(lp);
+  set_timeout(lp, limit);
+  return solve(lp);
+}
+
 static us_Status lps_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
                            const int *removed, int nremoved, int restart, us_Verdict *verdict,
                            double *f, us_StabilityInfo *info, char *note, size_t note_sz,
@@ -105,15 +126,15 @@ static us_Status lps_solve(void *ws, const us_EqSystem *sys, const int *added, i
   }
   lprec *lp = lps_load(w, sys, 1);
   if (!lp) return us_error_set(err, US_ERR_NOMEM, "lp_solve could not build the model");
-  int ret = solve(lp);
+  int ret = lps_run(lp, w->gen.ncol);
   if (ret == NUMFAILURE) { /* once more without lp_solve's scaling */
     delete_lp(lp);
     lp = lps_load(w, sys, 0);
     if (!lp) return us_error_set(err, US_ERR_NOMEM, "lp_solve could not build the model");
-    ret = solve(lp);
+    ret = lps_run(lp, w->gen.ncol);
   }
   us_Status st = US_OK;
-  if (ret == OPTIMAL) {
+  if (ret == OPTIMAL || ret == SUBOPTIMAL) {
     get_variables(lp, w->sol);
     us_eq_gen_forces(sys, &w->gen, w->sol, f);
     *verdict = US_STABLE;
@@ -121,6 +142,9 @@ static us_Status lps_solve(void *ws, const us_EqSystem *sys, const int *added, i
   } else if (ret == INFEASIBLE) {
     *verdict = US_UNSTABLE;
     snprintf(note, note_sz, "lp_solve: infeasible");
+  } else if (ret == TIMEOUT) {
+    *verdict = US_UNDECIDED;
+    snprintf(note, note_sz, "lp_solve: no answer within its time limit (cycling)");
   } else if (ret == NOMEMORY) {
     st = us_error_set(err, US_ERR_NOMEM, "lp_solve ran out of memory");
   } else {
