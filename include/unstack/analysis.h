@@ -27,8 +27,8 @@ typedef enum us_CountMethod {
   US_COUNT_CONTRACT,  /* deletion-contraction with memo, tree formula at trees */
   US_COUNT_METHOD_COUNT
 } us_CountMethod;
-const char *us_count_method_name(us_CountMethod m);
-int us_count_method_parse(const char *name, us_CountMethod *out); /* 0 ok, -1 unknown */
+US_API const char *us_count_method_name(us_CountMethod m);
+US_API int us_count_method_parse(const char *name, us_CountMethod *out); /* 0 ok, -1 unknown */
 
 /* Outcomes: exact, or refused at a limit (no value then). */
 typedef enum us_CountStatus {
@@ -38,7 +38,7 @@ typedef enum us_CountStatus {
   US_COUNT_REFUSED_MEMORY,  /* the state tables would pass max_memory_mb */
   US_COUNT_STATUS_COUNT
 } us_CountStatus;
-const char *us_count_status_name(us_CountStatus s);
+US_API const char *us_count_status_name(us_CountStatus s);
 
 typedef struct us_CountSettings {
   us_CountMethod method;  /* default AUTO */
@@ -49,7 +49,7 @@ typedef struct us_CountSettings {
                              the tree formula is linear */
   double max_memory_mb;   /* state tables and memo, <= 0: none (default 2048) */
 } us_CountSettings;
-us_CountSettings us_count_default_settings(void);
+US_API us_CountSettings us_count_default_settings(void);
 
 typedef struct us_Count {
   us_CountStatus status;
@@ -70,9 +70,9 @@ typedef struct us_Count {
  * defaults. A refusal is an outcome (out->status), not an error; errors are
  * bad arguments and out of memory. us_count_free(out) afterwards, also
  * after an error. */
-us_Status us_count_subgraphs(const us_Structure *s, const us_CountSettings *set, us_Count *out,
+US_API us_Status us_count_subgraphs(const us_Structure *s, const us_CountSettings *set, us_Count *out,
                              us_Error *err);
-void us_count_free(us_Count *c);
+US_API void us_count_free(us_Count *c);
 
 /* ------------------------------------------------------------- classify */
 /* (src/plan/classify.c, src/analysis/friction.c) */
@@ -96,7 +96,7 @@ typedef struct us_FrictionResult {
   us_CertCheck check;      /* stands: us_certificate_check of forces with every
                               contact's mu = mu_critical */
 } us_FrictionResult;
-void us_friction_result_free(us_FrictionResult *r);
+US_API void us_friction_result_free(us_FrictionResult *r);
 
 /* Critical friction of sub-assembly `present` (NULL: every movable body)
  * under the stability settings `set` (NULL: defaults, method lp). tol: the
@@ -104,7 +104,7 @@ void us_friction_result_free(us_FrictionResult *r);
  * tried (<= 0: 1e3). Standing, not standing and "not for any mu up to
  * mu_max" are outcomes in `out`; errors are bad arguments (US_ERR_USAGE),
  * memory (US_ERR_NOMEM) and backend failures. err may be NULL. */
-us_Status us_critical_friction(const us_Structure *s, const us_Bitset *present,
+US_API us_Status us_critical_friction(const us_Structure *s, const us_Bitset *present,
                                const us_StabilitySettings *set, double tol, double mu_max,
                                us_FrictionResult *out, us_Error *err);
 
@@ -134,7 +134,7 @@ typedef struct us_ClassifySettings {
                               60; <= 0: none): past it a class is unknown */
   double count_time_limit; /* seconds for the count (default 2; <= 0: none) */
 } us_ClassifySettings;
-us_ClassifySettings us_classify_default_settings(void);
+US_API us_ClassifySettings us_classify_default_settings(void);
 
 typedef struct us_Classification {
   int nbody;               /* movable bodies */
@@ -198,9 +198,9 @@ typedef struct us_Classification {
  * an outcome in out; errors are bad arguments, out of memory and backend
  * failures (out is then empty). err may be NULL. us_classification_free(out)
  * afterwards (also harmless after an error). */
-us_Status us_classify(const us_Structure *s, const us_ClassifySettings *set,
+US_API us_Status us_classify(const us_Structure *s, const us_ClassifySettings *set,
                       us_Classification *out, us_Error *err);
-void us_classification_free(us_Classification *c);
+US_API void us_classification_free(us_Classification *c);
 
 #ifdef __cplusplus
 }

@@ -36,6 +36,16 @@ extern "C" {
 
 #define US_VERSION "0.1.0"
 
+/* US_API marks the library's ABI: the shared library (libunstack.so) is
+ * built with hidden visibility, so only these declarations are exported;
+ * the ~100 internal us_ functions under src/ are not (tests/abi.sh checks
+ * that the two sets are equal). */
+#if defined(__GNUC__)
+#define US_API __attribute__((visibility("default")))
+#else
+#define US_API
+#endif
+
 /* ------------------------------------------------------------------ errors */
 
 /* Errors: something prevented an answer. Outcomes are separate enums. */
@@ -55,28 +65,28 @@ typedef struct us_Error {
   char msg[512];
 } us_Error;
 
-const char *us_status_name(us_Status s);
+US_API const char *us_status_name(us_Status s);
 /* Set err (if not NULL) and return code. printf-style. */
-us_Status us_error_set(us_Error *err, us_Status code, const char *fmt, ...)
+US_API us_Status us_error_set(us_Error *err, us_Status code, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
-void us_error_clear(us_Error *err);
+US_API void us_error_clear(us_Error *err);
 
 /* ------------------------------------------------------------- allocation */
 
 /* One allocation funnel. Tests may install a hook that fails the N-th
  * allocation (us_alloc_fail_after) to exercise out-of-memory paths. */
-void *us_malloc(size_t n);
-void *us_calloc(size_t count, size_t size);
-void *us_realloc(void *p, size_t n);
-void us_free(void *p);
-char *us_strdup(const char *s);
+US_API void *us_malloc(size_t n);
+US_API void *us_calloc(size_t count, size_t size);
+US_API void *us_realloc(void *p, size_t n);
+US_API void us_free(void *p);
+US_API char *us_strdup(const char *s);
 /* After `n` more successful allocations, every allocation fails; n < 0 turns
  * the hook off. Returns the number of live allocations (for leak checks). */
-long us_alloc_fail_after(long n);
-long us_alloc_live(void);
+US_API long us_alloc_fail_after(long n);
+US_API long us_alloc_live(void);
 
 /* ------------------------------------------------------------------ bitset */
 
@@ -87,18 +97,18 @@ typedef struct us_Bitset {
   uint64_t *w;
 } us_Bitset;
 
-int us_bitset_init(us_Bitset *b, int nbits); /* all clear; 0 or -1 on OOM */
-void us_bitset_free(us_Bitset *b);
-int us_bitset_copy(us_Bitset *dst, const us_Bitset *src); /* dst inited or zeroed */
+US_API int us_bitset_init(us_Bitset *b, int nbits); /* all clear; 0 or -1 on OOM */
+US_API void us_bitset_free(us_Bitset *b);
+US_API int us_bitset_copy(us_Bitset *dst, const us_Bitset *src); /* dst inited or zeroed */
 static inline int us_bitset_get(const us_Bitset *b, int i) {
   return (int)((b->w[i >> 6] >> (i & 63)) & 1u);
 }
 static inline void us_bitset_set(us_Bitset *b, int i) { b->w[i >> 6] |= (uint64_t)1 << (i & 63); }
 static inline void us_bitset_clear(us_Bitset *b, int i) { b->w[i >> 6] &= ~((uint64_t)1 << (i & 63)); }
-int us_bitset_count(const us_Bitset *b);
-int us_bitset_equal(const us_Bitset *a, const us_Bitset *b);
-uint64_t us_bitset_hash(const us_Bitset *b);
-void us_bitset_fill(us_Bitset *b); /* set bits 0..nbits-1 */
+US_API int us_bitset_count(const us_Bitset *b);
+US_API int us_bitset_equal(const us_Bitset *a, const us_Bitset *b);
+US_API uint64_t us_bitset_hash(const us_Bitset *b);
+US_API void us_bitset_fill(us_Bitset *b); /* set bits 0..nbits-1 */
 
 /* --------------------------------------------------------------- structure */
 
@@ -147,8 +157,8 @@ typedef struct us_Structure {
   void *id_index;       /* private: id -> body index hash map */
 } us_Structure;
 
-us_Structure *us_structure_new(int dim);
-void us_structure_free(us_Structure *s);
+US_API us_Structure *us_structure_new(int dim);
+US_API void us_structure_free(us_Structure *s);
 
 /* Description of a polygon body (2D) for us_structure_add_body. Start from
  * us_default_body_def() and set what differs. */
@@ -164,44 +174,44 @@ typedef struct us_BodyDef {
 
 /* The defaults above: id NULL, nvert 0, xy NULL, density 1, mass 0,
  * fixed 0, friction -1. */
-us_BodyDef us_default_body_def(void);
+US_API us_BodyDef us_default_body_def(void);
 
 /* Add a polygon body. Returns the body index or -1 (err set: empty,
  * reserved or duplicate id, bad vertex array, OOM). */
-int us_structure_add_body(us_Structure *s, const us_BodyDef *def, us_Error *err);
+US_API int us_structure_add_body(us_Structure *s, const us_BodyDef *def, us_Error *err);
 
 /* Thin wrapper of us_structure_add_body kept for old callers: the fields
  * of us_BodyDef in order (density <= 0 means 1, mass <= 0 means not
  * given). Prefer us_structure_add_body. */
-int us_structure_add_polygon(us_Structure *s, const char *id, int nvert, const double *xy,
+US_API int us_structure_add_polygon(us_Structure *s, const char *id, int nvert, const double *xy,
                              double density, double mass, int fixed, double friction,
                              us_Error *err);
 /* A body without geometry (only with explicit contacts). */
-int us_structure_add_point_body(us_Structure *s, const char *id, double mass,
+US_API int us_structure_add_point_body(us_Structure *s, const char *id, double mass,
                                 const double *center, int fixed, us_Error *err);
 /* Explicit contact; a = US_GROUND or a body index. mu < 0: use the rule
  * (the smaller of the two bodies' coefficients, each defaulting to the
  * structure's). The tangent basis is derived from the normal. */
-int us_structure_add_contact(us_Structure *s, int a, int b, const double *p, const double *n,
+US_API int us_structure_add_contact(us_Structure *s, int a, int b, const double *p, const double *n,
                              double mu, us_Error *err);
-int us_structure_find_body(const us_Structure *s, const char *id); /* index or -1 */
+US_API int us_structure_find_body(const us_Structure *s, const char *id); /* index or -1 */
 
 /* Validate geometry (>=3 vertices, finite, non-zero area, simple, not below
  * the ground, no interpenetration beyond the pair's tolerance), compute mass
  * properties, and detect contacts unless explicit contacts were given.
  * Messages name the body ids. */
-us_Status us_structure_finalize(us_Structure *s, us_Error *err);
+US_API us_Status us_structure_finalize(us_Structure *s, us_Error *err);
 
 /* The friction coefficient of a contact between two bodies (a may be
  * US_GROUND): the smaller of the two sides' coefficients, each side
  * defaulting to the structure's coefficient. */
-double us_structure_pair_friction(const us_Structure *s, int a, int b);
+US_API double us_structure_pair_friction(const us_Structure *s, int a, int b);
 
 /* Number of movable bodies. */
-int us_structure_movable_count(const us_Structure *s);
+US_API int us_structure_movable_count(const us_Structure *s);
 /* Initialize `out` as the set of all movable bodies (the full structure).
  * 0, or -1 when out of memory. */
-int us_structure_movable_set(const us_Structure *s, us_Bitset *out);
+US_API int us_structure_movable_set(const us_Structure *s, us_Bitset *out);
 
 /* ---------------------------------------------------------------- contacts */
 
@@ -230,15 +240,15 @@ typedef struct us_ContactList {
  * then over the edges of each candidate pair, so the cost is near-linear
  * in the total number of vertices. Interpenetration beyond the pair's
  * tolerance is US_ERR_INPUT naming both bodies. */
-us_Status us_detect_contacts(const us_Structure *s, const us_ContactSettings *set,
+US_API us_Status us_detect_contacts(const us_Structure *s, const us_ContactSettings *set,
                              us_ContactList *out, us_Error *err);
-void us_contact_list_free(us_ContactList *l);
+US_API void us_contact_list_free(us_ContactList *l);
 
 /* Orient the polygons counter-clockwise, detect contacts with the given
  * settings (NULL: s->contact_tol) and replace s->contacts by them. On error
  * the structure's contacts are left as they were (after an out-of-memory
  * while installing them, they are cleared). */
-us_Status us_structure_detect_contacts(us_Structure *s, const us_ContactSettings *set,
+US_API us_Status us_structure_detect_contacts(us_Structure *s, const us_ContactSettings *set,
                                        us_Error *err);
 
 /* --------------------------------------------------------------- stability */
@@ -250,15 +260,15 @@ typedef enum us_Method {
   US_METHOD_LCP_REUSE,  /* LCP with computation reuse */
   US_METHOD_COUNT
 } us_Method;
-const char *us_method_name(us_Method m);
-int us_method_parse(const char *name, us_Method *out); /* 0 ok, -1 unknown */
+US_API const char *us_method_name(us_Method m);
+US_API int us_method_parse(const char *name, us_Method *out); /* 0 ok, -1 unknown */
 
 typedef enum us_Verdict {
   US_STABLE = 0,
   US_UNSTABLE = 1,
   US_UNDECIDED = 2  /* a limit was hit and no fallback could decide */
 } us_Verdict;
-const char *us_verdict_name(us_Verdict v);
+US_API const char *us_verdict_name(us_Verdict v);
 
 /* Tolerances and limits of the LP backends (lp, lpsolve, and the LP that
  * settles the LCP's open cases). The LP works in normalized units: forces
@@ -275,7 +285,7 @@ typedef struct us_LpSettings {
   double n_column_mu;   /* contacts with mu above this also get the generator n
                            besides the two cone edges (default 1) */
 } us_LpSettings;
-us_LpSettings us_lp_default_settings(void);
+US_API us_LpSettings us_lp_default_settings(void);
 
 typedef struct us_StabilitySettings {
   us_Method method;
@@ -286,7 +296,7 @@ typedef struct us_StabilitySettings {
 } us_StabilitySettings;
 /* Defaults; us_stability_new and us_stability_test expect settings that
  * started from here (or a zeroed struct: zero LP fields mean defaults). */
-us_StabilitySettings us_stability_default_settings(void);
+US_API us_StabilitySettings us_stability_default_settings(void);
 
 /* Contact forces of one sub-assembly: for each active contact, `dim`
  * components (f_n, f_t1[, f_t2]) in the contact's frame. */
@@ -296,7 +306,7 @@ typedef struct us_Forces {
   int *contact;      /* indices into structure->contacts */
   double *f;         /* dim * ncontact */
 } us_Forces;
-void us_forces_free(us_Forces *f);
+US_API void us_forces_free(us_Forces *f);
 
 typedef struct us_CertCheck {
   int ok;
@@ -330,34 +340,34 @@ typedef struct us_StabilityResult {
 /* A result owns its force arrays and reuses them from test to test: call
  * init (or zero it) once before its first use, free when done. An
  * uninitialized result must never reach us_stability_test. */
-void us_stability_result_init(us_StabilityResult *r);
-void us_stability_result_free(us_StabilityResult *r);
+US_API void us_stability_result_init(us_StabilityResult *r);
+US_API void us_stability_result_free(us_StabilityResult *r);
 
 typedef struct us_Stability us_Stability; /* opaque workspace */
 
-us_Stability *us_stability_new(const us_Structure *s, const us_StabilitySettings *set,
+US_API us_Stability *us_stability_new(const us_Structure *s, const us_StabilitySettings *set,
                                us_Error *err);
-void us_stability_free(us_Stability *w);
+US_API void us_stability_free(us_Stability *w);
 /* Test the sub-assembly `present` (bits over body indices; fixed bodies are
  * always present, their bits are ignored). Incremental: the workspace
  * remembers the last sub-assembly and tells the backend which bodies were
  * added or removed. res must be initialized (us_stability_result_init or
  * zeroed; a result of an earlier test is fine). Returns US_OK and fills
  * res, or an error. */
-us_Status us_stability_test(us_Stability *w, const us_Bitset *present, us_StabilityResult *res,
+US_API us_Status us_stability_test(us_Stability *w, const us_Bitset *present, us_StabilityResult *res,
                             us_Error *err);
-const us_StabilityInfo *us_stability_info(const us_Stability *w);
+US_API const us_StabilityInfo *us_stability_info(const us_Stability *w);
 /* Test the whole structure (every movable body present). */
-us_Status us_stability_test_full(us_Stability *w, us_StabilityResult *res, us_Error *err);
+US_API us_Status us_stability_test_full(us_Stability *w, us_StabilityResult *res, us_Error *err);
 
 /* Independent re-check of forces for a sub-assembly, without any solver. */
-us_CertCheck us_certificate_check(const us_Structure *s, const us_Bitset *present,
+US_API us_CertCheck us_certificate_check(const us_Structure *s, const us_Bitset *present,
                                   const us_Forces *f, double tol);
 
 /* Contacts active in a sub-assembly: both sides present (ground and fixed
  * bodies always are) and at least one side movable. Fills idx (capacity
  * s->ncontact) and returns the count. */
-int us_active_contacts(const us_Structure *s, const us_Bitset *present, int *idx);
+US_API int us_active_contacts(const us_Structure *s, const us_Bitset *present, int *idx);
 
 /* ----------------------------------------------------------------- planner */
 
@@ -403,19 +413,19 @@ typedef enum us_PlanStatus {
 } us_PlanStatus;
 /* Names of the planner's enums (the words of the plan files and the CLI);
  * parse returns 0, or -1 for an unknown word. */
-const char *us_plan_status_name(us_PlanStatus s);
-int us_plan_status_parse(const char *w, us_PlanStatus *out);
-const char *us_search_name(us_Search s);
-int us_search_parse(const char *w, us_Search *out);
-const char *us_order_name(us_Order o);
-int us_order_parse(const char *w, us_Order *out);
-const char *us_direction_name(us_Direction d);
-int us_direction_parse(const char *w, us_Direction *out);
-const char *us_removal_name(us_Removal r);
-int us_removal_parse(const char *w, us_Removal *out);
-const char *us_rule_name(int bit); /* one US_RULE_* bit */
+US_API const char *us_plan_status_name(us_PlanStatus s);
+US_API int us_plan_status_parse(const char *w, us_PlanStatus *out);
+US_API const char *us_search_name(us_Search s);
+US_API int us_search_parse(const char *w, us_Search *out);
+US_API const char *us_order_name(us_Order o);
+US_API int us_order_parse(const char *w, us_Order *out);
+US_API const char *us_direction_name(us_Direction d);
+US_API int us_direction_parse(const char *w, us_Direction *out);
+US_API const char *us_removal_name(us_Removal r);
+US_API int us_removal_parse(const char *w, us_Removal *out);
+US_API const char *us_rule_name(int bit); /* one US_RULE_* bit */
 /* "all", "none" or a comma-separated list of rule names. */
-int us_rules_parse(const char *list, unsigned *out);
+US_API int us_rules_parse(const char *list, unsigned *out);
 
 typedef struct us_PlanSettings {
   us_Search search;
@@ -435,7 +445,7 @@ typedef struct us_PlanSettings {
   int certificates;      /* keep a certificate per step */
   us_StabilitySettings stability;
 } us_PlanSettings;
-us_PlanSettings us_plan_default_settings(void);
+US_API us_PlanSettings us_plan_default_settings(void);
 
 typedef struct us_PlanStats {
   long tests;            /* stability tests run: stable + unstable + undecided,
@@ -484,12 +494,12 @@ typedef struct us_Plan {
   char note[128];        /* stats.undecided > 0: the first undecided test's reason */
   us_PlanStats stats;
 } us_Plan;
-void us_plan_free(us_Plan *p);
+US_API void us_plan_free(us_Plan *p);
 
 /* Plan a removal order. Outcomes (found, none, unstable, limit, undecided)
  * are in out->status; errors (bad settings, out of memory, backend
  * failures) are returned, out is then empty. err may be NULL. */
-us_Status us_plan(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
+US_API us_Status us_plan(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
                   us_Error *err);
 
 /* Re-check a removal order step by step: the full structure, then the
@@ -514,12 +524,12 @@ typedef struct us_VerifyReport {
   int steps_checked;
   double max_force_residual, max_torque_residual; /* worst over the steps */
 } us_VerifyReport;
-us_Status us_verify_order(const us_Structure *s, const us_StabilitySettings *set, const int *order,
+US_API us_Status us_verify_order(const us_Structure *s, const us_StabilitySettings *set, const int *order,
                           int n, us_VerifyReport *rep, us_Error *err);
 /* The same for an order in steps: group_start[ngroups + 1] offsets into order
  * (NULL: one body per step); the remainder is tested after every step. With
  * groups, failed_step is the 0-based step. */
-us_Status us_verify_steps(const us_Structure *s, const us_StabilitySettings *set, const int *order,
+US_API us_Status us_verify_steps(const us_Structure *s, const us_StabilitySettings *set, const int *order,
                           int n, const int *group_start, int ngroups, us_VerifyReport *rep,
                           us_Error *err);
 
@@ -527,7 +537,7 @@ us_Status us_verify_steps(const us_Structure *s, const us_StabilitySettings *set
  * body must be able to leave past the bodies still there (docs/kinematics.md).
  * failed_step: the first 0-based removal that cannot be made, or -1;
  * blocker: a body in its way (US_GROUND for the ground, -2 when unknown). */
-us_Status us_verify_removals(const us_Structure *s, us_Removal removal, const int *order, int n,
+US_API us_Status us_verify_removals(const us_Structure *s, us_Removal removal, const int *order, int n,
                              int *failed_step, int *blocker, us_Error *err);
 
 /* -------------------------------------------------------------- generators */
@@ -544,31 +554,31 @@ typedef struct us_GenSettings {
   unsigned long seed;
   int max_tries;     /* random: attempts per row before giving up */
 } us_GenSettings;
-us_GenSettings us_gen_default_settings(void);
+US_API us_GenSettings us_gen_default_settings(void);
 
-us_Structure *us_gen_column(const us_GenSettings *g, us_Error *err);
-us_Structure *us_gen_pyramid(const us_GenSettings *g, us_Error *err);
-us_Structure *us_gen_wall(const us_GenSettings *g, us_Error *err);
-us_Structure *us_gen_arch(const us_GenSettings *g, us_Error *err);
-us_Structure *us_gen_random(const us_GenSettings *g, us_Error *err);
+US_API us_Structure *us_gen_column(const us_GenSettings *g, us_Error *err);
+US_API us_Structure *us_gen_pyramid(const us_GenSettings *g, us_Error *err);
+US_API us_Structure *us_gen_wall(const us_GenSettings *g, us_Error *err);
+US_API us_Structure *us_gen_arch(const us_GenSettings *g, us_Error *err);
+US_API us_Structure *us_gen_random(const us_GenSettings *g, us_Error *err);
 /* The source-style stacker: rows of blocks at random offsets, cantilevers
  * held by the blocks above them; only the finished structure is required to
  * stand (src/gen/stacker.c). */
-us_Structure *us_gen_stacker(const us_GenSettings *g, us_Error *err);
+US_API us_Structure *us_gen_stacker(const us_GenSettings *g, us_Error *err);
 
 /* --------------------------------------------------------------------- I/O */
 
 /* Read a structure JSON file (docs/format.md); finalized on success.
  * contact_tol > 0 overrides the derived tolerance. Errors name the file
  * and line:column (syntax) or the JSON path / body id (content). */
-us_Structure *us_structure_read(const char *path, double contact_tol, us_Error *err);
-us_Structure *us_structure_parse(const char *text, const char *name, double contact_tol,
+US_API us_Structure *us_structure_read(const char *path, double contact_tol, us_Error *err);
+US_API us_Structure *us_structure_parse(const char *text, const char *name, double contact_tol,
                                  us_Error *err);
 /* Write atomically (temporary file + rename): no partial file on error. */
-us_Status us_structure_write(const us_Structure *s, const char *path, us_Error *err);
+US_API us_Status us_structure_write(const us_Structure *s, const char *path, us_Error *err);
 
 /* Plan files. Reading maps ids to body indices of s. */
-us_Status us_plan_write(const us_Structure *s, const us_Plan *p, const us_PlanSettings *set,
+US_API us_Status us_plan_write(const us_Structure *s, const us_Plan *p, const us_PlanSettings *set,
                         const char *path, us_Error *err);
 typedef struct us_PlanFile {
   us_PlanStatus status;
@@ -580,8 +590,8 @@ typedef struct us_PlanFile {
   int *blocked;
   us_Removal removal; /* "removal" (default any): verify checks the kinematics */
 } us_PlanFile;
-us_Status us_plan_read(const us_Structure *s, const char *path, us_PlanFile *out, us_Error *err);
-void us_plan_file_free(us_PlanFile *pf);
+US_API us_Status us_plan_read(const us_Structure *s, const char *path, us_PlanFile *out, us_Error *err);
+US_API void us_plan_file_free(us_PlanFile *pf);
 
 /* ------------------------------------------------------------------ render */
 
@@ -597,8 +607,8 @@ typedef struct us_RenderSettings {
   int show_labels;        /* default 1 */
   double width_px;        /* default 800 */
 } us_RenderSettings;
-us_RenderSettings us_render_default_settings(void);
-us_Status us_render_svg(const us_Structure *s, const us_RenderSettings *r, const char *path,
+US_API us_RenderSettings us_render_default_settings(void);
+US_API us_Status us_render_svg(const us_Structure *s, const us_RenderSettings *r, const char *path,
                         us_Error *err);
 
 /* An id quoted for a message (src/core/text.c): control characters, DEL,
@@ -609,7 +619,7 @@ us_Status us_render_svg(const us_Structure *s, const us_RenderSettings *r, const
 typedef struct us_IdText {
   char s[84];
 } us_IdText;
-us_IdText us_id_text(const char *id);
+US_API us_IdText us_id_text(const char *id);
 
 /* Output files shared by all writers (src/core/file.c): the content goes to
  * a temporary file and is put in place at commit, nothing on abort. A new or
@@ -618,19 +628,19 @@ us_IdText us_id_text(const char *id);
  * A read-only file or a directory is refused (US_ERR_IO). Returns a FILE* to
  * write to; commit or abort. */
 typedef struct us_AtomicFile us_AtomicFile;
-us_AtomicFile *us_atomic_open(const char *path, us_Error *err);
-void *us_atomic_stream(us_AtomicFile *af); /* FILE* */
-us_Status us_atomic_commit(us_AtomicFile *af, us_Error *err);
-void us_atomic_abort(us_AtomicFile *af);
+US_API us_AtomicFile *us_atomic_open(const char *path, us_Error *err);
+US_API void *us_atomic_stream(us_AtomicFile *af); /* FILE* */
+US_API us_Status us_atomic_commit(us_AtomicFile *af, us_Error *err);
+US_API void us_atomic_abort(us_AtomicFile *af);
 /* Can path be written, before any work is done? Its directory exists and is
  * writable, or the file (symlinks followed) is writable; and it is none of
  * the `ninputs` input files (same st_dev/st_ino: "output would overwrite
  * input NAME"). US_OK or US_ERR_IO with a message; touches nothing. */
-us_Status us_output_check(const char *path, const char *const *inputs, int ninputs,
+US_API us_Status us_output_check(const char *path, const char *const *inputs, int ninputs,
                           us_Error *err);
 
 /* Monotonic clock in seconds. */
-double us_now(void);
+US_API double us_now(void);
 
 #ifdef __cplusplus
 }
