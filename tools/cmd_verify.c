@@ -104,7 +104,11 @@ int cmd_verify(int argc, char **argv) {
   us_VerifyReport rep;
   int code = CLI_EXIT_ERR;
   if (us_plan_read(s, files[1], &pf, &err) == US_OK) {
-    if (pf.status != US_PLAN_FOUND) {
+    if (pf.status == US_PLAN_UNDECIDED) {
+      printf("undecided: the plan's status is \"%s\": it holds no order to verify\n",
+             us_plan_status_name(pf.status));
+      code = CLI_EXIT_UNDECIDED;
+    } else if (pf.status != US_PLAN_FOUND) {
       printf("invalid: the plan's status is \"%s\": it holds no complete order\n",
              us_plan_status_name(pf.status));
       code = CLI_EXIT_NO;

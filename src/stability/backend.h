@@ -16,7 +16,7 @@
 /* A stability backend. The workspace is the backend's own state and may
  * keep the last sub-assembly's solution for reuse. */
 typedef struct us_Backend {
-  const char *name;
+  us_Method method; /* its name is us_method_name(method) */
   void *(*create)(const us_Structure *s, const us_StabilitySettings *set, us_Error *err);
   void (*destroy)(void *ws);
   /* Decide the sub-assembly `sys`. added / removed: bodies that changed

@@ -405,7 +405,7 @@ static us_Status lcp_solve(void *ws, const us_EqSystem *sys, const int *added, i
 
 static int lcp_unstable_body(void *ws) { return ((LcpWs *)ws)->last_body; }
 
-const us_Backend us_backend_lcp = {"lcp", create_scratch, lcp_destroy, lcp_solve,
+const us_Backend us_backend_lcp = {US_METHOD_LCP, create_scratch, lcp_destroy, lcp_solve,
                                    lcp_unstable_body};
-const us_Backend us_backend_lcp_reuse = {"lcp-reuse", create_reuse, lcp_destroy, lcp_solve,
+const us_Backend us_backend_lcp_reuse = {US_METHOD_LCP_REUSE, create_reuse, lcp_destroy, lcp_solve,
                                          lcp_unstable_body};

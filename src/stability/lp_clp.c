@@ -248,7 +248,7 @@ static us_Status clp_solve(void *ws, const us_EqSystem *sys, const int *added, i
 static int clp_unstable_body(void *ws) { return ((ClpWs *)ws)->last_body; }
 
 const us_Backend us_backend_clp = {
-    .name = "lp",
+    .method = US_METHOD_LP,
     .create = clp_create,
     .destroy = clp_destroy,
     .solve = clp_solve,

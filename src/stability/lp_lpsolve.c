@@ -155,7 +155,7 @@ static us_Status lps_solve(void *ws, const us_EqSystem *sys, const int *added, i
 }
 
 const us_Backend us_backend_lpsolve = {
-    .name = "lpsolve",
+    .method = US_METHOD_LPSOLVE,
     .create = lps_create,
     .destroy = lps_destroy,
     .solve = lps_solve,

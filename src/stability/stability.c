@@ -321,7 +321,7 @@ static us_Status certify(us_Stability *w, us_StabilityResult *res, us_Error *err
     res->verdict = US_UNDECIDED;
     snprintf(res->note, sizeof res->note,
              "%s claimed stable, certificate failed (force %.2g torque %.2g cone %.2g sign %.2g)",
-             w->be->name, res->check.max_force_residual, res->check.max_torque_residual,
+             us_method_name(w->be->method), res->check.max_force_residual, res->check.max_torque_residual,
              res->check.max_cone_violation, res->check.max_sign_violation);
   }
   return US_OK;

@@ -21,6 +21,11 @@ cat >"$T/unknown.json" <<'PLAN'
 PLAN
 expect 2 "unknown id in plan" -- "$CLI" verify "$T/col.json" "$T/unknown.json"
 contains "$T/err" "b9" "message names the unknown id"
+cat >"$T/undecided.json" <<'PLAN'
+{"format": "unstack-plan", "version": 1, "status": "undecided", "order": []}
+PLAN
+expect 3 "a plan with status undecided is undecided (exit 3), not invalid" -- "$CLI" verify "$T/col.json" "$T/undecided.json"
+contains "$T/out" "undecided" "says undecided"
 printf '{"status": "found", "order": [' >"$T/broken.json"
 expect 2 "malformed plan" -- "$CLI" verify "$T/col.json" "$T/broken.json"
 contains "$T/err" "broken.json" "message names the plan file"
