@@ -22,6 +22,18 @@ static inline int scene_box(us_Structure *s, const char *id, double x0, double y
       &err);
 }
 
+/* Polygon of density 1 with the structure's friction; returns the body
+ * index or -1. */
+static inline int scene_polygon(us_Structure *s, const char *id, int nvert, const double *xy,
+                                int fixed) {
+  us_BodyDef d = us_default_body_def();
+  d.id = id;
+  d.nvert = nvert;
+  d.xy = xy;
+  d.fixed = fixed;
+  return us_structure_add_body(s, &d, NULL);
+}
+
 /* Finalize; NULL (and the structure freed) on error. */
 static inline us_Structure *scene_seal(us_Structure *s) {
   us_Error err;

@@ -26,19 +26,8 @@ static us_Structure *ladder(double theta, double len, double thick, double mu) {
   double x = len * c, wall[8] = {x, 0, x + 1, 0, x + 1, len * s + 1, x, len * s + 1};
   us_Structure *st = us_structure_new(2);
   st->friction = mu;
-  us_structure_add_body(st,
-                        &(us_BodyDef){.id = "wall",
-                                      .nvert = 4,
-                                      .xy = wall,
-                                      .density = 1,
-                                      .fixed = 1,
-                                      .friction = -1},
-                        NULL);
-  us_structure_add_body(
-      st,
-      &(us_BodyDef){
-          .id = "slab", .nvert = 4, .xy = slab, .density = 1, .friction = -1},
-      NULL);
+  scene_polygon(st, "wall", 4, wall, 1);
+  scene_polygon(st, "slab", 4, slab, 0);
   return scene_seal(st);
 }
 
@@ -68,19 +57,8 @@ static us_Structure *ramp(double x0, double alpha, double mu, us_Structure *into
                    (d + b) * s + b * c, x0 + d * c - b * s, d * s + b * c};
   us_Structure *st = into ? into : us_structure_new(2);
   st->friction = mu;
-  us_structure_add_body(st,
-                        &(us_BodyDef){.id = "wedge",
-                                      .nvert = 3,
-                                      .xy = wedge,
-                                      .density = 1,
-                                      .fixed = 1,
-                                      .friction = -1},
-                        NULL);
-  us_structure_add_body(
-      st,
-      &(us_BodyDef){
-          .id = "block", .nvert = 4, .xy = blk, .density = 1, .friction = -1},
-      NULL);
+  scene_polygon(st, "wedge", 3, wedge, 1);
+  scene_polygon(st, "block", 4, blk, 0);
   return into ? st : scene_seal(st);
 }
 
@@ -292,22 +270,8 @@ static void no_mu_holds_an_overhang(void) {
 static void pinched_between_walls(void) {
   us_Structure *s = us_structure_new(2);
   double wl[8] = {0, 0, 1, 0, 1, 3, 0, 3}, wr[8] = {2, 0, 3, 0, 3, 3, 2, 3};
-  us_structure_add_body(s,
-                        &(us_BodyDef){.id = "left",
-                                      .nvert = 4,
-                                      .xy = wl,
-                                      .density = 1,
-                                      .fixed = 1,
-                                      .friction = -1},
-                        NULL);
-  us_structure_add_body(s,
-                        &(us_BodyDef){.id = "right",
-                                      .nvert = 4,
-                                      .xy = wr,
-                                      .density = 1,
-                                      .fixed = 1,
-                                      .friction = -1},
-                        NULL);
+  scene_polygon(s, "left", 4, wl, 1);
+  scene_polygon(s, "right", 4, wr, 1);
   scene_box(s, "box", 1, 1, 1, 1, 1);
   s = scene_seal(s);
   CHECK(s);
@@ -331,19 +295,8 @@ static void separate_parts(void) {
   double c = cos(th), sn = sin(th);
   double slab[8] = {0, 0, 2 * c, 2 * sn, 2 * c - 0.1 * sn, 2 * sn + 0.1 * c, -0.1 * sn, 0.1 * c};
   double wall[8] = {2 * c, 0, 2 * c + 1, 0, 2 * c + 1, 3, 2 * c, 3};
-  us_structure_add_body(s,
-                        &(us_BodyDef){.id = "wall",
-                                      .nvert = 4,
-                                      .xy = wall,
-                                      .density = 1,
-                                      .fixed = 1,
-                                      .friction = -1},
-                        NULL);
-  us_structure_add_body(
-      s,
-      &(us_BodyDef){
-          .id = "slab", .nvert = 4, .xy = slab, .density = 1, .friction = -1},
-      NULL);
+  scene_polygon(s, "wall", 4, wall, 1);
+  scene_polygon(s, "slab", 4, slab, 0);
   s = scene_seal(s);
   CHECK(s);
   double mu_l = ladder_mu(th, 2.0, 0.1), mu_r = tan(al);

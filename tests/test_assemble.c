@@ -48,17 +48,9 @@ static us_Structure *mixed_pile(unsigned long long *rng, int n) {
   int k = 0;
   if (n >= 4 && test_rnd(rng) < 0.4) { /* an inverted V at the left */
     double l[8] = {-3.0, 0, -2.6, 0, -2.0, 1.5, -2.0, 2.0};
-    us_structure_add_body(
-        s,
-        &(us_BodyDef){
-            .id = "vl", .nvert = 4, .xy = l, .density = 1, .friction = -1},
-        NULL);
+    scene_polygon(s, "vl", 4, l, 0);
     double r[8] = {-1.4, 0, -1.0, 0, -2.0, 2.0, -2.0, 1.5};
-    us_structure_add_body(
-        s,
-        &(us_BodyDef){
-            .id = "vr", .nvert = 4, .xy = r, .density = 1, .friction = -1},
-        NULL);
+    scene_polygon(s, "vr", 4, r, 0);
     k = 2;
   }
   for (int i = 0; k < n; i++, k++) {

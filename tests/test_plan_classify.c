@@ -63,11 +63,7 @@ static us_Structure *arch(int n, double R, double t, double mu) {
     arch_point(i + 1, n, ro, ro, &q[4], &q[5]);
     arch_point(i, n, ro, ro, &q[6], &q[7]);
     snprintf(id, sizeof id, "b%d", i + 1);
-    us_structure_add_body(
-        s,
-        &(us_BodyDef){
-            .id = id, .nvert = 4, .xy = q, .density = 1, .friction = -1},
-        NULL);
+    scene_polygon(s, id, 4, q, 0);
   }
   return scene_seal(s);
 }
@@ -81,19 +77,8 @@ static us_Structure *ramp(double alpha, double mu) {
                    (d + b) * c - b * s, (d + b) * s + b * c, d * c - b * s, d * s + b * c};
   us_Structure *st = us_structure_new(2);
   st->friction = mu;
-  us_structure_add_body(st,
-                        &(us_BodyDef){.id = "wedge",
-                                      .nvert = 3,
-                                      .xy = wedge,
-                                      .density = 1,
-                                      .fixed = 1,
-                                      .friction = -1},
-                        NULL);
-  us_structure_add_body(
-      st,
-      &(us_BodyDef){
-          .id = "block", .nvert = 4, .xy = blk, .density = 1, .friction = -1},
-      NULL);
+  scene_polygon(st, "wedge", 3, wedge, 1);
+  scene_polygon(st, "block", 4, blk, 0);
   return scene_seal(st);
 }
 
