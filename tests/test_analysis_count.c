@@ -22,14 +22,7 @@ static int row_box(us_Structure *s, int *k, int row, int q0, int q1) {
   snprintf(id, sizeof id, "b%d", ++*k);
   double xy[8] = {0.5 * q0, 0.5 * row, 0.5 * q1, 0.5 * row,
                   0.5 * q1, 0.5 * (row + 1), 0.5 * q0, 0.5 * (row + 1)};
-  us_Error err;
-  return us_structure_add_body(s,
-                               &(us_BodyDef){.id = id,
-                                             .nvert = 4,
-                                             .xy = xy,
-                                             .density = 1.0,
-                                             .friction = -1.0},
-                               &err) < 0
+  return scene_polygon(s, id, 4, xy, 0) < 0
              ? -1
              : 0;
 }
@@ -306,17 +299,9 @@ static void complete_graph_on_the_ground(void) {
  * LTV. */
 static void fixed_pier_is_ground(void) {
   us_Structure *s = us_structure_new(2);
-  us_Error err;
   double pier[8] = {2, 0, 3, 0, 3, 1, 2, 1};
   CHECK(scene_box(s, "L", 0, 0, 1, 1, 1) >= 0);
-  CHECK(us_structure_add_body(s,
-                              &(us_BodyDef){.id = "P",
-                                            .nvert = 4,
-                                            .xy = pier,
-                                            .density = 1,
-                                            .fixed = 1,
-                                            .friction = -1},
-                              &err) >= 0);
+  CHECK(scene_polygon(s, "P", 4, pier, 1) >= 0);
   CHECK(scene_box(s, "T", 0.5, 1, 2, 0.5, 1) >= 0);
   CHECK(scene_box(s, "V", 1, 1.5, 1, 0.5, 1) >= 0);
   CHECK((s = scene_seal(s)));

@@ -364,22 +364,8 @@ static void fixed_bodies(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
   double p1[8] = {0, 0, 1, 0, 1, 1, 0, 1}, p2[8] = {1, 0, 2, 0, 2, 1, 1, 1};
-  CHECK(us_structure_add_body(s,
-                              &(us_BodyDef){.id = "pier1",
-                                            .nvert = 4,
-                                            .xy = p1,
-                                            .density = 1,
-                                            .fixed = 1,
-                                            .friction = -1},
-                              &err) == 0);
-  CHECK(us_structure_add_body(s,
-                              &(us_BodyDef){.id = "pier2",
-                                            .nvert = 4,
-                                            .xy = p2,
-                                            .density = 1,
-                                            .fixed = 1,
-                                            .friction = -1},
-                              &err) == 1);
+  CHECK(scene_polygon(s, "pier1", 4, p1, 1) == 0);
+  CHECK(scene_polygon(s, "pier2", 4, p2, 1) == 1);
   CHECK(add_box(s, "deck", 0.5, 1, 1.5, 1.2, &err) == 2);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_INT(count_pair(s, US_GROUND, 0), ==, 0);

@@ -17,21 +17,9 @@ static us_Structure *g_s;   /* the scene of the current case */
 static us_Kinematics *g_up, *g_free;
 static us_Bitset g_all;     /* every movable body */
 
-static int poly(us_Structure *s, const char *id, int n, const double *xy, int fixed) {
-  us_Error err;
-  return us_structure_add_body(s,
-                               &(us_BodyDef){.id = id,
-                                             .nvert = n,
-                                             .xy = xy,
-                                             .density = 1.0,
-                                             .fixed = fixed,
-                                             .friction = -1.0},
-                               &err);
-}
-
 static int fixed_box(us_Structure *s, const char *id, double x0, double y0, double w, double h) {
   double xy[8] = {x0, y0, x0 + w, y0, x0 + w, y0 + h, x0, y0 + h};
-  return poly(s, id, 4, xy, 1);
+  return scene_polygon(s, id, 4, xy, 1);
 }
 
 /* Finalize g_s and build both workspaces and g_all; 0 on failure. */
@@ -129,7 +117,7 @@ static void tolerance(void) {
   CHECK(scene_box(g_s, "top", 0, 2 - 2e-8, 1, 1, 1) == 3);
   double u[16] = {2, 0, 4, 0, 4, 2, 3.5, 2, 3.5, 1, 2.5, 1, 2.5, 2, 2, 2};
   for (int i = 0; i < 8; i++) u[2 * i + 1] += 1; /* a U on the base, x 2..4 */
-  CHECK(poly(g_s, "u", 8, u, 0) == 4);
+  CHECK(scene_polygon(g_s, "u", 8, u, 0) == 4);
   CHECK(scene_box(g_s, "in", 2.75, 2 - 1e-8, 0.5, 0.5, 1) == 5); /* sunk into its floor */
   CHECK(setup());
   CHECK(up(5) && !up(4));
@@ -280,7 +268,7 @@ static void blocker_order(void) {
 static void thin_wedges(void) {
   double b[6] = {0, 0, 2, 0, 2, 1}, c[6] = {0, 0, 2, 1, 2, 1.5};
   g_s = us_structure_new(2);
-  CHECK(poly(g_s, "b", 3, b, 0) == 0 && poly(g_s, "c", 3, c, 0) == 1);
+  CHECK(scene_polygon(g_s, "b", 3, b, 0) == 0 && scene_polygon(g_s, "c", 3, c, 0) == 1);
   CHECK(setup());
   CHECK(!up(0) && up(1));
   CHECK_INT(us_kinematics_up_pairs(g_up), ==, 1);
@@ -292,8 +280,8 @@ static void thin_wedges(void) {
 static void leaning(void) {
   double l[8] = {0, 0, 0.3, 0, 1, 1.75, 1, 2.25}, r[8] = {2, 0, 1, 2.25, 1, 1.75, 1.7, 0};
   g_s = us_structure_new(2);
-  CHECK(poly(g_s, "left", 4, l, 0) == 0);
-  CHECK(poly(g_s, "right", 4, r, 0) == 1);
+  CHECK(scene_polygon(g_s, "left", 4, l, 0) == 0);
+  CHECK(scene_polygon(g_s, "right", 4, r, 0) == 1);
   CHECK(setup());
   CHECK(up(0) && up(1) && fr(0) && fr(1));
   CHECK(free_dir_is(0, -sqrt(0.5), sqrt(0.5), PI / 2));
@@ -309,7 +297,7 @@ static void wedge(void) {
   double lb[8] = {0, 0, 2, 0, 1, 2, 0, 2}, rb[8] = {4, 0, 6, 0, 6, 2, 5, 2};
   double w[8] = {1.5, 1, 4.5, 1, 5, 2, 1, 2};
   g_s = us_structure_new(2);
-  CHECK(poly(g_s, "l", 4, lb, 0) == 0 && poly(g_s, "r", 4, rb, 0) == 1 && poly(g_s, "w", 4, w, 0) == 2);
+  CHECK(scene_polygon(g_s, "l", 4, lb, 0) == 0 && scene_polygon(g_s, "r", 4, rb, 0) == 1 && scene_polygon(g_s, "w", 4, w, 0) == 2);
   CHECK(setup());
   CHECK(up(2) && !up(0) && !up(1));
   CHECK_INT(us_kinematics_blocker(g_up, &g_all, 0), ==, 2);
@@ -320,7 +308,7 @@ static void wedge(void) {
   double dl[8] = {0, 0, 2, 0, 3, 2, 0, 2}, dr[8] = {5, 0, 7, 0, 7, 2, 4, 2};
   double key[8] = {2, 0, 5, 0, 4, 2, 3, 2};
   g_s = us_structure_new(2);
-  CHECK(poly(g_s, "l", 4, dl, 0) == 0 && poly(g_s, "r", 4, dr, 0) == 1 && poly(g_s, "k", 4, key, 0) == 2);
+  CHECK(scene_polygon(g_s, "l", 4, dl, 0) == 0 && scene_polygon(g_s, "r", 4, dr, 0) == 1 && scene_polygon(g_s, "k", 4, key, 0) == 2);
   CHECK(setup());
   CHECK(!up(2) && up(0) && up(1));
   CHECK_INT(us_kinematics_blocker(g_up, &g_all, 2), ==, 0); /* equal heights: lower index */
@@ -339,7 +327,7 @@ static void u_notch(void) {
   double u[16] = {0, 0, 3, 0, 3, 2, 2, 2, 2, 1, 1, 1, 1, 2, 0, 2};
   for (int tight = 1; tight >= 0; tight--) {
     g_s = us_structure_new(2);
-    CHECK(poly(g_s, "u", 8, u, 0) == 0);
+    CHECK(scene_polygon(g_s, "u", 8, u, 0) == 0);
     CHECK(tight ? scene_box(g_s, "b", 1, 1, 1, 0.5, 1) == 1 : scene_box(g_s, "b", 1.25, 1, 0.5, 0.5, 1) == 1);
     CHECK(setup());
     CHECK(up(1) && !up(0));
@@ -357,7 +345,7 @@ static void u_notch(void) {
 static void c_interlock(void) {
   double c[16] = {0, 0, 3, 0, 3, 0.5, 1, 0.5, 1, 1.5, 3, 1.5, 3, 2, 0, 2};
   g_s = us_structure_new(2);
-  CHECK(poly(g_s, "c", 8, c, 0) == 0);
+  CHECK(scene_polygon(g_s, "c", 8, c, 0) == 0);
   CHECK(scene_box(g_s, "b", 1.5, 0.5, 1, 0.5, 1) == 1);
   CHECK(setup());
   CHECK(!up(0) && !up(1));
@@ -460,7 +448,7 @@ static int mixed_scene(us_Structure *s, double k) {
     for (int j = 0; j < 2 * n; j++) xy[j] = k * polys[i][1 + j];
     char id[8];
     snprintf(id, sizeof id, "m%d", i);
-    if (poly(s, id, n, xy, 0) != i) return -1;
+    if (scene_polygon(s, id, n, xy, 0) != i) return -1;
   }
   return (int)(sizeof polys / sizeof polys[0]);
 }
@@ -569,9 +557,9 @@ static int add_shape(us_Structure *s, int *nb, double x0, double x1, double y0, 
   double tri[6] = {x0, y0, x1, y0, xm, y1}, l[12] = {x0, y0, x1, y0, x1, ym, xm, ym, xm, y1, x0, y1};
   double u[16] = {x0, y0, x1, y0, x1, y1, x1 - q, y1, x1 - q, ym, x0 + q, ym, x0 + q, y1, x0, y1};
   int r;
-  if (kind == 1) r = poly(s, id, 3, tri, 0);
-  else if (kind == 2) r = poly(s, id, 6, l, 0);
-  else if (kind == 3) r = poly(s, id, 8, u, 0);
+  if (kind == 1) r = scene_polygon(s, id, 3, tri, 0);
+  else if (kind == 2) r = scene_polygon(s, id, 6, l, 0);
+  else if (kind == 3) r = scene_polygon(s, id, 8, u, 0);
   else r = scene_box(s, id, x0, y0, x1 - x0, y1 - y0, 1);
   if (r != (*nb)++) return -1;
   if (kind != 3) return 1;

@@ -7,6 +7,7 @@
  * UTF-8) give a document libxml2 parses (libxml2 from scripts/deps.sh; the
  * case fails when the build did not find it). */
 #define _POSIX_C_SOURCE 200809L
+#include "scenes.h"
 #include "test.h"
 
 #include <unistd.h>
@@ -274,11 +275,7 @@ static void point_bodies(void) {
   int ok =
       us_structure_add_point_body(s, "p1", 1, c1, 0, &err) >= 0 &&
       us_structure_add_point_body(s, "p2", 1, c2, 0, &err) >= 0 &&
-      us_structure_add_body(
-          s,
-          &(us_BodyDef){
-              .id = "sq", .nvert = 4, .xy = sq, .density = 1, .friction = -1},
-          &err) >= 0;
+      scene_polygon(s, "sq", 4, sq, 0) >= 0;
   us_RenderSettings r = us_render_default_settings();
   us_Status st = tmp_path("points.svg", path, sizeof path) ? us_render_svg(s, &r, path, &err)
                                                            : US_ERR_IO;

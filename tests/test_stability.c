@@ -105,12 +105,7 @@ static void single_block(void) {
 static void overhanging_body(void) {
   us_Structure *s = us_structure_new(2);
   double xy[12] = {0, 0, 0.2, 0, 0.2, 0.2, 2, 0.2, 2, 0.4, 0, 0.4};
-  us_Error err;
-  CHECK(us_structure_add_body(
-            s,
-            &(us_BodyDef){
-                .id = "L", .nvert = 6, .xy = xy, .density = 1, .friction = -1},
-            &err) == 0);
+  CHECK(scene_polygon(s, "L", 6, xy, 0) == 0);
   CHECK(scene_seal(s));
   CHECK(s->bodies[0].com[0] > 0.5);
   CHECK_VERDICT(s, NULL, US_UNSTABLE);
@@ -167,21 +162,8 @@ static void inverted_v(void) {
     s->friction = k == 0 ? 0.5 : 0.0;
     double l[8] = {0, 0, 0.3, 0, 1, 2, 1, 2.4};
     double r[8] = {1.7, 0, 2, 0, 1, 2.4, 1, 2};
-    us_Error err;
-    CHECK(us_structure_add_body(s,
-                                &(us_BodyDef){.id = "left",
-                                              .nvert = 4,
-                                              .xy = l,
-                                              .density = 1,
-                                              .friction = -1},
-                                &err) == 0);
-    CHECK(us_structure_add_body(s,
-                                &(us_BodyDef){.id = "right",
-                                              .nvert = 4,
-                                              .xy = r,
-                                              .density = 1,
-                                              .friction = -1},
-                                &err) == 1);
+    CHECK(scene_polygon(s, "left", 4, l, 0) == 0);
+    CHECK(scene_polygon(s, "right", 4, r, 0) == 1);
     CHECK(scene_seal(s));
     CHECK(s->bodies[0].com[0] > 0.3 && s->bodies[1].com[0] < 1.7);
     CHECK_VERDICT(s, NULL, k == 0 ? US_STABLE : US_UNSTABLE);
@@ -193,15 +175,7 @@ static void inverted_v(void) {
 static us_Structure *pier_column(void) {
   us_Structure *s = us_structure_new(2);
   double pier[8] = {0, 0, 1, 0, 1, 1, 0, 1};
-  us_Error err;
-  us_structure_add_body(s,
-                        &(us_BodyDef){.id = "pier",
-                                      .nvert = 4,
-                                      .xy = pier,
-                                      .density = 1,
-                                      .fixed = 1,
-                                      .friction = -1},
-                        &err);
+  scene_polygon(s, "pier", 4, pier, 1);
   scene_box(s, "b1", 0, 1, 1, 1, 1);
   scene_box(s, "b2", 0, 2, 1, 1, 1);
   scene_box(s, "b3", 0.2, 3, 1, 1, 1);
@@ -420,15 +394,7 @@ static double rnd(void) {
 static us_Structure *small_wall(void) {
   us_Structure *s = us_structure_new(2);
   double pier[8] = {-1, 0, 4, 0, 4, 0.5, -1, 0.5};
-  us_Error err;
-  us_structure_add_body(s,
-                        &(us_BodyDef){.id = "pier",
-                                      .nvert = 4,
-                                      .xy = pier,
-                                      .density = 1,
-                                      .fixed = 1,
-                                      .friction = -1},
-                        &err);
+  scene_polygon(s, "pier", 4, pier, 1);
   char id[16];
   for (int r = 0; r < 3; r++)
     for (int c = 0; c < 3; c++) {

@@ -6,6 +6,7 @@
 #include "stability/backend.h"
 #include "stability/certificate.h"
 #include "stability/lp_gen.h"
+#include "scenes.h"
 #include "test.h"
 
 /* Point body of mass m at (cx, 0.5) on ground contacts at xl < xr. */
@@ -110,12 +111,7 @@ static void cone_and_sign(void) {
 
 static int add_box(us_Structure *s, const char *id, double x0, double y0, double w, double h) {
   double xy[8] = {x0, y0, x0 + w, y0, x0 + w, y0 + h, x0, y0 + h};
-  us_Error err;
-  return us_structure_add_body(
-      s,
-      &(us_BodyDef){
-          .id = id, .nvert = 4, .xy = xy, .density = 1, .friction = -1.0},
-      &err);
+  return scene_polygon(s, id, 4, xy, 0);
 }
 
 /* Solver forces of a 2 x 2 brick stack minus its top-right brick. */

@@ -12,6 +12,7 @@
 #include "stability/backend.h"
 #include "stability/certificate.h"
 #include "stability/lp_gen.h"
+#include "scenes.h"
 #include "test.h"
 
 static unsigned long rng_state = 2024;
@@ -25,12 +26,7 @@ static int add_box(us_Structure *s, double x0, double y0, double w, double h) {
   double xy[8] = {x0, y0, x0 + w, y0, x0 + w, y0 + h, x0, y0 + h};
   char id[24];
   snprintf(id, sizeof id, "b%d", s->nbody);
-  us_Error err;
-  return us_structure_add_body(
-      s,
-      &(us_BodyDef){
-          .id = id, .nvert = 4, .xy = xy, .density = 1, .friction = -1.0},
-      &err);
+  return scene_polygon(s, id, 4, xy, 0);
 }
 
 /* Verdicts of both backends on one workspace each. */
@@ -206,13 +202,7 @@ static void backends_agree_leaning(void) {
     double l[8] = {0, 0, foot, 0, 1, top, 1, top + ext};
     double r[8] = {2 - foot, 0, 2, 0, 1, top + ext, 1, top};
     us_Error err;
-    CHECK(us_structure_add_body(s,
-                                &(us_BodyDef){.id = "left",
-                                              .nvert = 4,
-                                              .xy = l,
-                                              .density = 1,
-                                              .friction = -1},
-                                &err) == 0);
+    CHECK(scene_polygon(s, "left", 4, l, 0) == 0);
     CHECK(us_structure_add_body(s,
                                 &(us_BodyDef){.id = "right",
                                               .nvert = 4,
