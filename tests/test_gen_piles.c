@@ -72,7 +72,7 @@ static int reference_outcome(const us_Structure *s, long *tests) {
 }
 
 #ifdef US_TEST_SANITIZED
-#define GEN_PILES 400 /* memory errors, not statistics (CMakeLists.txt) */
+#define GEN_PILES 100 /* memory errors, not statistics (CMakeLists.txt) */
 #else
 #define GEN_PILES 2000
 #endif
