@@ -678,6 +678,20 @@ static us_Structure *random_scene(int frictional) {
   return s;
 }
 
+/* One step of a walk from a random body: in the first half remove one
+ * while more than one is left (else add one), in the second add one back
+ * (or remove one when all are present); a single-body structure stays. */
+static void walk_step(us_Bitset *sub, int nbody, int first_half) {
+  int i = (int)(rnd() * nbody), left = us_bitset_count(sub);
+  int removing = first_half ? left > 1 : left == nbody;
+  if (!removing && left == nbody) return;
+  while (us_bitset_get(sub, i) != removing) i = (i + 1) % nbody;
+  if (removing)
+    us_bitset_clear(sub, i);
+  else
+    us_bitset_set(sub, i);
+}
+
 /* Walk of sub-assemblies: remove random bodies one at a time until a few
  * are left, then add some back, each step tested on all three methods
  * (persistent workspaces, so lcp-reuse reuses both ways). Returns the
@@ -697,16 +711,7 @@ static int walk(const us_Structure *s, us_Stability **ws, long *counts) {
     } else {
       counts[v[0]]++;
     }
-    int i = (int)(rnd() * s->nbody), left = us_bitset_count(&sub);
-    int removing = step < steps / 2 ? left > 1 : left == s->nbody;
-    if (removing)
-      while (!us_bitset_get(&sub, i)) i = (i + 1) % s->nbody;
-    else
-      while (us_bitset_get(&sub, i) && left < s->nbody) i = (i + 1) % s->nbody;
-    if (removing)
-      us_bitset_clear(&sub, i);
-    else
-      us_bitset_set(&sub, i);
+    walk_step(&sub, s->nbody, step < steps / 2);
   }
   us_bitset_free(&sub);
   return bad;
@@ -1083,14 +1088,7 @@ static int walk_infinite(const us_Structure *s, us_Stability **ws, long *counts,
       bad += v[0] < 0 || (v[k] != -1 && v[k] != v[0]);
     }
     if (v[0] >= 0) counts[v[0]]++;
-    int i = (int)(rnd() * s->nbody), left = us_bitset_count(&sub);
-    int removing = step < s->nbody ? left > 1 : left == s->nbody;
-    if (!removing && left == s->nbody) continue; /* a single body: nothing to add */
-    while (us_bitset_get(&sub, i) != removing) i = (i + 1) % s->nbody;
-    if (removing)
-      us_bitset_clear(&sub, i);
-    else
-      us_bitset_set(&sub, i);
+    walk_step(&sub, s->nbody, step < s->nbody);
   }
   us_bitset_free(&sub);
   return bad;
