@@ -75,7 +75,8 @@ static void names_and_defaults(void) {
   CHECK(strcmp(us_method_name(US_METHOD_LCP_REUSE), "lcp-reuse") == 0);
   CHECK(strcmp(us_verdict_name(US_UNSTABLE), "unstable") == 0);
   us_StabilitySettings d = us_stability_default_settings();
-  CHECK_INT(d.method, ==, US_METHOD_LP);
+  CHECK_INT(d.method, ==, US_METHOD_AUTO);
+  CHECK(strcmp(us_method_name(US_METHOD_AUTO), "auto") == 0);
   CHECK_NEAR(d.cert_tol, 1e-6, 0);
 }
 
@@ -266,7 +267,7 @@ static void floating_and_usage(void) {
   CHECK(us_stability_new(s, &set, &err) == NULL);
   CHECK_INT(err.code, ==, US_ERR_USAGE);
   set = us_stability_default_settings();
-  set.method = US_METHOD_COUNT;
+  set.method = (us_Method)(US_METHOD_AUTO + 1);
   CHECK(us_stability_new(s, &set, &err) == NULL);
   CHECK_INT(err.code, ==, US_ERR_USAGE);
   us_structure_free(s);
@@ -319,7 +320,7 @@ static void *liar_create(const us_Structure *s, const us_StabilitySettings *set,
 
 static void liar_destroy(void *ws) { us_backend_clp.destroy(ws); }
 
-static const us_Backend liar_backend = {US_METHOD_LP, liar_create, liar_destroy, liar_solve, NULL};
+static const us_Backend liar_backend = {US_METHOD_LP, liar_create, liar_destroy, liar_solve, NULL, NULL};
 
 static void never_stable_without_certificate(void) {
   us_Structure *s = two_blocks(0.0);
@@ -382,7 +383,7 @@ static us_Status spy_solve(void *ws, const us_EqSystem *sys, const int *added, i
                               info, note, note_sz, err);
 }
 
-static const us_Backend spy_backend = {US_METHOD_LP, spy_create, spy_destroy, spy_solve, NULL};
+static const us_Backend spy_backend = {US_METHOD_LP, spy_create, spy_destroy, spy_solve, NULL, NULL};
 
 static unsigned long rng_state = 12345;
 static double rnd(void) {

@@ -22,7 +22,7 @@ static const char help[] =
     "\n"
     "options:\n"
     "  --json            print one JSON object instead\n"
-    "  --method M        lp (CLP, default), lpsolve, lcp, lcp-reuse\n"
+    "  --method M        auto (default), lp (CLP), lpsolve, lcp, lcp-reuse, lp-lcp\n"
     "  --max-tests N     test limit of the top-down DFS (default 20000; 0: none)\n"
     "  --time-limit S    seconds for each search of top-down, sequence and group\n"
     "                    (default 60; 0: none); a class cut there is unknown\n"
@@ -230,7 +230,7 @@ static void text_count(const us_Classification *c) {
 }
 
 static void print_text(const us_Structure *s, const us_Classification *c, const ClassifyArgs *a) {
-  const char *method = us_method_name(a->set.stability.method);
+  const char *method = us_method_name(us_method_resolve(a->set.stability.method, s));
   text_stands(s, c, method);
   text_friction(c);
   text_strong_weak(c);
@@ -306,7 +306,7 @@ static void print_json(const us_Structure *s, const us_Classification *c, const 
   printf("{\"file\": ");
   put_string(a->file);
   printf(", \"method\": \"%s\", \"bodies\": %d, \"contacts\": %d, \"stands\": %s, "
-         "\"stands_undecided\": %s, \"unstable_body\": ", us_method_name(a->set.stability.method),
+         "\"stands_undecided\": %s, \"unstable_body\": ", us_method_name(us_method_resolve(a->set.stability.method, s)),
          c->nbody, s->ncontact, json_bool(c->stands), json_bool(c->stands_undecided));
   json_body_or_null(s, c->unstable_body);
   json_friction(c);

@@ -13,7 +13,7 @@ static const char help[] =
     "\n"
     "options:\n"
     "  -o, --output PLAN   write the plan file (also when no order exists)\n"
-    "  --method M          lp (CLP, default), lpsolve, lcp, lcp-reuse\n"
+    "  --method M          auto (default), lp (CLP), lpsolve, lcp, lcp-reuse, lp-lcp\n"
     "  --search S          assemble (default): greedy assembly from the ground,\n"
     "                      complete by the union theorem (at most n(n+1)/2 tests;\n"
     "                      'none' is a proof); dfs, bfs: the source's searches of\n"
@@ -91,7 +91,7 @@ static void print_summary(const us_Structure *s, const us_Plan *p, const CliComm
     printf(": %d removals in %d step%s of up to %d bodies", p->nsteps, p->ngroups,
            p->ngroups == 1 ? "" : "s", p->max_group);
   printf(", %ld tests (%ld unstable, %ld revisited), %.3f s [%s, %s", st->tests, st->unstable,
-         st->revisited, st->time_total, us_method_name(c->stab.method),
+         st->revisited, st->time_total, us_method_name(us_method_resolve(c->stab.method, s)),
          us_search_name(c->plan.search));
   if (c->plan.search != US_SEARCH_ASSEMBLE)
     printf(", %s, %s", us_order_name(c->plan.order), us_direction_name(c->plan.direction));

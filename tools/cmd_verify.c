@@ -12,7 +12,7 @@ static const char help[] =
     "the solver. Names the first step after which the remainder does not stand.\n"
     "\n"
     "options:\n"
-    "  --method M        lp (CLP, default), lpsolve, lcp, lcp-reuse\n"
+    "  --method M        auto (default), lp (CLP), lpsolve, lcp, lcp-reuse, lp-lcp\n"
     "  --contact-tol T   contact detection tolerance (default 1e-6 x size)\n"
     "\n"
     "exit: 0 every step stands and all bodies are removed, 1 not, 2 usage or input\n"

@@ -254,12 +254,18 @@ US_API us_Status us_structure_detect_contacts(us_Structure *s, const us_ContactS
 /* --------------------------------------------------------------- stability */
 
 typedef enum us_Method {
-  US_METHOD_LP = 0,     /* statics LP, CLP (default) */
+  US_METHOD_LP = 0,     /* statics LP, CLP */
   US_METHOD_LPSOLVE,    /* statics LP, lp_solve 5.5, from scratch */
   US_METHOD_LCP,        /* Baraff/Dantzig LCP from scratch */
   US_METHOD_LCP_REUSE,  /* LCP with computation reuse */
-  US_METHOD_COUNT
+  US_METHOD_LP_LCP,     /* the statics LP as one LCP, Lemke's method with reuse */
+  US_METHOD_COUNT,      /* number of concrete methods */
+  US_METHOD_AUTO = US_METHOD_COUNT /* (default) the fastest exact method for the
+                                      structure (us_method_resolve) */
 } us_Method;
+/* The concrete method `auto` stands for on structure s (others map to
+ * themselves). */
+US_API us_Method us_method_resolve(us_Method m, const us_Structure *s);
 US_API const char *us_method_name(us_Method m);
 US_API int us_method_parse(const char *name, us_Method *out); /* 0 ok, -1 unknown */
 
@@ -357,6 +363,9 @@ US_API void us_stability_free(us_Stability *w);
 US_API us_Status us_stability_test(us_Stability *w, const us_Bitset *present, us_StabilityResult *res,
                             us_Error *err);
 US_API const us_StabilityInfo *us_stability_info(const us_Stability *w);
+/* Tests that run past `deadline` (a us_now() time; 0: none) stop inside
+ * the solver and answer US_UNDECIDED with a note saying so. */
+US_API void us_stability_set_deadline(us_Stability *w, double deadline);
 /* Test the whole structure (every movable body present). */
 US_API us_Status us_stability_test_full(us_Stability *w, us_StabilityResult *res, us_Error *err);
 

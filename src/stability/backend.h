@@ -31,12 +31,17 @@ typedef struct us_Backend {
    * backend's evidence points at (e.g. largest virtual motion in a Farkas
    * ray), else -1. */
   int (*unstable_body)(void *ws);
+  /* Optional (NULL: the backend's solves are short). Solves that run past
+   * `deadline` (us_now() seconds; 0: none) stop and return US_OK with
+   * verdict US_UNDECIDED and a note that says "time limit". */
+  void (*set_deadline)(void *ws, double deadline);
 } us_Backend;
 
 extern const us_Backend us_backend_clp;     /* lp_clp.c */
 extern const us_Backend us_backend_lpsolve; /* lp_lpsolve.c */
 extern const us_Backend us_backend_lcp;     /* lcp_backend.c (from scratch) */
 extern const us_Backend us_backend_lcp_reuse;
+extern const us_Backend us_backend_lp_lcp;   /* lp_lcp.c */
 
 /* A workspace on a given backend (tests, benchmarks); us_stability_new picks
  * the backend from set->method. */

@@ -405,7 +405,17 @@ static us_Status lcp_solve(void *ws, const us_EqSystem *sys, const int *added, i
 
 static int lcp_unstable_body(void *ws) { return ((LcpWs *)ws)->last_body; }
 
-const us_Backend us_backend_lcp = {US_METHOD_LCP, create_scratch, lcp_destroy, lcp_solve,
-                                   lcp_unstable_body};
-const us_Backend us_backend_lcp_reuse = {US_METHOD_LCP_REUSE, create_reuse, lcp_destroy, lcp_solve,
-                                         lcp_unstable_body};
+const us_Backend us_backend_lcp = {
+    .method = US_METHOD_LCP,
+    .create = create_scratch,
+    .destroy = lcp_destroy,
+    .solve = lcp_solve,
+    .unstable_body = lcp_unstable_body,
+};
+const us_Backend us_backend_lcp_reuse = {
+    .method = US_METHOD_LCP_REUSE,
+    .create = create_reuse,
+    .destroy = lcp_destroy,
+    .solve = lcp_solve,
+    .unstable_body = lcp_unstable_body,
+};

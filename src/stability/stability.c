@@ -43,20 +43,27 @@ struct us_Stability {
   unsigned char *held;     /* [nbody] row blocks touched by some contact */
   unsigned char *seen;     /* certificate scratch: ncontact */
   us_StabilityInfo info;
+  double deadline;         /* us_now() time; 0: none */
 };
 
 /* ------------------------------------------------------------ small API */
 
-static const char *const method_names[US_METHOD_COUNT] = {"lp", "lpsolve", "lcp", "lcp-reuse"};
+static const char *const method_names[US_METHOD_COUNT + 1] = {"lp",        "lpsolve", "lcp",
+                                                              "lcp-reuse", "lp-lcp",  "auto"};
 
 const char *us_method_name(us_Method m) {
-  if ((int)m < 0 || m >= US_METHOD_COUNT) return "unknown";
+  if ((int)m < 0 || m > US_METHOD_AUTO) return "unknown";
   return method_names[m];
+}
+
+us_Method us_method_resolve(us_Method m, const us_Structure *s) {
+  US_UNUSED(s);
+  return m == US_METHOD_AUTO ? US_METHOD_LP : m;
 }
 
 int us_method_parse(const char *name, us_Method *out) {
   if (!name) return -1;
-  for (int m = 0; m < US_METHOD_COUNT; m++) {
+  for (int m = 0; m <= US_METHOD_AUTO; m++) {
     if (strcmp(name, method_names[m]) == 0) {
       if (out) *out = (us_Method)m;
       return 0;
@@ -108,7 +115,7 @@ us_LpSettings us_lp_settings_resolve(const us_LpSettings *in) {
 us_StabilitySettings us_stability_default_settings(void) {
   us_StabilitySettings s;
   memset(&s, 0, sizeof s);
-  s.method = US_METHOD_LP;
+  s.method = US_METHOD_AUTO;
   s.cert_tol = CERT_TOL;
   s.max_pivots = 0;
   s.verbose = 0;
@@ -146,6 +153,12 @@ int us_active_contacts(const us_Structure *s, const us_Bitset *present, int *idx
 
 const us_StabilityInfo *us_stability_info(const us_Stability *w) { return &w->info; }
 
+void us_stability_set_deadline(us_Stability *w, double deadline) {
+  if (!w) return;
+  w->deadline = deadline > 0 ? deadline : 0;
+  if (w->be->set_deadline) w->be->set_deadline(w->bws, w->deadline);
+}
+
 /* ------------------------------------------------------------ workspace */
 
 static const us_Backend *backend_of(us_Method m) {
@@ -154,7 +167,7 @@ static const us_Backend *backend_of(us_Method m) {
   case US_METHOD_LPSOLVE: return &us_backend_lpsolve;
   case US_METHOD_LCP: return &us_backend_lcp;
   case US_METHOD_LCP_REUSE: return &us_backend_lcp_reuse;
-  default: return NULL;
+  default: return NULL; /* US_METHOD_LP_LCP: not built yet */
   }
 }
 
@@ -234,11 +247,17 @@ us_Stability *us_stability_new(const us_Structure *s, const us_StabilitySettings
                                us_Error *err) {
   us_StabilitySettings def = us_stability_default_settings();
   if (!set) set = &def;
-  if ((int)set->method < 0 || set->method >= US_METHOD_COUNT) {
+  if ((int)set->method < 0 || set->method > US_METHOD_AUTO) {
     us_error_set(err, US_ERR_USAGE, "stability: unknown method %d", (int)set->method);
     return NULL;
   }
-  return us_stability_new_backend(s, set, backend_of(set->method), err);
+  if (!s || !s->finalized) {
+    us_error_set(err, US_ERR_USAGE, "stability: the structure is not finalized");
+    return NULL;
+  }
+  us_StabilitySettings r = *set;
+  r.method = us_method_resolve(set->method, s);
+  return us_stability_new_backend(s, &r, backend_of(r.method), err);
 }
 
 /* ----------------------------------------------------------------- test */
