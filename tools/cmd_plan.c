@@ -61,6 +61,7 @@ static void print_stats(const us_PlanStats *st) {
          "reused %ld\n",
          st->memo_bytes, st->stability.pivots, st->stability.lp_fallbacks,
          st->stability.lcp_seeds, st->stability.lcp_skips, st->stability.reused);
+  cli_print_local_stats(&st->stability);
 }
 
 /* Up to `max` ids of a list, then "and N more". */

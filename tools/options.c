@@ -75,3 +75,20 @@ us_Structure *cli_load(const char *cmd, const char *path, const CliCommon *c) {
   if (!s) cli_error(cmd, &err);
   return s;
 }
+
+void cli_print_local_stats(const us_StabilityInfo *in) {
+  long settled = in->local_stable + in->local_unstable;
+  if (settled + in->local_global == 0) return;
+  printf("  local tests: %ld stable, %ld unstable, %ld on the full system; %ld region LPs, "
+         "mean region %.1f bodies\n",
+         in->local_stable, in->local_unstable, in->local_global, in->local_lps,
+         settled ? (double)in->local_region_bodies / (double)settled : 0.0);
+  printf("  settled by region size:");
+  for (int k = 0; k < US_LOCAL_BUCKETS; k++)
+    if (in->local_settled[k])
+      printf(" %d-%d: %.1f%%", k ? 1 << k : 0, (1 << (k + 1)) - 1,
+             100.0 * (double)in->local_settled[k] / (double)(settled + in->local_global));
+  if (in->local_global)
+    printf(" full: %.1f%%", 100.0 * (double)in->local_global / (double)(settled + in->local_global));
+  printf("\n");
+}

@@ -17,6 +17,8 @@ void cli_common_init(CliCommon *c);
 typedef const char *(*CliWord)(int i);
 int cli_unknown(const char *cmd, const char *what, const char *value, CliWord word);
 const char *cli_method_word(int i);
+/* The local-test statistics lines of --stats (nothing when none ran). */
+void cli_print_local_stats(const us_StabilityInfo *in);
 const char *cli_search_word(int i);
 const char *cli_order_word(int i);
 const char *cli_direction_word(int i);

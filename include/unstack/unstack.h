@@ -299,6 +299,10 @@ typedef struct us_StabilitySettings {
   int max_pivots;     /* LCP pivot limit; <= 0: automatic */
   int verbose;
   us_LpSettings lp;   /* the LP backends (us_lp_default_settings) */
+  int local;          /* exact local tests (docs/local.md) for lp and auto:
+                         0 (default) or 1 on, -1 off */
+  int skip_forces;    /* 1: a stable result carries its check but no forces
+                         (res->forces empty; the planner's searches) */
 } us_StabilitySettings;
 /* Defaults; us_stability_new and us_stability_test expect settings that
  * started from here (or a zeroed struct: zero LP fields mean defaults). */
@@ -325,6 +329,7 @@ typedef struct us_CertCheck {
   int worst_contact;           /* contact with the largest violation, or -1 */
 } us_CertCheck;
 
+#define US_LOCAL_BUCKETS 16
 typedef struct us_StabilityInfo {
   long tests;            /* tests run by this workspace */
   long pivots;           /* LCP pivots (total) */
@@ -334,6 +339,14 @@ typedef struct us_StabilityInfo {
   long reused;           /* tests that started from the previous solution */
   double solve_time;     /* seconds in the backend */
   double check_time;     /* seconds re-checking certificates */
+  /* local tests (docs/local.md) */
+  long local_stable;     /* tests proven stable on a region */
+  long local_unstable;   /* tests proven unstable on a region */
+  long local_global;     /* tests handed to the full system */
+  long local_lps;        /* region LPs solved */
+  long local_region_bodies; /* sum of the deciding regions' sizes */
+  long local_settled[US_LOCAL_BUCKETS]; /* tests settled by a region of
+                            2^k .. 2^(k+1) - 1 bodies (bucket 0: 0 or 1) */
 } us_StabilityInfo;
 
 typedef struct us_StabilityResult {

@@ -21,6 +21,7 @@
 #include "assemble.h"
 #include "exact.h"
 #include "hook.h"
+#include "stability/backend.h"
 #include "order.h"
 #include "rules.h"
 #include "searches.h"
@@ -106,6 +107,7 @@ static us_Status ctx_init(us_SearchCtx *ctx, const us_Structure *s, const us_Pla
   if (set->removal != US_REMOVAL_ANY && !(ctx->kin = us_kinematics_new(s, set->removal, err)))
     return err && err->code ? err->code : US_ERR_NOMEM;
   ctx->stab = us_stability_new(s, &set->stability, err);
+  if (ctx->stab) us_stability_set_skip_forces(ctx->stab, 1); /* verdicts only */
   return ctx->stab ? US_OK : (err && err->code ? err->code : US_ERR_NOMEM);
 }
 
@@ -194,6 +196,19 @@ static int exact_for(us_SearchCtx *ctx, int K, us_Plan *out, us_Error *err) {
   return r;
 }
 
+#define ASM_UNSTABLE (-4) /* the full structure does not stand */
+
+/* The full structure's test, once: the assembly search only needs it when
+ * the greedy is stuck (a completed assembly proves it stands). 1 stands,
+ * ASM_UNSTABLE, or < 0 (error, limit). */
+static int full_stands(us_SearchCtx *ctx, us_Error *err) {
+  if (ctx->full_stable) return 1;
+  int r = us_plan_test(ctx, &ctx->full, err);
+  if (r < 0) return r;
+  ctx->full_stable = r;
+  return r ? 1 : ASM_UNSTABLE;
+}
+
 /* Steps of at most K: the greedy, then (stuck) the exact decision. */
 static int assemble_with(us_SearchCtx *ctx, int K, us_Plan *out, us_Error *err) {
   us_Assembly a;
@@ -203,6 +218,10 @@ static int assemble_with(us_SearchCtx *ctx, int K, us_Plan *out, us_Error *err) 
   if (r == 0) st = report_stuck(ctx, &a.built, out, err);
   us_assembly_free(&a);
   if (st) return -1;
+  if (r == 0) {
+    r = full_stands(ctx, err);
+    if (r == 1) r = 0;
+  }
   if (r == 0) r = exact_for(ctx, K, out, err);
   if (r == 0) out->max_group = K;
   return r;
@@ -224,13 +243,13 @@ static int run_assemble(us_SearchCtx *ctx, us_Plan *out, us_Error *err) {
   int top = ctx->set->max_group > 0 ? K : US_MIN(largest_component(ctx), 64);
   int r = 0;
   for (; K <= top && r == 0; K++) r = assemble_with(ctx, K, out, err);
-  if (r == 1 && out->buildable) {
+  if ((r == 1 || r == ASM_UNSTABLE) && out->buildable) {
     us_free(out->buildable);
     us_free(out->blocked);
     out->buildable = out->blocked = NULL;
     out->nbuildable = out->nblocked = 0;
   }
-  return r == 1 ? US_PLAN_FOUND : r == 0 ? US_PLAN_NONE : r;
+  return r == 1 ? US_PLAN_FOUND : r == 0 ? US_PLAN_NONE : r == ASM_UNSTABLE ? US_PLAN_UNSTABLE : r;
 }
 
 /* ------------------------------------------------------ graph searches */
@@ -330,16 +349,19 @@ static us_Status copy_forces(us_Forces *dst, const us_Forces *src, int dim, us_E
   return US_OK;
 }
 
-/* certs[k]: forces of the structure before step k. */
+/* certs[k]: forces of the structure before step k. Walked from the empty
+ * structure up (each test adds one step, so local tests apply; the full
+ * structure comes last). */
 static us_Status collect_certificates(us_SearchCtx *ctx, us_Plan *out, us_Error *err) {
   out->certs = us_calloc((size_t)out->ngroups + 1, sizeof(us_Forces));
   if (!out->certs) return us_error_set(err, US_ERR_NOMEM, "out of memory");
   us_Bitset node = {0};
-  if (us_bitset_copy(&node, &ctx->full)) return us_error_set(err, US_ERR_NOMEM, "out of memory");
+  if (us_bitset_init(&node, ctx->s->nbody)) return us_error_set(err, US_ERR_NOMEM, "out of memory");
+  us_stability_set_skip_forces(ctx->stab, 0);
   us_Status st = US_OK;
-  for (int k = 0; k <= out->ngroups && !st; k++) {
-    for (int q = k > 0 ? out->group_start[k - 1] : 0; k > 0 && q < out->group_start[k]; q++)
-      us_bitset_clear(&node, out->order[q]);
+  for (int k = out->ngroups; k >= 0 && !st; k--) {
+    for (int q = k < out->ngroups ? out->group_start[k] : 0; k < out->ngroups && q < out->group_start[k + 1]; q++)
+      us_bitset_set(&node, out->order[q]);
     st = us_plan_stability_test(ctx->stab, &node, &ctx->res, err);
     ctx->st->tests++;
     if (!st && ctx->res.verdict != US_STABLE)
@@ -372,7 +394,9 @@ static int downgrade(const us_SearchCtx *ctx, int r) {
 /* The search after set-up: the full structure's test, then the search;
  * a status, or < 0 (err set). */
 static int run(us_SearchCtx *ctx, us_Plan *out, double *t_search, us_Error *err) {
-  int full = us_plan_test(ctx, &ctx->full, err);
+  /* the assembly search starts from the empty set and tests the full
+   * structure only if it gets stuck */
+  int full = ctx->set->search == US_SEARCH_ASSEMBLE ? 1 : us_plan_test(ctx, &ctx->full, err);
   out->stats.time_setup = us_now() - ctx->t_start;
   *t_search = us_now();
   int r = full < 0 ? full : full == 0 ? US_PLAN_UNSTABLE : run_search(ctx, out, err);

@@ -59,6 +59,7 @@ typedef struct us_SearchCtx {
   long exact_end;       /* an exact decision stops when tests reach this (0: none) */
   struct us_Exact *exact; /* greedy rule: exact buildability memo (K = 1) */
   int root_live;        /* greedy rule: the part's root can be emptied */
+  int full_stable;      /* the full structure tested stable */
   uint64_t rng;         /* random search */
 } us_SearchCtx;
 

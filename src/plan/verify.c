@@ -1,11 +1,13 @@
 /* Plan verification: re-test the full structure and the remainder after
  * every removal with a fresh stability workspace, each verdict carrying its
- * re-checked certificate. The first removal after which the remainder does
- * not stand is reported; an order that leaves bodies in place is
- * incomplete. A test that cannot be decided (us_Verdict US_UNDECIDED) is
- * neither: the walk notes the first and goes on, since a later remainder
- * that falls still proves the order invalid; when none falls the answer
- * is undecided, never "valid" and never "does not stand". Input mistakes
+ * re-checked certificate. The remainders are tested from the last one up
+ * (each adds one step: local tests, no from-scratch solve of the whole).
+ * The first removal after which the remainder does not stand is reported;
+ * an order that leaves bodies in place is incomplete. A test that cannot
+ * be decided (us_Verdict US_UNDECIDED) is neither: the first one in
+ * removal order is noted, and a remainder that falls after it still
+ * proves the order invalid; when none falls the answer is undecided,
+ * never "valid" and never "does not stand". Input mistakes
  * in the order (unknown, fixed or repeated bodies) are errors, not
  * outcomes. Every entry point accepts a NULL error pointer. */
 #include "core/core.h"
@@ -40,39 +42,50 @@ static void note_step(us_VerifyReport *rep, const us_StabilityResult *res) {
     rep->max_torque_residual = res->check.max_torque_residual;
 }
 
-/* The first undecided test: where and why. */
-static void note_undecided(us_VerifyReport *rep, const us_StabilityResult *res, int k,
-                           int *seen) {
-  if ((*seen)++) return;
-  rep->undecided_step = k;
-  snprintf(rep->note, sizeof rep->note, "%s", res->note[0] ? res->note : "no reason given");
+/* Step k's bodies (k >= 0) back into node. */
+static void put_back(us_Bitset *node, const int *order, const int *gs, int k) {
+  for (int q = gs ? gs[k] : k; q < (gs ? gs[k + 1] : k + 1); q++) us_bitset_set(node, order[q]);
 }
 
-/* Walk the order step by step (gs: step offsets, NULL: one body a step);
- * stops at the first remainder that does not stand. An undecided test is
- * noted and the walk goes on: a later fall still proves the order invalid. */
+/* Test every remainder, from the last one up to the full structure (each
+ * test adds one step to the previous one, so the stability workspace's
+ * local tests apply and the full structure is never solved from
+ * scratch). The answer is the one of a walk down the order: the first
+ * step (smallest k) after which the remainder falls, else the first
+ * undecided test, else valid. node: the full structure on entry. */
 static us_Status walk(us_Stability *w, us_Bitset *node, const int *order, const int *gs,
                       int nsteps, us_VerifyReport *rep, us_StabilityResult *res, us_Error *err) {
-  int undecided = 0;
-  for (int k = -1; k < nsteps; k++) {
-    for (int q = k < 0 ? 0 : gs ? gs[k] : k; k >= 0 && q < (gs ? gs[k + 1] : k + 1); q++)
-      us_bitset_clear(node, order[q]);
+  for (int k = 0; k < nsteps; k++)
+    for (int q = gs ? gs[k] : k; q < (gs ? gs[k + 1] : k + 1); q++) us_bitset_clear(node, order[q]);
+  int left = us_bitset_count(node), failed = nsteps, undecided = nsteps;
+  for (int k = nsteps - 1; k >= -1; k--) {
+    if (k < nsteps - 1) put_back(node, order, gs, k + 1);
     us_Status st = us_plan_stability_test(w, node, res, err);
     if (st) return st;
     note_step(rep, res);
-    if (res->verdict == US_UNDECIDED) note_undecided(rep, res, k, &undecided);
+    if (res->verdict == US_UNDECIDED) {
+      undecided = k;
+      snprintf(rep->note, sizeof rep->note, "%s", res->note[0] ? res->note : "no reason given");
+    }
     if (res->verdict == US_UNSTABLE) {
-      rep->full_unstable = k < 0;
-      rep->failed_step = k < 0 ? -1 : k;
+      failed = k;
       rep->remaining = us_bitset_count(node);
       rep->unstable_body = res->unstable_body;
-      return US_OK;
     }
   }
-  rep->remaining = us_bitset_count(node);
-  rep->incomplete = rep->remaining > 0;
-  rep->undecided = undecided && !rep->incomplete;
-  rep->ok = !rep->incomplete && !undecided;
+  if (failed < nsteps) {
+    rep->full_unstable = failed < 0;
+    rep->failed_step = failed < 0 ? -1 : failed;
+  } else {
+    rep->remaining = left;
+    rep->incomplete = left > 0;
+  }
+  /* an undecided test matters only before the first fall, in removal order */
+  int und = undecided < failed && undecided < nsteps;
+  if (und) rep->undecided_step = undecided;
+  else rep->note[0] = '\0';
+  rep->undecided = und && failed == nsteps && !rep->incomplete;
+  rep->ok = failed == nsteps && !rep->incomplete && !und;
   return US_OK;
 }
 

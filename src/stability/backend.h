@@ -48,4 +48,8 @@ extern const us_Backend us_backend_lp_lcp;   /* lp_lcp.c */
 us_Stability *us_stability_new_backend(const us_Structure *s, const us_StabilitySettings *set,
                                        const us_Backend *be, us_Error *err);
 
+/* Whether stable results carry their forces (the planner's searches skip
+ * them; us_StabilitySettings.skip_forces sets the initial value). */
+void us_stability_set_skip_forces(us_Stability *w, int skip);
+
 #endif

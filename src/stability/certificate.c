@@ -77,18 +77,22 @@ double us_cone_distance(double fn, double ft, double mu) {
   return ft * c - fn * s;                             /* nearest point on the edge */
 }
 
-/* Add normalized force F at p to body i's accumulator (force, torque
- * about com / L). */
-static void push(const us_Structure *s, const Units *u, double *acc, int i, const double *p,
-                 const double *F, double sign) {
-  if (!side_moves(s, i)) return;
+/* Add normalized force F at p to body i's accumulator a (6 values: force,
+ * torque about com / L). */
+static void push_at(const us_Structure *s, const Units *u, double *a, int i, const double *p,
+                    const double *F, double sign) {
   const double *c = s->bodies[i].com;
   double r[3] = {(p[0] - c[0]) * u->inv_l, (p[1] - c[1]) * u->inv_l, (p[2] - c[2]) * u->inv_l};
-  double *a = acc + 6 * (size_t)i;
   for (int j = 0; j < 3; j++) a[j] += sign * F[j];
   a[3] += sign * (r[1] * F[2] - r[2] * F[1]);
   a[4] += sign * (r[2] * F[0] - r[0] * F[2]);
   a[5] += sign * (r[0] * F[1] - r[1] * F[0]);
+}
+
+/* The same into the accumulator of body i among all bodies' (acc). */
+static void push(const us_Structure *s, const Units *u, double *acc, int i, const double *p,
+                 const double *F, double sign) {
+  if (side_moves(s, i)) push_at(s, u, acc + 6 * (size_t)i, i, p, F, sign);
 }
 
 /* Cone and sign measures of one force (normalized); F gets the normalized
@@ -195,6 +199,52 @@ int us_certificate_check_buf(const us_Structure *s, const us_Bitset *present,
          r.max_cone_violation <= tol && r.max_sign_violation <= tol;
   *out = r;
   return 0;
+}
+
+/* One listed body of the local check: its residual with every active
+ * contact touching it, and the cones of those contacts, into r. */
+static void check_one_body(const us_Structure *s, const Units *u, const us_Bitset *present, int i,
+                           const int *inc_start, const int *inc, const double *fc,
+                           us_CertCheck *r) {
+  double acc[6] = {0, 0, 0, 0, 0, 0};
+  for (int m = inc_start[i]; m < inc_start[i + 1]; m++) {
+    int c = inc[m];
+    if (!usable(s, present, c)) continue;
+    const us_Contact *k = &s->contacts[c];
+    double F[3], cone, sign;
+    if (one_force(s, u, k, fc + (size_t)c * (size_t)s->dim, F, &cone, &sign)) {
+      cone = sign = INFINITY;
+      F[0] = F[1] = F[2] = 0.0;
+    }
+    push_at(s, u, acc, i, k->p, F, i == k->b ? 1.0 : -1.0);
+    if (cone + sign > r->max_cone_violation + r->max_sign_violation) r->worst_contact = c;
+    r->max_cone_violation = US_MAX(r->max_cone_violation, cone);
+    r->max_sign_violation = US_MAX(r->max_sign_violation, sign);
+  }
+  double share = s->bodies[i].mass / u->m;
+  double G[3] = {acc[0] + share * u->gdir[0], acc[1] + share * u->gdir[1],
+                 acc[2] + share * u->gdir[2]};
+  double fr = norm3(G), tr = norm3(acc + 3);
+  if (!isfinite(fr) || !isfinite(tr)) fr = tr = INFINITY;
+  if (fr + tr > r->max_force_residual + r->max_torque_residual) r->worst_body = i;
+  r->max_force_residual = US_MAX(r->max_force_residual, fr);
+  r->max_torque_residual = US_MAX(r->max_torque_residual, tr);
+}
+
+void us_certificate_check_bodies(const us_Structure *s, const us_Bitset *present,
+                                 const int *bodies, int nb, const int *inc_start, const int *inc,
+                                 const double *fc, double tol, us_CertCheck *out) {
+  us_CertCheck r;
+  memset(&r, 0, sizeof r);
+  r.worst_body = r.worst_contact = -1;
+  Units u = units_of(s);
+  u.inv_w = 1.0; /* fc is normalized already */
+  for (int q = 0; q < nb; q++)
+    if (side_moves(s, bodies[q]) && us_bitset_get(present, bodies[q]))
+      check_one_body(s, &u, present, bodies[q], inc_start, inc, fc, &r);
+  r.ok = r.max_force_residual <= tol && r.max_torque_residual <= tol &&
+         r.max_cone_violation <= tol && r.max_sign_violation <= tol;
+  *out = r;
 }
 
 us_CertCheck us_certificate_check(const us_Structure *s, const us_Bitset *present,

@@ -12,6 +12,16 @@ int us_certificate_check_buf(const us_Structure *s, const us_Bitset *present,
                              const us_Forces *f, double tol, double *acc, unsigned char *seen,
                              us_CertCheck *out);
 
+/* The local re-check of the local tests (local.c), with the same
+ * measures: the equilibrium of each listed present movable body under the
+ * forces fc (normalized by the total weight; dim components per
+ * structure contact, read for the active contacts only), every active
+ * contact touching it counted, and the cone and sign of those contacts.
+ * inc_start / inc list the contacts of each body. */
+void us_certificate_check_bodies(const us_Structure *s, const us_Bitset *present,
+                                 const int *bodies, int nb, const int *inc_start, const int *inc,
+                                 const double *fc, double tol, us_CertCheck *out);
+
 /* Euclidean distance of the 2D/3D contact force (f_n, |f_t|) from the cone
  * |f_t| <= mu f_n (mu = INFINITY: the half-space f_n >= 0). It does not
  * grow with mu: a force just outside a wide cone is just outside it. */

@@ -38,8 +38,11 @@ int us_eq_init(us_EqSystem *e, const us_Structure *s) {
   for (int j = 0; j < 3; j++) e->gdir[j] = g > 0 && isfinite(g) ? s->gravity[j] / g : 0.0;
   e->length_scale = s->scale > 0 ? s->scale : 1.0;
   /* row_of_body has a fixed size: allocate it now */
-  e->row_of_body = us_malloc((size_t)(s->nbody > 0 ? s->nbody : 1) * sizeof(int));
-  return e->row_of_body ? 0 : -1;
+  size_t nb = (size_t)(s->nbody > 0 ? s->nbody : 1);
+  e->row_of_body = us_malloc(nb * sizeof(int));
+  if (!e->row_of_body) return -1;
+  for (size_t i = 0; i < nb; i++) e->row_of_body[i] = -1;
+  return 0;
 }
 
 void us_eq_free(us_EqSystem *e) {
@@ -365,4 +368,70 @@ int us_eq_gen_farkas_body(const us_EqSystem *e, const us_EqGen *g, const double 
     }
   }
   return best;
+}
+
+/* ------------------------------------------------------ region systems */
+
+/* Forget the rows of the previous build (row_of_body back to all -1). */
+static void clear_rows(us_EqSystem *e) {
+  for (int r = 0; r < e->nbody; r++) e->row_of_body[e->body[r]] = -1;
+  e->nbody = 0;
+}
+
+/* Rows of the region's bodies, in the order given, with their gravity. */
+static void number_region(us_EqSystem *e, const int *reg, int nreg) {
+  for (int q = 0; q < nreg; q++) {
+    int i = reg[q], r = e->nbody++;
+    e->row_of_body[i] = r;
+    e->body[r] = i;
+    double *rhs = e->rhs + (size_t)r * (size_t)e->nw;
+    memset(rhs, 0, (size_t)e->nw * sizeof(double));
+    double share = e->s->bodies[i].mass / e->mass_total;
+    for (int j = 0; j < e->dim; j++) rhs[j] = -share * e->gdir[j];
+  }
+}
+
+/* Move the known force fb (dim components) of contact c on row body u to
+ * the right-hand side: rhs_u -= wrench of fb on u. */
+static void fold_fixed(us_EqSystem *e, int u, int c, const double *fb) {
+  const us_Contact *k = &e->s->contacts[c];
+  double sign = u == k->a ? -1.0 : 1.0, w[6];
+  double *rhs = e->rhs + (size_t)e->row_of_body[u] * (size_t)e->nw;
+  for (int comp = 0; comp < e->dim; comp++) {
+    if (fb[comp] == 0.0) continue;
+    unit_wrench(e, u, k->p, comp == 0 ? k->n : k->t[comp - 1], sign, w);
+    for (int r = 0; r < e->nw; r++) rhs[r] -= w[r] * fb[comp];
+  }
+}
+
+int us_eq_build_region(us_EqSystem *e, const us_Bitset *present, const us_EqRegion *g,
+                       const double *fbase) {
+  const us_Structure *s = e->s;
+  int nc = 0;
+  for (int q = 0; q < g->nreg; q++) nc += g->inc_start[g->reg[q] + 1] - g->inc_start[g->reg[q]];
+  if (reserve(e, g->nreg, nc)) return -1;
+  clear_rows(e);
+  number_region(e, g->reg, g->nreg);
+  e->ncontact = 0;
+  for (int q = 0; q < g->nreg; q++) {
+    int u = g->reg[q];
+    for (int m = g->inc_start[u]; m < g->inc_start[u + 1]; m++) {
+      int c = g->inc[m];
+      const us_Contact *k = &s->contacts[c];
+      int v = k->a == u ? k->b : k->a;
+      int v_in = v >= 0 && g->in_r[v];
+      if (v_in && u != k->a) continue; /* both sides in R: listed once, from a */
+      if (!us_contact_active(s, present, c)) continue;
+      int outside = v >= 0 && !v_in && !s->bodies[v].fixed;
+      if (outside && g->fixed_boundary) {
+        fold_fixed(e, u, c, fbase + (size_t)c * (size_t)e->dim);
+        continue;
+      }
+      int ci = e->ncontact++;
+      e->contact[ci] = c;
+      e->mu[ci] = k->mu;
+      write_contact(e, ci, c);
+    }
+  }
+  return 0;
 }

@@ -55,6 +55,29 @@ int us_eq_build(us_EqSystem *e, const us_Bitset *present);
 /* y = A x (y has nbody*nw entries, x ncontact*dim). */
 void us_eq_mult(const us_EqSystem *e, const double *x, double *y);
 
+/* A region R of a sub-assembly for the local tests (local.c): its bodies
+ * (present and movable), a mark per body, the contacts of every body
+ * (inc[inc_start[i] .. inc_start[i + 1]) lists each contact touching body
+ * i) and the treatment of the contacts between R and the rest. */
+typedef struct us_EqRegion {
+  const int *reg;                /* [nreg] bodies of R */
+  int nreg;
+  const unsigned char *in_r;     /* [s->nbody] 1 on R */
+  const int *inc_start, *inc;    /* body -> contacts */
+  int fixed_boundary;            /* 1: boundary forces fixed (the "stable"
+                                    test); 0: the rest is a support (the
+                                    "unstable" test) */
+} us_EqRegion;
+
+/* The system of region R inside sub-assembly `present`: rows R's bodies;
+ * columns the active contacts with a side in R. With fixed_boundary, a
+ * contact between R and a present movable body outside R is no column:
+ * its force, fbase[c * dim ...] (normalized), moves to the right-hand
+ * side. Without, the outside side of such a contact is held like the
+ * ground. Cost O(|R| + contacts of R). 0 or -1 on OOM. */
+int us_eq_build_region(us_EqSystem *e, const us_Bitset *present, const us_EqRegion *g,
+                       const double *fbase);
+
 /* Is contact c active in `present` (both sides present, ground and fixed
  * bodies always are; at least one side movable)? */
 int us_contact_active(const us_Structure *s, const us_Bitset *present, int c);

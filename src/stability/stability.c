@@ -20,6 +20,7 @@
  */
 #include "backend.h"
 #include "certificate.h"
+#include "local.h"
 #include "lp_gen.h"
 
 #include <math.h>
@@ -44,6 +45,7 @@ struct us_Stability {
   unsigned char *seen;     /* certificate scratch: ncontact */
   us_StabilityInfo info;
   double deadline;         /* us_now() time; 0: none */
+  us_Local *local;         /* exact local tests, or NULL */
 };
 
 /* ------------------------------------------------------------ small API */
@@ -153,10 +155,15 @@ int us_active_contacts(const us_Structure *s, const us_Bitset *present, int *idx
 
 const us_StabilityInfo *us_stability_info(const us_Stability *w) { return &w->info; }
 
+void us_stability_set_skip_forces(us_Stability *w, int skip) {
+  if (w) w->set.skip_forces = skip != 0;
+}
+
 void us_stability_set_deadline(us_Stability *w, double deadline) {
   if (!w) return;
   w->deadline = deadline > 0 ? deadline : 0;
   if (w->be->set_deadline) w->be->set_deadline(w->bws, w->deadline);
+  if (w->local) us_local_set_deadline(w->local, w->deadline);
 }
 
 /* ------------------------------------------------------------ workspace */
@@ -174,6 +181,7 @@ static const us_Backend *backend_of(us_Method m) {
 void us_stability_free(us_Stability *w) {
   if (!w) return;
   if (w->bws) w->be->destroy(w->bws);
+  us_local_free(w->local);
   us_eq_free(&w->eq);
   us_bitset_free(&w->movable);
   us_bitset_free(&w->cur);
@@ -239,6 +247,14 @@ us_Stability *us_stability_new_backend(const us_Structure *s, const us_Stability
   if (!w->bws) {
     us_stability_free(w);
     return NULL;
+  }
+  /* local tests: the CLP backend itself (never a test's stand-in), 2D */
+  if (be == &us_backend_clp && set->local >= 0 && s->dim == 2) {
+    w->local = us_local_new(s, set, be, err);
+    if (!w->local) {
+      us_stability_free(w);
+      return NULL;
+    }
   }
   return w;
 }
@@ -362,12 +378,32 @@ static int unheld_body(us_Stability *w) {
   return -1;
 }
 
+/* The local tests first (local.h): 1 decided (res set), 0 the full system
+ * is needed, or an error. */
+static int decide_local(us_Stability *w, us_StabilityResult *res, us_Error *err) {
+  double t0 = us_now();
+  int r = us_local_test(w->local, &w->cur, res, &w->info, err);
+  w->info.solve_time += us_now() - t0;
+  if (r < 0) {
+    us_local_forget(w->local);
+    return -1;
+  }
+  if (r == US_LOCAL_GLOBAL) return 0;
+  if (r == US_LOCAL_STABLE && !w->set.skip_forces && us_local_forces(w->local, &w->cur, &res->forces))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory storing contact forces"), -1;
+  return 1;
+}
+
 static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err) {
   if (us_bitset_count(&w->cur) == 0) { /* nothing can fall */
     res->verdict = US_STABLE;
     snprintf(res->note, sizeof res->note, "no movable body present");
     w->eq.ncontact = 0;
     return certify(w, res, err);
+  }
+  if (w->local) {
+    int r = decide_local(w, res, err);
+    if (r) return r < 0 ? (err->code ? err->code : US_ERR_NOMEM) : US_OK;
   }
   if (us_eq_build(&w->eq, &w->cur))
     return us_error_set(err, US_ERR_NOMEM, "out of memory building the equilibrium system");
@@ -380,7 +416,11 @@ static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err)
   }
   us_Status st = run_backend(w, res, err);
   if (st) return st;
-  if (res->verdict == US_STABLE) return certify(w, res, err);
+  if (res->verdict == US_STABLE) {
+    st = certify(w, res, err);
+    if (!st && w->local && res->verdict == US_STABLE) us_local_set_base(w->local, &w->cur, &w->eq, w->f);
+    return st;
+  }
   if (res->verdict == US_UNSTABLE && w->be->unstable_body)
     res->unstable_body = w->be->unstable_body(w->bws);
   return US_OK;
@@ -388,6 +428,8 @@ static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err)
 
 us_Status us_stability_test(us_Stability *w, const us_Bitset *present, us_StabilityResult *res,
                             us_Error *err) {
+  us_Error local;
+  if (!err) err = &local;
   if (!w || !present || !res)
     return us_error_set(err, US_ERR_USAGE, "us_stability_test: NULL argument");
   if (present->nbits != w->s->nbody || !present->w)

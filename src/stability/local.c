@@ -1,0 +1,447 @@
+/* Exact local stability tests: a test costs what the change costs.
+ *
+ * State: the base B, the last sub-assembly proven stable, with forces
+ * fbase (normalized, dim per structure contact). Invariant: fbase is zero
+ * on every contact that is not active in B, and fbase holds every body of B
+ * in equilibrium inside the cones (each body's residual passed the check
+ * when its forces last changed; a body's residual depends only on the
+ * forces of its own contacts).
+ *
+ * A test of S (movable bits): added = S \ B, removed = B \ S. The bodies
+ * whose equilibrium changes are the seeds D: the added bodies and the
+ * bodies of S that touched a removed body. Removed bodies that touch no
+ * body of S change nothing (their contacts with S do not exist), so a
+ * planner that tests one component after another stays local. Then, for
+ * regions R ⊇ D of growing size:
+ *   level 0:  R = D, the support LP only (is some body of D unable to
+ *             stand even if everything around it is held still?);
+ *   level 1:  R = D plus its supporters under the footprint of the change
+ *             (bodies below a seed whose horizontal extent overlaps the
+ *             changed bodies', followed down to the ground): the path the
+ *             weight of the change takes;
+ *   level k:  rings of neighbours, until R at least doubled;
+ * at each level the fixed LP (feasible: stable) and the support LP
+ * (infeasible: unstable). When R reaches the share `global_share` of S the
+ * test is handed back for the full system; when a ring adds nothing, R is
+ * a union of components of S and the two LPs coincide, so the loop always
+ * ends with a verdict or a hand-back.
+ *
+ * Stable: the merged forces (base values off R's free contacts, the LP's
+ * on them) are re-checked on R's bodies by the independent check
+ * (certificate.c): by the invariant, that proves all of S. A failed
+ * re-check hands the test back. The base becomes S (or B ∪ S when no
+ * removed body touches S: then B \ S and S share no contact).
+ *
+ * Cost per test: O(|added| + |removed| * degree) to find D, then LPs over
+ * R only; the full structure is never swept, except to report forces
+ * (us_local_forces) when a caller wants them.
+ */
+#include "local.h"
+
+#include "certificate.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#define LOCAL_MIN_BODIES 16   /* smaller sub-assemblies: the full system */
+#define LOCAL_GLOBAL_SHARE 0.5 /* a region past this share of S: the full system */
+#define SUPPORT_COS 1e-3      /* a contact supports if its push has this much "up" */
+
+struct us_Local {
+  const us_Structure *s;
+  us_StabilitySettings set;
+  const us_Backend *be;
+  void *bws;
+  us_EqSystem eq;
+  int dim;
+  int *inc_start, *inc;  /* body -> contacts */
+  double *lo, *hi;       /* horizontal extent of each body */
+  double up[3];          /* against gravity */
+  us_Bitset base;
+  int have_base;
+  double *fbase;         /* [ncontact * dim] */
+  unsigned char *in_r;   /* [nbody] */
+  int *reg, nreg;        /* [nbody] the region */
+  int *added, *removed, nadd, nrem;
+  int touching;          /* some removed body touches S */
+  double foot_lo, foot_hi;
+  double *f, *saved;     /* LP solution; base values it replaces */
+  int cap_f, cap_saved;
+};
+
+/* ------------------------------------------------------------- set-up */
+
+static int build_incidence(us_Local *L) {
+  const us_Structure *s = L->s;
+  int n = s->nbody;
+  L->inc_start = us_calloc((size_t)n + 1, sizeof(int));
+  L->inc = us_malloc((size_t)(2 * s->ncontact + 1) * sizeof(int));
+  if (!L->inc_start || !L->inc) return -1;
+  for (int c = 0; c < s->ncontact; c++) {
+    const us_Contact *k = &s->contacts[c];
+    if (k->a >= 0) L->inc_start[k->a + 1]++;
+    if (k->b >= 0) L->inc_start[k->b + 1]++;
+  }
+  for (int i = 0; i < n; i++) L->inc_start[i + 1] += L->inc_start[i];
+  int *fill = us_malloc((size_t)(n > 0 ? n : 1) * sizeof(int));
+  if (!fill) return -1;
+  memcpy(fill, L->inc_start, (size_t)n * sizeof(int));
+  for (int c = 0; c < s->ncontact; c++) {
+    const us_Contact *k = &s->contacts[c];
+    if (k->a >= 0) L->inc[fill[k->a]++] = c;
+    if (k->b >= 0) L->inc[fill[k->b]++] = c;
+  }
+  us_free(fill);
+  return 0;
+}
+
+/* Extent of every body along the horizontal axis h (perpendicular to
+ * gravity in the plane; any axis when there is no gravity). */
+static void measure_extents(us_Local *L) {
+  const us_Structure *s = L->s;
+  double g = hypot(s->gravity[0], s->gravity[1]);
+  double gx = g > 0 ? s->gravity[0] / g : 0.0, gy = g > 0 ? s->gravity[1] / g : -1.0;
+  double hx = -gy, hy = gx;
+  L->up[0] = -gx, L->up[1] = -gy, L->up[2] = 0.0;
+  for (int i = 0; i < s->nbody; i++) {
+    const us_Body *b = &s->bodies[i];
+    double lo = b->com[0] * hx + b->com[1] * hy, hi = lo;
+    for (int k = 0; k < b->nvert; k++) {
+      double x = b->verts[2 * k] * hx + b->verts[2 * k + 1] * hy;
+      lo = US_MIN(lo, x), hi = US_MAX(hi, x);
+    }
+    L->lo[i] = lo, L->hi[i] = hi;
+  }
+}
+
+void us_local_free(us_Local *L) {
+  if (!L) return;
+  if (L->bws) L->be->destroy(L->bws);
+  us_eq_free(&L->eq);
+  us_free(L->inc_start);
+  us_free(L->inc);
+  us_free(L->lo);
+  us_free(L->hi);
+  us_bitset_free(&L->base);
+  us_free(L->fbase);
+  us_free(L->in_r);
+  us_free(L->reg);
+  us_free(L->added);
+  us_free(L->removed);
+  us_free(L->f);
+  us_free(L->saved);
+  us_free(L);
+}
+
+us_Local *us_local_new(const us_Structure *s, const us_StabilitySettings *set,
+                       const us_Backend *be, us_Error *err) {
+  us_Local *L = us_calloc(1, sizeof *L);
+  if (!L) return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)"), NULL;
+  L->s = s;
+  L->set = *set;
+  L->be = be;
+  L->dim = s->dim;
+  size_t nb = (size_t)(s->nbody > 0 ? s->nbody : 1);
+  size_t nc = (size_t)(s->ncontact > 0 ? s->ncontact : 1) * (size_t)s->dim;
+  L->lo = us_malloc(nb * sizeof(double));
+  L->hi = us_malloc(nb * sizeof(double));
+  L->fbase = us_calloc(nc, sizeof(double));
+  L->in_r = us_calloc(nb, 1);
+  L->reg = us_malloc(nb * sizeof(int));
+  L->added = us_malloc(nb * sizeof(int));
+  L->removed = us_malloc(nb * sizeof(int));
+  int bad = !L->lo || !L->hi || !L->fbase || !L->in_r || !L->reg || !L->added || !L->removed ||
+            build_incidence(L) || us_eq_init(&L->eq, s) || us_bitset_init(&L->base, s->nbody);
+  if (bad) {
+    us_local_free(L);
+    return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)"), NULL;
+  }
+  measure_extents(L);
+  L->bws = be->create(s, set, err);
+  if (!L->bws) {
+    us_local_free(L);
+    return NULL;
+  }
+  return L;
+}
+
+void us_local_set_deadline(us_Local *L, double deadline) {
+  if (L && L->be->set_deadline) L->be->set_deadline(L->bws, deadline);
+}
+
+void us_local_forget(us_Local *L) { L->have_base = 0; }
+
+/* ---------------------------------------------------------------- base */
+
+void us_local_set_base(us_Local *L, const us_Bitset *cur, const us_EqSystem *e,
+                       const double *f) {
+  size_t dim = (size_t)L->dim;
+  memset(L->fbase, 0, (size_t)L->s->ncontact * dim * sizeof(double));
+  for (int ci = 0; ci < e->ncontact; ci++)
+    memcpy(L->fbase + (size_t)e->contact[ci] * dim, f + (size_t)ci * dim, dim * sizeof(double));
+  memcpy(L->base.w, cur->w, (size_t)cur->nwords * sizeof(uint64_t));
+  L->have_base = 1;
+}
+
+int us_local_forces(const us_Local *L, const us_Bitset *cur, us_Forces *out) {
+  const us_Structure *s = L->s;
+  int n = 0;
+  for (int c = 0; c < s->ncontact; c++) n += us_contact_active(s, cur, c);
+  if (n > out->cap) {
+    int *ci = us_realloc(out->contact, (size_t)n * sizeof(int));
+    if (!ci) return -1;
+    out->contact = ci;
+    double *v = us_realloc(out->f, (size_t)n * 3 * sizeof(double));
+    if (!v) return -1;
+    out->f = v;
+    out->cap = n;
+  }
+  double w = L->eq.force_scale;
+  size_t dim = (size_t)L->dim;
+  out->ncontact = 0;
+  for (int c = 0; c < s->ncontact; c++) {
+    if (!us_contact_active(s, cur, c)) continue;
+    int j = out->ncontact++;
+    out->contact[j] = c;
+    for (size_t k = 0; k < dim; k++) out->f[(size_t)j * dim + k] = L->fbase[(size_t)c * dim + k] * w;
+  }
+  return 0;
+}
+
+/* ------------------------------------------------------------- regions */
+
+static void region_add(us_Local *L, int i) {
+  L->in_r[i] = 1;
+  L->reg[L->nreg++] = i;
+}
+
+static void region_clear(us_Local *L) {
+  for (int q = 0; q < L->nreg; q++) L->in_r[L->reg[q]] = 0;
+  L->nreg = 0;
+}
+
+static void widen_foot(us_Local *L, int i) {
+  L->foot_lo = US_MIN(L->foot_lo, L->lo[i]);
+  L->foot_hi = US_MAX(L->foot_hi, L->hi[i]);
+}
+
+/* added / removed against the base, word by word. */
+static void diff_base(us_Local *L, const us_Bitset *cur) {
+  L->nadd = L->nrem = 0;
+  for (int k = 0; k < cur->nwords; k++) {
+    uint64_t x = cur->w[k] ^ L->base.w[k];
+    while (x) {
+      int i = k * 64 + __builtin_ctzll(x);
+      x &= x - 1;
+      if (us_bitset_get(cur, i)) L->added[L->nadd++] = i;
+      else L->removed[L->nrem++] = i;
+    }
+  }
+}
+
+/* The seeds D into the region: the added bodies, and the bodies of S that
+ * touch a removed body; the footprint of the change. */
+static void seed_region(us_Local *L, const us_Bitset *cur) {
+  const us_Structure *s = L->s;
+  L->touching = 0;
+  L->foot_lo = INFINITY, L->foot_hi = -INFINITY;
+  for (int q = 0; q < L->nadd; q++) {
+    region_add(L, L->added[q]);
+    widen_foot(L, L->added[q]);
+  }
+  for (int q = 0; q < L->nrem; q++) {
+    int r = L->removed[q];
+    for (int m = L->inc_start[r]; m < L->inc_start[r + 1]; m++) {
+      const us_Contact *k = &s->contacts[L->inc[m]];
+      int v = k->a == r ? k->b : k->a;
+      if (v < 0 || !us_bitset_get(cur, v)) continue;
+      if (!L->touching) L->touching = 1;
+      widen_foot(L, r);
+      if (!L->in_r[v]) region_add(L, v);
+    }
+  }
+}
+
+/* Does contact c push body u up (u rests on the other side)? */
+static int supports(const us_Local *L, const us_Contact *k, int u) {
+  double d = k->n[0] * L->up[0] + k->n[1] * L->up[1] + k->n[2] * L->up[2];
+  return (u == k->b ? d : -d) > SUPPORT_COS;
+}
+
+/* Level 1: the supporters under the footprint, followed down (BFS). */
+static void grow_supporters(us_Local *L, const us_Bitset *cur) {
+  const us_Structure *s = L->s;
+  double margin = 1e-9 * (L->foot_hi - L->foot_lo);
+  for (int q = 0; q < L->nreg; q++) {
+    int u = L->reg[q];
+    for (int m = L->inc_start[u]; m < L->inc_start[u + 1]; m++) {
+      const us_Contact *k = &s->contacts[L->inc[m]];
+      int v = k->a == u ? k->b : k->a;
+      if (v < 0 || L->in_r[v] || !us_bitset_get(cur, v) || !supports(L, k, u)) continue;
+      if (L->hi[v] - margin <= L->foot_lo || L->lo[v] + margin >= L->foot_hi) continue;
+      region_add(L, v);
+    }
+  }
+}
+
+/* One ring of present neighbours; the number of bodies added. */
+static int grow_ring(us_Local *L, const us_Bitset *cur) {
+  const us_Structure *s = L->s;
+  int end = L->nreg, before = L->nreg;
+  for (int q = 0; q < end; q++) {
+    int u = L->reg[q];
+    for (int m = L->inc_start[u]; m < L->inc_start[u + 1]; m++) {
+      const us_Contact *k = &s->contacts[L->inc[m]];
+      int v = k->a == u ? k->b : k->a;
+      if (v >= 0 && !L->in_r[v] && us_bitset_get(cur, v)) region_add(L, v);
+    }
+  }
+  return L->nreg - before;
+}
+
+/* Rings until the region doubled; 0 when a ring added nothing (closed). */
+static int grow_rings(us_Local *L, const us_Bitset *cur) {
+  int target = 2 * L->nreg;
+  while (L->nreg < target)
+    if (grow_ring(L, cur) == 0) return 0;
+  return 1;
+}
+
+/* ---------------------------------------------------------------- LPs */
+
+/* Solve the fixed (fixed = 1) or support LP of the region. */
+static us_Status solve_region(us_Local *L, const us_Bitset *cur, int fixed, us_Verdict *v,
+                              us_StabilityResult *res, us_StabilityInfo *info, us_Error *err) {
+  us_EqRegion g = {L->reg, L->nreg, L->in_r, L->inc_start, L->inc, fixed};
+  if (us_eq_build_region(&L->eq, cur, &g, L->fbase))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory building a local system");
+  if (US_GROW(L->f, L->cap_f, L->eq.ncontact * L->dim + 1))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory building a local system");
+  info->local_lps++;
+  return L->be->solve(L->bws, &L->eq, NULL, 0, NULL, 0, 0, v, L->f, info, res->note,
+                      sizeof res->note, err);
+}
+
+/* Merge the fixed LP's forces into fbase and re-check R's bodies; undo
+ * and return 0 if the check fails. */
+static int merge_and_check(us_Local *L, const us_Bitset *cur, us_StabilityResult *res) {
+  const us_EqSystem *e = &L->eq;
+  size_t dim = (size_t)L->dim, n = (size_t)e->ncontact * dim;
+  if (US_GROW(L->saved, L->cap_saved, (int)n + 1)) return 0;
+  for (int ci = 0; ci < e->ncontact; ci++) {
+    double *fb = L->fbase + (size_t)e->contact[ci] * dim;
+    memcpy(L->saved + (size_t)ci * dim, fb, dim * sizeof(double));
+    memcpy(fb, L->f + (size_t)ci * dim, dim * sizeof(double));
+  }
+  us_certificate_check_bodies(L->s, cur, L->reg, L->nreg, L->inc_start, L->inc, L->fbase,
+                              L->set.cert_tol, &res->check);
+  if (res->check.ok) return 1;
+  for (int ci = 0; ci < e->ncontact; ci++)
+    memcpy(L->fbase + (size_t)e->contact[ci] * dim, L->saved + (size_t)ci * dim,
+           dim * sizeof(double));
+  return 0;
+}
+
+/* The base after a local stable verdict of cur. */
+static void advance_base(us_Local *L, const us_Bitset *cur) {
+  if (!L->touching) { /* B \ S shares no contact with S: B ∪ S stands */
+    for (int k = 0; k < cur->nwords; k++) L->base.w[k] |= cur->w[k];
+    return;
+  }
+  size_t dim = (size_t)L->dim;
+  for (int q = 0; q < L->nrem; q++) {
+    int r = L->removed[q];
+    for (int m = L->inc_start[r]; m < L->inc_start[r + 1]; m++)
+      memset(L->fbase + (size_t)L->inc[m] * dim, 0, dim * sizeof(double));
+  }
+  memcpy(L->base.w, cur->w, (size_t)cur->nwords * sizeof(uint64_t));
+}
+
+static int bucket_of(int n) {
+  int b = 0;
+  while (n > 1 && b < US_LOCAL_BUCKETS - 1) n >>= 1, b++;
+  return b;
+}
+
+static int settle(us_Local *L, int verdict, us_StabilityInfo *info) {
+  info->local_settled[bucket_of(L->nreg)]++;
+  info->local_region_bodies += L->nreg;
+  if (verdict == US_LOCAL_STABLE) info->local_stable++;
+  else info->local_unstable++;
+  return verdict;
+}
+
+/* The support LP at the current region: 1 unstable (res set), 0 not
+ * proven, -1 error. */
+static int try_support(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
+                       us_StabilityInfo *info, us_Error *err) {
+  us_Verdict v;
+  if (solve_region(L, cur, 0, &v, res, info, err)) return -1;
+  if (v != US_UNSTABLE) return 0;
+  res->verdict = US_UNSTABLE;
+  res->unstable_body = L->be->unstable_body ? L->be->unstable_body(L->bws) : -1;
+  snprintf(res->note, sizeof res->note,
+           "local: %d bodies cannot stand even with the rest held still", L->nreg);
+  return 1;
+}
+
+/* The fixed LP at the current region: 1 stable (certificate merged and
+ * checked), 0 not proven, -1 error. */
+static int try_fixed(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
+                     us_StabilityInfo *info, us_Error *err) {
+  us_Verdict v;
+  if (solve_region(L, cur, 1, &v, res, info, err)) return -1;
+  if (v != US_STABLE || !merge_and_check(L, cur, res)) return 0;
+  res->verdict = US_STABLE;
+  snprintf(res->note, sizeof res->note, "local: %d bodies, the rest unchanged", L->nreg);
+  return 1;
+}
+
+/* The levels; a US_LOCAL_* verdict or -1. */
+static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityResult *res,
+                      us_StabilityInfo *info, us_Error *err) {
+  int r = try_support(L, cur, res, info, err);
+  if (r) return r < 0 ? -1 : settle(L, US_LOCAL_UNSTABLE, info);
+  int nseed = L->nreg;
+  grow_supporters(L, cur);
+  int closed = 0, limit = (int)(LOCAL_GLOBAL_SHARE * size);
+  for (;;) {
+    if (L->nreg > limit && !closed) return US_LOCAL_GLOBAL;
+    r = try_fixed(L, cur, res, info, err);
+    if (r) return r < 0 ? -1 : settle(L, US_LOCAL_STABLE, info);
+    if (L->nreg > nseed) { /* R = D had its support LP already */
+      r = try_support(L, cur, res, info, err);
+      if (r) return r < 0 ? -1 : settle(L, US_LOCAL_UNSTABLE, info);
+    }
+    /* closed: both LPs were the exact test of R's components, and neither
+     * decided (a re-check failed, or the solver gave up) */
+    if (closed) return US_LOCAL_GLOBAL;
+    closed = !grow_rings(L, cur);
+  }
+}
+
+int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
+                  us_StabilityInfo *info, us_Error *err) {
+  int size = us_bitset_count(cur);
+  if (!L->have_base || size < LOCAL_MIN_BODIES) return US_LOCAL_GLOBAL;
+  diff_base(L, cur);
+  seed_region(L, cur);
+  int r;
+  if (L->nreg == 0) { /* S inside B, apart from what left: B's forces hold */
+    memset(&res->check, 0, sizeof res->check);
+    res->check.ok = 1;
+    res->check.worst_body = res->check.worst_contact = -1;
+    res->verdict = US_STABLE;
+    snprintf(res->note, sizeof res->note, "local: no body's contacts changed");
+    r = settle(L, US_LOCAL_STABLE, info);
+  } else if (L->nreg > 16 + size / 8) {
+    r = US_LOCAL_GLOBAL;
+  } else {
+    r = run_levels(L, cur, size, res, info, err);
+  }
+  if (r == US_LOCAL_STABLE) advance_base(L, cur);
+  region_clear(L);
+  if (r == US_LOCAL_GLOBAL) info->local_global++;
+  return r;
+}

@@ -1,0 +1,54 @@
+/* Exact local stability tests (local.c; the argument is in docs/local.md).
+ *
+ * The workspace keeps a base: the last sub-assembly B proven stable, with
+ * its checked forces. A test of S that differs from B by a few bodies is
+ * decided on a region R of bodies around the change:
+ *   - stable, if forces exist on R's contacts that hold R while every
+ *     other force keeps its base value (the "fixed" LP; the merged forces
+ *     are then a certificate for all of S, re-checked on R's bodies);
+ *   - unstable, if R cannot stand even when the rest of S is held still
+ *     (the "support" LP; its Farkas ray is a mechanism of R, checked);
+ *   - else R grows (supporters under the change first, then rings of
+ *     neighbours, at least doubling), and past a share of S the test goes
+ *     to the full system (us_LOCAL_GLOBAL).
+ */
+#ifndef US_STABILITY_LOCAL_H
+#define US_STABILITY_LOCAL_H
+
+#include "backend.h"
+
+typedef struct us_Local us_Local;
+
+enum { US_LOCAL_STABLE = 1, US_LOCAL_UNSTABLE = 2, US_LOCAL_GLOBAL = 3 };
+
+/* A local tester on structure s whose small LPs are solved by backend be
+ * (an LP backend with Farkas rays: CLP). NULL on OOM or a backend error
+ * (err set). */
+us_Local *us_local_new(const us_Structure *s, const us_StabilitySettings *set,
+                       const us_Backend *be, us_Error *err);
+void us_local_free(us_Local *L);
+
+/* Decide `cur` (movable bits of the sub-assembly) locally. Returns
+ * US_LOCAL_STABLE (the base becomes cur, res->check holds the local
+ * re-check), US_LOCAL_UNSTABLE (res->unstable_body and res->note set;
+ * res->check holds the mechanism check), US_LOCAL_GLOBAL (the caller must
+ * test the full system), or -1 on error (err set). info: statistics. */
+int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
+                  us_StabilityInfo *info, us_Error *err);
+
+/* After a full-system stable verdict of cur with normalized forces f of the
+ * system e: the base becomes cur with those forces. */
+void us_local_set_base(us_Local *L, const us_Bitset *cur, const us_EqSystem *e,
+                       const double *f);
+
+/* Forget the base (after an error). */
+void us_local_forget(us_Local *L);
+
+/* The base's forces on the active contacts of cur (newtons) into f. 0 or
+ * -1 on OOM. */
+int us_local_forces(const us_Local *L, const us_Bitset *cur, us_Forces *f);
+
+/* The deadline of the small LPs (us_stability_set_deadline). */
+void us_local_set_deadline(us_Local *L, double deadline);
+
+#endif
