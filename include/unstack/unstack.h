@@ -349,11 +349,36 @@ typedef struct us_StabilityInfo {
                             2^k .. 2^(k+1) - 1 bodies (bucket 0: 0 or 1) */
 } us_StabilityInfo;
 
+/* The certificate of an unstable verdict: a virtual motion of some bodies
+ * (the others held still) on which gravity does positive work while every
+ * force any contact could carry (inside its cone, normal force >= 0) does
+ * work >= 0, so no contact forces can balance gravity (a Farkas ray of the
+ * equilibrium system, read as velocities). Normalized so that gravity's
+ * power is 1 in units of the total weight times the structure's scale. */
+typedef struct us_Mechanism {
+  int nbody, cap;
+  int *body;             /* the moving bodies */
+  double *v;             /* 3 per body (2D): vx, vy, omega; omega in rad per
+                            unit of the structure's scale */
+  int ok;                /* the independent check (us_mechanism_check) passed */
+  double worst_power;    /* most negative power of a unit cone generator
+                            (relative; 0 if none), or +INF when unchecked */
+} us_Mechanism;
+US_API void us_mechanism_free(us_Mechanism *m);
+/* The independent check of a mechanism on sub-assembly `present`: gravity's
+ * power (must be > 0, it is normalized to 1) and the worst power of the
+ * unit generators of every active contact's cone (must be >= -tol).
+ * Fills m->ok and m->worst_power; returns m->ok. */
+US_API int us_mechanism_check(const us_Structure *s, const us_Bitset *present, us_Mechanism *m,
+                              double tol);
+
 typedef struct us_StabilityResult {
   us_Verdict verdict;
   us_Forces forces;        /* filled when stable */
   us_CertCheck check;      /* the independent re-check of forces */
   int unstable_body;       /* evidence when unstable, if known, else -1 */
+  us_Mechanism mechanism;  /* when unstable and the solver gave a ray (lp,
+                              auto): the motion, checked (nbody 0: none) */
   char note[128];          /* evidence text (solver status), may be empty */
 } us_StabilityResult;
 /* A result owns its force arrays and reuses them from test to test: call

@@ -21,7 +21,9 @@ typedef struct us_Backend {
   void (*destroy)(void *ws);
   /* Decide the sub-assembly `sys`. added / removed: bodies that changed
    * since this backend's previous solve (restart = 1: no previous state to
-   * reuse, e.g. first call). On stable, write dim * ncontact normalized
+   * reuse, e.g. first call). added = removed = NULL with restart = 0: `sys`
+   * is a region system of the local tests (local.h), not a sub-assembly;
+   * a backend may start from whatever it last knew of its contacts. On stable, write dim * ncontact normalized
    * forces to f. */
   us_Status (*solve)(void *ws, const us_EqSystem *sys, const int *added, int nadded,
                      const int *removed, int nremoved, int restart, us_Verdict *verdict,
@@ -35,6 +37,10 @@ typedef struct us_Backend {
    * `deadline` (us_now() seconds; 0: none) stop and return US_OK with
    * verdict US_UNDECIDED and a note that says "time limit". */
   void (*set_deadline)(void *ws, double deadline);
+  /* Optional (NULL: none). After an unstable verdict: a Farkas ray y of
+   * the last system's rows (y . rhs != 0, every cone generator on one side
+   * of it, checked by the backend), its length, or 0 when there is none. */
+  int (*farkas_ray)(void *ws, const double **y);
 } us_Backend;
 
 extern const us_Backend us_backend_clp;     /* lp_clp.c */

@@ -260,3 +260,100 @@ us_CertCheck us_certificate_check(const us_Structure *s, const us_Bitset *presen
   us_free(seen);
   return r;
 }
+
+/* ------------------------------------------------------------ mechanisms */
+
+void us_mechanism_free(us_Mechanism *m) {
+  if (!m) return;
+  us_free(m->body);
+  us_free(m->v);
+  memset(m, 0, sizeof *m);
+}
+
+/* Velocity of body slot q of m at point p (lever arms divided by L). */
+static void point_velocity(const us_Structure *s, const Units *u, const us_Mechanism *m, int q,
+                           const double *p, double *out) {
+  const double *v = m->v + 3 * (size_t)q, *c = s->bodies[m->body[q]].com;
+  double rx = (p[0] - c[0]) * u->inv_l, ry = (p[1] - c[1]) * u->inv_l;
+  out[0] = v[0] - v[2] * ry;
+  out[1] = v[1] + v[2] * rx;
+}
+
+/* The least power of the unit generators of contact k's cone for relative
+ * velocity vr (of b against a). */
+static double least_power(const us_Contact *k, const double *vr) {
+  double pn = k->n[0] * vr[0] + k->n[1] * vr[1];
+  double pt = k->t[0][0] * vr[0] + k->t[0][1] * vr[1];
+  if (k->mu == 0.0) return pn;
+  if (isinf(k->mu)) return US_MIN(pn, -fabs(pt));
+  double h = hypot(1.0, k->mu);
+  return (pn - k->mu * fabs(pt)) / h;
+}
+
+/* slot[i]: body i's index in m, or -1. Returns the worst power over the
+ * contacts in list (NULL: all), only those active in present and touching
+ * a moving body. */
+static double worst_contact_power(const us_Structure *s, const Units *u, const us_Bitset *present,
+                                  const us_Mechanism *m, const int *slot, const int *list,
+                                  int nlist) {
+  double worst = 0.0;
+  int n = list ? nlist : s->ncontact;
+  for (int j = 0; j < n; j++) {
+    int c = list ? list[j] : j;
+    const us_Contact *k = &s->contacts[c];
+    int qa = k->a >= 0 ? slot[k->a] : -1, qb = k->b >= 0 ? slot[k->b] : -1;
+    if ((qa < 0 && qb < 0) || !usable(s, present, c)) continue;
+    double va[2] = {0, 0}, vb[2] = {0, 0};
+    if (qa >= 0) point_velocity(s, u, m, qa, k->p, va);
+    if (qb >= 0) point_velocity(s, u, m, qb, k->p, vb);
+    double vr[2] = {vb[0] - va[0], vb[1] - va[1]};
+    double p = least_power(k, vr);
+    if (!isfinite(p)) return -INFINITY;
+    worst = US_MIN(worst, p);
+  }
+  return worst;
+}
+
+/* Normalize m so that gravity's power is 1; 0, or -1 if it is not > 0. */
+static int normalize_mechanism(const us_Structure *s, const Units *u, const us_Bitset *present,
+                               us_Mechanism *m) {
+  double pg = 0.0;
+  for (int q = 0; q < m->nbody; q++) {
+    int i = m->body[q];
+    if (i < 0 || i >= s->nbody || s->bodies[i].fixed || !us_bitset_get(present, i)) return -1;
+    pg += s->bodies[i].mass / u->m * (u->gdir[0] * m->v[3 * q] + u->gdir[1] * m->v[3 * q + 1]);
+  }
+  if (!(pg > 0) || !isfinite(pg)) return -1;
+  for (int q = 0; q < 3 * m->nbody; q++) m->v[q] /= pg;
+  return 0;
+}
+
+int us_mechanism_check_list(const us_Structure *s, const us_Bitset *present, us_Mechanism *m,
+                            double tol, int *slot, const int *list, int nlist) {
+  Units u = units_of(s);
+  m->ok = 0;
+  m->worst_power = INFINITY;
+  if (s->dim != 2 || m->nbody <= 0 || normalize_mechanism(s, &u, present, m)) return 0;
+  for (int q = 0; q < m->nbody; q++) slot[m->body[q]] = q;
+  m->worst_power = worst_contact_power(s, &u, present, m, slot, list, nlist);
+  for (int q = 0; q < m->nbody; q++) slot[m->body[q]] = -1;
+  m->ok = m->worst_power >= -tol;
+  return m->ok;
+}
+
+int us_mechanism_check(const us_Structure *s, const us_Bitset *present, us_Mechanism *m,
+                       double tol) {
+  if (!s || !present || !m) return 0;
+  m->ok = 0;
+  m->worst_power = INFINITY;
+  if (present->nbits != s->nbody || m->nbody < 0 || (m->nbody > 0 && (!m->body || !m->v)))
+    return 0;
+  for (int q = 0; q < m->nbody; q++)
+    if (m->body[q] < 0 || m->body[q] >= s->nbody) return 0;
+  int *slot = us_malloc((size_t)(s->nbody > 0 ? s->nbody : 1) * sizeof(int));
+  if (!slot) return 0;
+  for (int i = 0; i < s->nbody; i++) slot[i] = -1;
+  int ok = us_mechanism_check_list(s, present, m, tol, slot, NULL, 0);
+  us_free(slot);
+  return ok;
+}

@@ -22,6 +22,11 @@ void us_certificate_check_bodies(const us_Structure *s, const us_Bitset *present
                                  const int *bodies, int nb, const int *inc_start, const int *inc,
                                  const double *fc, double tol, us_CertCheck *out);
 
+/* us_mechanism_check over the contacts in list (NULL: all) with caller
+ * scratch slot[nbody], all -1 on entry and on return. */
+int us_mechanism_check_list(const us_Structure *s, const us_Bitset *present, us_Mechanism *m,
+                            double tol, int *slot, const int *list, int nlist);
+
 /* Euclidean distance of the 2D/3D contact force (f_n, |f_t|) from the cone
  * |f_t| <= mu f_n (mu = INFINITY: the half-space f_n >= 0). It does not
  * grow with mu: a force just outside a wide cone is just outside it. */

@@ -52,7 +52,8 @@ struct us_Local {
   const us_Structure *s;
   us_StabilitySettings set;
   const us_Backend *be;
-  void *bws;
+  void *bws[2];          /* the support LP's and the fixed LP's (each warm
+                            starts from its own previous basis) */
   us_EqSystem eq;
   int dim;
   int *inc_start, *inc;  /* body -> contacts */
@@ -68,6 +69,7 @@ struct us_Local {
   double foot_lo, foot_hi;
   double *f, *saved;     /* LP solution; base values it replaces */
   int cap_f, cap_saved;
+  int *list, *slot;      /* mechanism check: contacts of R, body slots */
 };
 
 /* ------------------------------------------------------------- set-up */
@@ -117,7 +119,8 @@ static void measure_extents(us_Local *L) {
 
 void us_local_free(us_Local *L) {
   if (!L) return;
-  if (L->bws) L->be->destroy(L->bws);
+  for (int k = 0; k < 2; k++)
+    if (L->bws[k]) L->be->destroy(L->bws[k]);
   us_eq_free(&L->eq);
   us_free(L->inc_start);
   us_free(L->inc);
@@ -129,6 +132,8 @@ void us_local_free(us_Local *L) {
   us_free(L->reg);
   us_free(L->added);
   us_free(L->removed);
+  us_free(L->list);
+  us_free(L->slot);
   us_free(L->f);
   us_free(L->saved);
   us_free(L);
@@ -151,23 +156,29 @@ us_Local *us_local_new(const us_Structure *s, const us_StabilitySettings *set,
   L->reg = us_malloc(nb * sizeof(int));
   L->added = us_malloc(nb * sizeof(int));
   L->removed = us_malloc(nb * sizeof(int));
-  int bad = !L->lo || !L->hi || !L->fbase || !L->in_r || !L->reg || !L->added || !L->removed ||
-            build_incidence(L) || us_eq_init(&L->eq, s) || us_bitset_init(&L->base, s->nbody);
+  L->list = us_malloc((size_t)(2 * s->ncontact + 1) * sizeof(int));
+  L->slot = us_malloc(nb * sizeof(int));
+  for (size_t i = 0; L->slot && i < nb; i++) L->slot[i] = -1;
+  int bad = !L->list || !L->slot || !L->lo || !L->hi || !L->fbase || !L->in_r || !L->reg ||
+            !L->added || !L->removed || build_incidence(L) || us_eq_init(&L->eq, s) || us_bitset_init(&L->base, s->nbody);
   if (bad) {
     us_local_free(L);
     return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)"), NULL;
   }
   measure_extents(L);
-  L->bws = be->create(s, set, err);
-  if (!L->bws) {
-    us_local_free(L);
-    return NULL;
+  for (int k = 0; k < 2; k++) {
+    L->bws[k] = be->create(s, set, err);
+    if (!L->bws[k]) {
+      us_local_free(L);
+      return NULL;
+    }
   }
   return L;
 }
 
 void us_local_set_deadline(us_Local *L, double deadline) {
-  if (L && L->be->set_deadline) L->be->set_deadline(L->bws, deadline);
+  if (L && L->be->set_deadline)
+    for (int k = 0; k < 2; k++) L->be->set_deadline(L->bws[k], deadline);
 }
 
 void us_local_forget(us_Local *L) { L->have_base = 0; }
@@ -319,7 +330,7 @@ static us_Status solve_region(us_Local *L, const us_Bitset *cur, int fixed, us_V
   if (US_GROW(L->f, L->cap_f, L->eq.ncontact * L->dim + 1))
     return us_error_set(err, US_ERR_NOMEM, "out of memory building a local system");
   info->local_lps++;
-  return L->be->solve(L->bws, &L->eq, NULL, 0, NULL, 0, 0, v, L->f, info, res->note,
+  return L->be->solve(L->bws[fixed], &L->eq, NULL, 0, NULL, 0, 0, v, L->f, info, res->note,
                       sizeof res->note, err);
 }
 
@@ -372,15 +383,58 @@ static int settle(us_Local *L, int verdict, us_StabilityInfo *info) {
   return verdict;
 }
 
-/* The support LP at the current region: 1 unstable (res set), 0 not
- * proven, -1 error. */
+int us_mechanism_from_ray(us_Mechanism *m, const us_EqSystem *e, const double *y, int ny) {
+  m->nbody = 0;
+  m->ok = 0;
+  m->worst_power = INFINITY;
+  if (e->nw != 3 || ny != e->nbody * 3) return 0;
+  if (e->nbody > m->cap) {
+    int *b = us_realloc(m->body, (size_t)e->nbody * sizeof(int));
+    if (!b) return -1;
+    m->body = b;
+    double *v = us_realloc(m->v, (size_t)e->nbody * 3 * sizeof(double));
+    if (!v) return -1;
+    m->v = v;
+    m->cap = e->nbody;
+  }
+  double by = 0.0;
+  for (int r = 0; r < ny; r++) by += e->rhs[r] * y[r];
+  double sg = by < 0 ? 1.0 : -1.0; /* rhs . v < 0: gravity drives v */
+  m->nbody = e->nbody;
+  for (int q = 0; q < e->nbody; q++) {
+    m->body[q] = e->body[q];
+    for (int k = 0; k < 3; k++) m->v[3 * q + k] = sg * y[3 * q + k];
+  }
+  return 0;
+}
+
+/* The support LP's Farkas ray as a mechanism of R, checked against the
+ * contacts of R's bodies. 1 accepted, 0 not, -1 OOM. */
+static int region_mechanism(us_Local *L, const us_Bitset *cur, us_Mechanism *m) {
+  const double *y = NULL;
+  int ny = L->be->farkas_ray ? L->be->farkas_ray(L->bws[0], &y) : 0;
+  if (!ny || !y) return 0;
+  if (us_mechanism_from_ray(m, &L->eq, y, ny)) return -1;
+  int nlist = 0;
+  for (int q = 0; q < L->nreg; q++) {
+    int u = L->reg[q];
+    for (int j = L->inc_start[u]; j < L->inc_start[u + 1]; j++) L->list[nlist++] = L->inc[j];
+  }
+  return us_mechanism_check_list(L->s, cur, m, L->set.cert_tol, L->slot, L->list, nlist);
+}
+
+/* The support LP at the current region: 1 unstable (res set, mechanism
+ * checked), 0 not proven, -1 error. */
 static int try_support(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
                        us_StabilityInfo *info, us_Error *err) {
   us_Verdict v;
   if (solve_region(L, cur, 0, &v, res, info, err)) return -1;
   if (v != US_UNSTABLE) return 0;
+  int ok = region_mechanism(L, cur, &res->mechanism);
+  if (ok < 0) return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)"), -1;
+  if (!ok) return 0; /* no checked mechanism: no proof, grow */
   res->verdict = US_UNSTABLE;
-  res->unstable_body = L->be->unstable_body ? L->be->unstable_body(L->bws) : -1;
+  res->unstable_body = L->be->unstable_body ? L->be->unstable_body(L->bws[0]) : -1;
   snprintf(res->note, sizeof res->note,
            "local: %d bodies cannot stand even with the rest held still", L->nreg);
   return 1;

@@ -48,6 +48,10 @@ void us_local_forget(us_Local *L);
  * -1 on OOM. */
 int us_local_forces(const us_Local *L, const us_Bitset *cur, us_Forces *f);
 
+/* A Farkas ray y (ny = 3 * e->nbody values) of system e as a mechanism
+ * (unchecked, oriented so that gravity drives it). 0 or -1 on OOM. */
+int us_mechanism_from_ray(us_Mechanism *m, const us_EqSystem *e, const double *y, int ny);
+
 /* The deadline of the small LPs (us_stability_set_deadline). */
 void us_local_set_deadline(us_Local *L, double deadline);
 

@@ -51,6 +51,8 @@ typedef struct ClpWs {
   int stamp;
   unsigned char *st; /* [ncol + nrow] status handed to CLP */
   int cap_st;
+  double *ray;       /* the last infeasible solve's checked Farkas ray */
+  int cap_ray, nray; /* nray = 0: none */
 } ClpWs;
 
 static void clp_destroy(void *ws) {
@@ -64,6 +66,7 @@ static void clp_destroy(void *ws) {
   us_free(w->col_stamp);
   us_free(w->row_stamp);
   us_free(w->st);
+  us_free(w->ray);
   us_free(w);
 }
 
@@ -117,20 +120,22 @@ static size_t row_key(const us_EqSystem *sys, int r) {
   return 3 * (size_t)sys->body[r / 3] + (size_t)(r % 3);
 }
 
-/* Start from the previous basis where it applies. CLP status codes: 1
- * basic, 3 at lower bound. Returns 1 if any status was reused. */
-static int warm_start(Clp_Simplex *m, ClpWs *w, const us_EqSystem *sys) {
+/* Start from the previous basis where it applies (region systems: from
+ * the latest status of each column and row, whatever solve left it).
+ * CLP status codes: 1 basic, 3 at lower bound. Returns 1 if any status
+ * was reused. */
+static int warm_start(Clp_Simplex *m, ClpWs *w, const us_EqSystem *sys, int region) {
   const us_EqGen *g = &w->gen;
   int reused = 0;
   for (int j = 0; j < g->ncol; j++) {
     size_t k = col_key(sys, g, j);
-    int ok = w->col_stamp[k] == w->stamp;
+    int ok = region ? w->col_stamp[k] > 0 : w->col_stamp[k] == w->stamp;
     w->st[j] = ok ? w->col_st[k] : 3;
     reused |= ok;
   }
   for (int r = 0; r < g->nrow; r++) {
     size_t k = row_key(sys, r);
-    int ok = w->row_stamp[k] == w->stamp;
+    int ok = region ? w->row_stamp[k] > 0 : w->row_stamp[k] == w->stamp;
     w->st[g->ncol + r] = ok ? w->row_st[k] : 1;
     reused |= ok;
   }
@@ -175,6 +180,10 @@ static int clp_evidence(Clp_Simplex *m, ClpWs *w, const us_EqSystem *sys) {
   double *ray = Clp_infeasibilityRay(m);
   if (!ray) return -1;
   int body = us_eq_gen_farkas_body(sys, &w->gen, ray, w->set.farkas_slack);
+  if (body >= 0 && !US_GROW(w->ray, w->cap_ray, w->gen.nrow)) {
+    memcpy(w->ray, ray, (size_t)w->gen.nrow * sizeof(double));
+    w->nray = w->gen.nrow;
+  }
   Clp_freeRay(m, ray);
   return body;
 }
@@ -184,10 +193,11 @@ static int clp_evidence(Clp_Simplex *m, ClpWs *w, const us_EqSystem *sys) {
  * cold start on a 1,000-brick wall minus 100 bricks). A warm run that
  * stops without a verdict, or with visible infeasibility left, is
  * repeated cold. NULL if CLP cannot create a model. */
-static Clp_Simplex *clp_run(ClpWs *w, const us_EqSystem *sys, int warm, us_StabilityInfo *info) {
+static Clp_Simplex *clp_run(ClpWs *w, const us_EqSystem *sys, int warm, int region,
+                            us_StabilityInfo *info) {
   Clp_Simplex *m = clp_load(w, sys);
   if (!m) return NULL;
-  if (warm && warm_start(m, w, sys)) {
+  if (warm && warm_start(m, w, sys, region)) {
     Clp_dual(m, 0);
     int status = Clp_status(m);
     if ((status == 0 && Clp_sumPrimalInfeasibilities(m) <= w->set.warm_accept) || status == 1) {
@@ -206,9 +216,9 @@ static us_Status clp_solve(void *ws, const us_EqSystem *sys, const int *added, i
                            const int *removed, int nremoved, int restart, us_Verdict *verdict,
                            double *f, us_StabilityInfo *info, char *note, size_t note_sz,
                            us_Error *err) {
-  US_UNUSED(added), US_UNUSED(removed);
   ClpWs *w = ws;
   w->last_body = -1;
+  w->nray = 0;
   int r = us_eq_generators(sys, w->set.n_column_mu, &w->gen);
   if (r == -2) return us_error_set(err, US_ERR_USAGE, "the LP backends support 2D only");
   if (r || clp_reserve(w, w->gen.nrow, w->gen.ncol))
@@ -219,9 +229,10 @@ static us_Status clp_solve(void *ws, const us_EqSystem *sys, const int *added, i
     snprintf(note, note_sz, "no active contact");
     return US_OK;
   }
+  int region = !added && !removed; /* a region system (backend.h) */
   int warm = !restart && nadded + nremoved <= w->set.warm_changes +
                                              sys->nbody / w->set.warm_body_div;
-  Clp_Simplex *m = clp_run(w, sys, warm, info);
+  Clp_Simplex *m = clp_run(w, sys, warm, region, info);
   if (!m) return us_error_set(err, US_ERR_NOMEM, "CLP could not create a model");
   int status = Clp_status(m);
   if (status == 0 || status == 1) save_basis(m, w, sys);
@@ -247,10 +258,17 @@ static us_Status clp_solve(void *ws, const us_EqSystem *sys, const int *added, i
 
 static int clp_unstable_body(void *ws) { return ((ClpWs *)ws)->last_body; }
 
+static int clp_farkas_ray(void *ws, const double **y) {
+  ClpWs *w = ws;
+  *y = w->nray ? w->ray : NULL;
+  return w->nray;
+}
+
 const us_Backend us_backend_clp = {
     .method = US_METHOD_LP,
     .create = clp_create,
     .destroy = clp_destroy,
     .solve = clp_solve,
     .unstable_body = clp_unstable_body,
+    .farkas_ray = clp_farkas_ray,
 };

@@ -143,6 +143,7 @@ void us_stability_result_init(us_StabilityResult *r) {
 void us_stability_result_free(us_StabilityResult *r) {
   if (!r) return;
   us_forces_free(&r->forces);
+  us_mechanism_free(&r->mechanism);
   memset(r, 0, sizeof *r);
 }
 
@@ -317,6 +318,9 @@ static void reset_result(us_StabilityResult *res) {
   memset(&res->check, 0, sizeof res->check);
   res->check.worst_body = res->check.worst_contact = -1;
   res->unstable_body = -1;
+  res->mechanism.nbody = 0;
+  res->mechanism.ok = 0;
+  res->mechanism.worst_power = INFINITY;
   res->note[0] = '\0';
 }
 
@@ -394,6 +398,18 @@ static int decide_local(us_Stability *w, us_StabilityResult *res, us_Error *err)
   return 1;
 }
 
+/* After a full-system unstable verdict: the backend's Farkas ray, if it
+ * has one, as a checked mechanism of all bodies. */
+static us_Status global_mechanism(us_Stability *w, us_StabilityResult *res, us_Error *err) {
+  const double *y = NULL;
+  int ny = w->be->farkas_ray ? w->be->farkas_ray(w->bws, &y) : 0;
+  if (!ny || !y) return US_OK;
+  if (us_mechanism_from_ray(&res->mechanism, &w->eq, y, ny))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory storing a mechanism");
+  us_mechanism_check(w->s, &w->cur, &res->mechanism, w->set.cert_tol);
+  return US_OK;
+}
+
 static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err) {
   if (us_bitset_count(&w->cur) == 0) { /* nothing can fall */
     res->verdict = US_STABLE;
@@ -423,6 +439,7 @@ static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err)
   }
   if (res->verdict == US_UNSTABLE && w->be->unstable_body)
     res->unstable_body = w->be->unstable_body(w->bws);
+  if (res->verdict == US_UNSTABLE) return global_mechanism(w, res, err);
   return US_OK;
 }
 
