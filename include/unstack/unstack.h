@@ -301,6 +301,8 @@ typedef struct us_StabilitySettings {
   us_LpSettings lp;   /* the LP backends (us_lp_default_settings) */
   int local;          /* exact local tests (docs/local.md) for lp and auto:
                          0 (default) or 1 on, -1 off */
+  int local_min_bodies; /* smaller sub-assemblies go to the full system
+                           (<= 0: default 16) */
   int skip_forces;    /* 1: a stable result carries its check but no forces
                          (res->forces empty; the planner's searches) */
 } us_StabilitySettings;

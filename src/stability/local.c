@@ -44,7 +44,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#define LOCAL_MIN_BODIES 16   /* smaller sub-assemblies: the full system */
+#define LOCAL_MIN_BODIES 16   /* default: smaller sub-assemblies go to the full system */
 #define LOCAL_GLOBAL_SHARE 0.5 /* a region past this share of S: the full system */
 #define SUPPORT_COS 1e-3      /* a contact supports if its push has this much "up" */
 
@@ -478,7 +478,8 @@ static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityR
 int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
                   us_StabilityInfo *info, us_Error *err) {
   int size = us_bitset_count(cur);
-  if (!L->have_base || size < LOCAL_MIN_BODIES) return US_LOCAL_GLOBAL;
+  int min = L->set.local_min_bodies > 0 ? L->set.local_min_bodies : LOCAL_MIN_BODIES;
+  if (!L->have_base || size < min) return US_LOCAL_GLOBAL;
   diff_base(L, cur);
   seed_region(L, cur);
   int r;
