@@ -23,6 +23,7 @@ static const char help[] =
     "options:\n"
     "  --json            print one JSON object instead\n"
     "  --method M        auto (default), lp (CLP), lpsolve, lcp, lcp-reuse, lp-lcp\n"
+    "  --local on|off      exact local tests for lp and auto (default on)\n"
     "  --max-tests N     test limit of the top-down DFS (default 20000; 0: none)\n"
     "  --time-limit S    seconds for each search of top-down, sequence and group\n"
     "                    (default 60; 0: none); a class cut there is unknown\n"

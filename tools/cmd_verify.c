@@ -13,6 +13,7 @@ static const char help[] =
     "\n"
     "options:\n"
     "  --method M        auto (default), lp (CLP), lpsolve, lcp, lcp-reuse, lp-lcp\n"
+    "  --local on|off      exact local tests for lp and auto (default on)\n"
     "  --contact-tol T   contact detection tolerance (default 1e-6 x size)\n"
     "\n"
     "exit: 0 every step stands and all bodies are removed, 1 not, 2 usage or input\n"

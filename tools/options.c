@@ -35,6 +35,13 @@ int cli_common_option(const char *cmd, int argc, char **argv, int *i, CliCommon 
     c->stab.method = m;
     return 1;
   }
+  if (!strcmp(a, "--local")) {
+    if (!(v = cli_value(cmd, argc, argv, i))) return -1;
+    if (strcmp(v, "on") && strcmp(v, "off"))
+      return cli_fail(cmd, "--local takes on or off (got '%s')", v), -1;
+    c->stab.local = strcmp(v, "on") ? -1 : 1;
+    return 1;
+  }
   if (!strcmp(a, "--contact-tol")) {
     if (!(v = cli_value(cmd, argc, argv, i))) return -1;
     if (cli_parse_double(v, &c->contact_tol) || c->contact_tol <= 0)

@@ -641,7 +641,7 @@ static us_Status attempt_row(Stk *k, us_Structure **out, int *kept, us_Error *er
   *kept = 0;
   if (!draw_row(k)) return US_OK;
   if ((st = keep_row(k, err))) return st;
-  if (top) st = test_T(k, 0, 0, &stable, out, err);
+  if (top) st = test_T(k, 0, 0, &stable, NULL, err);
   else if (k->rows > 1) st = test_T(k, 1, 0, &stable, NULL, err);
   /* the counterweights must stand without their cantilevers too, so that
      the structure has a one-at-a-time order (cantilever first) */
@@ -649,6 +649,9 @@ static us_Status attempt_row(Stk *k, us_Structure **out, int *kept, us_Error *er
     st = test_T(k, 1, 1, &stable, NULL, err);
   if (st || !stable) drop_row(k);
   *kept = !st && stable;
+  /* the finished structure, once every test of the top row passed (it was
+     kept before the last test and leaked when that one failed) */
+  if (*kept && top && out && !(*out = build(k, 0, 0, err))) return err->code ? err->code : US_ERR_NOMEM;
   return st;
 }
 
