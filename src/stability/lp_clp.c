@@ -38,6 +38,12 @@
 #include <stdio.h>
 #include <string.h>
 
+/* Cold solves of systems with at least this many rows (3 per body) use the
+ * barrier first (clp_cold_big); below, the dual simplex is faster (a
+ * 990-block wall: dual 0.70 s, barrier 0.15 s; a 91-block pyramid: both
+ * in a few ms). */
+#define CLP_BARRIER_ROWS 1500
+
 typedef struct ClpWs {
   us_EqGen gen;
   double *bounds;   /* [nrow] row bounds (rhs) */
@@ -188,6 +194,24 @@ static int clp_evidence(Clp_Simplex *m, ClpWs *w, const us_EqSystem *sys) {
   return body;
 }
 
+/* A cold solve of a big system: CLP's barrier without crossover (an
+ * interior point: on the 10,000-block wall 5.4 s, where the dual simplex
+ * from the slack basis took 4 minutes and the barrier with crossover 3).
+ * Accepted only when CLP calls it optimal with no visible infeasibility;
+ * otherwise (infeasible systems included: the barrier proves nothing) the
+ * model is reloaded and the dual simplex decides. The front end re-checks
+ * any forces it yields. NULL if CLP cannot create a model. */
+static Clp_Simplex *clp_cold_big(ClpWs *w, const us_EqSystem *sys) {
+  Clp_Simplex *m = clp_load(w, sys);
+  if (!m) return NULL;
+  Clp_initialBarrierNoCrossSolve(m);
+  if (Clp_status(m) == 0 && Clp_sumPrimalInfeasibilities(m) <= w->set.warm_accept) return m;
+  Clp_deleteModel(m);
+  m = clp_load(w, sys);
+  if (m) Clp_dual(m, 0);
+  return m;
+}
+
 /* Load and solve with the dual simplex, from the previous basis if `warm`
  * (a big jump makes the old basis a poor start: measured slower than a
  * cold start on a 1,000-brick wall minus 100 bricks). A warm run that
@@ -195,6 +219,7 @@ static int clp_evidence(Clp_Simplex *m, ClpWs *w, const us_EqSystem *sys) {
  * repeated cold. NULL if CLP cannot create a model. */
 static Clp_Simplex *clp_run(ClpWs *w, const us_EqSystem *sys, int warm, int region,
                             us_StabilityInfo *info) {
+  if (!warm && !region && w->gen.nrow >= CLP_BARRIER_ROWS) return clp_cold_big(w, sys);
   Clp_Simplex *m = clp_load(w, sys);
   if (!m) return NULL;
   if (warm && warm_start(m, w, sys, region)) {
