@@ -13,6 +13,7 @@
 #include "core/core.h"
 #include "contact/kinematics.h"
 #include "hook.h"
+#include "stability/backend.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -125,6 +126,7 @@ us_Status us_verify_steps(const us_Structure *s, const us_StabilitySettings *set
   if (!st) st = check_steps(group_start, ngroups, n, err);
   us_Stability *w = st ? NULL : us_stability_new(s, set, err);
   if (!st && !w) st = err->code ? err->code : US_ERR_NOMEM;
+  if (w) us_stability_set_skip_forces(w, 1); /* verdicts and checks only */
   us_StabilityResult res;
   memset(&res, 0, sizeof res);
   if (!st) st = walk(w, &node, order, group_start, group_start ? ngroups : n, rep, &res, err);
