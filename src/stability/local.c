@@ -40,12 +40,13 @@
 #include "local.h"
 
 #include "certificate.h"
+#include "lp_small.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
-#define LOCAL_MIN_BODIES 16   /* default: smaller sub-assemblies go to the full system */
+#define LOCAL_MIN_BODIES 1    /* default: smaller sub-assemblies go to the full system */
 #define LOCAL_GLOBAL_SHARE 0.25 /* a region past this share of S: the full system
                                   (0.5 and 0.75 measured slower on random stacks) */
 #define SUPPORT_COS 1e-3      /* a contact supports if its push has this much "up" */
@@ -56,6 +57,9 @@ struct us_Local {
   const us_Backend *be;
   void *bws[2];          /* the support LP's and the fixed LP's (each warm
                             starts from its own previous basis) */
+  void *small;           /* the dense simplex for tiny regions (lp_small.h) */
+  const void *ray_ws;    /* the workspace of the last support LP */
+  const us_Backend *ray_be;
   us_EqSystem eq;
   int dim;
   int *inc_start, *inc;  /* body -> contacts */
@@ -124,6 +128,7 @@ void us_local_free(us_Local *L) {
   if (!L) return;
   for (int k = 0; k < 2; k++)
     if (L->bws[k]) L->be->destroy(L->bws[k]);
+  if (L->small) us_backend_small.destroy(L->small);
   us_eq_free(&L->eq);
   us_free(L->inc_start);
   us_free(L->inc);
@@ -175,6 +180,11 @@ us_Local *us_local_new(const us_Structure *s, const us_StabilitySettings *set,
       us_local_free(L);
       return NULL;
     }
+  }
+  L->small = us_backend_small.create(s, set, err);
+  if (!L->small) {
+    us_local_free(L);
+    return NULL;
   }
   return L;
 }
@@ -354,6 +364,17 @@ static us_Status solve_region(us_Local *L, const us_Bitset *cur, int fixed, us_V
   if (US_GROW(L->f, L->cap_f, L->eq.ncontact * L->dim + 1))
     return us_error_set(err, US_ERR_NOMEM, "out of memory building a local system");
   info->local_lps++;
+  L->ray_be = L->be;
+  L->ray_ws = L->bws[0];
+  if (L->eq.nbody * 3 <= US_SMALL_ROWS) {
+    us_Status st = us_backend_small.solve(L->small, &L->eq, NULL, 0, NULL, 0, 0, v, L->f, info,
+                                          res->note, sizeof res->note, err);
+    if (st || *v != US_UNDECIDED) {
+      L->ray_be = &us_backend_small;
+      L->ray_ws = L->small;
+      return st;
+    }
+  }
   return L->be->solve(L->bws[fixed], &L->eq, NULL, 0, NULL, 0, 0, v, L->f, info, res->note,
                       sizeof res->note, err);
 }
@@ -436,7 +457,7 @@ int us_mechanism_from_ray(us_Mechanism *m, const us_EqSystem *e, const double *y
  * contacts of R's bodies. 1 accepted, 0 not, -1 OOM. */
 static int region_mechanism(us_Local *L, const us_Bitset *cur, us_Mechanism *m) {
   const double *y = NULL;
-  int ny = L->be->farkas_ray ? L->be->farkas_ray(L->bws[0], &y) : 0;
+  int ny = L->ray_be->farkas_ray ? L->ray_be->farkas_ray((void *)L->ray_ws, &y) : 0;
   if (!ny || !y) return 0;
   if (us_mechanism_from_ray(m, &L->eq, y, ny)) return -1;
   int nlist = 0;
@@ -458,7 +479,7 @@ static int try_support(us_Local *L, const us_Bitset *cur, us_StabilityResult *re
   if (ok < 0) return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)"), -1;
   if (!ok) return 0; /* no checked mechanism: no proof, grow */
   res->verdict = US_UNSTABLE;
-  res->unstable_body = L->be->unstable_body ? L->be->unstable_body(L->bws[0]) : -1;
+  res->unstable_body = L->ray_be->unstable_body ? L->ray_be->unstable_body((void *)L->ray_ws) : -1;
   snprintf(res->note, sizeof res->note,
            "local: %d bodies cannot stand even with the rest held still", L->nreg);
   return 1;
@@ -497,7 +518,8 @@ static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityR
   }
   int nseed = seeded ? L->nreg : -1;
   grow_supporters(L, cur);
-  int closed = 0, coned = 0, limit = (int)(LOCAL_GLOBAL_SHARE * size);
+  /* regions the small solver takes whole are never handed back early */
+  int closed = 0, coned = 0, limit = US_MAX((int)(LOCAL_GLOBAL_SHARE * size), US_SMALL_ROWS / 3);
   for (;;) {
     if (L->nreg > limit && !closed) return US_LOCAL_GLOBAL;
     r = try_fixed(L, cur, res, info, err);

@@ -21,6 +21,7 @@
 #include "backend.h"
 #include "certificate.h"
 #include "local.h"
+#include "lp_small.h"
 #include "lp_gen.h"
 
 #include <math.h>
@@ -46,6 +47,9 @@ struct us_Stability {
   us_StabilityInfo info;
   double deadline;         /* us_now() time; 0: none */
   us_Local *local;         /* exact local tests, or NULL */
+  void *small;             /* with local tests: the dense simplex for tiny systems */
+  const us_Backend *used_be; /* the backend that decided the last full system */
+  void *used_ws;
 };
 
 /* ------------------------------------------------------------ small API */
@@ -183,6 +187,7 @@ void us_stability_free(us_Stability *w) {
   if (!w) return;
   if (w->bws) w->be->destroy(w->bws);
   us_local_free(w->local);
+  if (w->small) us_backend_small.destroy(w->small);
   us_eq_free(&w->eq);
   us_bitset_free(&w->movable);
   us_bitset_free(&w->cur);
@@ -252,7 +257,8 @@ us_Stability *us_stability_new_backend(const us_Structure *s, const us_Stability
   /* local tests: the CLP backend itself (never a test's stand-in), 2D */
   if (be == &us_backend_clp && set->local >= 0 && s->dim == 2) {
     w->local = us_local_new(s, set, be, err);
-    if (!w->local) {
+    w->small = w->local ? us_backend_small.create(s, set, err) : NULL;
+    if (!w->local || !w->small) {
       us_stability_free(w);
       return NULL;
     }
@@ -332,8 +338,20 @@ static us_Status run_backend(us_Stability *w, us_StabilityResult *res, us_Error 
   if (US_GROW(w->f, w->cap_f, need))
     return us_error_set(err, US_ERR_NOMEM, "out of memory testing stability");
   memset(w->f, 0, (size_t)need * sizeof(double));
-  w->have_last = 0; /* until the backend succeeds, its state is unknown */
   double t0 = us_now();
+  w->used_be = w->be;
+  w->used_ws = w->bws;
+  if (w->small && w->eq.nbody * 3 <= US_SMALL_ROWS) { /* tiny: the dense simplex first */
+    us_Status st = us_backend_small.solve(w->small, &w->eq, NULL, 0, NULL, 0, 1, &res->verdict,
+                                          w->f, &w->info, res->note, sizeof res->note, err);
+    if (st || res->verdict != US_UNDECIDED) {
+      w->info.solve_time += us_now() - t0;
+      w->used_be = &us_backend_small;
+      w->used_ws = w->small;
+      return st;
+    }
+  }
+  w->have_last = 0; /* until the backend succeeds, its state is unknown */
   us_Status st = w->be->solve(w->bws, &w->eq, w->added, nadd, w->removed, nrem, restart,
                               &res->verdict, w->f, &w->info, res->note, sizeof res->note, err);
   w->info.solve_time += us_now() - t0;
@@ -402,7 +420,7 @@ static int decide_local(us_Stability *w, us_StabilityResult *res, us_Error *err)
  * has one, as a checked mechanism of all bodies. */
 static us_Status global_mechanism(us_Stability *w, us_StabilityResult *res, us_Error *err) {
   const double *y = NULL;
-  int ny = w->be->farkas_ray ? w->be->farkas_ray(w->bws, &y) : 0;
+  int ny = w->used_be->farkas_ray ? w->used_be->farkas_ray(w->used_ws, &y) : 0;
   if (!ny || !y) return US_OK;
   if (us_mechanism_from_ray(&res->mechanism, &w->eq, y, ny))
     return us_error_set(err, US_ERR_NOMEM, "out of memory storing a mechanism");
@@ -437,8 +455,8 @@ static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err)
     if (!st && w->local && res->verdict == US_STABLE) us_local_set_base(w->local, &w->cur, &w->eq, w->f);
     return st;
   }
-  if (res->verdict == US_UNSTABLE && w->be->unstable_body)
-    res->unstable_body = w->be->unstable_body(w->bws);
+  if (res->verdict == US_UNSTABLE && w->used_be->unstable_body)
+    res->unstable_body = w->used_be->unstable_body(w->used_ws);
   if (res->verdict == US_UNSTABLE) return global_mechanism(w, res, err);
   return US_OK;
 }

@@ -1,0 +1,244 @@
+/* A dense simplex for the tiny statics LPs of the local tests.
+ *
+ * Why: the local tests (local.c) solve many LPs of a few bodies each. CLP
+ * decides them exactly but costs about 0.1 ms a solve whatever the size
+ * (a model is created, scaled and factorized each time): on the 91-block
+ * pyramid that fixed cost was the whole plan's time. For systems of at
+ * most US_SMALL_ROWS rows this backend does the same job in a dense
+ * tableau, and it never has the last word: a feasible answer is re-checked
+ * by the certificate check, an infeasible one by the Farkas ray's own
+ * check (us_eq_gen_farkas_body) and then the mechanism check; anything it
+ * cannot settle cleanly (too many pivots, a ray that fails) comes back
+ * US_UNDECIDED and the caller asks CLP.
+ *
+ * Algorithm: phase 1 of the primal simplex on G l + a = b (rows with
+ * b_i < 0 negated first, so the artificials a = b >= 0 are a feasible
+ * start), minimizing the sum of the artificials: entering the lowest
+ * index with a negative reduced cost (Bland), leaving the largest pivot
+ * among the ratio-test ties (for accuracy; a pivot limit stands in for
+ * Bland's guarantee against cycling). A feasible answer's residual
+ * |G l - b| is measured from the sparse columns before it is claimed.
+ * Optimum 0: l is feasible. Optimum > 0: the duals y of the final basis
+ * (read from the artificials' reduced costs, y_i = 1 - r_i) satisfy
+ * y . G_j <= 0 for every column and y . b > 0, a Farkas ray. The tableau
+ * is m x (n + m + 1) doubles, reused between solves.
+ */
+#include "lp_small.h"
+
+#include "lp_gen.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#define PIVOT_EPS 1e-11   /* entries below this are not pivots */
+#define COST_EPS 1e-12    /* reduced costs above -this are optimal */
+#define FEAS_TOL 1e-10    /* phase-1 optimum at most this: feasible */
+#define RATIO_TIE 1e-12   /* ratios this close are ties */
+#define RESID_TOL 1e-9    /* a feasible claim's max |G l - b| (b is at most 1) */
+
+typedef struct SmallWs {
+  us_EqGen gen;
+  us_LpSettings set;
+  double *t;         /* tableau, row-major, m rows of width n + m + 1, then the cost row */
+  int *basis;        /* [m] basic column of each row */
+  double *sol, *ray; /* [n], [m] */
+  int cap_t, cap_b, cap_s, cap_r;
+  int nray, last_body;
+} SmallWs;
+
+static void small_destroy(void *ws) {
+  SmallWs *w = ws;
+  if (!w) return;
+  us_eq_gen_free(&w->gen);
+  us_free(w->t);
+  us_free(w->basis);
+  us_free(w->sol);
+  us_free(w->ray);
+  us_free(w);
+}
+
+static void *small_create(const us_Structure *s, const us_StabilitySettings *set, us_Error *err) {
+  US_UNUSED(s);
+  SmallWs *w = us_calloc(1, sizeof *w);
+  if (!w) {
+    us_error_set(err, US_ERR_NOMEM, "out of memory creating the small LP workspace");
+    return NULL;
+  }
+  w->set = us_lp_settings_resolve(&set->lp);
+  w->last_body = -1;
+  return w;
+}
+
+/* The phase-1 tableau of G l + a = b with b >= 0 row by row; sign[i]
+ * records the negated rows (in ray). */
+static void fill_tableau(SmallWs *w, const us_EqSystem *sys, int m, int n) {
+  const us_EqGen *g = &w->gen;
+  int width = n + m + 1;
+  memset(w->t, 0, (size_t)(m + 1) * (size_t)width * sizeof(double));
+  for (int j = 0; j < n; j++)
+    for (int k = g->start[j]; k < g->start[j + 1]; k++)
+      w->t[(size_t)g->row[k] * (size_t)width + (size_t)j] = g->val[k];
+  double *cost = w->t + (size_t)m * (size_t)width;
+  for (int i = 0; i < m; i++) {
+    double *row = w->t + (size_t)i * (size_t)width, sg = sys->rhs[i] < 0 ? -1.0 : 1.0;
+    w->ray[i] = sg;
+    for (int j = 0; j < n; j++) row[j] *= sg;
+    row[n + i] = 1.0;
+    row[n + m] = sg * sys->rhs[i];
+    w->basis[i] = n + i;
+    for (int j = 0; j < n; j++) cost[j] -= row[j]; /* reduced costs of phase 1 */
+    cost[n + m] -= row[n + m];                      /* minus the objective */
+  }
+}
+
+static void pivot(SmallWs *w, int m, int width, int pr, int pc) {
+  double *prow = w->t + (size_t)pr * (size_t)width, p = prow[pc];
+  for (int j = 0; j < width; j++) prow[j] /= p;
+  prow[pc] = 1.0;
+  for (int i = 0; i <= m; i++) {
+    if (i == pr) continue;
+    double *row = w->t + (size_t)i * (size_t)width, f = row[pc];
+    if (f == 0.0) continue;
+    for (int j = 0; j < width; j++) row[j] -= f * prow[j];
+    row[pc] = 0.0;
+  }
+  w->basis[pr] = pc;
+}
+
+/* The leaving row for entering column pc: the least ratio, and among
+ * rows within round-off of it the largest pivot (a small pivot would
+ * amplify the tableau's errors); -1 if none. */
+static int leaving_row(const SmallWs *w, int m, int width, int pc) {
+  double best = INFINITY;
+  for (int i = 0; i < m; i++) {
+    double a = w->t[(size_t)i * (size_t)width + (size_t)pc];
+    if (a <= PIVOT_EPS) continue;
+    double rhs = US_MAX(w->t[(size_t)i * (size_t)width + (size_t)(width - 1)], 0.0);
+    best = US_MIN(best, rhs / a);
+  }
+  if (!isfinite(best)) return -1;
+  int pr = -1;
+  double big = 0.0;
+  for (int i = 0; i < m; i++) {
+    double a = w->t[(size_t)i * (size_t)width + (size_t)pc];
+    if (a <= PIVOT_EPS) continue;
+    double rhs = US_MAX(w->t[(size_t)i * (size_t)width + (size_t)(width - 1)], 0.0);
+    if (rhs / a <= best + RATIO_TIE && a > big) big = a, pr = i;
+  }
+  return pr;
+}
+
+/* The lowest-index entering column until optimal: 0, or -1 past the pivot
+ * limit (then CLP decides). */
+static int run_simplex(SmallWs *w, int m, int n) {
+  int width = n + m + 1, limit = 20 * (m + n);
+  const double *cost = w->t + (size_t)m * (size_t)width;
+  for (int it = 0; it < limit; it++) {
+    int pc = -1;
+    for (int j = 0; j < n + m && pc < 0; j++)
+      if (cost[j] < -COST_EPS) pc = j;
+    if (pc < 0) return 0;
+    int pr = leaving_row(w, m, width, pc);
+    if (pr < 0) return -1; /* phase 1 is bounded below: only round-off gets here */
+    pivot(w, m, width, pr, pc);
+  }
+  return -1;
+}
+
+/* max |G l - b| of a claimed solution, from the sparse columns. */
+static double residual(SmallWs *w, const us_EqSystem *sys, int m, int n) {
+  double *r = w->ray; /* scratch: the ray is not used on this path */
+  for (int i = 0; i < m; i++) r[i] = -sys->rhs[i];
+  for (int j = 0; j < n; j++) {
+    double x = US_MAX(w->sol[j], 0.0);
+    for (int k = w->gen.start[j]; k < w->gen.start[j + 1]; k++) r[w->gen.row[k]] += w->gen.val[k] * x;
+  }
+  double worst = 0.0;
+  for (int i = 0; i < m; i++) worst = US_MAX(worst, fabs(r[i]));
+  return worst;
+}
+
+static int small_reserve(SmallWs *w, int m, int n) {
+  long cells = (long)(m + 1) * (long)(n + m + 1);
+  if (cells > 1L << 28) return -1;
+  return US_GROW(w->t, w->cap_t, (int)cells) || US_GROW(w->basis, w->cap_b, m + 1) ||
+                 US_GROW(w->sol, w->cap_s, n + 1) || US_GROW(w->ray, w->cap_r, m + 1)
+             ? -1
+             : 0;
+}
+
+/* Optimum > 0: the Farkas ray into w->ray (original row signs). */
+static void read_ray(SmallWs *w, int m, int n) {
+  const double *cost = w->t + (size_t)m * (size_t)(n + m + 1);
+  for (int i = 0; i < m; i++) w->ray[i] *= 1.0 - cost[n + i];
+  w->nray = m;
+}
+
+static us_Status small_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
+                             const int *removed, int nremoved, int restart, us_Verdict *verdict,
+                             double *f, us_StabilityInfo *info, char *note, size_t note_sz,
+                             us_Error *err) {
+  US_UNUSED(added), US_UNUSED(nadded), US_UNUSED(removed), US_UNUSED(nremoved);
+  US_UNUSED(restart), US_UNUSED(info);
+  SmallWs *w = ws;
+  w->nray = 0;
+  w->last_body = -1;
+  int r = us_eq_generators(sys, w->set.n_column_mu, &w->gen);
+  if (r == -2) return us_error_set(err, US_ERR_USAGE, "the LP backends support 2D only");
+  int m = w->gen.nrow, n = w->gen.ncol;
+  if (r || small_reserve(w, m, n)) return us_error_set(err, US_ERR_NOMEM, "out of memory building the LP");
+  if (n == 0) {
+    *verdict = us_eq_no_columns_verdict(sys);
+    snprintf(note, note_sz, "no active contact");
+    return US_OK;
+  }
+  fill_tableau(w, sys, m, n);
+  *verdict = US_UNDECIDED;
+  if (run_simplex(w, m, n)) {
+    snprintf(note, note_sz, "small LP: pivot limit");
+    return US_OK;
+  }
+  int width = n + m + 1;
+  double infeas = -w->t[(size_t)m * (size_t)width + (size_t)(n + m)];
+  if (infeas <= FEAS_TOL) {
+    memset(w->sol, 0, (size_t)n * sizeof(double));
+    for (int i = 0; i < m; i++)
+      if (w->basis[i] < n) w->sol[w->basis[i]] = w->t[(size_t)i * (size_t)width + (size_t)(n + m)];
+    if (residual(w, sys, m, n) > RESID_TOL) { /* round-off: let CLP decide */
+      snprintf(note, note_sz, "small LP: inaccurate");
+      return US_OK;
+    }
+    us_eq_gen_forces(sys, &w->gen, w->sol, f);
+    *verdict = US_STABLE;
+    snprintf(note, note_sz, "small LP: feasible");
+    return US_OK;
+  }
+  read_ray(w, m, n);
+  w->last_body = us_eq_gen_farkas_body(sys, &w->gen, w->ray, w->set.farkas_slack);
+  if (w->last_body < 0) { /* the ray does not hold up: let CLP decide */
+    w->nray = 0;
+    snprintf(note, note_sz, "small LP: infeasible, ray rejected");
+    return US_OK;
+  }
+  *verdict = US_UNSTABLE;
+  snprintf(note, note_sz, "small LP: infeasible (Farkas ray checked)");
+  return US_OK;
+}
+
+static int small_unstable_body(void *ws) { return ((SmallWs *)ws)->last_body; }
+
+static int small_farkas_ray(void *ws, const double **y) {
+  SmallWs *w = ws;
+  *y = w->nray ? w->ray : NULL;
+  return w->nray;
+}
+
+const us_Backend us_backend_small = {
+    .method = US_METHOD_LP,
+    .create = small_create,
+    .destroy = small_destroy,
+    .solve = small_solve,
+    .unstable_body = small_unstable_body,
+    .farkas_ray = small_farkas_ray,
+};
