@@ -570,9 +570,79 @@ static void null_error_pointer(void) {
   us_structure_free(s);
 }
 
+/* A time limit holds inside the solvers: a plan that runs out ends in
+ * limit (not undecided), a stability test undecided with the reason, a
+ * verification undecided with the reason; with room, nothing changes. */
+static void time_limits_inside_solvers(void) {
+  us_Structure *s = scene_column(40);
+  CHECK(s);
+  us_PlanSettings set = us_plan_default_settings();
+  set.search = US_SEARCH_DFS;
+  set.time_limit = 1e-9;
+  us_Plan p;
+  us_Error err;
+  CHECK_OK(us_plan(s, &set, &p, &err), &err);
+  CHECK_INT(p.status, ==, US_PLAN_LIMIT);
+  CHECK_INT(p.stats.undecided, ==, 0);
+  us_plan_free(&p);
+  us_StabilitySettings stab = us_stability_default_settings();
+  stab.time_limit = 1e-9;
+  us_Stability *w = us_stability_new(s, &stab, &err);
+  CHECK(w);
+  us_StabilityResult res;
+  us_stability_result_init(&res);
+  CHECK_OK(us_stability_test_full(w, &res, &err), &err);
+  CHECK_INT(res.verdict, ==, US_UNDECIDED);
+  CHECK(strstr(res.note, "time limit") != NULL);
+  CHECK_INT(us_stability_info(w)->timed_out, ==, 1);
+  us_stability_free(w);
+  us_stability_result_free(&res);
+  int order[40];
+  for (int k = 0; k < 40; k++) order[k] = 39 - k;
+  us_VerifyReport rep;
+  CHECK_OK(us_verify_order(s, &stab, order, 40, &rep, &err), &err);
+  CHECK(rep.undecided && !rep.ok && rep.failed_step == -1);
+  CHECK(strstr(rep.note, "time limit") != NULL);
+  stab.time_limit = 60;
+  CHECK_OK(us_verify_order(s, &stab, order, 40, &rep, &err), &err);
+  CHECK(rep.ok);
+  us_structure_free(s);
+}
+
+typedef struct Seen {
+  long calls, last_tests;
+  int bad;
+} Seen;
+
+static void on_progress(const us_Progress *p, void *user) {
+  Seen *seen = user;
+  seen->calls++;
+  if (p->tests < seen->last_tests || p->bodies < 0 || p->elapsed < 0) seen->bad = 1;
+  seen->last_tests = p->tests;
+}
+
+/* The progress callback runs during a plan (the first test reports at
+ * once) with counts that only grow. */
+static void progress_is_reported(void) {
+  us_Structure *s = scene_column(30);
+  CHECK(s);
+  us_PlanSettings set = us_plan_default_settings();
+  Seen seen = {0, 0, 0};
+  set.stability.progress = on_progress;
+  set.stability.progress_user = &seen;
+  us_Plan p;
+  us_Error err;
+  CHECK_OK(us_plan(s, &set, &p, &err), &err);
+  CHECK_INT(p.status, ==, US_PLAN_FOUND);
+  CHECK(seen.calls >= 1 && !seen.bad && seen.last_tests >= 1);
+  us_plan_free(&p);
+  us_structure_free(s);
+}
+
 US_TEST_MAIN(T(column_top_down), T(column_of_150), T(cantilever_needs_backtracking),
              T(leaning_slabs_have_no_order), T(limits_stop_the_search), T(certificates_per_step),
              T(verify_names_the_failing_step), T(agrees_with_exhaustive_reference),
              T(undecided_is_not_unstable_or_none), T(found_past_undecided_nodes),
              T(verify_reports_undecided_steps), T(status_words), T(out_of_memory_is_clean),
-             T(verify_out_of_memory_is_clean), T(null_error_pointer))
+             T(verify_out_of_memory_is_clean), T(null_error_pointer),
+             T(time_limits_inside_solvers), T(progress_is_reported))

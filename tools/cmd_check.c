@@ -17,6 +17,7 @@ static const char help[] =
     "  --local on|off      exact local tests for lp and auto (default on)\n"
     "  --contact-tol T   contact detection tolerance (default 1e-6 x size)\n"
     "  --forces          print the certificate forces\n"
+    "  --time-limit S    stop after S seconds, inside the solver too (undecided)\n"
     "\n"
     "exit: 0 stable, 1 unstable, 2 usage or input error, 3 undecided (a solver\n"
     "limit was hit and no fallback decided, or the certificate failed)\n";
@@ -62,6 +63,10 @@ int cmd_check(int argc, char **argv) {
     if (r) continue;
     if (cli_is_help(argv[i])) return fputs(help, stdout), CLI_EXIT_OK;
     if (!strcmp(argv[i], "--forces")) forces = 1;
+    else if (!strcmp(argv[i], "--time-limit")) {
+      const char *v = cli_value("check", argc, argv, &i);
+      if (!v || cli_time_limit("check", v, &c)) return CLI_EXIT_ERR;
+    }
     else if (argv[i][0] == '-' && argv[i][1]) return cli_fail("check", "unknown option '%s'", argv[i]);
     else if (file) return cli_fail("check", "more than one FILE given");
     else file = argv[i];

@@ -189,6 +189,7 @@ int cmd_plan(int argc, char **argv) {
   PlanArgs a = {NULL, NULL, 0};
   int r = parse(argc, argv, &c, &a);
   if (r) return r < 0 ? CLI_EXIT_OK : r;
+  cli_progress_on("plan", &c);
   c.plan.stability = c.stab;
   if (a.out && cli_check_output("plan", a.out, &a.file, 1)) return CLI_EXIT_ERR;
   us_Structure *s = cli_load("plan", a.file, &c);
@@ -197,7 +198,9 @@ int cmd_plan(int argc, char **argv) {
   us_error_clear(&err);
   us_Plan p;
   int code = CLI_EXIT_ERR;
-  if (us_plan(s, &c.plan, &p, &err) == US_OK) {
+  us_Status pst = us_plan(s, &c.plan, &p, &err);
+  cli_progress_off(&c);
+  if (pst == US_OK) {
     if (!a.out || us_plan_write(s, &p, &c.plan, a.out, &err) == US_OK) {
       print_summary(s, &p, &c, a.out);
       if (a.stats) print_stats(&p.stats);

@@ -14,6 +14,7 @@ static const char help[] =
     "options:\n"
     "  --method M        auto (default), lp (CLP), lpsolve, lcp, lcp-reuse, lp-lcp\n"
     "  --local on|off      exact local tests for lp and auto (default on)\n"
+    "  --time-limit S    stop after S seconds, inside the solver too (undecided)\n"
     "  --contact-tol T   contact detection tolerance (default 1e-6 x size)\n"
     "\n"
     "exit: 0 every step stands and all bodies are removed, 1 not, 2 usage or input\n"
@@ -24,6 +25,10 @@ static const char help[] =
 static int report_undecided(const us_Structure *s, const us_PlanFile *pf,
                             const us_VerifyReport *rep) {
   int k = rep->undecided_step;
+  if (!strncmp(rep->note, "time limit", 10)) {
+    printf("undecided: %s; none of them falls\n", rep->note);
+    return CLI_EXIT_UNDECIDED;
+  }
   if (k < 0) {
     printf("undecided: the full structure: its test could not be decided (%s)\n", rep->note);
   } else {
@@ -81,6 +86,16 @@ static int check_removals(const us_Structure *s, const us_PlanFile *pf, us_Error
   return CLI_EXIT_NO;
 }
 
+/* us_verify_steps with the progress line (on a terminal). */
+static us_Status verify_with_progress(const us_Structure *s, CliCommon *c, const us_PlanFile *pf,
+                                      us_VerifyReport *rep, us_Error *err) {
+  cli_progress_on("verify", c);
+  us_Status st = us_verify_steps(s, &c->stab, pf->order, pf->n, pf->group_start, pf->ngroups,
+                                 rep, err);
+  cli_progress_off(c);
+  return st;
+}
+
 int cmd_verify(int argc, char **argv) {
   CliCommon c;
   cli_common_init(&c);
@@ -91,6 +106,11 @@ int cmd_verify(int argc, char **argv) {
     if (r < 0) return CLI_EXIT_ERR;
     if (r) continue;
     if (cli_is_help(argv[i])) return fputs(help, stdout), CLI_EXIT_OK;
+    if (!strcmp(argv[i], "--time-limit")) {
+      const char *v = cli_value("verify", argc, argv, &i);
+      if (!v || cli_time_limit("verify", v, &c)) return CLI_EXIT_ERR;
+      continue;
+    }
     if (argv[i][0] == '-' && argv[i][1]) return cli_fail("verify", "unknown option '%s'", argv[i]);
     if (nfiles == 2) return cli_fail("verify", "too many arguments");
     files[nfiles++] = argv[i];
@@ -113,8 +133,7 @@ int cmd_verify(int argc, char **argv) {
       printf("invalid: the plan's status is \"%s\": it holds no complete order\n",
              us_plan_status_name(pf.status));
       code = CLI_EXIT_NO;
-    } else if (us_verify_steps(s, &c.stab, pf.order, pf.n, pf.group_start, pf.ngroups, &rep,
-                               &err) == US_OK) {
+    } else if (verify_with_progress(s, &c, &pf, &rep, &err) == US_OK) {
       code = report(s, &pf, &rep);
       if (code == CLI_EXIT_OK && pf.removal != US_REMOVAL_ANY)
         code = check_removals(s, &pf, &err);

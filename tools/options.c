@@ -4,6 +4,7 @@
 
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 /* Enum words come from the library's name tables only (us_*_name), so each
  * word is spelled once in the repository; the words of enum value i, until
@@ -98,4 +99,32 @@ void cli_print_local_stats(const us_StabilityInfo *in) {
   if (in->local_global)
     printf(" full: %.1f%%", 100.0 * (double)in->local_global / (double)(settled + in->local_global));
   printf("\n");
+}
+
+/* ------------------------------------------------------------ progress */
+
+static void print_progress(const us_Progress *p, void *user) {
+  const char *cmd = user;
+  double rate = p->elapsed > 0 ? (double)p->tests / p->elapsed : 0.0;
+  fprintf(stderr, "\r%s: %ld tests, %d bodies, %.0f tests/s, %.0f s", cmd, p->tests, p->bodies,
+          rate, p->elapsed);
+  if (p->time_left >= 0) fprintf(stderr, ", %.0f s left", p->time_left);
+  fprintf(stderr, "\033[K");
+  fflush(stderr);
+}
+
+void cli_progress_on(const char *cmd, CliCommon *c) {
+  if (!isatty(STDERR_FILENO)) return; /* silent unless a person watches */
+  c->stab.progress = print_progress;
+  c->stab.progress_user = (void *)cmd;
+}
+
+void cli_progress_off(const CliCommon *c) {
+  if (c->stab.progress) fprintf(stderr, "\r\033[K");
+}
+
+int cli_time_limit(const char *cmd, const char *v, CliCommon *c) {
+  if (cli_parse_double(v, &c->stab.time_limit) || c->stab.time_limit <= 0)
+    return cli_fail(cmd, "--time-limit needs a positive number of seconds, got '%s'", v), -1;
+  return 0;
 }

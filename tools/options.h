@@ -17,6 +17,12 @@ void cli_common_init(CliCommon *c);
 typedef const char *(*CliWord)(int i);
 int cli_unknown(const char *cmd, const char *what, const char *value, CliWord word);
 const char *cli_method_word(int i);
+/* A progress line on stderr while the workspace tests, only when stderr
+ * is a terminal; _off clears it. */
+void cli_progress_on(const char *cmd, CliCommon *c);
+void cli_progress_off(const CliCommon *c);
+/* --time-limit S into c->stab.time_limit; 0, or -1 (message printed). */
+int cli_time_limit(const char *cmd, const char *v, CliCommon *c);
 /* The local-test statistics lines of --stats (nothing when none ran). */
 void cli_print_local_stats(const us_StabilityInfo *in);
 const char *cli_search_word(int i);

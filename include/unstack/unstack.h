@@ -293,6 +293,15 @@ typedef struct us_LpSettings {
 } us_LpSettings;
 US_API us_LpSettings us_lp_default_settings(void);
 
+/* Progress of a stability workspace (us_StabilitySettings.progress). */
+typedef struct us_Progress {
+  long tests;        /* tests done by the workspace */
+  int bodies;        /* movable bodies in the sub-assembly just tested */
+  double elapsed;    /* seconds since the workspace was created */
+  double time_left;  /* seconds to its deadline, or -1 without one */
+} us_Progress;
+typedef void (*us_ProgressFn)(const us_Progress *p, void *user);
+
 typedef struct us_StabilitySettings {
   us_Method method;
   double cert_tol;    /* certificate tolerance, relative (default 1e-6) */
@@ -305,6 +314,12 @@ typedef struct us_StabilitySettings {
                            (<= 0: default 16) */
   int skip_forces;    /* 1: a stable result carries its check but no forces
                          (res->forces empty; the planner's searches) */
+  double time_limit;  /* > 0: tests that start or run past this many seconds
+                         after us_stability_new stop undecided ("time limit";
+                         counted in us_StabilityInfo.timed_out); 0: none */
+  us_ProgressFn progress; /* optional: called after a test at most about 4
+                             times a second (plan and verify show it) */
+  void *progress_user;
 } us_StabilitySettings;
 /* Defaults; us_stability_new and us_stability_test expect settings that
  * started from here (or a zeroed struct: zero LP fields mean defaults). */
@@ -347,6 +362,7 @@ typedef struct us_StabilityInfo {
   long local_global;     /* tests handed to the full system */
   long local_lps;        /* region LPs solved */
   long local_region_bodies; /* sum of the deciding regions' sizes */
+  long timed_out;        /* tests stopped undecided by the deadline */
   long local_settled[US_LOCAL_BUCKETS]; /* tests settled by a region of
                             2^k .. 2^(k+1) - 1 bodies (bucket 0: 0 or 1) */
 } us_StabilityInfo;

@@ -26,6 +26,7 @@
 #include "rules.h"
 #include "searches.h"
 
+#include <math.h>
 #include <string.h>
 
 us_PlanSettings us_plan_default_settings(void) {
@@ -108,6 +109,10 @@ static us_Status ctx_init(us_SearchCtx *ctx, const us_Structure *s, const us_Pla
     return err && err->code ? err->code : US_ERR_NOMEM;
   ctx->stab = us_stability_new(s, &set->stability, err);
   if (ctx->stab) us_stability_set_skip_forces(ctx->stab, 1); /* verdicts only */
+  /* the plan's time limit holds inside the solvers too */
+  if (ctx->stab && set->time_limit > 0 && isfinite(set->time_limit) &&
+      !(set->stability.time_limit > 0 && set->stability.time_limit < set->time_limit))
+    us_stability_set_deadline(ctx->stab, ctx->t_start + set->time_limit);
   return ctx->stab ? US_OK : (err && err->code ? err->code : US_ERR_NOMEM);
 }
 
@@ -358,6 +363,7 @@ static us_Status collect_certificates(us_SearchCtx *ctx, us_Plan *out, us_Error 
   us_Bitset node = {0};
   if (us_bitset_init(&node, ctx->s->nbody)) return us_error_set(err, US_ERR_NOMEM, "out of memory");
   us_stability_set_skip_forces(ctx->stab, 0);
+  us_stability_set_deadline(ctx->stab, 0); /* the order is found: finish its certificates */
   us_Status st = US_OK;
   for (int k = out->ngroups; k >= 0 && !st; k--) {
     for (int q = k < out->ngroups ? out->group_start[k] : 0; k < out->ngroups && q < out->group_start[k + 1]; q++)

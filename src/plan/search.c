@@ -51,7 +51,10 @@ int us_plan_test(us_SearchCtx *ctx, const us_Bitset *node, us_Error *err) {
   if (limit_reached(ctx)) return -2;
   if (ctx->exact_end > 0 && ctx->st->tests >= ctx->exact_end) return -2;
   if (ctx->budget_end > 0 && ctx->st->tests >= ctx->budget_end) return -3;
+  long timed_out = us_stability_info(ctx->stab)->timed_out;
   if (us_plan_stability_test(ctx->stab, node, &ctx->res, err)) return -1;
+  /* stopped by the deadline inside a solve: the limit, not an undecided test */
+  if (us_stability_info(ctx->stab)->timed_out > timed_out) return -2;
   count_verdict(ctx);
   return ctx->res.verdict == US_STABLE;
 }

@@ -61,8 +61,18 @@ static us_Status walk(us_Stability *w, us_Bitset *node, const int *order, const 
   int left = us_bitset_count(node), failed = nsteps, undecided = nsteps;
   for (int k = nsteps - 1; k >= -1; k--) {
     if (k < nsteps - 1) put_back(node, order, gs, k + 1);
+    long timed_out = us_stability_info(w)->timed_out;
     us_Status st = us_plan_stability_test(w, node, res, err);
     if (st) return st;
+    if (us_stability_info(w)->timed_out > timed_out) { /* the time limit: no answer */
+      rep->undecided = 1;
+      rep->undecided_step = k;
+      rep->failed_step = -1;
+      rep->full_unstable = rep->incomplete = rep->ok = 0;
+      snprintf(rep->note, sizeof rep->note, "time limit (%d of %d remainders tested)",
+               nsteps - 1 - k, nsteps + 1);
+      return US_OK;
+    }
     note_step(rep, res);
     if (res->verdict == US_UNDECIDED) {
       undecided = k;

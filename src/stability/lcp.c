@@ -577,6 +577,8 @@ static us_LcpResult pivot(us_Lcp *p, Run *run, int nd, int single, double dir, d
   }
   if (r) return r;
   if (++run->pivots > run->limit) return US_LCP_LIMIT;
+  if ((run->pivots & 63) == 0 && p->set.deadline > 0 && us_now() > p->set.deadline)
+    return US_LCP_LIMIT;
   if (run->zero_steps > p->set.zero_streak_per_index * p->n + p->set.zero_streak_base) return degenerate(p, "endless zero-length steps");
   if (us_lcp_fac_stale(&p->fac) ||
       (run->zero_steps == p->set.zero_rebuild_streak && p->fac.m > p->set.zero_rebuild_border))

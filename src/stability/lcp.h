@@ -33,6 +33,8 @@
 typedef struct us_LcpSettings {
   /* ---- the solver (lcp.c) */
   long max_pivots;       /* pivots per run; <= 0: pivots_per_index * n + pivots_base */
+  double deadline;       /* us_now() time (0: none): a run past it stops as
+                            US_LCP_LIMIT (checked every 64 pivots) */
   int pivots_per_index;  /* 4 */
   long pivots_base;      /* 1000 */
   double tol_a;          /* 1e-9: |a| below this counts as 0 (drives, checks) */

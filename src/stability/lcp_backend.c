@@ -65,6 +65,15 @@ typedef struct LcpWs {
   int scratch_failed; /* a scratch solve failed: restarts go to the LP */
 } LcpWs;
 
+/* Deadline (backend.h): runs stop as at their pivot limit, and the LP
+ * that then decides stops undecided. */
+static void lcp_set_deadline(void *ws, double deadline) {
+  LcpWs *w = ws;
+  w->lset.deadline = deadline;
+  w->lcp.set.deadline = deadline;
+  if (w->lpws) us_backend_clp.set_deadline(w->lpws, deadline);
+}
+
 static void lcp_destroy(void *ws) {
   LcpWs *w = ws;
   if (!w) return;
@@ -258,6 +267,7 @@ static us_Status fallback(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict,
   if (!w->lpws) {
     w->lpws = us_backend_clp.create(w->s, &w->set, err);
     if (!w->lpws) return err ? err->code : US_ERR_NOMEM;
+    us_backend_clp.set_deadline(w->lpws, w->lset.deadline);
   }
   char sub[96] = "";
   us_Status st = us_backend_clp.solve(w->lpws, sys, NULL, 0, NULL, 0, 1, verdict, f, info, sub,
@@ -411,6 +421,7 @@ const us_Backend us_backend_lcp = {
     .destroy = lcp_destroy,
     .solve = lcp_solve,
     .unstable_body = lcp_unstable_body,
+    .set_deadline = lcp_set_deadline,
 };
 const us_Backend us_backend_lcp_reuse = {
     .method = US_METHOD_LCP_REUSE,
@@ -418,4 +429,5 @@ const us_Backend us_backend_lcp_reuse = {
     .destroy = lcp_destroy,
     .solve = lcp_solve,
     .unstable_body = lcp_unstable_body,
+    .set_deadline = lcp_set_deadline,
 };

@@ -59,6 +59,7 @@ typedef struct ClpWs {
   int cap_st;
   double *ray;       /* the last infeasible solve's checked Farkas ray */
   int cap_ray, nray; /* nray = 0: none */
+  double deadline;   /* us_now() time; 0: none */
 } ClpWs;
 
 static void clp_destroy(void *ws) {
@@ -178,6 +179,7 @@ static Clp_Simplex *clp_load(ClpWs *w, const us_EqSystem *sys) {
   Clp_loadProblem(m, g->ncol, g->nrow, g->start, g->row, g->val, NULL, NULL, NULL, w->bounds,
                   w->bounds);
   Clp_setPrimalTolerance(m, w->set.primal_tol);
+  if (w->deadline > 0) Clp_setMaximumSeconds(m, US_MAX(w->deadline - us_now(), 1e-3));
   return m;
 }
 
@@ -255,11 +257,23 @@ static us_Status clp_solve(void *ws, const us_EqSystem *sys, const int *added, i
     return US_OK;
   }
   int region = !added && !removed; /* a region system (backend.h) */
+  if (w->deadline > 0 && us_now() >= w->deadline) {
+    snprintf(note, note_sz, "CLP: time limit");
+    *verdict = US_UNDECIDED;
+    return US_OK;
+  }
   int warm = !restart && nadded + nremoved <= w->set.warm_changes +
                                              sys->nbody / w->set.warm_body_div;
   Clp_Simplex *m = clp_run(w, sys, warm, region, info);
   if (!m) return us_error_set(err, US_ERR_NOMEM, "CLP could not create a model");
   int status = Clp_status(m);
+  if (status != 0 && status != 1 && w->deadline > 0 && us_now() >= w->deadline) {
+    Clp_deleteModel(m); /* stopped by the deadline: no verdict, no error */
+    w->stamp++;
+    snprintf(note, note_sz, "CLP: time limit");
+    *verdict = US_UNDECIDED;
+    return US_OK;
+  }
   if (status == 0 || status == 1) save_basis(m, w, sys);
   else w->stamp++; /* forget the basis */
   us_Status st = US_OK;
@@ -283,6 +297,8 @@ static us_Status clp_solve(void *ws, const us_EqSystem *sys, const int *added, i
 
 static int clp_unstable_body(void *ws) { return ((ClpWs *)ws)->last_body; }
 
+static void clp_set_deadline(void *ws, double deadline) { ((ClpWs *)ws)->deadline = deadline; }
+
 static int clp_farkas_ray(void *ws, const double **y) {
   ClpWs *w = ws;
   *y = w->nray ? w->ray : NULL;
@@ -296,4 +312,5 @@ const us_Backend us_backend_clp = {
     .solve = clp_solve,
     .unstable_body = clp_unstable_body,
     .farkas_ray = clp_farkas_ray,
+    .set_deadline = clp_set_deadline,
 };

@@ -31,6 +31,7 @@
 #include "lp_gen.h"
 
 #include <lp_lib.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -41,6 +42,7 @@ typedef struct LpsWs {
   int *rowno;
   double *sol;      /* [ncol] */
   int cap_col;
+  double deadline; /* us_now() time; 0: none */
 } LpsWs;
 
 static void *lps_create(const us_Structure *s, const us_StabilitySettings *set, us_Error *err) {
@@ -95,17 +97,26 @@ fail:
   return NULL;
 }
 
-/* solve() with the time limit and the primal retry (see Cycling above). */
-static int lps_run(lprec *lp, int ncol) {
+/* lp_solve's time limit in whole seconds: its own (see Cycling above),
+ * cut to what is left before the deadline (at least 1 s: 0 means none). */
+static long lps_timeout(const LpsWs *w, int ncol) {
   long limit = 2 + ncol / 100;
-  set_timeout(lp, limit);
+  if (w->deadline > 0) limit = US_MIN(limit, US_MAX(1L, (long)ceil(w->deadline - us_now())));
+  return limit;
+}
+
+/* solve() with the time limit and the primal retry (see Cycling above). */
+static int lps_run(const LpsWs *w, lprec *lp, int ncol) {
+  set_timeout(lp, lps_timeout(w, ncol));
   int ret = solve(lp);
-  if (ret != TIMEOUT) return ret;
+  if (ret != TIMEOUT || (w->deadline > 0 && us_now() >= w->deadline)) return ret;
   set_simplextype(lp, SIMPLEX_PRIMAL_PRIMAL);
   default_basis(lp);
-  set_timeout(lp, limit);
+  set_timeout(lp, lps_timeout(w, ncol));
   return solve(lp);
 }
+
+static void lps_set_deadline(void *ws, double deadline) { ((LpsWs *)ws)->deadline = deadline; }
 
 static us_Status lps_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
                            const int *removed, int nremoved, int restart, us_Verdict *verdict,
@@ -124,14 +135,19 @@ static us_Status lps_solve(void *ws, const us_EqSystem *sys, const int *added, i
     snprintf(note, note_sz, "no active contact");
     return US_OK;
   }
+  if (w->deadline > 0 && us_now() >= w->deadline) {
+    *verdict = US_UNDECIDED;
+    snprintf(note, note_sz, "lp_solve: time limit");
+    return US_OK;
+  }
   lprec *lp = lps_load(w, sys, 1);
   if (!lp) return us_error_set(err, US_ERR_NOMEM, "lp_solve could not build the model");
-  int ret = lps_run(lp, w->gen.ncol);
+  int ret = lps_run(w, lp, w->gen.ncol);
   if (ret == NUMFAILURE) { /* once more without lp_solve's scaling */
     delete_lp(lp);
     lp = lps_load(w, sys, 0);
     if (!lp) return us_error_set(err, US_ERR_NOMEM, "lp_solve could not build the model");
-    ret = lps_run(lp, w->gen.ncol);
+    ret = lps_run(w, lp, w->gen.ncol);
   }
   us_Status st = US_OK;
   if (ret == OPTIMAL || ret == SUBOPTIMAL) {
@@ -144,7 +160,9 @@ static us_Status lps_solve(void *ws, const us_EqSystem *sys, const int *added, i
     snprintf(note, note_sz, "lp_solve: infeasible");
   } else if (ret == TIMEOUT) {
     *verdict = US_UNDECIDED;
-    snprintf(note, note_sz, "lp_solve: no answer within its time limit (cycling)");
+    snprintf(note, note_sz, w->deadline > 0 && us_now() >= w->deadline
+                                ? "lp_solve: time limit"
+                                : "lp_solve: no answer within its time limit (cycling)");
   } else if (ret == NOMEMORY) {
     st = us_error_set(err, US_ERR_NOMEM, "lp_solve ran out of memory");
   } else {
@@ -160,4 +178,5 @@ const us_Backend us_backend_lpsolve = {
     .destroy = lps_destroy,
     .solve = lps_solve,
     .unstable_body = NULL,
+    .set_deadline = lps_set_deadline,
 };

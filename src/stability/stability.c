@@ -50,6 +50,7 @@ struct us_Stability {
   void *small;             /* with local tests: the dense simplex for tiny systems */
   const us_Backend *used_be; /* the backend that decided the last full system */
   void *used_ws;
+  double t_created, t_progress; /* us_now() at creation, at the last progress call */
 };
 
 /* ------------------------------------------------------------ small API */
@@ -254,6 +255,8 @@ us_Stability *us_stability_new_backend(const us_Structure *s, const us_Stability
     us_stability_free(w);
     return NULL;
   }
+  w->t_created = us_now();
+  w->t_progress = 0.0; /* the first test reports at once */
   /* local tests: the CLP backend itself (never a test's stand-in), 2D */
   if (be == &us_backend_clp && set->local >= 0 && s->dim == 2) {
     w->local = us_local_new(s, set, be, err);
@@ -263,6 +266,8 @@ us_Stability *us_stability_new_backend(const us_Structure *s, const us_Stability
       return NULL;
     }
   }
+  if (set->time_limit > 0 && isfinite(set->time_limit))
+    us_stability_set_deadline(w, w->t_created + set->time_limit);
   return w;
 }
 
@@ -461,6 +466,20 @@ static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err)
   return US_OK;
 }
 
+static int past_deadline(const us_Stability *w) {
+  return w->deadline > 0 && us_now() >= w->deadline;
+}
+
+static void report_progress(us_Stability *w) {
+  if (!w->set.progress) return;
+  double now = us_now();
+  if (now - w->t_progress < 0.25) return;
+  w->t_progress = now;
+  us_Progress p = {w->info.tests, us_bitset_count(&w->cur), now - w->t_created,
+                   w->deadline > 0 ? US_MAX(w->deadline - now, 0.0) : -1.0};
+  w->set.progress(&p, w->set.progress_user);
+}
+
 us_Status us_stability_test(us_Stability *w, const us_Bitset *present, us_StabilityResult *res,
                             us_Error *err) {
   us_Error local;
@@ -472,12 +491,17 @@ us_Status us_stability_test(us_Stability *w, const us_Bitset *present, us_Stabil
                         "the structure %d bodies", present->nbits, w->s->nbody);
   reset_result(res);
   for (int k = 0; k < w->cur.nwords; k++) w->cur.w[k] = present->w[k] & w->movable.w[k];
-  us_Status st = decide(w, res, err);
+  us_Status st = past_deadline(w) ? US_OK : decide(w, res, err);
   if (st) {
     reset_result(res);
     return st;
   }
+  if (res->verdict == US_UNDECIDED && past_deadline(w)) {
+    w->info.timed_out++;
+    snprintf(res->note, sizeof res->note, "time limit");
+  }
   w->info.tests++;
+  report_progress(w);
   if (w->set.verbose > 1)
     fprintf(stderr, "stability: %d bodies: %s (%s)\n", us_bitset_count(&w->cur),
             us_verdict_name(res->verdict), res->note);
