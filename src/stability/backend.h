@@ -47,7 +47,6 @@ extern const us_Backend us_backend_clp;     /* lp_clp.c */
 extern const us_Backend us_backend_lpsolve; /* lp_lpsolve.c */
 extern const us_Backend us_backend_lcp;     /* lcp_backend.c (from scratch) */
 extern const us_Backend us_backend_lcp_reuse;
-extern const us_Backend us_backend_lp_lcp;   /* lp_lcp.c */
 
 /* A workspace on a given backend (tests, benchmarks); us_stability_new picks
  * the backend from set->method. */
