@@ -5,6 +5,7 @@ ASAN  ?= build-asan
 JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
 CLI    = $(BUILD)/unstack
 OUT   ?= demo-out
+QUICK ?= 0
 
 .PHONY: all deps build asan demo test test-release test-asan bench clean fuzz fuzz-build
 
@@ -40,8 +41,9 @@ test-asan: asan
 
 test: test-release test-asan
 
+# QUICK=1: a subset in under a minute (bench/results/*-quick.*)
 bench: build
-	bash bench/run.sh $(BUILD)
+	QUICK=$(QUICK) bash bench/run.sh $(BUILD)
 
 # libFuzzer (docs/fuzzing.md): clang builds the targets of tests/fuzz/ into
 # $(FUZZ_BUILD); each runs FUZZ_TIME seconds from its seed corpus. New

@@ -1,82 +1,206 @@
 #!/usr/bin/env bash
-# Benchmarks (make bench): plan the source's structures and larger ones with
-# every backend and print a table of wall-clock times, tests and memory.
-# Timings live here, never in the tests. Usage: bench/run.sh BUILD_DIR [OUT.md]
-set -euo pipefail
+# The benchmark (make bench; make bench QUICK=1 for a subset under a
+# minute). Release build, timings never in the tests. It records, side by
+# side, in bench/results/ (CSV, SVG plots drawn by bench/plot.c with cairo,
+# and a markdown summary with the machine's CPU and core count):
+#   table2.csv    the source's Table 2 workloads (random 10, column 50,
+#                 column 80, random 84 from the stacker, pyramid 91), every
+#                 method and search direction, the source's own figures
+#                 where we have them, and the ratio to lpsolve;
+#   fig4-*.csv    the source's Figure 4: seconds per stability test against
+#                 the bodies in the tested sub-assembly, per method, on the
+#                 91-block pyramid and a 1,000-block wall (bench_fig4);
+#   scaling.csv   walls, pyramids and the stacker's random stacks from 100
+#                 to 10,000 blocks: plan and verify time, tests, peak memory,
+#                 and the fitted exponent from 1,000 blocks up.
+# Usage: bench/run.sh BUILD_DIR   (env QUICK=1, BENCH_OUT=dir, BENCH_LIMIT=s)
+set -uo pipefail
 B=${1:-build}
-OUT=${2:-bench/results/latest.md}
+QUICK=${QUICK:-0}
+OUT=${BENCH_OUT:-bench/results}
+LIMIT=${BENCH_LIMIT:-120}
 CLI=$B/unstack
 W=$(mktemp -d)
 trap 'rm -rf "$W"' EXIT
-LIMIT=${BENCH_TIME_LIMIT:-300}
+mkdir -p "$OUT"
+export OPENBLAS_NUM_THREADS=1 # CLP links OpenBLAS; its thread pool only spins here
+tag=$([ "$QUICK" = 1 ] && echo quick || echo full)
+MD=$OUT/c-$tag.md
+T2=$OUT/table2-$tag.csv
+SC=$OUT/scaling-$tag.csv
+START=$(date +%s)
 
-$CLI generate pyramid --rows 13 -o "$W/pyramid91.json" >/dev/null
-$CLI generate column --blocks 1000 -o "$W/column1000.json" >/dev/null
-$CLI generate wall --rows 25 --cols 40 -o "$W/wall1012.json" >/dev/null
-$CLI generate wall --rows 20 --cols 20 -o "$W/wall400.json" >/dev/null
-$CLI generate wall --rows 30 --cols 30 -o "$W/wall915.json" >/dev/null
-$CLI generate wall --rows 30 --cols 30 --friction 0 -o "$W/wall915f0.json" >/dev/null
-$CLI generate arch --voussoirs 15 -o "$W/arch15.json" >/dev/null
+say() { echo "$@" | tee -a "$MD"; }
 
-row() { # STRUCTURE METHOD [extra plan args]
-  local name=$1 m=$2
-  shift 2
-  local line rss
-  line=$( { /usr/bin/time -f "RSS %M" "$CLI" plan "$W/$name.json" --method "$m" --time-limit "$LIMIT" \
-            --stats "$@" -o "$W/plan.json" || true; } 2>&1)
-  local summary tests solve total
-  summary=$(echo "$line" | head -1)
-  tests=$(echo "$line" | sed -n 's/^  tests \([0-9]*\).*/\1/p')
-  total=$(echo "$line" | sed -n 's/.*time: total \([0-9.]*\) s.*/\1/p')
-  solve=$(echo "$line" | sed -n 's/.*in solver \([0-9.]*\) s.*/\1/p')
-  rss=$(echo "$line" | sed -n 's/^RSS \([0-9]*\)/\1/p')
-  local fb
-  fb=$(echo "$line" | sed -n 's/.*LP fallbacks \([0-9]*\) (re-seeded \([0-9]*\), LCP skipped \([0-9]*\)).*/\1 (\3 skipped)/p')
-  local per
-  per=$(awk -v s="$solve" -v t="$tests" 'BEGIN{ if (t > 0) printf "%.3f", 1000 * s / t; else print "-" }')
-  printf '| %s | %s %s | %s | %s | %s | %s | %s | %s |\n' "$name" "$m" "$*" "${summary%%,*}" "$tests" "$total" "$per" \
-    "${fb:--}" "$((rss / 1024))" | tee -a "$OUT.tmp"
+# plan FILE [args]: prints "status tests total_s rss_kb" (status "timeout"
+# when the wall-clock guard fired)
+plan_row() {
+  local f=$1
+  shift
+  local log=$W/plan.log
+  /usr/bin/time -f "RSS %M" timeout $((LIMIT + 30)) "$CLI" plan "$f" --stats --time-limit "$LIMIT" \
+    -o "$W/plan.json" "$@" >"$log" 2>&1
+  local status tests total rss
+  status=$(head -1 "$log" | sed 's/[:,].*//')
+  tests=$(sed -n 's/^  tests \([0-9]*\).*/\1/p' "$log")
+  total=$(sed -n 's/.*time: total \([0-9.]*\) s.*/\1/p' "$log")
+  rss=$(sed -n 's/^RSS \([0-9]*\)/\1/p' "$log")
+  [ -n "$total" ] || status=timeout
+  echo "${status:-error} ${tests:-0} ${total:-nan} ${rss:-0}"
+  cat "$log" >>"$W/all-plans.log"
 }
 
+gen() { "$CLI" generate "$@" >/dev/null; }
+
+# ------------------------------------------------------------------ header
 {
-  echo "# unstack benchmarks"
+  echo "# unstack benchmark ($tag)"
   echo
-  echo "$(date -u +%Y-%m-%d), $(uname -m), $(nproc) cores; $(gcc --version | head -1); Release build."
+  echo "$(date -u +%Y-%m-%d), $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores, $(uname -m);"
+  echo "$(gcc --version | head -1); Release build; OPENBLAS_NUM_THREADS=1."
   echo
-  echo "| structure | method | result | tests | total s | solver ms/test | LP fallbacks | max RSS MiB |"
-  echo "|---|---|---|---|---|---|---|---|"
-} >"$OUT.tmp"
-cat "$OUT.tmp"
-# the source's Table 2 structure, every backend: the default assemble
-# search, and the source's DFS in both directions
-for m in lpsolve lp lcp lcp-reuse; do row pyramid91 $m; done
-for d in down up; do
-  for m in lpsolve lp lcp lcp-reuse; do row pyramid91 $m --search dfs --direction $d; done
+} >"$MD"
+cat "$MD"
+
+# ------------------------------------------------------------------ Table 2
+gen random --rows 6 --width 4 --seed 2 -o "$W/random10.json"
+gen column --blocks 50 -o "$W/column50.json"
+gen column --blocks 80 -o "$W/column80.json"
+gen stacker --rows 15 --width 12 --seed 3 -o "$W/random84.json"
+gen pyramid --rows 13 -o "$W/pyramid91.json"
+bodies() { "$CLI" check "$1" --local off 2>/dev/null | sed -n 's/^[a-z]*: \([0-9]*\) bodies.*/\1/p'; }
+# the source's Table 2 (seconds, whole plan, its DFS taking the structure
+# down): only its pyramid row is in our copy of the source
+source_s() {
+  case "$1/$2" in
+  pyramid91/lpsolve) echo 5.260 ;;
+  pyramid91/lcp) echo 38.825 ;;
+  pyramid91/lcp-reuse) echo 3.074 ;;
+  *) echo "" ;;
+  esac
+}
+workloads="random10 column50 column80 random84 pyramid91"
+methods="lpsolve lp lcp lcp-reuse auto"
+[ "$QUICK" = 1 ] && workloads="random10 column50 pyramid91"
+echo "workload,bodies,method,search,status,tests,total_s,ms_per_test,rss_kb,source_s,speedup_vs_lpsolve" >"$T2"
+say "## Table 2: the source's workloads"
+say ""
+say "Whole plans, seconds (tests); \`assemble\` is the default search, \`dfs down\` the source's (its figures are for its own machine and Java prototype)."
+say ""
+say "| workload | bodies | search | lpsolve | lp | lcp | lcp-reuse | auto | auto vs lpsolve | source (lpsolve / lcp / lcp-reuse) |"
+say "|---|---|---|---|---|---|---|---|---|---|"
+for wl in $workloads; do
+  n=$(bodies "$W/$wl.json")
+  for search in "assemble" "dfs down" "dfs up"; do
+    set -- $search
+    args=(--search "$1")
+    [ $# -gt 1 ] && args+=(--direction "$2")
+    line="| $wl | $n | $search |"
+    declare -A tot=()
+    for m in $methods; do
+      read -r status tests total rss < <(plan_row "$W/$wl.json" --method "$m" "${args[@]}")
+      tot[$m]=$total
+      per=$(awk -v t="$total" -v n="$tests" 'BEGIN{ if (n > 0 && t != "nan") printf "%.4f", 1000 * t / n; else print "" }')
+      src=$([ "$search" = "dfs down" ] && source_s "$wl" "$m")
+      sp=$(awk -v a="${tot[lpsolve]:-nan}" -v b="$total" 'BEGIN{ if (a != "nan" && b > 0) printf "%.1f", a / b; else print "" }')
+      echo "$wl,$n,$m,$search,$status,$tests,$total,$per,$rss,$src,$sp" >>"$T2"
+      line="$line $(awk -v t="$total" 'BEGIN{ if (t == "nan") print "-"; else printf "%.3g", t }') ($tests)$([ "$status" = found ] || echo " $status") |"
+    done
+    sp=$(awk -v a="${tot[lpsolve]}" -v b="${tot[auto]}" 'BEGIN{ if (b > 0 && a != "nan") printf "%.0fx", a / b; else print "-" }')
+    srcs="$(source_s "$wl" lpsolve) / $(source_s "$wl" lcp) / $(source_s "$wl" lcp-reuse)"
+    [ "$srcs" = " /  / " ] && srcs="not in our copy"
+    [ "$search" = "dfs down" ] || srcs=""
+    say "$line $sp | $srcs |"
+    unset tot
+  done
 done
-row column1000 lp
-row column1000 lcp-reuse
-row column1000 lpsolve --max-tests 100
-row column1000 lcp --max-tests 100
-row wall1012 lp
-row wall1012 lpsolve --max-tests 40
-row wall1012 lcp-reuse
-row wall1012 lcp --max-tests 3
-row wall400 lp
-row wall400 lcp-reuse
-row wall400 lcp --max-tests 5
-row wall400 lpsolve --max-tests 40
-# 30 x 30: the scratch LCP reaches its pivot limit; lcp-reuse goes on from
-# the LP's forces (frictionless: reuses every test; with friction: backs off)
-row wall915 lp
-row wall915 lcp-reuse
-row wall915f0 lcp-reuse
-row arch15 lp
-row arch15 lcp-reuse
-for b in "$B"/bench_*; do
-  [ -x "$b" ] || continue
-  printf '\n## %s\n\n```\n' "$(basename "$b")" >>"$OUT.tmp"
-  "$b" 2>&1 | tee -a "$OUT.tmp"
-  printf '```\n' >>"$OUT.tmp"
+say ""
+
+# ----------------------------------------------------------------- Figure 4
+say "## Figure 4: one stability test against the sub-assembly's size"
+say ""
+gen wall --rows 25 --cols 40 -o "$W/wall1000.json"
+budget=$([ "$QUICK" = 1 ] && echo 0.5 || echo 15)
+for wl in pyramid91 wall1000; do
+  f4=$OUT/fig4-$wl-$tag.csv
+  echo "structure,method,bodies,seconds" >"$f4"
+  for m in lpsolve lp lcp lcp-reuse auto; do
+    [ "$QUICK" = 1 ] && [ "$wl" = wall1000 ] && [ "$m" != auto ] && [ "$m" != lp ] && continue
+    "$B/bench_fig4" "$W/$wl.json" "$wl" "$m" "$budget" >>"$f4" 2>>"$W/fig4.err"
+  done
+  fits=$(tail -n +2 "$f4" | awk -F, '{print $2, $3, $4}' |
+    "$B/bench_plot" "$OUT/fig4-$wl-$tag.svg" "Figure 4: $wl, one stability test" \
+      "bodies in the sub-assembly" "seconds per test")
+  say "$wl ([plot](fig4-$wl-$tag.svg), [data](fig4-$wl-$tag.csv)); median ms per test, and the slope of log time against log size:"
+  say ""
+  say "| method | tests timed | median ms | largest size timed | slope |"
+  say "|---|---|---|---|---|"
+  for m in lpsolve lp lcp lcp-reuse auto; do
+    stats=$(awk -F, -v m="$m" '$2 == m {print $4 * 1000, $3}' "$f4" | sort -n |
+      awk '{v[NR] = $1; if ($2 > mx) mx = $2} END { if (NR) printf "%d | %.4f | %d", NR, v[int((NR + 1) / 2)], mx }')
+    [ -n "$stats" ] || continue
+    say "| $m | $stats | $(echo "$fits" | awk -v m="$m" '$1 == m {print $2}') |"
+  done
+  say ""
 done
-mv "$OUT.tmp" "$OUT"
-echo "wrote $OUT"
+
+# ------------------------------------------------------------------ scaling
+say "## Scaling: whole plan (and verify) time against the number of blocks"
+say ""
+echo "family,bodies,method,status,tests,plan_s,verify_s,rss_kb" >"$SC"
+if [ "$QUICK" = 1 ]; then
+  walls="10 17 32"; pyrs="14 24 45"; stacks="18:12"
+else
+  walls="10 17 32 55 100"; pyrs="14 24 45 77 141"; stacks="18:12 50:24 160:48 250:75"
+fi
+scale_row() { # family file method-words max-bodies
+  local fam=$1 f=$2 m=$3 cap=$4 n
+  n=$(bodies "$f")
+  [ "$n" -le "$cap" ] || return 0
+  read -r status tests total rss < <(plan_row "$f" $m)
+  local vt=""
+  if [ "$status" = found ]; then
+    local t0 t1
+    t0=$(date +%s.%N)
+    timeout $((LIMIT + 30)) "$CLI" verify "$f" "$W/plan.json" $m >/dev/null 2>&1 && t1=$(date +%s.%N) &&
+      vt=$(awk -v a="$t0" -v b="$t1" 'BEGIN{printf "%.3f", b - a}')
+  fi
+  local label
+  label=$(echo "$m" | sed 's/--method //; s/ --local off/-nolocal/')
+  echo "$fam,$n,$label,$status,$tests,$total,$vt,$rss" | tee -a "$SC"
+}
+for r in $walls; do
+  gen wall --rows "$r" --cols "$r" -o "$W/wall$r.json"
+  scale_row wall "$W/wall$r.json" "--method auto" 100000
+  scale_row wall "$W/wall$r.json" "--method lp --local off" $([ "$QUICK" = 1 ] && echo 400 || echo 3500)
+  [ "$QUICK" = 1 ] && continue
+  scale_row wall "$W/wall$r.json" "--method lcp-reuse" 400
+  scale_row wall "$W/wall$r.json" "--method lpsolve" 350
+done
+for r in $pyrs; do
+  gen pyramid --rows "$r" -o "$W/pyr$r.json"
+  scale_row pyramid "$W/pyr$r.json" "--method auto" 100000
+  scale_row pyramid "$W/pyr$r.json" "--method lp --local off" $([ "$QUICK" = 1 ] && echo 400 || echo 3500)
+  [ "$QUICK" = 1 ] && continue
+  scale_row pyramid "$W/pyr$r.json" "--method lcp-reuse" 1100
+  scale_row pyramid "$W/pyr$r.json" "--method lpsolve" 350
+done
+for rw in $stacks; do
+  gen stacker --rows "${rw%:*}" --width "${rw#*:}" --seed 1 -o "$W/stack$rw.json"
+  scale_row stacker "$W/stack$rw.json" "--method auto" 100000
+  [ "$QUICK" = 1 ] || scale_row stacker "$W/stack$rw.json" "--method lp --local off" 3500
+done
+fits=$(tail -n +2 "$SC" | awk -F, '$4 == "found" {print $1 "/" $3, $2, $6}' |
+  "$B/bench_plot" "$OUT/scaling-$tag.svg" "Whole plan time" "blocks" "seconds" --lines --fit-from 900)
+say "[plot](scaling-$tag.svg), [data](scaling-$tag.csv); fitted exponent of plan time from about 1,000 blocks up:"
+say ""
+say "| family / method | exponent | points fitted |"
+say "|---|---|---|"
+echo "$fits" | awk '{printf "| %s | %s | %s |\n", $1, $2, $3}' | tee -a "$MD"
+say ""
+say "| family | blocks | method | status | tests | plan s | verify s | max RSS MiB |"
+say "|---|---|---|---|---|---|---|---|"
+tail -n +2 "$SC" | awk -F, '{printf "| %s | %s | %s | %s | %s | %s | %s | %.0f |\n", $1, $2, $3, $4, $5, $6, $7, $8 / 1024}' | tee -a "$MD"
+say ""
+say "Whole benchmark: $(($(date +%s) - START)) s."
+echo "wrote $MD"

@@ -55,8 +55,8 @@ static void print_stats(const us_PlanStats *st) {
          st->components);
   printf("  assembly: retries skipped %ld, sets searched exhaustively %ld; restarts %ld\n",
          st->retries_skipped, st->exhaustive, st->restarts);
-  printf("  time: total %.3f s, setup %.3f s, search %.3f s, in solver %.3f s, "
-         "certificate checks %.3f s\n",
+  printf("  time: total %.6f s, setup %.6f s, search %.6f s, in solver %.6f s, "
+         "certificate checks %.6f s\n",
          st->time_total, st->time_setup, st->time_search, st->time_solve, st->time_check);
   printf("  memo %zu bytes; LCP pivots %ld, LP fallbacks %ld (re-seeded %ld, LCP skipped %ld), "
          "reused %ld\n",
