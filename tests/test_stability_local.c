@@ -76,6 +76,34 @@ static int compare(us_Stability *loc, us_Stability *glob, const us_Structure *s,
   return 0;
 }
 
+/* The two workspaces of a differential walk (local tests on, off) and
+ * their results. */
+typedef struct Pair {
+  us_Stability *loc, *glob;
+  us_StabilityResult rl, rg;
+} Pair;
+
+static int pair_open(const us_Structure *s, Pair *p) {
+  us_StabilitySettings sl = settings(1), sg = settings(0);
+  us_Error err;
+  p->loc = us_stability_new(s, &sl, &err);
+  p->glob = us_stability_new(s, &sg, &err);
+  us_stability_result_init(&p->rl);
+  us_stability_result_init(&p->rg);
+  return p->loc && p->glob ? 0 : -1;
+}
+
+static void pair_close(Pair *p) {
+  us_stability_result_free(&p->rl);
+  us_stability_result_free(&p->rg);
+  us_stability_free(p->loc);
+  us_stability_free(p->glob);
+}
+
+static int pair_compare(Pair *p, const us_Structure *s, const us_Bitset *node, Tally *t) {
+  return compare(p->loc, p->glob, s, node, &p->rl, &p->rg, t);
+}
+
 /* An absent body that touches a present one or the ground, or -1. */
 static int touching_absent(const us_Structure *s, const us_Bitset *node, unsigned long long *rng) {
   for (int tries = 0; tries < 16 && s->ncontact > 0; tries++) {
@@ -107,26 +135,18 @@ static int move(const us_Structure *s, us_Bitset *node, unsigned long long *rng)
  * between standing and falling. */
 static int walk(const us_Structure *s, us_Bitset *node, int steps, unsigned long long *rng,
                 Tally *t) {
-  us_StabilitySettings sl = settings(1), sg = settings(0);
-  us_Error err;
-  us_Stability *loc = us_stability_new(s, &sl, &err), *glob = us_stability_new(s, &sg, &err);
-  us_StabilityResult rl, rg;
-  us_stability_result_init(&rl);
-  us_stability_result_init(&rg);
-  int bad = !loc || !glob, last[2] = {-1, -1};
+  Pair p;
+  int bad = pair_open(s, &p), last[2] = {-1, -1};
   for (int k = 0; k < steps && !bad; k++) {
-    bad = compare(loc, glob, s, node, &rl, &rg, t) != 0;
-    if (rl.verdict != US_STABLE && pile_rnd(rng) < 0.6) {
+    bad = pair_compare(&p, s, node, t) != 0;
+    if (p.rl.verdict != US_STABLE && pile_rnd(rng) < 0.6) {
       for (int m = 0; m < 2; m++)
         if (last[m] >= 0) flip(node, last[m]);
     }
     last[0] = move(s, node, rng);
     last[1] = pile_rnd(rng) < 0.1 ? move(s, node, rng) : -1;
   }
-  us_stability_result_free(&rl);
-  us_stability_result_free(&rg);
-  us_stability_free(loc);
-  us_stability_free(glob);
+  pair_close(&p);
   return bad ? -1 : 0;
 }
 
@@ -144,30 +164,22 @@ static int walk_structure(us_Structure *s, int steps, unsigned long long seed, T
 /* Removal orders top-down and bottom-up builds: one body per step. */
 static int removal_walk(us_Structure *s, Tally *t) {
   if (!s) return -1;
-  us_StabilitySettings sl = settings(1), sg = settings(0);
-  us_Error err;
-  us_Stability *loc = us_stability_new(s, &sl, &err), *glob = us_stability_new(s, &sg, &err);
-  us_StabilityResult rl, rg;
-  us_stability_result_init(&rl);
-  us_stability_result_init(&rg);
+  Pair p;
   us_Bitset node = {0};
-  int bad = !loc || !glob || us_bitset_init(&node, s->nbody);
+  int bad = pair_open(s, &p) || us_bitset_init(&node, s->nbody);
   /* build bottom-up in index order (generators number bottom-up), then
      take down in the same order (the lowest first: it falls) */
   for (int i = 0; i < s->nbody && !bad; i++) {
     if (s->bodies[i].fixed) continue;
     us_bitset_set(&node, i);
-    bad = compare(loc, glob, s, &node, &rl, &rg, t) != 0;
+    bad = pair_compare(&p, s, &node, t) != 0;
   }
   for (int i = 0; i < s->nbody && !bad; i++) {
     us_bitset_clear(&node, i);
-    bad = compare(loc, glob, s, &node, &rl, &rg, t) != 0;
+    bad = pair_compare(&p, s, &node, t) != 0;
   }
   us_bitset_free(&node);
-  us_stability_result_free(&rl);
-  us_stability_result_free(&rg);
-  us_stability_free(loc);
-  us_stability_free(glob);
+  pair_close(&p);
   us_structure_free(s);
   return bad ? -1 : 0;
 }
@@ -253,27 +265,19 @@ static void global_instability_decided(void) {
     for (int d = 1; d <= 13; d += 2) {
       us_Structure *s = lever(k, 0.2 * d);
       CHECK(s);
-      us_StabilitySettings sl = settings(1), sg = settings(0);
-      us_Error err;
-      us_Stability *loc = us_stability_new(s, &sl, &err), *glob = us_stability_new(s, &sg, &err);
-      CHECK(loc && glob);
-      us_StabilityResult rl, rg;
-      us_stability_result_init(&rl);
-      us_stability_result_init(&rg);
+      Pair pr;
+      CHECK_INT(pair_open(s, &pr), ==, 0);
       us_Bitset node = {0};
       CHECK_INT(us_structure_movable_set(s, &node), ==, 0);
       int load = s->nbody - 1;
       us_bitset_clear(&node, load);
-      int r = compare(loc, glob, s, &node, &rl, &rg, &t); /* without the load: the base */
+      int r = pair_compare(&pr, s, &node, &t); /* without the load: the base */
       us_bitset_set(&node, load);
-      if (!r) r = compare(loc, glob, s, &node, &rl, &rg, &t);
-      if (!r && rl.verdict == US_STABLE) stood++;
-      if (!r && rl.verdict == US_UNSTABLE) fell++;
+      if (!r) r = pair_compare(&pr, s, &node, &t);
+      if (!r && pr.rl.verdict == US_STABLE) stood++;
+      if (!r && pr.rl.verdict == US_UNSTABLE) fell++;
       us_bitset_free(&node);
-      us_stability_result_free(&rl);
-      us_stability_result_free(&rg);
-      us_stability_free(loc);
-      us_stability_free(glob);
+      pair_close(&pr);
       us_structure_free(s);
       CHECK_INT(r, ==, 0);
     }
