@@ -169,22 +169,25 @@ scale_row() { # family file method-words max-bodies
   label=$(echo "$m" | sed 's/--method //; s/ --local off/-nolocal/')
   echo "$fam,$n,$label,$status,$tests,$total,$vt,$rss" | tee -a "$SC"
 }
-for r in $walls; do
-  gen wall --rows "$r" --cols "$r" -o "$W/wall$r.json"
-  scale_row wall "$W/wall$r.json" "--method auto" 100000
-  scale_row wall "$W/wall$r.json" "--method lp --local off" $([ "$QUICK" = 1 ] && echo 400 || echo 3500)
-  [ "$QUICK" = 1 ] && continue
-  scale_row wall "$W/wall$r.json" "--method lcp-reuse" 400
-  scale_row wall "$W/wall$r.json" "--method lpsolve" 350
-done
-for r in $pyrs; do
-  gen pyramid --rows "$r" -o "$W/pyr$r.json"
-  scale_row pyramid "$W/pyr$r.json" "--method auto" 100000
-  scale_row pyramid "$W/pyr$r.json" "--method lp --local off" $([ "$QUICK" = 1 ] && echo 400 || echo 3500)
-  [ "$QUICK" = 1 ] && continue
-  scale_row pyramid "$W/pyr$r.json" "--method lcp-reuse" 1100
-  scale_row pyramid "$W/pyr$r.json" "--method lpsolve" 350
-done
+# One regular family: generate each size, then the methods that reach it
+# (lcp-reuse up to lcp_cap bodies, lpsolve up to 350).
+scale_family() { # family generator-words-fn sizes lcp_cap
+  local fam=$1 args=$2 sizes=$3 lcp_cap=$4 r f
+  for r in $sizes; do
+    f="$W/$fam$r.json"
+    # shellcheck disable=SC2046
+    gen "$fam" $($args "$r") -o "$f"
+    scale_row "$fam" "$f" "--method auto" 100000
+    scale_row "$fam" "$f" "--method lp --local off" $([ "$QUICK" = 1 ] && echo 400 || echo 3500)
+    [ "$QUICK" = 1 ] && continue
+    scale_row "$fam" "$f" "--method lcp-reuse" "$lcp_cap"
+    scale_row "$fam" "$f" "--method lpsolve" 350
+  done
+}
+wall_args() { echo "--rows $1 --cols $1"; }
+pyramid_args() { echo "--rows $1"; }
+scale_family wall wall_args "$walls" 400
+scale_family pyramid pyramid_args "$pyrs" 1100
 for rw in $stacks; do
   gen stacker --rows "${rw%:*}" --width "${rw#*:}" --seed 1 -o "$W/stack$rw.json"
   scale_row stacker "$W/stack$rw.json" "--method auto" 100000
