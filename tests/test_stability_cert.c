@@ -175,4 +175,52 @@ static void tampered_solver_forces(void) {
   us_structure_free(s);
 }
 
-US_TEST_MAIN(T(accepts_hand_solution), T(cone_and_sign), T(tampered_solver_forces))
+/* Residuals are measured against each body's own weight, load and size,
+ * not against the whole structure: a light body far from a heavy one,
+ * with 1 % of its weight missing or 1 % of its weight times its size of
+ * torque left over, fails the check although both errors are below 1e-6
+ * of the whole structure's weight times its size. (The first version of
+ * the check measured against the whole and certified an unstable
+ * 1,256-block stack this way.) */
+static void light_body_own_scale(void) {
+  us_Structure *s = us_structure_new(2);
+  us_Error err;
+  double up[2] = {0, 1};
+  double ch[2] = {200.0, 0.5}, cl[2] = {0.2, 0.5};
+  int h = us_structure_add_point_body(s, "heavy", 1e6, ch, 0, &err);
+  int l = us_structure_add_point_body(s, "light", 1.0, cl, 0, &err);
+  double p[4][2] = {{199.5, 0}, {200.5, 0}, {-0.5, 0}, {0.5, 0}};
+  for (int k = 0; k < 4; k++) us_structure_add_contact(s, US_GROUND, k < 2 ? h : l, p[k], up, 0.0, &err);
+  s->explicit_contacts = 1;
+  CHECK(us_structure_finalize(s, &err) == US_OK);
+  us_Bitset pr;
+  CHECK(us_bitset_init(&pr, 2) == 0);
+  us_bitset_fill(&pr);
+  int ci[4] = {0, 1, 2, 3};
+  double fv[8] = {0};
+  us_Forces f = {4, 4, ci, fv};
+  double wh = 1e6 * 9.81, wl = 9.81;
+  fv[0] = fv[2] = wh / 2;             /* heavy: centred */
+  fv[6] = wl * (0.2 + 0.5);           /* light: lever rule, xl = -0.5, xr = 0.5 */
+  fv[4] = wl - fv[6];
+  us_CertCheck c = us_certificate_check(s, &pr, &f, 1e-6);
+  CHECK(c.ok);
+  /* 1 % of the light body's weight missing */
+  fv[4] -= 0.01 * wl;
+  c = us_certificate_check(s, &pr, &f, 1e-6);
+  CHECK(!c.ok);
+  CHECK_INT(c.worst_body, ==, l);
+  CHECK(c.max_force_residual > 1e-3);
+  /* the right total, 1 % of weight x size of torque left over */
+  fv[4] += 0.01 * wl + 0.005 * wl;
+  fv[6] -= 0.005 * wl;
+  c = us_certificate_check(s, &pr, &f, 1e-6);
+  CHECK(!c.ok);
+  CHECK_INT(c.worst_body, ==, l);
+  CHECK(c.max_force_residual <= 1e-12 && c.max_torque_residual > 1e-3);
+  us_bitset_free(&pr);
+  us_structure_free(s);
+}
+
+US_TEST_MAIN(T(accepts_hand_solution), T(cone_and_sign), T(tampered_solver_forces),
+             T(light_body_own_scale))

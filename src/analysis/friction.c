@@ -57,7 +57,7 @@ typedef struct FrictionCtx {
   const us_StabilitySettings *set;
   us_Bitset present;             /* the sub-assembly tested */
   us_StabilityResult res;        /* reused by every probe */
-  double *acc;                   /* certificate scratch: 6 * nbody */
+  double *acc;                   /* certificate scratch: US_CERT_ACC * nbody */
   unsigned char *seen;           /* certificate scratch: ncontact */
 } FrictionCtx;
 
@@ -125,7 +125,7 @@ static int ctx_init(FrictionCtx *x, const us_Structure *s, const us_Bitset *pres
   x->view = *s;
   x->view.contacts = us_malloc(nc * sizeof(us_Contact));
   x->view.cap_contact = s->ncontact;
-  x->acc = us_malloc(6 * nb * sizeof(double));
+  x->acc = us_malloc(US_CERT_ACC * nb * sizeof(double));
   x->seen = us_malloc(nc);
   if (!x->view.contacts || !x->acc || !x->seen) return -1;
   if (s->ncontact > 0)

@@ -12,11 +12,29 @@
  * input overflows or underflows: forces are divided by the total weight
  * W = M |g| first, gravity enters as the share m_i / M times the unit
  * direction g / |g|, and lever arms are divided by the structure's scale
- * L. The residuals are therefore relative to W (forces) and W L (torques).
- * The cone measure is the Euclidean distance of the force from its cone,
- * relative to W: it does not grow with mu (mu |f_n| - |f_t| would, and
- * would reject a correct force of a nearly flat cone on round-off). A
- * contact with mu = INFINITY has the half-space f_n >= 0 as its cone.
+ * L.
+ *
+ * Measures, each relative to what it could be compared with on its own
+ * body or contact (not to the whole structure: a residual of 1e-6 W on a
+ * body of weight W / 1000 is a tenth of a percent of its weight, and a
+ * torque residual of 1e-6 W L on a block of size L / 100 is a tenth of
+ * its weight times its size; the first version of this check measured
+ * against W and W L, and passed a barrier solution of an unstable
+ * 1,256-block stack whose torque residual was 13 % of a block's weight
+ * times its size):
+ *   force residual of body i:  |sum F + m_i g| / (m_i / M + sum |F|)
+ *   torque residual of body i: |sum r x F| / ((m_i / M + sum |F|) r_i)
+ * with the sums over the forces on body i and r_i the longest lever arm
+ * among them (torques are about the centre of mass, where gravity acts);
+ * the cone measure of a contact is the Euclidean distance of its force
+ * from the cone over |F| + the smaller weight share of its movable
+ * sides, and the sign measure max(-f_n, 0) over the same. Scales are
+ * never below CERT_FLOOR (in units of W): the solvers work in units of W
+ * to about 1e-13, so a body lighter than 1e-12 of the whole (a pebble on
+ * a mountain) is held only to 1e-6 of 1e-12 W, not of its own weight. The distance
+ * does not grow with mu (mu |f_n| - |f_t| would, and would reject a
+ * correct force of a nearly flat cone on round-off). A contact with
+ * mu = INFINITY has the half-space f_n >= 0 as its cone.
  *
  * A force on a contact that is not active in the sub-assembly (a side
  * absent, or both sides fixed), a contact listed twice, a bad index or a
@@ -28,6 +46,8 @@
 
 #include <math.h>
 #include <string.h>
+
+#define CERT_FLOOR 1e-12 /* least scale of a measure, in units of W */
 
 /* The normalization of one check. */
 typedef struct Units {
@@ -77,8 +97,8 @@ double us_cone_distance(double fn, double ft, double mu) {
   return ft * c - fn * s;                             /* nearest point on the edge */
 }
 
-/* Add normalized force F at p to body i's accumulator a (6 values: force,
- * torque about com / L). */
+/* Add normalized force F at p to body i's accumulator a (US_CERT_ACC
+ * values: force, torque about com / L, sum of |F|, longest lever arm). */
 static void push_at(const us_Structure *s, const Units *u, double *a, int i, const double *p,
                     const double *F, double sign) {
   const double *c = s->bodies[i].com;
@@ -87,12 +107,37 @@ static void push_at(const us_Structure *s, const Units *u, double *a, int i, con
   a[3] += sign * (r[1] * F[2] - r[2] * F[1]);
   a[4] += sign * (r[2] * F[0] - r[0] * F[2]);
   a[5] += sign * (r[0] * F[1] - r[1] * F[0]);
+  a[6] += norm3(F);
+  a[7] = US_MAX(a[7], norm3(r));
 }
 
 /* The same into the accumulator of body i among all bodies' (acc). */
 static void push(const us_Structure *s, const Units *u, double *acc, int i, const double *p,
                  const double *F, double sign) {
-  if (side_moves(s, i)) push_at(s, u, acc + 6 * (size_t)i, i, p, F, sign);
+  if (side_moves(s, i)) push_at(s, u, acc + US_CERT_ACC * (size_t)i, i, p, F, sign);
+}
+
+/* The smaller weight share of the movable sides of contact k (the floor
+ * of its cone and sign measures). */
+static double contact_floor(const us_Structure *s, const Units *u, const us_Contact *k) {
+  double fl = INFINITY;
+  if (side_moves(s, k->a)) fl = s->bodies[k->a].mass / u->m;
+  if (side_moves(s, k->b)) fl = US_MIN(fl, s->bodies[k->b].mass / u->m);
+  return isfinite(fl) ? US_MAX(fl, CERT_FLOOR) : 1.0;
+}
+
+/* Body i's residuals relative to its own scales (file header), from its
+ * accumulator a with gravity not yet added. */
+static void body_residuals(const us_Structure *s, const Units *u, int i, const double *a,
+                           double *fr, double *tr) {
+  double share = s->bodies[i].mass / u->m;
+  double G[3] = {a[0] + share * u->gdir[0], a[1] + share * u->gdir[1],
+                 a[2] + share * u->gdir[2]};
+  double fscale = US_MAX(share + a[6], CERT_FLOOR), tscale = fscale * a[7];
+  *fr = norm3(G) / fscale;
+  double t = norm3(a + 3);
+  *tr = t > 0 ? t / tscale : 0.0;
+  if (!isfinite(*fr) || !isfinite(*tr)) *fr = *tr = INFINITY;
 }
 
 /* Cone and sign measures of one force (normalized); F gets the normalized
@@ -108,8 +153,9 @@ static int one_force(const us_Structure *s, const Units *u, const us_Contact *k,
   for (int j = 0; j < 3; j++) F[j] = fc[0] * k->n[j];
   for (int t = 1; t < dim; t++)
     for (int j = 0; j < 3; j++) F[j] += fc[t] * k->t[t - 1][j];
-  *cone = us_cone_distance(fc[0], hypot(fc[1], fc[2]), k->mu);
-  *sign = US_MAX(-fc[0], 0.0);
+  double scale = norm3(F) + contact_floor(s, u, k);
+  *cone = us_cone_distance(fc[0], hypot(fc[1], fc[2]), k->mu) / scale;
+  *sign = US_MAX(-fc[0], 0.0) / scale;
   return 0;
 }
 
@@ -160,12 +206,8 @@ static void residuals(const us_Structure *s, const Units *u, const us_Bitset *pr
   for (int i = 0; i < s->nbody; i++) {
     const us_Body *b = &s->bodies[i];
     if (b->fixed || !us_bitset_get(present, i)) continue;
-    const double *a = acc + 6 * (size_t)i;
-    double share = b->mass / u->m;
-    double F[3] = {a[0] + share * u->gdir[0], a[1] + share * u->gdir[1],
-                   a[2] + share * u->gdir[2]};
-    double fr = norm3(F), tr = norm3(a + 3);
-    if (!isfinite(fr) || !isfinite(tr)) fr = tr = INFINITY;
+    double fr, tr;
+    body_residuals(s, u, i, acc + US_CERT_ACC * (size_t)i, &fr, &tr);
     r->max_force_residual = US_MAX(r->max_force_residual, fr);
     r->max_torque_residual = US_MAX(r->max_torque_residual, tr);
     if (fr + tr > worst) {
@@ -181,7 +223,7 @@ int us_certificate_check_buf(const us_Structure *s, const us_Bitset *present,
   us_CertCheck r;
   memset(&r, 0, sizeof r);
   r.worst_body = r.worst_contact = -1;
-  memset(acc, 0, 6 * (size_t)s->nbody * sizeof(double));
+  memset(acc, 0, US_CERT_ACC * (size_t)s->nbody * sizeof(double));
   memset(seen, 0, (size_t)s->ncontact);
   if (present->nbits != s->nbody || f->ncontact < 0 || (f->ncontact > 0 && (!f->contact || !f->f))) {
     *out = failed_check();
@@ -206,7 +248,7 @@ int us_certificate_check_buf(const us_Structure *s, const us_Bitset *present,
 static void check_one_body(const us_Structure *s, const Units *u, const us_Bitset *present, int i,
                            const int *inc_start, const int *inc, const double *fc,
                            us_CertCheck *r) {
-  double acc[6] = {0, 0, 0, 0, 0, 0};
+  double acc[US_CERT_ACC] = {0, 0, 0, 0, 0, 0, 0, 0};
   for (int m = inc_start[i]; m < inc_start[i + 1]; m++) {
     int c = inc[m];
     if (!usable(s, present, c)) continue;
@@ -221,11 +263,8 @@ static void check_one_body(const us_Structure *s, const Units *u, const us_Bitse
     r->max_cone_violation = US_MAX(r->max_cone_violation, cone);
     r->max_sign_violation = US_MAX(r->max_sign_violation, sign);
   }
-  double share = s->bodies[i].mass / u->m;
-  double G[3] = {acc[0] + share * u->gdir[0], acc[1] + share * u->gdir[1],
-                 acc[2] + share * u->gdir[2]};
-  double fr = norm3(G), tr = norm3(acc + 3);
-  if (!isfinite(fr) || !isfinite(tr)) fr = tr = INFINITY;
+  double fr, tr;
+  body_residuals(s, u, i, acc, &fr, &tr);
   if (fr + tr > r->max_force_residual + r->max_torque_residual) r->worst_body = i;
   r->max_force_residual = US_MAX(r->max_force_residual, fr);
   r->max_torque_residual = US_MAX(r->max_torque_residual, tr);
@@ -250,7 +289,7 @@ void us_certificate_check_bodies(const us_Structure *s, const us_Bitset *present
 us_CertCheck us_certificate_check(const us_Structure *s, const us_Bitset *present,
                                   const us_Forces *f, double tol) {
   us_CertCheck r;
-  double *acc = us_calloc((size_t)(s->nbody > 0 ? s->nbody : 1) * 6, sizeof(double));
+  double *acc = us_calloc((size_t)(s->nbody > 0 ? s->nbody : 1) * US_CERT_ACC, sizeof(double));
   unsigned char *seen = us_calloc((size_t)(s->ncontact > 0 ? s->ncontact : 1), 1);
   if (!acc || !seen)
     r = failed_check(); /* no memory: nothing is certified */

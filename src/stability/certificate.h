@@ -5,7 +5,10 @@
 
 #include "core/core.h"
 
-/* us_certificate_check with caller scratch (acc: 6 * nbody doubles, seen:
+/* Accumulator doubles per body of the check. */
+#define US_CERT_ACC 8
+
+/* us_certificate_check with caller scratch (acc: US_CERT_ACC * nbody doubles, seen:
  * ncontact bytes), so that it cannot fail on memory. Returns 0, or -1
  * when the forces are malformed (out->ok = 0). */
 int us_certificate_check_buf(const us_Structure *s, const us_Bitset *present,

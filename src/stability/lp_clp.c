@@ -35,8 +35,14 @@
 #include "lp_gen.h"
 
 #include <coin/Clp_C_Interface.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
+
+/* A barrier point must hold every row to this, relative to the row's own
+ * scale |rhs_r| + sum_j |G_rj| l_j (the certificate check asks 1e-6 of
+ * each body; near-infeasible systems end "optimal" well above it). */
+#define CLP_BARRIER_REL 1e-9
 
 /* Cold solves of systems with at least this many rows (3 per body) use the
  * barrier first (clp_cold_big); below, the dual simplex is faster (a
@@ -47,7 +53,7 @@
 typedef struct ClpWs {
   us_EqGen gen;
   double *bounds;   /* [nrow] row bounds (rhs) */
-  double *sol;      /* [ncol] copy of the column solution */
+  double *sol;      /* [max(ncol, 2 nrow)] copy of the column solution */
   int cap_row, cap_col;
   us_LpSettings set;
   int last_body;    /* evidence of the last unstable verdict */
@@ -109,11 +115,12 @@ static int clp_reserve(ClpWs *w, int nrow, int ncol) {
     w->bounds = b;
     w->cap_row = nrow;
   }
-  if (ncol > w->cap_col) {
-    double *x = us_realloc(w->sol, (size_t)ncol * sizeof(double));
+  int nsol = US_MAX(ncol, 2 * nrow); /* also the barrier check's scratch */
+  if (nsol > w->cap_col) {
+    double *x = us_realloc(w->sol, (size_t)nsol * sizeof(double));
     if (!x) return -1;
     w->sol = x;
-    w->cap_col = ncol;
+    w->cap_col = nsol;
   }
   return US_GROW(w->st, w->cap_st, nrow + ncol);
 }
@@ -203,11 +210,32 @@ static int clp_evidence(Clp_Simplex *m, ClpWs *w, const us_EqSystem *sys) {
  * otherwise (infeasible systems included: the barrier proves nothing) the
  * model is reloaded and the dual simplex decides. The front end re-checks
  * any forces it yields. NULL if CLP cannot create a model. */
+/* Does the barrier's l >= 0 (no crossover: not a vertex) satisfy
+ * G l = rhs row by row to CLP_BARRIER_REL? Uses w->bounds (the rhs) and
+ * w->sol as scratch for the row sums. */
+static int barrier_precise(ClpWs *w, const double *l) {
+  const us_EqGen *g = &w->gen;
+  double *res = w->sol, *scale = w->sol + g->nrow;
+  for (int r = 0; r < g->nrow; r++) res[r] = -w->bounds[r], scale[r] = fabs(w->bounds[r]);
+  for (int j = 0; j < g->ncol; j++) {
+    if (!(l[j] >= 0.0) || !isfinite(l[j])) return 0;
+    for (int q = g->start[j]; q < g->start[j + 1]; q++) {
+      res[g->row[q]] += g->val[q] * l[j];
+      scale[g->row[q]] += fabs(g->val[q]) * l[j];
+    }
+  }
+  for (int r = 0; r < g->nrow; r++)
+    if (!(fabs(res[r]) <= CLP_BARRIER_REL * scale[r])) return 0;
+  return 1;
+}
+
 static Clp_Simplex *clp_cold_big(ClpWs *w, const us_EqSystem *sys) {
   Clp_Simplex *m = clp_load(w, sys);
   if (!m) return NULL;
   Clp_initialBarrierNoCrossSolve(m);
-  if (Clp_status(m) == 0 && Clp_sumPrimalInfeasibilities(m) <= w->set.warm_accept) return m;
+  if (Clp_status(m) == 0 && Clp_sumPrimalInfeasibilities(m) <= w->set.warm_accept &&
+      barrier_precise(w, Clp_getColSolution(m)))
+    return m;
   Clp_deleteModel(m);
   m = clp_load(w, sys);
   if (m) Clp_dual(m, 0);

@@ -41,7 +41,7 @@ struct us_Stability {
   int *added, *removed;    /* [nbody] */
   double *f;               /* normalized forces from the backend */
   int cap_f;
-  double *acc;             /* certificate scratch: 6 * nbody */
+  double *acc;             /* certificate scratch: US_CERT_ACC * nbody */
   unsigned char *held;     /* [nbody] row blocks touched by some contact */
   unsigned char *seen;     /* certificate scratch: ncontact */
   us_StabilityInfo info;
@@ -222,7 +222,7 @@ static int alloc_arrays(us_Stability *w) {
     return -1;
   w->added = us_malloc(nb * sizeof(int));
   w->removed = us_malloc(nb * sizeof(int));
-  w->acc = us_malloc(6 * nb * sizeof(double));
+  w->acc = us_malloc(US_CERT_ACC * nb * sizeof(double));
   w->seen = us_malloc(nc);
   w->held = us_malloc(nb);
   return !w->added || !w->removed || !w->acc || !w->seen || !w->held ? -1 : 0;
