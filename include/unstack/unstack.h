@@ -282,9 +282,6 @@ typedef struct us_LpSettings {
   double primal_tol;    /* CLP primal feasibility tolerance (default 1e-9) */
   double warm_accept;   /* a warm-started CLP run is kept when its sum of primal
                            infeasibilities is at most this (default 1e-9) */
-  int warm_changes;     /* CLP starts from the previous basis only when at most
-                           warm_changes + nbody / warm_body_div bodies changed */
-  int warm_body_div;    /* (defaults 8 and 16; larger jumps start cold) */
   double farkas_slack;  /* slack, relative to |rhs . y|, accepted when checking
                            a Farkas ray before naming a body (default 1e-9) */
   double n_column_mu;   /* contacts with mu above this also get the generator n

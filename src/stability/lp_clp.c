@@ -22,9 +22,11 @@
  *
  * Reuse: CLP's basis status of every column (keyed by structure contact
  * and generator) and row (keyed by body and wrench component) is kept
- * after each solve; the next sub-assembly's model starts from those
- * statuses (new columns at their bound, new rows basic) unless the front
- * end asks for a restart. With a zero objective every basis is dual
+ * after each solve; every later model starts from the latest status of
+ * each of its columns and rows, whichever solve left it (columns never
+ * seen at their bound, rows never seen basic), so a planner that moves
+ * between components, or a region system of the local tests, finds the
+ * statuses it left there. With a zero objective every basis is dual
  * feasible, so the dual simplex is valid from any start: reuse changes the
  * pivot count, never the verdict (CLP repairs a basis of the wrong size).
  *
@@ -134,22 +136,23 @@ static size_t row_key(const us_EqSystem *sys, int r) {
   return 3 * (size_t)sys->body[r / 3] + (size_t)(r % 3);
 }
 
-/* Start from the previous basis where it applies (region systems: from
- * the latest status of each column and row, whatever solve left it).
- * CLP status codes: 1 basic, 3 at lower bound. Returns 1 if any status
- * was reused. */
-static int warm_start(Clp_Simplex *m, ClpWs *w, const us_EqSystem *sys, int region) {
+/* Start from the latest status of each column and row, whatever solve
+ * left it (the previous one's for what it shared with this system, older
+ * ones' for the rest: a planner that tests one component, then another,
+ * comes back to statuses of the first). CLP status codes: 1 basic, 3 at
+ * lower bound. Returns 1 if any status was reused. */
+static int warm_start(Clp_Simplex *m, ClpWs *w, const us_EqSystem *sys) {
   const us_EqGen *g = &w->gen;
   int reused = 0;
   for (int j = 0; j < g->ncol; j++) {
     size_t k = col_key(sys, g, j);
-    int ok = region ? w->col_stamp[k] > 0 : w->col_stamp[k] == w->stamp;
+    int ok = w->col_stamp[k] > 0;
     w->st[j] = ok ? w->col_st[k] : 3;
     reused |= ok;
   }
   for (int r = 0; r < g->nrow; r++) {
     size_t k = row_key(sys, r);
-    int ok = region ? w->row_stamp[k] > 0 : w->row_stamp[k] == w->stamp;
+    int ok = w->row_stamp[k] > 0;
     w->st[g->ncol + r] = ok ? w->row_st[k] : 1;
     reused |= ok;
   }
@@ -242,17 +245,25 @@ static Clp_Simplex *clp_cold_big(ClpWs *w, const us_EqSystem *sys) {
   return m;
 }
 
-/* Load and solve with the dual simplex, from the previous basis if `warm`
- * (a big jump makes the old basis a poor start: measured slower than a
- * cold start on a 1,000-brick wall minus 100 bricks). A warm run that
- * stops without a verdict, or with visible infeasibility left, is
- * repeated cold. NULL if CLP cannot create a model. */
-static Clp_Simplex *clp_run(ClpWs *w, const us_EqSystem *sys, int warm, int region,
+/* Load and solve with the dual simplex from the latest statuses
+ * (warm_start); a big system with no known status goes to the barrier
+ * first (clp_cold_big). A warm run that stops without a verdict, or with
+ * visible infeasibility left, is repeated cold. (Until 2026-11 a solve
+ * started cold when more than 8 + nbody / 16 bodies had changed since the
+ * previous one: the planner's assembly search, which tests one component
+ * and then another, paid a cold solve, or a barrier of up to 0.1 s, for
+ * most tests of a 2,000-block stacker stack: 23 s, now 7.4 s.) NULL if
+ * CLP cannot create a model. */
+static Clp_Simplex *clp_run(ClpWs *w, const us_EqSystem *sys, int region,
                             us_StabilityInfo *info) {
-  if (!warm && !region && w->gen.nrow >= CLP_BARRIER_ROWS) return clp_cold_big(w, sys);
   Clp_Simplex *m = clp_load(w, sys);
   if (!m) return NULL;
-  if (warm && warm_start(m, w, sys, region)) {
+  int reused = warm_start(m, w, sys);
+  if (!reused && !region && w->gen.nrow >= CLP_BARRIER_ROWS) {
+    Clp_deleteModel(m);
+    return clp_cold_big(w, sys);
+  }
+  if (reused) {
     Clp_dual(m, 0);
     int status = Clp_status(m);
     if ((status == 0 && Clp_sumPrimalInfeasibilities(m) <= w->set.warm_accept) || status == 1) {
@@ -290,9 +301,8 @@ static us_Status clp_solve(void *ws, const us_EqSystem *sys, const int *added, i
     *verdict = US_UNDECIDED;
     return US_OK;
   }
-  int warm = !restart && nadded + nremoved <= w->set.warm_changes +
-                                             sys->nbody / w->set.warm_body_div;
-  Clp_Simplex *m = clp_run(w, sys, warm, region, info);
+  (void)nadded, (void)nremoved, (void)restart; /* the statuses are keyed: no list needed */
+  Clp_Simplex *m = clp_run(w, sys, region, info);
   if (!m) return us_error_set(err, US_ERR_NOMEM, "CLP could not create a model");
   int status = Clp_status(m);
   if (status != 0 && status != 1 && w->deadline > 0 && us_now() >= w->deadline) {

@@ -91,8 +91,6 @@ const char *us_verdict_name(us_Verdict v) {
 /* Default tolerances of the LP backends (us_LpSettings documents them). */
 #define LP_PRIMAL_TOL 1e-9
 #define LP_WARM_ACCEPT 1e-9
-#define LP_WARM_CHANGES 8
-#define LP_WARM_BODY_DIV 16
 #define LP_FARKAS_SLACK 1e-9
 #define LP_N_COLUMN_MU 1.0
 #define CERT_TOL 1e-6
@@ -101,8 +99,6 @@ us_LpSettings us_lp_default_settings(void) {
   us_LpSettings l;
   l.primal_tol = LP_PRIMAL_TOL;
   l.warm_accept = LP_WARM_ACCEPT;
-  l.warm_changes = LP_WARM_CHANGES;
-  l.warm_body_div = LP_WARM_BODY_DIV;
   l.farkas_slack = LP_FARKAS_SLACK;
   l.n_column_mu = LP_N_COLUMN_MU;
   return l;
@@ -112,8 +108,6 @@ us_LpSettings us_lp_settings_resolve(const us_LpSettings *in) {
   us_LpSettings d = us_lp_default_settings(), r = *in;
   if (!(r.primal_tol > 0)) r.primal_tol = d.primal_tol;
   if (!(r.warm_accept > 0)) r.warm_accept = d.warm_accept;
-  if (r.warm_changes <= 0) r.warm_changes = d.warm_changes;
-  if (r.warm_body_div <= 0) r.warm_body_div = d.warm_body_div;
   if (!(r.farkas_slack > 0)) r.farkas_slack = d.farkas_slack;
   if (!(r.n_column_mu > 0)) r.n_column_mu = d.n_column_mu;
   return r;
