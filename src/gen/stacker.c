@@ -106,7 +106,7 @@ enum {
 };
 
 /* Upper bound on rows x width (every row runs an LP of the structure). */
-#define STACKER_MAX_AREA 20000.0
+#define STACKER_MAX_AREA 100000.0
 
 typedef struct Blk {
   long q0, q1;      /* extent, quarters */

@@ -57,15 +57,19 @@ typedef struct Units {
   double gdir[3]; /* unit gravity direction */
 } Units;
 
-static Units units_of(const us_Structure *s) {
+/* mass: the movable mass M when the caller knows it (< 0: summed here,
+ * O(bodies)). */
+static Units units_of_mass(const us_Structure *s, double mass) {
   Units u;
-  double g = us_gravity_norm(s->gravity), m = us_movable_mass(s), w = m * g;
+  double g = us_gravity_norm(s->gravity), m = mass >= 0 ? mass : us_movable_mass(s), w = m * g;
   u.inv_w = w > 0 && isfinite(w) ? 1.0 / w : 1.0;
   u.m = m > 0 && isfinite(m) ? m : 1.0;
   u.inv_l = s->scale > 0 ? 1.0 / s->scale : 1.0;
   for (int j = 0; j < 3; j++) u.gdir[j] = g > 0 && isfinite(g) ? s->gravity[j] / g : 0.0;
   return u;
 }
+
+static Units units_of(const us_Structure *s) { return units_of_mass(s, -1.0); }
 
 static int side_in(const us_Structure *s, const us_Bitset *present, int i) {
   return i < 0 || s->bodies[i].fixed || us_bitset_get(present, i);
@@ -82,6 +86,13 @@ static int usable(const us_Structure *s, const us_Bitset *present, int c) {
 }
 
 static double norm3(const double *v) { return hypot(hypot(v[0], v[1]), v[2]); }
+
+/* The same without hypot's care, for scales (normalized values are far
+ * from overflow; norm3 when they are not). */
+static double fast_norm3(const double *v) {
+  double q = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  return isfinite(q) ? q : norm3(v);
+}
 
 double us_cone_distance(double fn, double ft, double mu) {
   ft = fabs(ft);
@@ -107,8 +118,8 @@ static void push_at(const us_Structure *s, const Units *u, double *a, int i, con
   a[3] += sign * (r[1] * F[2] - r[2] * F[1]);
   a[4] += sign * (r[2] * F[0] - r[0] * F[2]);
   a[5] += sign * (r[0] * F[1] - r[1] * F[0]);
-  a[6] += norm3(F);
-  a[7] = US_MAX(a[7], norm3(r));
+  a[6] += fast_norm3(F);
+  a[7] = US_MAX(a[7], fast_norm3(r));
 }
 
 /* The same into the accumulator of body i among all bodies' (acc). */
@@ -153,7 +164,7 @@ static int one_force(const us_Structure *s, const Units *u, const us_Contact *k,
   for (int j = 0; j < 3; j++) F[j] = fc[0] * k->n[j];
   for (int t = 1; t < dim; t++)
     for (int j = 0; j < 3; j++) F[j] += fc[t] * k->t[t - 1][j];
-  double scale = norm3(F) + contact_floor(s, u, k);
+  double scale = fast_norm3(F) + contact_floor(s, u, k);
   *cone = us_cone_distance(fc[0], hypot(fc[1], fc[2]), k->mu) / scale;
   *sign = US_MAX(-fc[0], 0.0) / scale;
   return 0;
@@ -272,11 +283,11 @@ static void check_one_body(const us_Structure *s, const Units *u, const us_Bitse
 
 void us_certificate_check_bodies(const us_Structure *s, const us_Bitset *present,
                                  const int *bodies, int nb, const int *inc_start, const int *inc,
-                                 const double *fc, double tol, us_CertCheck *out) {
+                                 const double *fc, double mass, double tol, us_CertCheck *out) {
   us_CertCheck r;
   memset(&r, 0, sizeof r);
   r.worst_body = r.worst_contact = -1;
-  Units u = units_of(s);
+  Units u = units_of_mass(s, mass);
   u.inv_w = 1.0; /* fc is normalized already */
   for (int q = 0; q < nb; q++)
     if (side_moves(s, bodies[q]) && us_bitset_get(present, bodies[q]))

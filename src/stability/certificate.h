@@ -20,10 +20,12 @@ int us_certificate_check_buf(const us_Structure *s, const us_Bitset *present,
  * forces fc (normalized by the total weight; dim components per
  * structure contact, read for the active contacts only), every active
  * contact touching it counted, and the cone and sign of those contacts.
- * inc_start / inc list the contacts of each body. */
+ * inc_start / inc list the contacts of each body. mass: the structure's
+ * movable mass, which the caller sums once (the check costs O(listed
+ * bodies and their contacts) then; < 0: summed here, O(bodies)). */
 void us_certificate_check_bodies(const us_Structure *s, const us_Bitset *present,
                                  const int *bodies, int nb, const int *inc_start, const int *inc,
-                                 const double *fc, double tol, us_CertCheck *out);
+                                 const double *fc, double mass, double tol, us_CertCheck *out);
 
 /* us_mechanism_check over the contacts in list (NULL: all) with caller
  * scratch slot[nbody], all -1 on entry and on return. */

@@ -41,6 +41,7 @@
 
 #include "certificate.h"
 #include "lp_small.h"
+#include "model/massprops.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -77,6 +78,7 @@ struct us_Local {
   int cap_f, cap_saved;
   int *list, *slot;      /* mechanism check: contacts of R, body slots */
   long seed_tries, seed_hits; /* level-0 support LPs run, and proofs found */
+  double mass;           /* movable mass, summed once for the checks */
 };
 
 /* ------------------------------------------------------------- set-up */
@@ -174,6 +176,7 @@ us_Local *us_local_new(const us_Structure *s, const us_StabilitySettings *set,
     return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)"), NULL;
   }
   measure_extents(L);
+  L->mass = us_movable_mass(s);
   for (int k = 0; k < 2; k++) {
     L->bws[k] = be->create(s, set, err);
     if (!L->bws[k]) {
@@ -391,7 +394,7 @@ static int merge_and_check(us_Local *L, const us_Bitset *cur, us_StabilityResult
     memcpy(fb, L->f + (size_t)ci * dim, dim * sizeof(double));
   }
   us_certificate_check_bodies(L->s, cur, L->reg, L->nreg, L->inc_start, L->inc, L->fbase,
-                              L->set.cert_tol, &res->check);
+                              L->mass, L->set.cert_tol, &res->check);
   if (res->check.ok) return 1;
   for (int ci = 0; ci < e->ncontact; ci++)
     memcpy(L->fbase + (size_t)e->contact[ci] * dim, L->saved + (size_t)ci * dim,
