@@ -151,7 +151,7 @@ echo "family,bodies,method,status,tests,plan_s,verify_s,rss_kb" >"$SC"
 if [ "$QUICK" = 1 ]; then
   walls="10 17 32"; pyrs="14 24 45"; stacks="18:12"
 else
-  walls="10 17 32 55 100"; pyrs="14 24 45 77 141"; stacks="18:12 50:24 160:48 250:75"
+  walls="10 17 32 55 100"; pyrs="14 24 45 77 141"; stacks="18:12 50:24 160:48 250:75 80:400 100:560"
 fi
 scale_row() { # family file method-words max-bodies
   local fam=$1 f=$2 m=$3 cap=$4 n
