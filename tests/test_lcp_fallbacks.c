@@ -93,7 +93,7 @@ static void under_one_percent(void) {
 static void stacker_bounded(void) {
   static const Load loads[] = {
       {"stacker seed 1", 0, 15, 1, 0.20},
-      {"stacker seed 3", 0, 15, 3, 0.03},
+      {"stacker seed 3", 0, 15, 3, 0.05},
       {"stacker seed 4", 0, 15, 4, 0.05},
   };
   check_loads(loads, (int)(sizeof loads / sizeof loads[0]));

@@ -491,8 +491,9 @@ static int cone_solve(LcpWs *w, const us_EqSystem *sys, us_StabilityInfo *info) 
     reused = remove_bodies(w, &k->sys, &k->lcp, w->gone, ngone) == US_LCP_SOLVED &&
              add_bodies(w, &k->sys, &k->lcp, sys) == 0;
   }
-  if (!reused) {
-    set_limit(w, &k->lcp, 0);
+  if (!reused) { /* a scratch solve gets the reuse limit too: on a large
+                     wall it would cost more than the LP it saves */
+    set_limit(w, &k->lcp, w->reuse);
     start_scratch(w, &k->sys, &k->lcp, sys);
   }
   us_LcpResult r = us_lcp_run(&k->lcp);
