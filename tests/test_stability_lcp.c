@@ -578,8 +578,9 @@ static void wall_takedown(void) {
 /* Back-off: where every LCP run fails (here a pivot limit of 1 on a
  * friction wall), lcp-reuse stops paying for failing runs: after the
  * scratch solve failed, tests that cannot reuse go to the LP, and after
- * j failures in a row 2^(j-1) - 1 tests skip the LCP. Verdicts and
- * certificates stay those of the LP; lcp (scratch) never skips. */
+ * j failures in a row 2^(j-1) - 1 tests skip the LCP (the cone LCP,
+ * seeded from the LP's forces, or the LP decides them). Verdicts stay
+ * those of the LP; lcp (scratch) never skips. */
 static void backoff_when_lcp_fails(void) {
   us_Structure *s = running_bond(7, 6, 0.6);
   CHECK(s);
@@ -600,7 +601,7 @@ static void backoff_when_lcp_fails(void) {
   long runs = in->tests - in->lcp_skips; /* tests that ran the LCP */
   CHECK(in->lcp_skips > 0);
   CHECK(runs < in->tests / 2);
-  CHECK_INT(in->lp_fallbacks, >=, in->lcp_skips);
+  CHECK(in->lp_fallbacks >= 1); /* skipped tests go to the cone LCP, then the LP */
   CHECK_INT(us_stability_info(scratch)->lcp_skips, ==, 0);
   us_bitset_free(&sub);
   us_stability_free(w);

@@ -682,6 +682,20 @@ static double row_drift(us_Lcp *p) {
   return worst;
 }
 
+/* Whether the last polish round (its step in dfm) turned a clamped normal
+ * force clearly negative: a nearly singular K moves the members along a
+ * near-null direction (a self-stress of nearly dependent contacts) that
+ * barely changes the rows but leaves the clamped forces off their sign. */
+static int pushed_negative(const us_Lcp *p) {
+  for (int s = 0; s < p->fac.k; s++) {
+    int m = p->fac.mem[s];
+    if (p->state[m] == US_LCP_C && p->kind[m] == US_LCP_NORMAL && p->f[m] < 0 &&
+        p->f[m] + p->dfm[s] >= 0 && -p->f[m] > p->set.tol_f)
+      return 1;
+  }
+  return 0;
+}
+
 static us_LcpResult polish(us_Lcp *p) {
   double drift = row_drift(p);
   for (int round = 0; round < 2 * p->set.polish_rounds; round++) {
@@ -695,7 +709,7 @@ static us_LcpResult polish(us_Lcp *p) {
     for (int s = 0; s < p->fac.k; s++) p->f[p->fac.mem[s]] -= p->dfm[s];
     us_lcp_refresh(p);
     double now = row_drift(p);
-    if (!(now < drift)) { /* a nearly singular K made it worse: undo, stop */
+    if (!(now < drift) || pushed_negative(p)) { /* a nearly singular K: undo, stop */
       for (int s = 0; s < p->fac.k; s++) p->f[p->fac.mem[s]] += p->dfm[s];
       us_lcp_refresh(p);
       return US_LCP_SOLVED;

@@ -14,24 +14,37 @@
  *   - with friction, the same when the contact accelerations prove that
  *     no static solution exists (dual_cone_proof: toppling, lifting off);
  *   - otherwise (friction: the LCP may have found a sliding solution
- *     although a static one exists; the gray zone between the thresholds;
- *     a pivot limit or a degenerate run) the LP decides: the CLP backend,
- *     created lazily inside this workspace, counted in info->lp_fallbacks.
+ *     although a static one exists, or a true sliding one that the dual
+ *     cone does not prove; a pivot limit or a degenerate run) the cone
+ *     LCP decides: the same structure with every friction cone replaced by
+ *     its two edges (lcp_sys.c, us_lcp_sys_init_cone), a frictionless,
+ *     hence PSD, LCP: the KKT system of min |E l + F|^2 over l >= 0 in the
+ *     M^-1 norm. Its net wrench is zero iff a static solution exists; a
+ *     clearly non-zero one comes with accelerations in every dual cone,
+ *     so the dual-cone proof below holds for it by construction;
+ *   - where that fails too (gray zone, pivot limit, degenerate run) the LP
+ *     decides: the CLP backend, created lazily inside this workspace,
+ *     counted in info->lp_fallbacks.
  * Reuse: the workspace keeps forces, index sets and the factorized clamped
  * system. Removed bodies: their contacts' rows leave the factorization and
  * their forces are faded to zero along a line while every other index
  * keeps its conditions (pivoting where one would break), which repairs the
  * solution locally. Added bodies: their contacts join with zero force and
  * only they are driven. Old contacts keep their forces in both cases.
- * After a failed run the state is dropped; a stable LP verdict re-seeds it.
+ * After a failed run the state is dropped; a stable verdict of the cone
+ * LCP or the LP re-seeds it. The cone LCP keeps its own state (lcp-reuse)
+ * and follows the sub-assemblies lazily: when it is next needed, the
+ * bodies it has and the test lacks leave (faded), the test's new contacts
+ * join.
  * Back-off (lcp-reuse only): where the LCP keeps failing (large degenerate
  * walls: long runs of zero-length exchanges), the tests go straight to the
  * LP instead of paying for failing runs. After the j-th failed run in a
  * row, the next 2^(j-1) - 1 tests skip the LCP (an isolated failure costs
  * nothing: the next test reuses again); once a scratch solve of the
- * workspace has failed, a test that cannot reuse goes to the LP too
- * (a scratch run would fail again, at the full pivot limit). Skipped tests
- * are counted in info->lcp_skips; verdicts never depend on the policy.
+ * workspace has failed, a test that cannot reuse skips it too (a scratch
+ * run would fail again, at the full pivot limit). Skipped tests (counted
+ * in info->lcp_skips) go to the cone LCP, then the LP; verdicts never
+ * depend on the policy.
  * The thresholds above (1e-9 W, 1e-6 W, the reuse pivot limit, the
  * back-off cap) are fields of us_LcpSettings (lcp.h), defaults unless a
  * workspace is made by us_lcp_backend_create with others. A contact with
@@ -48,6 +61,16 @@
 #include <stdio.h>
 #include <string.h>
 
+/* The cone LCP of the workspace (created on first use). */
+typedef struct Cone {
+  us_LcpSys sys;
+  us_Lcp lcp;
+  int ready;  /* sys and lcp set up */
+  int valid;  /* lcp holds the solution of the last sub-assembly it saw */
+  int failed; /* scratch solves that failed in a row (lcp-reuse) */
+  long wait;  /* requests left before the next scratch attempt */
+} Cone;
+
 typedef struct LcpWs {
   const us_Structure *s;
   us_StabilitySettings set;
@@ -56,8 +79,11 @@ typedef struct LcpWs {
   int valid; /* lcp holds the solution of the last sub-assembly */
   us_LcpSys sys;
   us_Lcp lcp;
+  Cone cone;
   int *idx;   /* [2 ncontact + 1] */
+  int *gone;  /* [nbody + 1] bodies the cone LCP has and the test lacks */
   unsigned char *cmark; /* [ncontact + 1] contacts listed, kept zero */
+  unsigned char *bmark; /* [nbody + 1] bodies of the test, kept zero */
   void *lpws; /* CLP workspace, created on the first fallback */
   int last_body;
   int fails;          /* failed LCP runs (or seeds) in a row, lcp-reuse */
@@ -71,6 +97,7 @@ static void lcp_set_deadline(void *ws, double deadline) {
   LcpWs *w = ws;
   w->lset.deadline = deadline;
   w->lcp.set.deadline = deadline;
+  w->cone.lcp.set.deadline = deadline;
   if (w->lpws) us_backend_clp.set_deadline(w->lpws, deadline);
 }
 
@@ -79,9 +106,13 @@ static void lcp_destroy(void *ws) {
   if (!w) return;
   us_lcp_free(&w->lcp);
   us_lcp_sys_free(&w->sys);
+  us_lcp_free(&w->cone.lcp);
+  us_lcp_sys_free(&w->cone.sys);
   if (w->lpws) us_backend_clp.destroy(w->lpws);
   us_free(w->idx);
+  us_free(w->gone);
   us_free(w->cmark);
+  us_free(w->bmark);
   us_free(w);
 }
 
@@ -94,7 +125,30 @@ static int lcp_setup(LcpWs *w, const us_Structure *s) {
     if (s->contacts[c].mu > 0) us_lcp_set_friction(&w->lcp, 2 * c + 1, 2 * c, s->contacts[c].mu);
   w->idx = us_malloc((size_t)(2 * s->ncontact + 1) * sizeof(int));
   w->cmark = us_calloc((size_t)s->ncontact + 1, 1);
-  return w->idx && w->cmark ? 0 : -1;
+  w->gone = us_malloc(((size_t)s->nbody + 1) * sizeof(int));
+  w->bmark = us_calloc((size_t)s->nbody + 1, 1);
+  return w->idx && w->cmark && w->gone && w->bmark ? 0 : -1;
+}
+
+/* The cone LCP, set up on first use (mu = +inf contacts keep a free
+ * friction: their cone is a half-space with one edge direction). 0 or -1. */
+static int cone_setup(LcpWs *w) {
+  Cone *k = &w->cone;
+  if (k->ready) return 0;
+  us_LcpOps ops;
+  if (us_lcp_sys_init_cone(&k->sys, w->s) == 0) {
+    ops = us_lcp_sys_ops(&k->sys);
+    if (us_lcp_init(&k->lcp, 2 * w->s->ncontact, &ops) == 0) {
+      us_lcp_configure(&k->lcp, &w->lset);
+      for (int c = 0; c < w->s->ncontact; c++)
+        if (isinf(w->s->contacts[c].mu)) us_lcp_set_friction(&k->lcp, 2 * c + 1, 2 * c, INFINITY);
+      k->ready = 1;
+      return 0;
+    }
+  }
+  us_lcp_free(&k->lcp);
+  us_lcp_sys_free(&k->sys);
+  return -1;
 }
 
 void *us_lcp_backend_create(const us_Structure *s, const us_StabilitySettings *set,
@@ -130,63 +184,64 @@ static void *create_reuse(const us_Structure *s, const us_StabilitySettings *set
 
 /* ------------------------------------------------------ mapping the test */
 
-/* Present flags and external forces of the bodies of sys. */
-static void load_bodies(LcpWs *w, const us_EqSystem *sys) {
+/* Present flags and external forces of the bodies of sys in operator y. */
+static void load_bodies(us_LcpSys *y, const us_EqSystem *sys) {
   for (int r = 0; r < sys->nbody; r++) {
     int b = sys->body[r];
-    w->sys.present[b] = 1;
-    for (int k = 0; k < 3; k++) w->sys.fext[3 * (size_t)b + (size_t)k] = -sys->rhs[3 * r + k];
+    y->present[b] = 1;
+    for (int k = 0; k < 3; k++) y->fext[3 * (size_t)b + (size_t)k] = -sys->rhs[3 * r + k];
   }
 }
 
-/* The LCP indices of structure contact c. */
+/* The LCP indices of structure contact c: the normal, and the friction
+ * (the friction LCP) or the cone's second edge (the cone LCP) when mu > 0. */
 static int contact_indices(const LcpWs *w, int c, int *out) {
   out[0] = 2 * c;
-  if (w->lcp.kind[2 * c + 1] != US_LCP_FRICTION) return 1;
+  if (!(w->s->contacts[c].mu > 0)) return 1;
   out[1] = 2 * c + 1;
   return 2;
 }
 
-static void start_scratch(LcpWs *w, const us_EqSystem *sys) {
-  us_lcp_reset(&w->lcp);
-  memset(w->sys.present, 0, (size_t)w->sys.nbody);
-  load_bodies(w, sys);
+static void start_scratch(LcpWs *w, us_LcpSys *y, us_Lcp *p, const us_EqSystem *sys) {
+  us_lcp_reset(p);
+  memset(y->present, 0, (size_t)y->nbody);
+  load_bodies(y, sys);
   int k = 0;
   for (int ci = 0; ci < sys->ncontact; ci++) k += contact_indices(w, sys->contact[ci], w->idx + k);
-  us_lcp_add(&w->lcp, w->idx, k);
+  us_lcp_add(p, w->idx, k);
 }
 
 /* Removed bodies leave; their live contacts are faded out. */
-static us_LcpResult remove_bodies(LcpWs *w, const int *removed, int nremoved) {
-  us_LcpSys *y = &w->sys;
+static us_LcpResult remove_bodies(LcpWs *w, us_LcpSys *y, us_Lcp *p, const int *removed,
+                                  int nremoved) {
   int k = 0;
   for (int j = 0; j < nremoved; j++) {
     int b = removed[j];
     y->present[b] = 0;
     for (int q = y->adj_start[b]; q < y->adj_start[b + 1]; q++) {
       int c = y->adj[q];
-      if (!w->lcp.live[2 * c] || w->cmark[c]) continue;
+      if (!p->live[2 * c] || w->cmark[c]) continue;
       w->cmark[c] = 1;
       k += contact_indices(w, c, w->idx + k);
     }
   }
   for (int j = 0; j < k; j++) w->cmark[w->idx[j] >> 1] = 0;
-  return k ? us_lcp_fade(&w->lcp, w->idx, k) : US_LCP_SOLVED;
+  return k ? us_lcp_fade(p, w->idx, k) : US_LCP_SOLVED;
 }
 
 /* Added bodies arrive; contacts of sys that are not live join with f = 0.
  * Returns -1 if the live set then differs from sys (restart instead). */
-static int add_bodies(LcpWs *w, const us_EqSystem *sys) {
-  load_bodies(w, sys);
+static int add_bodies(LcpWs *w, us_LcpSys *y, us_Lcp *p, const us_EqSystem *sys) {
+  load_bodies(y, sys);
   int k = 0, live = 0;
   for (int ci = 0; ci < sys->ncontact; ci++) {
     int c = sys->contact[ci];
-    if (!w->lcp.live[2 * c]) k += contact_indices(w, c, w->idx + k);
+    if (!p->live[2 * c]) k += contact_indices(w, c, w->idx + k);
   }
-  us_lcp_add(&w->lcp, w->idx, k);
-  for (int c = 0; c < w->sys.ncontact; c++) live += w->lcp.live[2 * c];
+  us_lcp_add(p, w->idx, k);
+  for (int c = 0; c < y->ncontact; c++) live += p->live[2 * c];
   int present = 0;
-  for (int b = 0; b < w->sys.nbody; b++) present += w->sys.present[b];
+  for (int b = 0; b < y->nbody; b++) present += y->present[b];
   return live == sys->ncontact && present == sys->nbody ? 0 : -1;
 }
 
@@ -195,9 +250,11 @@ static int add_bodies(LcpWs *w, const us_EqSystem *sys) {
 static int prepare(LcpWs *w, const us_EqSystem *sys, const int *removed, int nremoved,
                    int restart) {
   if (w->reuse && w->valid && !restart) {
-    if (remove_bodies(w, removed, nremoved) == US_LCP_SOLVED && add_bodies(w, sys) == 0) return 1;
+    if (remove_bodies(w, &w->sys, &w->lcp, removed, nremoved) == US_LCP_SOLVED &&
+        add_bodies(w, &w->sys, &w->lcp, sys) == 0)
+      return 1;
   }
-  start_scratch(w, sys);
+  start_scratch(w, &w->sys, &w->lcp, sys);
   return 0;
 }
 
@@ -235,6 +292,34 @@ static void read_forces(LcpWs *w, const us_EqSystem *sys, const double *f) {
   }
 }
 
+/* Cone edge forces l (cone LCP indices) <-> contact forces (f_n, f_t):
+ * f_n = l0 + l1, f_t = mu (l0 - l1) for a finite mu > 0; else the same. */
+static void cone_to_forces(const LcpWs *w, const us_EqSystem *sys, double *f) {
+  const double *l = w->cone.lcp.f;
+  for (int ci = 0; ci < sys->ncontact; ci++) {
+    int c = sys->contact[ci];
+    double mu = sys->mu[ci], l0 = l[2 * c], l1 = mu > 0 ? l[2 * c + 1] : 0.0;
+    int edges = mu > 0 && !isinf(mu);
+    f[2 * ci] = edges ? l0 + l1 : l0;
+    f[2 * ci + 1] = edges ? mu * (l0 - l1) : l1;
+  }
+}
+
+static void cone_from_forces(LcpWs *w, const us_EqSystem *sys, const double *f) {
+  double *l = w->cone.lcp.f;
+  for (int ci = 0; ci < sys->ncontact; ci++) {
+    int c = sys->contact[ci];
+    double mu = sys->mu[ci], fn = f[2 * ci], ft = f[2 * ci + 1];
+    if (mu > 0 && !isinf(mu)) {
+      l[2 * c] = US_MAX(0.0, 0.5 * (fn + ft / mu));
+      l[2 * c + 1] = US_MAX(0.0, 0.5 * (fn - ft / mu));
+    } else {
+      l[2 * c] = fn;
+      if (mu > 0) l[2 * c + 1] = ft;
+    }
+  }
+}
+
 static int frictionless(const us_EqSystem *sys) {
   for (int ci = 0; ci < sys->ncontact; ci++)
     if (sys->mu[ci] > 0) return 0;
@@ -249,7 +334,7 @@ static void record_failure(LcpWs *w) {
   w->skip = (1L << (w->fails - 1)) - 1;
 }
 
-/* Whether this test goes straight to the LP (consumes one skipped test). */
+/* Whether this test skips the friction LCP (consumes one skipped test). */
 static int skip_lcp(LcpWs *w, int restart) {
   if (!w->reuse) return 0;
   if (w->skip > 0) {
@@ -258,6 +343,29 @@ static int skip_lcp(LcpWs *w, int restart) {
     return 1;
   }
   return w->scratch_failed && (!w->valid || restart);
+}
+
+/* Static forces f of sys (the LP's or the cone LCP's) re-seed the
+ * friction LCP, whose state was dropped (lcp-reuse, not while backing
+ * off), and the cone LCP if it has no state. Returns 1 if the friction
+ * LCP was re-seeded, 0 if not, -1 out of memory. */
+static int reseed(LcpWs *w, const us_EqSystem *sys, const double *f) {
+  if (!w->reuse) return 0;
+  if (w->cone.ready && !w->cone.valid) {
+    start_scratch(w, &w->cone.sys, &w->cone.lcp, sys);
+    cone_from_forces(w, sys, f);
+    us_LcpResult r = us_lcp_seed(&w->cone.lcp);
+    if (r == US_LCP_NOMEM) return -1;
+    w->cone.valid = r == US_LCP_SOLVED;
+  }
+  if (w->valid || w->skip > 0) return 0;
+  start_scratch(w, &w->sys, &w->lcp, sys);
+  read_forces(w, sys, f);
+  us_LcpResult r = us_lcp_seed(&w->lcp);
+  if (r == US_LCP_NOMEM) return -1;
+  w->valid = r == US_LCP_SOLVED;
+  if (!w->valid) record_failure(w);
+  return w->valid;
 }
 
 /* The LP decides (CLP backend, lazily created). */
@@ -276,20 +384,10 @@ static us_Status fallback(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict,
   info->lp_fallbacks++;
   if (*verdict == US_UNSTABLE && us_backend_clp.unstable_body)
     w->last_body = us_backend_clp.unstable_body(w->lpws);
-  const char *seeded = "";
-  if (w->reuse && !w->valid && w->skip == 0 && *verdict == US_STABLE) {
-    /* reuse goes on from the LP's forces (the live set made that of sys:
-     * a skipped test or a failed fade leaves another) */
-    start_scratch(w, sys);
-    read_forces(w, sys, f);
-    us_LcpResult r = us_lcp_seed(&w->lcp);
-    if (r == US_LCP_NOMEM) return us_error_set(err, US_ERR_NOMEM, "out of memory in the LCP");
-    w->valid = r == US_LCP_SOLVED;
-    if (!w->valid) record_failure(w);
-    info->lcp_seeds += w->valid;
-    seeded = w->valid ? "; LCP re-seeded from it" : "";
-  }
-  snprintf(note, note_sz, "LCP %s; LP: %s%s", why, sub, seeded);
+  int seeded = *verdict == US_STABLE ? reseed(w, sys, f) : 0;
+  if (seeded < 0) return us_error_set(err, US_ERR_NOMEM, "out of memory in the LCP");
+  info->lcp_seeds += seeded;
+  snprintf(note, note_sz, "LCP %s; LP: %s%s", why, sub, seeded ? "; LCP re-seeded from it" : "");
   return US_OK;
 }
 
@@ -314,7 +412,7 @@ static const char *result_name(us_LcpResult r) {
  * s with J^T s = 0 add s^T J v = 0, so the round-off slack on the dual
  * cone test is not multiplied by arbitrarily large internal forces.)
  * This covers toppling and lifting off; sliding (a_n = 0, a_t != 0) does
- * not pass and goes to the LP. */
+ * not pass and goes to the cone LCP. */
 /* a_c in the dual cone of contact c's cone, up to the slack: a_n >= mu
  * |a_t|; with mu = +inf (the cone is the half-space f_n >= 0) the dual
  * cone is the ray a_t = 0, a_n >= 0. */
@@ -340,6 +438,130 @@ static int dual_cone_proof(LcpWs *w, const us_EqSystem *sys, double energy) {
   return energy > US_MAX(fa, 0.0) + w->lset.energy_slack;
 }
 
+/* The same proof in the cone LCP's own indices: a contact's acceleration
+ * is in its dual cone iff it does not move against either edge (a_e >= 0
+ * for both edges; a_t = 0 for a free friction, mu = +inf), and f^T a is
+ * sum l_e a_e. */
+static int cone_dual_proof(LcpWs *w, const us_EqSystem *sys, double energy) {
+  us_Lcp *p = &w->cone.lcp;
+  double fa = 0.0, fmax = 0.0, dmax = 0.0;
+  for (int i = 0; i < p->n; i++) {
+    if (!p->live[i]) continue;
+    fmax = US_MAX(fmax, fabs(p->f[i]));
+    dmax = US_MAX(dmax, p->ops.entry(p->ops.ctx, i, i));
+  }
+  double slack = w->lset.cone_slack * (1.0 + fmax * dmax);
+  us_lcp_refresh(p);
+  for (int ci = 0; ci < sys->ncontact; ci++) {
+    int c = sys->contact[ci], two = sys->mu[ci] > 0;
+    for (int i = 2 * c; i <= 2 * c + two; i++) {
+      fa += p->f[i] * p->a[i];
+      int ok = p->kind[i] == US_LCP_FRICTION ? fabs(p->a[i]) <= slack : p->a[i] >= -slack;
+      if (!ok) return 0;
+    }
+  }
+  return energy > US_MAX(fa, 0.0) + w->lset.energy_slack;
+}
+
+/* Automatic pivot limit of a run of p: a reused run is cut short sooner
+ * than a scratch solve (a repair after a one-body change needs tens). */
+static void set_limit(const LcpWs *w, us_Lcp *p, int reusing) {
+  if (w->lset.max_pivots <= 0)
+    p->set.max_pivots = reusing ? w->lset.reuse_pivots + p->n / w->lset.reuse_pivots_div : 0;
+}
+
+/* Solve the cone LCP of sys (reusing its last state where it has one).
+ * 1 solved, 0 not, -1 out of memory. */
+static int cone_solve(LcpWs *w, const us_EqSystem *sys, us_StabilityInfo *info) {
+  Cone *k = &w->cone;
+  if (w->reuse && !k->valid && k->wait > 0) { /* back-off: its scratch solves fail */
+    k->wait--;
+    return 0;
+  }
+  if (cone_setup(w)) return -1;
+  long piv0 = k->lcp.pivots;
+  int reused = 0;
+  set_limit(w, &k->lcp, w->reuse && k->valid);
+  if (w->reuse && k->valid) {
+    int ngone = 0;
+    for (int r = 0; r < sys->nbody; r++) w->bmark[sys->body[r]] = 1;
+    for (int b = 0; b < k->sys.nbody; b++)
+      if (k->sys.present[b] && !w->bmark[b]) w->gone[ngone++] = b;
+    for (int r = 0; r < sys->nbody; r++) w->bmark[sys->body[r]] = 0;
+    reused = remove_bodies(w, &k->sys, &k->lcp, w->gone, ngone) == US_LCP_SOLVED &&
+             add_bodies(w, &k->sys, &k->lcp, sys) == 0;
+  }
+  if (!reused) { /* a scratch solve gets the reuse limit too: on a large
+                     wall it would cost more than the LP it saves */
+    set_limit(w, &k->lcp, w->reuse);
+    start_scratch(w, &k->sys, &k->lcp, sys);
+  }
+  us_LcpResult r = us_lcp_run(&k->lcp);
+  info->pivots += k->lcp.pivots - piv0;
+  k->valid = r == US_LCP_SOLVED;
+  if (!reused) { /* after the j-th failed scratch solve in a row, 2^j - 1 requests wait */
+    k->failed = k->valid ? 0 : US_MIN(k->failed + 1, w->lset.max_backoff);
+    k->wait = k->valid ? 0 : (1L << k->failed) - 1;
+  }
+  return r == US_LCP_NOMEM ? -1 : k->valid;
+}
+
+/* The cone LCP decides: 1 decided (verdict, forces f), 0 not (the LP
+ * will), -1 out of memory. Stable: its net wrench is ~0; unstable: a
+ * clear net wrench with the dual-cone proof (which a solution of this
+ * PSD LCP satisfies up to round-off). */
+static int cone_decide(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, double *f,
+                       us_StabilityInfo *info, const char *why, char *note, size_t note_sz) {
+  int r = cone_solve(w, sys, info);
+  if (r <= 0) return r;
+  us_Lcp *p = &w->cone.lcp;
+  for (int i = 0; i < p->n; i++) /* round-off: edge forces >= 0 */
+    if (p->live[i] && p->kind[i] == US_LCP_NORMAL && p->f[i] < 0) p->f[i] = 0.0;
+  int worst = -1;
+  double energy = 0.0, res = us_lcp_sys_residual(&w->cone.sys, p->f, &worst, &energy);
+  if (res <= w->lset.eq_tol) {
+    *verdict = US_STABLE;
+    cone_to_forces(w, sys, f);
+    int seeded = reseed(w, sys, f);
+    if (seeded < 0) return -1;
+    info->lcp_seeds += seeded;
+    snprintf(note, note_sz, "LCP %s; cone LCP: equilibrium (residual %.1e)%s", why, res,
+             seeded ? "; LCP re-seeded from it" : "");
+    return 1;
+  }
+  if (res >= w->lset.unstable_tol && !cone_dual_proof(w, sys, energy)) {
+    /* the run accepted a_e >= -tol_a (times the scale); the proof needs
+     * round-off: once more with that tolerance */
+    double tol = p->set.tol_a;
+    long piv0 = p->pivots;
+    p->set.tol_a = w->lset.cone_slack;
+    us_LcpResult rr = us_lcp_run(p);
+    p->set.tol_a = tol;
+    info->pivots += p->pivots - piv0;
+    if (rr == US_LCP_NOMEM) return -1;
+    w->cone.valid = rr == US_LCP_SOLVED;
+    if (rr != US_LCP_SOLVED) return 0;
+    for (int i = 0; i < p->n; i++)
+      if (p->live[i] && p->kind[i] == US_LCP_NORMAL && p->f[i] < 0) p->f[i] = 0.0;
+    res = us_lcp_sys_residual(&w->cone.sys, p->f, &worst, &energy);
+  }
+  if (!(res >= w->lset.unstable_tol && cone_dual_proof(w, sys, energy))) return 0;
+  *verdict = US_UNSTABLE;
+  w->last_body = worst;
+  snprintf(note, note_sz, "LCP %s; cone LCP: bodies accelerate (net wrench %.2g W on '%s')", why,
+           res, us_id_text(w->s->bodies[worst].id).s);
+  return 1;
+}
+
+/* Settle a test the friction LCP did not decide: the cone LCP, then the LP. */
+static us_Status settle(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, double *f,
+                        us_StabilityInfo *info, const char *why, char *note, size_t note_sz,
+                        us_Error *err) {
+  int r = cone_decide(w, sys, verdict, f, info, why, note, note_sz);
+  if (r < 0) return us_error_set(err, US_ERR_NOMEM, "out of memory in the LCP");
+  return r ? US_OK : fallback(w, sys, verdict, f, info, why, note, note_sz, err);
+}
+
 static us_Status decide(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, double *f,
                         us_StabilityInfo *info, char *note, size_t note_sz, us_Error *err) {
   clip_forces(w, sys);
@@ -363,7 +585,7 @@ static us_Status decide(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, d
   char why[64];
   snprintf(why, sizeof why, "%s (net wrench %.2g W)",
            fl ? "residual in the gray zone" : "sliding solution", res);
-  return fallback(w, sys, verdict, f, info, why, note, note_sz, err);
+  return settle(w, sys, verdict, f, info, why, note, note_sz, err);
 }
 
 static us_Status lcp_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
@@ -378,24 +600,19 @@ static us_Status lcp_solve(void *ws, const us_EqSystem *sys, const int *added, i
     info->lcp_skips++;
     char why[64];
     snprintf(why, sizeof why, "skipped after %d failed run%s", w->fails, w->fails == 1 ? "" : "s");
-    return fallback(w, sys, verdict, f, info, why, note, note_sz, err);
+    return settle(w, sys, verdict, f, info, why, note, note_sz, err);
   }
   long piv0 = w->lcp.pivots;
   int can_reuse = w->reuse && w->valid && !restart;
-  /* a repair after a one-body change needs tens of pivots; one that runs
-   * long (the fade of the removed contacts, then the run) is cut short
-   * sooner than a scratch solve (the LP settles it and reseeds the LCP) */
-  int auto_limit = w->lset.max_pivots <= 0;
-  if (auto_limit)
-    w->lcp.set.max_pivots = can_reuse ? w->lset.reuse_pivots + w->lcp.n / w->lset.reuse_pivots_div : 0;
+  set_limit(w, &w->lcp, can_reuse);
   int reused = prepare(w, sys, removed, nremoved, restart);
   if (can_reuse && !reused && w->scratch_failed) { /* the fade failed: no scratch run */
     info->pivots += w->lcp.pivots - piv0;
     w->valid = 0;
     record_failure(w);
-    return fallback(w, sys, verdict, f, info, "repair failed", note, note_sz, err);
+    return settle(w, sys, verdict, f, info, "repair failed", note, note_sz, err);
   }
-  if (auto_limit && !reused) w->lcp.set.max_pivots = 0;
+  if (!reused) set_limit(w, &w->lcp, 0);
   us_LcpResult r = us_lcp_run(&w->lcp);
   info->pivots += w->lcp.pivots - piv0;
   info->reused += reused;
@@ -408,7 +625,7 @@ static us_Status lcp_solve(void *ws, const us_EqSystem *sys, const int *added, i
     char why[96];
     snprintf(why, sizeof why, "%s%s%s", result_name(r), r == US_LCP_DEGENERATE ? ": " : "",
              r == US_LCP_DEGENERATE && w->lcp.why ? w->lcp.why : "");
-    return fallback(w, sys, verdict, f, info, why, note, note_sz, err);
+    return settle(w, sys, verdict, f, info, why, note, note_sz, err);
   }
   return decide(w, sys, verdict, f, info, note, note_sz, err);
 }

@@ -14,6 +14,13 @@
  * by contacts i and j of w_i^T M^-1 w_j; a_i = w_i^T v summed over the
  * contact's bodies, v = M^-1 (E f + F_ext) per body.
  *
+ * The cone operator (us_lcp_sys_init_cone) gives a contact with a finite
+ * mu > 0 the two edges of its friction cone instead: index 2c pushes along
+ * n + mu t, 2c + 1 along n - mu t, so a force in the cone is a
+ * non-negative combination of the two (f_n = l0 + l1, f_t = mu (l0 - l1))
+ * and a_2c, a_2c+1 >= 0 says that the contact's acceleration lies in the
+ * dual cone. Contacts with mu = 0 or mu = +inf keep (n, t).
+ *
  * Only `present` bodies move; fixed, ground and absent bodies have
  * M^-1 = 0. A body with zero inertia (a point body whose contacts all act
  * at its centre) gets no rotational freedom: its torque rows are zero.
@@ -37,7 +44,20 @@ static int side_body(const us_Structure *s, int b) {
   return b >= 0 && !s->bodies[b].fixed ? b : -1;
 }
 
-static void fill_contacts(us_LcpSys *y) {
+/* Direction of LCP index 2c + comp of contact k (cone: the cone's edges). */
+static void index_dir(const us_Contact *k, int comp, int cone, double *d) {
+  const double *t = k->t[0];
+  double mu = k->mu;
+  if (!cone || !(mu > 0) || isinf(mu)) {
+    memcpy(d, comp == 0 ? k->n : t, 2 * sizeof(double));
+    return;
+  }
+  double s = comp == 0 ? mu : -mu;
+  d[0] = k->n[0] + s * t[0];
+  d[1] = k->n[1] + s * t[1];
+}
+
+static void fill_contacts(us_LcpSys *y, int cone) {
   const us_Structure *s = y->s;
   double L = s->scale > 0 ? s->scale : 1.0;
   for (int c = 0; c < s->ncontact; c++) {
@@ -49,9 +69,11 @@ static void fill_contacts(us_LcpSys *y) {
         double *w = y->w + ((size_t)(2 * c + comp) * 2 + (size_t)side) * 3;
         if (ends[side] < 0)
           memset(w, 0, 3 * sizeof(double));
-        else
-          unit_wrench(s, L, ends[side], k->p, comp == 0 ? k->n : k->t[0], side == 0 ? -1.0 : 1.0,
-                      w);
+        else {
+          double d[2];
+          index_dir(k, comp, cone, d);
+          unit_wrench(s, L, ends[side], k->p, d, side == 0 ? -1.0 : 1.0, w);
+        }
       }
     }
   }
@@ -87,7 +109,7 @@ static int fill_adjacency(us_LcpSys *y) {
   return 0;
 }
 
-int us_lcp_sys_init(us_LcpSys *y, const us_Structure *s) {
+static int sys_init(us_LcpSys *y, const us_Structure *s, int cone) {
   memset(y, 0, sizeof *y);
   y->s = s;
   y->nbody = s->nbody;
@@ -106,10 +128,14 @@ int us_lcp_sys_init(us_LcpSys *y, const us_Structure *s) {
   if (!y->minv || !y->fext || !y->present || !y->cb || !y->w || !y->u || !y->touched || !y->bmark ||
       !y->cmark)
     return -1;
-  fill_contacts(y);
+  fill_contacts(y, cone);
   fill_masses(y);
   return fill_adjacency(y);
 }
+
+int us_lcp_sys_init(us_LcpSys *y, const us_Structure *s) { return sys_init(y, s, 0); }
+
+int us_lcp_sys_init_cone(us_LcpSys *y, const us_Structure *s) { return sys_init(y, s, 1); }
 
 void us_lcp_sys_free(us_LcpSys *y) {
   void *arrs[] = {y->minv, y->fext, y->present, y->cb,    y->w,    y->adj_start,

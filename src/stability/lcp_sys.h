@@ -26,6 +26,10 @@ typedef struct us_LcpSys {
 } us_LcpSys;
 
 int us_lcp_sys_init(us_LcpSys *y, const us_Structure *s);
+/* The cone operator: for a contact with finite mu > 0, index 2c is the
+ * cone edge n + mu t and 2c + 1 the edge n - mu t (both normals of a
+ * frictionless LCP: forces >= 0); other contacts as above. */
+int us_lcp_sys_init_cone(us_LcpSys *y, const us_Structure *s);
 void us_lcp_sys_free(us_LcpSys *y);
 us_LcpOps us_lcp_sys_ops(us_LcpSys *y);
 /* Per-index wrench on body side `side` of LCP index i (3 values). */
