@@ -204,6 +204,13 @@ say ""
 say "| family | blocks | method | status | tests | plan s | verify s | max RSS MiB |"
 say "|---|---|---|---|---|---|---|---|"
 tail -n +2 "$SC" | awk -F, '{printf "| %s | %s | %s | %s | %s | %s | %s | %.0f |\n", $1, $2, $3, $4, $5, $6, $7, $8 / 1024}' | tee -a "$MD"
+if [ "$QUICK" != 1 ]; then # about 5 minutes: the full run only
+  say ""
+  say "## LP fallbacks of the LCP backends"
+  say ""
+  LCPFB_LIMIT=60 bash "$(dirname "$0")/lcp_fallbacks.sh" "$B" >"$OUT/lcp-fallbacks-$tag.md"
+  say "Per workload, both searches: [table](lcp-fallbacks-$tag.md) (bench/lcp_fallbacks.sh; docs/lcp.md explains the causes)."
+fi
 say ""
 say "Whole benchmark: $(($(date +%s) - START)) s."
 echo "wrote $MD"
