@@ -24,8 +24,7 @@ static void *create_custom(const us_Structure *s, const us_StabilitySettings *se
   return us_lp_lcp_create(s, set, &opts, err);
 }
 
-/* A workspace on lp-lcp with options (reuse, max_dim), or on method m's
- * own backend when m != US_METHOD_LP_LCP. */
+/* A workspace on lp-lcp with options (reuse, max_dim). */
 static us_Stability *open_lplcp(const us_Structure *s, int reuse, int max_dim) {
   static us_Backend be;
   be = us_backend_lp_lcp;
@@ -39,6 +38,7 @@ static us_Stability *open_lplcp(const us_Structure *s, int reuse, int max_dim) {
   return w;
 }
 
+/* A workspace on method m's own backend (us_stability_new). */
 static us_Stability *open_method(const us_Structure *s, us_Method m) {
   us_StabilitySettings set = us_stability_default_settings();
   set.method = m;
@@ -129,11 +129,7 @@ static us_Structure *generated(int kind, double mu, int size, unsigned long seed
   case 0: g.rows = size, g.cols = size; return us_gen_wall(&g, &err);
   case 1: g.n = size; return us_gen_pyramid(&g, &err);
   case 2: g.n = size + 3, g.loose = 2; return us_gen_arch(&g, &err);
-  default: {
-    us_Structure *s = pile_random(&rng, 4 + (int)(rnd() * 9));
-    if (s) s->friction = mu; /* the default of contacts added later; read below */
-    return s;
-  }
+  default: return pile_random(&rng, 4 + (int)(rnd() * 9)); /* mu: set_mu */
   }
 }
 
