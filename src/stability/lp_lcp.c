@@ -56,7 +56,8 @@
  * vector e in the new coordinates and the argument above holds unchanged
  * (q' . z'^h = q . z^h: for skew M the sum over pairs of w z' + z w' does
  * not depend on which member of a pair is called w). If the start is
- * already feasible Lemke makes no pivot. Setup pivots count in
+ * already feasible Lemke makes no pivot. A warm run that fails (see
+ * below) is repeated cold before CLP is asked. Setup pivots count in
  * info->pivots like Lemke's; info->reused counts warm starts.
  */
 #include "lp_lcp.h"
@@ -486,6 +487,30 @@ static RunEnd run(LpLcpWs *w, const us_EqSystem *sys, int restart, int *pairs, i
   return lemke(w, ray_col);
 }
 
+/* One run (cold, or warm when allowed) and its verdict: 1 decided or
+ * stopped by the deadline, 0 not (*why says why; *warm: it was warm). */
+static int try_run(LpLcpWs *w, const us_EqSystem *sys, int cold, us_Verdict *verdict, double *f,
+                   us_StabilityInfo *info, char *note, size_t note_sz, const char **why,
+                   int *warm) {
+  long piv0 = w->pivots;
+  w->limit = piv0 + (w->set.max_pivots > 0 ? w->set.max_pivots
+                                           : (long)PIVOTS_PER_DIM * w->dim + PIVOT_BASE);
+  int pairs = 0, ray_col = -1;
+  RunEnd e = run(w, sys, cold, &pairs, &ray_col);
+  long piv = w->pivots - piv0;
+  info->pivots += piv;
+  info->reused += pairs > 0;
+  *warm = pairs > 0;
+  if (e == RUN_TIME) {
+    snprintf(note, note_sz, "lp-lcp: time limit");
+    return 1;
+  }
+  if (e == RUN_SOLVED && accept_solution(w, sys, verdict, f, note, note_sz, piv, pairs)) return 1;
+  if (e == RUN_RAY && accept_ray(w, sys, ray_col, verdict, note, note_sz, piv, pairs)) return 1;
+  *why = e == RUN_LIMIT ? "hit the pivot limit" : e == RUN_RAY ? "ray rejected" : "solution inaccurate";
+  return 0;
+}
+
 static us_Status lplcp_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
                              const int *removed, int nremoved, int restart, us_Verdict *verdict,
                              double *f, us_StabilityInfo *info, char *note, size_t note_sz,
@@ -513,24 +538,11 @@ static us_Status lplcp_solve(void *ws, const us_EqSystem *sys, const int *added,
                       "over the size cap", note, note_sz, err);
   if (lplcp_reserve(w, w->n, w->m))
     return us_error_set(err, US_ERR_NOMEM, "out of memory building the lp-lcp tableau");
-  long piv0 = w->pivots;
-  w->limit = piv0 + (w->set.max_pivots > 0 ? w->set.max_pivots
-                                           : (long)PIVOTS_PER_DIM * w->dim + PIVOT_BASE);
-  int pairs = 0, ray_col = -1;
-  RunEnd e = run(w, sys, restart, &pairs, &ray_col);
-  long piv = w->pivots - piv0;
-  info->pivots += piv;
-  info->reused += pairs > 0;
-  if (e == RUN_TIME) {
-    snprintf(note, note_sz, "lp-lcp: time limit");
-    return US_OK;
-  }
-  if (e == RUN_SOLVED && accept_solution(w, sys, verdict, f, note, note_sz, piv, pairs)) return US_OK;
-  if (e == RUN_RAY && accept_ray(w, sys, ray_col, verdict, note, note_sz, piv, pairs)) return US_OK;
+  const char *why = "";
+  int warm = 0;
+  if (try_run(w, sys, restart, verdict, f, info, note, note_sz, &why, &warm)) return US_OK;
+  if (warm && try_run(w, sys, 1, verdict, f, info, note, note_sz, &why, &warm)) return US_OK;
   w->have_basis = 0; /* a failed run's basis is no start */
-  const char *why = e == RUN_LIMIT ? "hit the pivot limit"
-                    : e == RUN_RAY ? "ray rejected"
-                                   : "solution inaccurate";
   return clp_decide(w, sys, added, nadded, removed, nremoved, chain, verdict, f, info, why, note,
                     note_sz, err);
 }
