@@ -13,7 +13,7 @@ static const char help[] =
     "(the forces) that is re-checked without the solver.\n"
     "\n"
     "options:\n"
-    "  --method M        auto (default), lp (CLP), lpsolve, lcp, lcp-reuse\n"
+    "  --method M        auto (default), lp (CLP), lpsolve, lcp, lcp-reuse, lp-lcp\n"
     "  --local on|off      exact local tests for lp and auto (default on)\n"
     "  --contact-tol T   contact detection tolerance (default 1e-6 x size)\n"
     "  --forces          print the certificate forces\n"

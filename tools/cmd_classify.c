@@ -22,7 +22,7 @@ static const char help[] =
     "\n"
     "options:\n"
     "  --json            print one JSON object instead\n"
-    "  --method M        auto (default), lp (CLP), lpsolve, lcp, lcp-reuse\n"
+    "  --method M        auto (default), lp (CLP), lpsolve, lcp, lcp-reuse, lp-lcp\n"
     "  --local on|off      exact local tests for lp and auto (default on)\n"
     "  --max-tests N     test limit of the top-down DFS (default 20000; 0: none)\n"
     "  --time-limit S    seconds for each search of top-down, sequence and group\n"

@@ -13,7 +13,7 @@ static const char help[] =
     "\n"
     "options:\n"
     "  -o, --output PLAN   write the plan file (also when no order exists)\n"
-    "  --method M          auto (default), lp (CLP), lpsolve, lcp, lcp-reuse\n"
+    "  --method M          auto (default), lp (CLP), lpsolve, lcp, lcp-reuse, lp-lcp\n"
     "  --local on|off        exact local tests for lp and auto (default on)\n"
     "  --search S          assemble (default): greedy assembly from the ground,\n"
     "                      complete by the union theorem (at most n(n+1)/2 tests;\n"

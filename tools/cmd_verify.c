@@ -12,7 +12,7 @@ static const char help[] =
     "the solver. Names the first step after which the remainder does not stand.\n"
     "\n"
     "options:\n"
-    "  --method M        auto (default), lp (CLP), lpsolve, lcp, lcp-reuse\n"
+    "  --method M        auto (default), lp (CLP), lpsolve, lcp, lcp-reuse, lp-lcp\n"
     "  --local on|off      exact local tests for lp and auto (default on)\n"
     "  --time-limit S    stop after S seconds, inside the solver too (undecided)\n"
     "  --contact-tol T   contact detection tolerance (default 1e-6 x size)\n"

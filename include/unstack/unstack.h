@@ -258,6 +258,7 @@ typedef enum us_Method {
   US_METHOD_LPSOLVE,    /* statics LP, lp_solve 5.5, from scratch */
   US_METHOD_LCP,        /* Baraff/Dantzig LCP from scratch */
   US_METHOD_LCP_REUSE,  /* LCP with computation reuse */
+  US_METHOD_LP_LCP,     /* statics LP as an LCP, Lemke's method, warm-started */
   US_METHOD_COUNT,      /* number of concrete methods */
   US_METHOD_AUTO = US_METHOD_COUNT /* (default) the fastest exact method for the
                                       structure (us_method_resolve) */

@@ -1,5 +1,5 @@
 /* The interface every stability backend implements (lp_clp.c,
- * lp_lpsolve.c, lcp_backend.c), in the settings / workspace / solve shape.
+ * lp_lpsolve.c, lcp_backend.c, lp_lcp.c), in the settings / workspace / solve shape.
  *
  * The front end (stability.c) owns the public workspace: it tracks the
  * last tested sub-assembly, builds the equilibrium system of the next one
@@ -47,6 +47,7 @@ extern const us_Backend us_backend_clp;     /* lp_clp.c */
 extern const us_Backend us_backend_lpsolve; /* lp_lpsolve.c */
 extern const us_Backend us_backend_lcp;     /* lcp_backend.c (from scratch) */
 extern const us_Backend us_backend_lcp_reuse;
+extern const us_Backend us_backend_lp_lcp;  /* lp_lcp.c (Lemke on the LP's LCP) */
 
 /* A workspace on a given backend (tests, benchmarks); us_stability_new picks
  * the backend from set->method. */

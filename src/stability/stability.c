@@ -56,7 +56,7 @@ struct us_Stability {
 /* ------------------------------------------------------------ small API */
 
 static const char *const method_names[US_METHOD_COUNT + 1] = {"lp", "lpsolve", "lcp",
-                                                              "lcp-reuse", "auto"};
+                                                              "lcp-reuse", "lp-lcp", "auto"};
 
 const char *us_method_name(us_Method m) {
   if ((int)m < 0 || m > US_METHOD_AUTO) return "unknown";
@@ -174,6 +174,7 @@ static const us_Backend *backend_of(us_Method m) {
   case US_METHOD_LPSOLVE: return &us_backend_lpsolve;
   case US_METHOD_LCP: return &us_backend_lcp;
   case US_METHOD_LCP_REUSE: return &us_backend_lcp_reuse;
+  case US_METHOD_LP_LCP: return &us_backend_lp_lcp;
   default: return NULL;
   }
 }

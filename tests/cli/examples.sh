@@ -9,7 +9,7 @@ expect 0 "slab on a wall stands with friction" -- "$CLI" check "$DATA/lean_wall.
 expect 1 "slab on a wall falls without friction" -- "$CLI" check "$DATA/lean_wall_mu0.json"
 expect 0 "explicit contacts stand" -- "$CLI" check "$DATA/explicit.json"
 expect 0 "explicit contacts plan" -- "$CLI" plan "$DATA/explicit.json" -o "$T/ex.json"
-for m in lp lpsolve lcp lcp-reuse; do
+for m in lp lpsolve lcp lcp-reuse lp-lcp; do
   expect 0 "cantilever with $m" -- "$CLI" plan "$DATA/cantilever.json" --method $m
   expect 1 "leaning with $m" -- "$CLI" plan "$DATA/leaning.json" --method $m
 done

@@ -32,7 +32,7 @@ cat "$T/plan3.json" >>"$T/bomplan.json"
 expect 0 "verify a plan with a byte order mark" -- "$CLI" verify "$T/c3.json" "$T/bomplan.json"
 
 expect 2 "unknown method" -- "$CLI" check "$T/c3.json" --method simplex
-contains "$T/err" "(lp, lpsolve, lcp, lcp-reuse, auto)" "lists the methods"
+contains "$T/err" "(lp, lpsolve, lcp, lcp-reuse, lp-lcp, auto)" "lists the methods"
 expect 2 "unknown removal" -- "$CLI" plan "$T/c3.json" --removal sideways
 contains "$T/err" "(any, up, free)" "lists the removals"
 finish
