@@ -80,15 +80,15 @@ source_s() {
   esac
 }
 workloads="random10 column50 column80 random84 pyramid91"
-methods="lpsolve lp lcp lcp-reuse auto"
+methods="lpsolve lp lcp lcp-reuse lp-lcp auto"
 [ "$QUICK" = 1 ] && workloads="random10 column50 pyramid91"
 echo "workload,bodies,method,search,status,tests,total_s,ms_per_test,rss_kb,source_s,speedup_vs_lpsolve" >"$T2"
 say "## Table 2: the source's workloads"
 say ""
 say "Whole plans, seconds (tests); \`assemble\` is the default search, \`dfs down\` the source's (its figures are for its own machine and Java prototype)."
 say ""
-say "| workload | bodies | search | lpsolve | lp | lcp | lcp-reuse | auto | auto vs lpsolve | source (lpsolve / lcp / lcp-reuse) |"
-say "|---|---|---|---|---|---|---|---|---|---|"
+say "| workload | bodies | search | lpsolve | lp | lcp | lcp-reuse | lp-lcp | auto | auto vs lpsolve | source (lpsolve / lcp / lcp-reuse) |"
+say "|---|---|---|---|---|---|---|---|---|---|---|"
 for wl in $workloads; do
   n=$(bodies "$W/$wl.json")
   for search in "assemble" "dfs down" "dfs up"; do
@@ -124,7 +124,7 @@ budget=$([ "$QUICK" = 1 ] && echo 0.5 || echo 15)
 for wl in pyramid91 wall1000; do
   f4=$OUT/fig4-$wl-$tag.csv
   echo "structure,method,bodies,seconds" >"$f4"
-  for m in lpsolve lp lcp lcp-reuse auto; do
+  for m in $methods; do
     [ "$QUICK" = 1 ] && [ "$wl" = wall1000 ] && [ "$m" != auto ] && [ "$m" != lp ] && continue
     "$B/bench_fig4" "$W/$wl.json" "$wl" "$m" "$budget" >>"$f4" 2>>"$W/fig4.err"
   done
@@ -135,7 +135,7 @@ for wl in pyramid91 wall1000; do
   say ""
   say "| method | tests timed | median ms | largest size timed | slope |"
   say "|---|---|---|---|---|"
-  for m in lpsolve lp lcp lcp-reuse auto; do
+  for m in $methods; do
     stats=$(awk -F, -v m="$m" '$2 == m {print $4 * 1000, $3}' "$f4" | sort -n |
       awk '{v[NR] = $1; if ($2 > mx) mx = $2} END { if (NR) printf "%d | %.4f | %d", NR, v[int((NR + 1) / 2)], mx }')
     [ -n "$stats" ] || continue
