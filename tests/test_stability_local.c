@@ -25,7 +25,7 @@ static void flip(us_Bitset *b, int i) { b->w[i >> 6] ^= (uint64_t)1 << (i & 63);
 #endif
 
 typedef struct Tally {
-  long tests, stable, unstable, local, mech;
+  long tests, stable, unstable, local, mech, plumb;
 } Tally;
 
 static us_StabilitySettings settings(int local) {
@@ -43,6 +43,7 @@ static int compare(us_Stability *loc, us_Stability *glob, const us_Structure *s,
                    Tally *t) {
   us_Error err;
   long before = us_stability_info(loc)->local_stable + us_stability_info(loc)->local_unstable;
+  long plumbed = us_stability_info(loc)->local_plumb;
   if (us_stability_test(loc, node, rl, &err) || us_stability_test(glob, node, rg, &err)) {
     fprintf(stderr, "test error: %s\n", err.msg);
     return -1;
@@ -51,6 +52,7 @@ static int compare(us_Stability *loc, us_Stability *glob, const us_Structure *s,
   int was_local = after > before;
   t->tests++;
   t->local += was_local;
+  t->plumb += us_stability_info(loc)->local_plumb - plumbed;
   if (rl->verdict != rg->verdict || rl->verdict == US_UNDECIDED) {
     fprintf(stderr, "%d bodies: local %s (%s), full %s (%s)\n", us_bitset_count(node),
             us_verdict_name(rl->verdict), rl->note, us_verdict_name(rg->verdict), rg->note);
@@ -199,8 +201,8 @@ static us_Structure *gen(int kind, double mu, int size, unsigned long seed) {
 
 static void report(const char *what, const Tally *t) {
   fprintf(stderr, "%s: %ld sub-assemblies (%ld stable, %ld unstable), %ld settled locally, "
-                  "%ld mechanisms checked\n",
-          what, t->tests, t->stable, t->unstable, t->local, t->mech);
+                  "%ld by plumb lines, %ld mechanisms checked\n",
+          what, t->tests, t->stable, t->unstable, t->local, t->plumb, t->mech);
 }
 
 /* ------------------------------------------------------------------ cases */
@@ -220,6 +222,7 @@ static void generators_agree(void) {
   CHECK(t.stable > t.tests / 10 && t.unstable > t.tests / 10);
   CHECK(t.local > t.tests / 2); /* most tests must really be local */
   CHECK(t.mech > 0);
+  CHECK(t.plumb > t.stable / 10); /* the plumb lines took part in the agreement */
 }
 
 static void random_piles_agree(void) {

@@ -362,6 +362,7 @@ typedef struct us_StabilityInfo {
   long timed_out;        /* tests stopped undecided by the deadline */
   long local_settled[US_LOCAL_BUCKETS]; /* tests settled by a region of
                             2^k .. 2^(k+1) - 1 bodies (bucket 0: 0 or 1) */
+  long local_plumb;      /* of local_stable: proven by plumb lines, no LP */
 } us_StabilityInfo;
 
 /* The certificate of an unstable verdict: a virtual motion of some bodies

@@ -41,6 +41,7 @@
 
 #include "certificate.h"
 #include "lp_small.h"
+#include "plumb.h"
 #include "model/massprops.h"
 
 #include <math.h>
@@ -79,6 +80,7 @@ struct us_Local {
   int *list, *slot;      /* mechanism check: contacts of R, body slots */
   long seed_tries, seed_hits; /* level-0 support LPs run, and proofs found */
   double mass;           /* movable mass, summed once for the checks */
+  us_Plumb plumb;        /* plumb-line load paths (plumb.h) */
 };
 
 /* ------------------------------------------------------------- set-up */
@@ -146,6 +148,7 @@ void us_local_free(us_Local *L) {
   us_free(L->slot);
   us_free(L->f);
   us_free(L->saved);
+  us_plumb_free(&L->plumb);
   us_free(L);
 }
 
@@ -177,6 +180,10 @@ us_Local *us_local_new(const us_Structure *s, const us_StabilitySettings *set,
   }
   measure_extents(L);
   L->mass = us_movable_mass(s);
+  if (us_plumb_init(&L->plumb, s, L->inc_start, L->inc, L->up, L->eq.mass_total)) {
+    us_local_free(L);
+    return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)"), NULL;
+  }
   for (int k = 0; k < 2; k++) {
     L->bws[k] = be->create(s, set, err);
     if (!L->bws[k]) {
@@ -423,12 +430,16 @@ static int bucket_of(int n) {
   return b;
 }
 
-static int settle(us_Local *L, int verdict, us_StabilityInfo *info) {
-  info->local_settled[bucket_of(L->nreg)]++;
-  info->local_region_bodies += L->nreg;
+static int settle_n(int verdict, int n, us_StabilityInfo *info) {
+  info->local_settled[bucket_of(n)]++;
+  info->local_region_bodies += n;
   if (verdict == US_LOCAL_STABLE) info->local_stable++;
   else info->local_unstable++;
   return verdict;
+}
+
+static int settle(us_Local *L, int verdict, us_StabilityInfo *info) {
+  return settle_n(verdict, L->nreg, info);
 }
 
 int us_mechanism_from_ray(us_Mechanism *m, const us_EqSystem *e, const double *y, int ny) {
@@ -500,6 +511,30 @@ static int try_fixed(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
   return 1;
 }
 
+/* The plumb lines of the added bodies (plumb.h), when no removed body
+ * touches S (so B's forces still hold every body of S that was in B):
+ * 1 stable (forces merged into fbase and re-checked on the path),
+ * 0 not proven (fbase unchanged), -1 OOM. */
+static int try_plumb(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
+                     us_StabilityInfo *info, us_Error *err) {
+  if (L->touching || !L->nadd) return 0;
+  int r = us_plumb_route(&L->plumb, cur, L->added, L->nadd, L->fbase);
+  if (r < 0) return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)"), -1;
+  if (r == 0) return 0;
+  const us_Plumb *p = &L->plumb;
+  us_certificate_check_bodies(L->s, cur, p->path, p->npath, L->inc_start, L->inc, L->fbase,
+                              L->mass, L->set.cert_tol, &res->check);
+  if (!res->check.ok) {
+    us_plumb_undo(&L->plumb, L->fbase);
+    return 0;
+  }
+  res->verdict = US_STABLE;
+  snprintf(res->note, sizeof res->note, "local: plumb line through %d bodies, the rest unchanged",
+           p->npath);
+  info->local_plumb++;
+  return 1;
+}
+
 /* Level 0 pays when it finds proofs: it is skipped while fewer than one
  * in eight of its recent runs did (every 16th test runs it anyway, to
  * notice when the workload changes). */
@@ -560,6 +595,8 @@ int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
     res->verdict = US_STABLE;
     snprintf(res->note, sizeof res->note, "local: no body's contacts changed");
     r = settle(L, US_LOCAL_STABLE, info);
+  } else if ((r = try_plumb(L, cur, res, info, err)) != 0) {
+    if (r > 0) r = settle_n(US_LOCAL_STABLE, L->plumb.npath, info);
   } else if (L->nreg > 16 + size / 8) {
     r = US_LOCAL_GLOBAL;
   } else {

@@ -1,0 +1,203 @@
+/* Plumb-line load paths (src/stability/plumb.c, docs/local.md).
+ *
+ * A route is a stable proof without an LP, so what matters is that it is
+ * claimed only when the forces it leaves hold every body (the independent
+ * certificate check over the changed bodies, and the full check), that it
+ * leaves the forces exactly as they were when it refuses, and that it
+ * refuses where no vertical load path exists (a cantilever, a contact
+ * too steep for its friction), agreeing with the full LP there. Forces
+ * are never compared with particular values: they are not unique. */
+#include "model/massprops.h"
+#include "scenes.h"
+#include "stability/certificate.h"
+#include "stability/plumb.h"
+#include "test.h"
+
+/* The incidence (body -> contacts) that local.c builds, for the tests. */
+typedef struct Inc {
+  int *start, *list;
+} Inc;
+
+static int inc_build(const us_Structure *s, Inc *in) {
+  in->start = calloc((size_t)s->nbody + 1, sizeof(int));
+  in->list = malloc((size_t)(2 * s->ncontact + 1) * sizeof(int));
+  int *fill = malloc(((size_t)s->nbody + 1) * sizeof(int));
+  if (!in->start || !in->list || !fill) return free(fill), -1;
+  for (int c = 0; c < s->ncontact; c++) {
+    if (s->contacts[c].a >= 0) in->start[s->contacts[c].a + 1]++;
+    if (s->contacts[c].b >= 0) in->start[s->contacts[c].b + 1]++;
+  }
+  for (int i = 0; i < s->nbody; i++) in->start[i + 1] += in->start[i];
+  memcpy(fill, in->start, (size_t)s->nbody * sizeof(int));
+  for (int c = 0; c < s->ncontact; c++) {
+    if (s->contacts[c].a >= 0) in->list[fill[s->contacts[c].a]++] = c;
+    if (s->contacts[c].b >= 0) in->list[fill[s->contacts[c].b]++] = c;
+  }
+  free(fill);
+  return 0;
+}
+
+static void inc_free(Inc *in) {
+  free(in->start);
+  free(in->list);
+}
+
+/* Route every movable body of s at once from zero forces: 1 routed (and
+ * the forces pass the check on the path and the full check), 0 refused
+ * (forces still all zero), -1 a failure (reported). npath: path size. */
+static int route_all(const us_Structure *s, int *npath) {
+  Inc in;
+  us_Bitset cur;
+  us_Plumb p;
+  double up[3] = {0, 1, 0};
+  size_t nf = (size_t)s->ncontact * 2;
+  double *f = calloc(nf + 1, sizeof(double));
+  int *added = malloc(((size_t)s->nbody + 1) * sizeof(int)), nadd = 0, out = -1;
+  if (!f || !added || inc_build(s, &in) || us_bitset_init(&cur, s->nbody)) return -1;
+  double mass = us_movable_mass(s);
+  if (us_plumb_init(&p, s, in.start, in.list, up, mass)) return -1;
+  for (int i = 0; i < s->nbody; i++)
+    if (!s->bodies[i].fixed) us_bitset_set(&cur, i), added[nadd++] = i;
+  int r = us_plumb_route(&p, &cur, added, nadd, f);
+  *npath = p.npath;
+  if (r == 0) {
+    out = 0;
+    for (size_t k = 0; k < nf; k++)
+      if (f[k] != 0.0) out = -1, fprintf(stderr, "refused route changed a force\n");
+  } else if (r == 1) {
+    us_CertCheck c;
+    us_certificate_check_bodies(s, &cur, p.path, p.npath, in.start, in.list, f, mass, 1e-9, &c);
+    us_Forces fo = {.ncontact = s->ncontact};
+    fo.contact = malloc((size_t)s->ncontact * sizeof(int));
+    fo.f = malloc(nf * sizeof(double));
+    double w = mass * 9.81;
+    for (int k = 0; k < s->ncontact; k++) fo.contact[k] = k;
+    for (size_t k = 0; k < nf; k++) fo.f[k] = f[k] * w;
+    us_CertCheck full = us_certificate_check(s, &cur, &fo, 1e-9);
+    free(fo.contact);
+    free(fo.f);
+    out = c.ok && full.ok ? 1 : -1;
+    if (out < 0) fprintf(stderr, "routed forces fail the check (force %g torque %g cone %g)\n",
+                         c.max_force_residual, c.max_torque_residual, c.max_cone_violation);
+  }
+  us_plumb_free(&p);
+  us_bitset_free(&cur);
+  inc_free(&in);
+  free(f);
+  free(added);
+  return out;
+}
+
+/* The full LP's verdict on all of s. */
+static us_Verdict lp_verdict(const us_Structure *s) {
+  us_StabilitySettings set = us_stability_default_settings();
+  set.method = US_METHOD_LP;
+  set.local = -1;
+  us_StabilityResult res;
+  us_stability_result_init(&res);
+  us_Stability *w = us_stability_new(s, &set, NULL);
+  us_Verdict v = US_UNDECIDED;
+  if (w && us_stability_test_full(w, &res, NULL) == US_OK) v = res.verdict;
+  us_stability_free(w);
+  us_stability_result_free(&res);
+  return v;
+}
+
+/* ------------------------------------------------------------------ cases */
+
+static void column_routes(void) {
+  us_Structure *s = scene_column(6);
+  CHECK(s);
+  int n;
+  CHECK_INT(route_all(s, &n), ==, 1);
+  CHECK_INT(n, ==, 6);
+  us_structure_free(s);
+}
+
+/* A plank across two piers, its centre over the gap: the line splits
+ * between the piers. */
+static void bridge_splits(void) {
+  us_Structure *s = us_structure_new(2);
+  scene_box(s, "P1", 0, 0, 1, 1, 1);
+  scene_box(s, "P2", 2, 0, 1, 1, 1);
+  scene_box(s, "plank", 0.5, 1, 2.5, 0.2, 1);
+  CHECK(scene_seal(s));
+  int n;
+  CHECK_INT(route_all(s, &n), ==, 1);
+  CHECK_INT(n, ==, 3);
+  us_structure_free(s);
+}
+
+/* A plank on one pier, its centre beyond it: no vertical path (the plank
+ * falls; a route would be a false proof). */
+static void cantilever_refused(void) {
+  us_Structure *s = us_structure_new(2);
+  scene_box(s, "P", 0, 0, 1, 1, 1);
+  scene_box(s, "plank", 0.5, 1, 2.5, 0.2, 1);
+  CHECK(scene_seal(s));
+  int n;
+  CHECK_INT(route_all(s, &n), ==, 0);
+  CHECK_INT(lp_verdict(s), ==, US_UNSTABLE);
+  us_structure_free(s);
+}
+
+/* A square on a fixed 30 degree ramp: a vertical load through the slope
+ * needs mu >= tan 30 = 0.577. Below, the route refuses (and the block
+ * slides); above, it routes. */
+static us_Structure *ramp(double mu) {
+  us_Structure *s = us_structure_new(2);
+  double a = atan(1.0) * 4 / 6, t = tan(a), c = cos(a), sn = sin(a);
+  double tri[6] = {0, 0, 4, 0, 4, 4 * t};
+  double x0 = 1.5, y0 = 1.5 * t, e = 0.5;
+  double sq[8] = {x0, y0, x0 + e * c, y0 + e * sn, x0 + e * c - e * sn, y0 + e * sn + e * c,
+                  x0 - e * sn, y0 + e * c};
+  us_BodyDef d = us_default_body_def();
+  d.id = "ramp", d.nvert = 3, d.xy = tri, d.fixed = 1, d.friction = mu;
+  us_structure_add_body(s, &d, NULL);
+  d = us_default_body_def();
+  d.id = "block", d.nvert = 4, d.xy = sq, d.friction = mu;
+  us_structure_add_body(s, &d, NULL);
+  return scene_seal(s);
+}
+
+static void steep_contact(void) {
+  static const double mus[] = {0.0, 0.3, 0.55, 0.6, 1.0, INFINITY};
+  for (int k = 0; k < 6; k++) {
+    us_Structure *s = ramp(mus[k]);
+    CHECK(s);
+    CHECK(s->ncontact >= 2);
+    int n, stands = mus[k] > 0.5774;
+    CHECK_INT(route_all(s, &n), ==, stands);
+    CHECK_INT(lp_verdict(s), ==, stands ? US_STABLE : US_UNSTABLE);
+    us_structure_free(s);
+  }
+}
+
+/* Whole plans of a wall and a pyramid: the assembly's tests are proven by
+ * plumb lines (not by LPs), and the plans verify. */
+static void plans_use_plumb_lines(void) {
+  us_GenSettings g = us_gen_default_settings();
+  us_Error err;
+  for (int kind = 0; kind < 2; kind++) {
+    g.rows = 12, g.cols = 12, g.n = 12;
+    us_Structure *s = kind ? us_gen_pyramid(&g, &err) : us_gen_wall(&g, &err);
+    CHECK(s);
+    us_PlanSettings ps = us_plan_default_settings();
+    us_Plan plan;
+    CHECK_INT(us_plan(s, &ps, &plan, &err), ==, US_OK);
+    CHECK_INT(plan.status, ==, US_PLAN_FOUND);
+    CHECK_INT(plan.nsteps, ==, s->nbody);
+    const us_StabilityInfo *in = &plan.stats.stability;
+    CHECK(in->local_plumb > 0);
+    CHECK(in->local_plumb <= in->local_stable);
+    CHECK_INT(in->local_plumb, >=, plan.stats.tests * 9 / 10);
+    us_VerifyReport rep;
+    CHECK_INT(us_verify_order(s, &ps.stability, plan.order, plan.nsteps, &rep, &err), ==, US_OK);
+    CHECK(rep.ok);
+    us_plan_free(&plan);
+    us_structure_free(s);
+  }
+}
+
+US_TEST_MAIN(T(column_routes), T(bridge_splits), T(cantilever_refused), T(steep_contact),
+             T(plans_use_plumb_lines))
