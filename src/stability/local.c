@@ -318,6 +318,23 @@ static void seed_region(us_Local *L, const us_Bitset *cur) {
   }
 }
 
+/* Is some seed held by no active contact? Such a body falls however
+ * light it is; the full system decides that exactly (before any solver
+ * whose tolerance could absorb a tiny weight), so the test goes there. */
+static int seed_unheld(const us_Local *L, const us_Bitset *cur) {
+  const us_Structure *s = L->s;
+  for (int q = 0; q < L->nreg; q++) {
+    int u = L->reg[q], held = 0;
+    for (int m = L->inc_start[u]; m < L->inc_start[u + 1] && !held; m++) {
+      const us_Contact *k = &s->contacts[L->inc[m]];
+      int v = k->a == u ? k->b : k->a;
+      held = v < 0 || s->bodies[v].fixed || us_bitset_get(cur, v);
+    }
+    if (!held) return 1;
+  }
+  return 0;
+}
+
 /* Does contact c push body u up (u rests on the other side)? */
 static int supports(const us_Local *L, const us_Contact *k, int u) {
   double d = k->n[0] * L->up[0] + k->n[1] * L->up[1] + k->n[2] * L->up[2];
@@ -529,7 +546,7 @@ static int try_plumb(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
     return 0;
   }
   res->verdict = US_STABLE;
-  snprintf(res->note, sizeof res->note, "local: plumb line through %d bodies, the rest unchanged",
+  snprintf(res->note, sizeof res->note, "local: plumb lines through %d bodies, the rest unchanged",
            p->npath);
   info->local_plumb++;
   return 1;
@@ -584,7 +601,13 @@ int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
                   us_StabilityInfo *info, us_Error *err) {
   int size = us_bitset_count(cur);
   int min = L->set.local_min_bodies > 0 ? L->set.local_min_bodies : LOCAL_MIN_BODIES;
-  if (!L->have_base || size < min) return US_LOCAL_GLOBAL;
+  if (size < min) return US_LOCAL_GLOBAL;
+  if (!L->have_base) { /* from the empty set: every body is added (plumb lines can
+                          prove a whole structure, as `check` asks, in O(n h)) */
+    memset(L->base.w, 0, (size_t)L->base.nwords * sizeof(uint64_t));
+    memset(L->fbase, 0, (size_t)L->s->ncontact * (size_t)L->dim * sizeof(double));
+    L->have_base = 1;
+  }
   diff_base(L, cur);
   seed_region(L, cur);
   int r;
@@ -595,6 +618,8 @@ int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
     res->verdict = US_STABLE;
     snprintf(res->note, sizeof res->note, "local: no body's contacts changed");
     r = settle(L, US_LOCAL_STABLE, info);
+  } else if (seed_unheld(L, cur)) {
+    r = US_LOCAL_GLOBAL;
   } else if ((r = try_plumb(L, cur, res, info, err)) != 0) {
     if (r > 0) r = settle_n(US_LOCAL_STABLE, L->plumb.npath, info);
   } else if (L->nreg > 16 + size / 8) {

@@ -4,7 +4,7 @@
 . "$(dirname "$0")/lib.sh"
 "$CLI" generate wall --rows 30 --cols 33 -o "$T/wall.json" >/dev/null
 "$CLI" plan "$T/wall.json" -o "$T/plan.json" >/dev/null
-expect 3 "check with a time limit that runs out" -- "$CLI" check "$T/wall.json" --time-limit 0.001
+expect 3 "check with a time limit that runs out" -- "$CLI" check "$T/wall.json" --local off --time-limit 0.001
 contains "$T/out" "undecided" "check: undecided"
 contains "$T/out" "time limit" "check: says why"
 expect 3 "verify with a time limit that runs out" -- "$CLI" verify "$T/wall.json" "$T/plan.json" --time-limit 0.001
