@@ -151,7 +151,7 @@ echo "family,bodies,method,status,tests,plan_s,verify_s,rss_kb" >"$SC"
 if [ "$QUICK" = 1 ]; then
   walls="10 17 32"; pyrs="14 24 45"; stacks="18:12"
 else
-  walls="10 17 32 55 100"; pyrs="14 24 45 77 141"; stacks="18:12 50:24 160:48 250:75 80:400 100:560"
+  walls="10 17 32 55 100 173 316"; pyrs="14 24 45 77 141 245 447"; stacks="18:12 50:24 160:48 250:75 80:400 100:560"
 fi
 scale_row() { # family file method-words max-bodies
   local fam=$1 f=$2 m=$3 cap=$4 n
@@ -177,7 +177,7 @@ scale_family() { # family generator-words-fn sizes lcp_cap
     f="$W/$fam$r.json"
     # shellcheck disable=SC2046
     gen "$fam" $($args "$r") -o "$f"
-    scale_row "$fam" "$f" "--method auto" 100000
+    scale_row "$fam" "$f" "--method auto" 1000000
     scale_row "$fam" "$f" "--method lp --local off" $([ "$QUICK" = 1 ] && echo 400 || echo 3500)
     [ "$QUICK" = 1 ] && continue
     scale_row "$fam" "$f" "--method lcp-reuse" "$lcp_cap"

@@ -96,6 +96,7 @@ static double fast_norm3(const double *v) {
 
 double us_cone_distance(double fn, double ft, double mu) {
   ft = fabs(ft);
+  if (fn >= 0.0 && (isinf(mu) || ft <= mu * fn)) return 0.0; /* inside (no hypot) */
   double c = 1.0, s = 0.0; /* cone edge direction (cos a, sin a), a = atan(mu) */
   if (isinf(mu)) {
     c = 0.0, s = 1.0;
@@ -165,7 +166,7 @@ static int one_force(const us_Structure *s, const Units *u, const us_Contact *k,
   for (int t = 1; t < dim; t++)
     for (int j = 0; j < 3; j++) F[j] += fc[t] * k->t[t - 1][j];
   double scale = fast_norm3(F) + contact_floor(s, u, k);
-  *cone = us_cone_distance(fc[0], hypot(fc[1], fc[2]), k->mu) / scale;
+  *cone = us_cone_distance(fc[0], dim == 2 ? fabs(fc[1]) : hypot(fc[1], fc[2]), k->mu) / scale;
   *sign = US_MAX(-fc[0], 0.0) / scale;
   return 0;
 }

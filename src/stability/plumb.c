@@ -42,28 +42,6 @@ typedef struct Hop {
   double pos[2]; /* where the lines go on */
 } Hop;
 
-int us_plumb_init(us_Plumb *p, const us_Structure *s, const int *inc_start, const int *inc,
-                  const double up[3], double mass_total) {
-  memset(p, 0, sizeof *p);
-  p->s = s;
-  p->inc_start = inc_start;
-  p->inc = inc;
-  memcpy(p->up, up, sizeof p->up);
-  p->hz[0] = up[1], p->hz[1] = -up[0], p->hz[2] = 0.0;
-  p->mass_total = mass_total;
-  p->mark = us_calloc((size_t)(s->nbody > 0 ? s->nbody : 1), 1);
-  return p->mark ? 0 : -1;
-}
-
-void us_plumb_free(us_Plumb *p) {
-  us_free(p->log_c);
-  us_free(p->log_f);
-  us_free(p->path);
-  us_free(p->mark);
-  us_free(p->stack);
-  memset(p, 0, sizeof *p);
-}
-
 static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 static int held(const us_Plumb *p, int v) { return v < 0 || p->s->bodies[v].fixed; }
@@ -95,37 +73,93 @@ static int in_cone(const us_Plumb *p, const us_Contact *k, int u) {
   return isinf(k->mu) || fabs(d[1]) <= (k->mu + CONE_SLACK) * d[0];
 }
 
-/* A hop below u at position c; 1 found, 0 none. width: u's width.
- * A support point on the line takes the whole load; else the nearest
- * support points on either side share it by the lever rule. */
-static int find_hop(const us_Plumb *p, const us_Bitset *cur, int u, double c, double width,
-                    Hop *h) {
+static double width_of(const us_Plumb *p, int u) {
+  const us_Body *b = &p->s->bodies[u];
+  double lo = INFINITY, hi = -INFINITY;
+  for (int k = 0; k < b->nvert; k++) {
+    double x = b->verts[2 * k] * p->hz[0] + b->verts[2 * k + 1] * p->hz[1];
+    lo = US_MIN(lo, x), hi = US_MAX(hi, x);
+  }
+  return hi > lo ? hi - lo : 0.0;
+}
+
+/* Each body's support points whose cone holds a vertical load, with the
+ * body below and the horizontal position (they depend on the geometry
+ * only; presence is asked per hop). */
+static void list_supports(us_Plumb *p) {
   const us_Structure *s = p->s;
+  int n = 0;
+  for (int u = 0; u < s->nbody; u++) {
+    p->sup_start[u] = n;
+    p->width[u] = width_of(p, u);
+    for (int m = p->inc_start[u]; m < p->inc_start[u + 1]; m++) {
+      const us_Contact *k = &s->contacts[p->inc[m]];
+      if (!supports(p, k, u) || !in_cone(p, k, u)) continue;
+      p->sup[n++] = (us_PlumbSupport){p->inc[m], other_side(k, u), dot3(k->p, p->hz)};
+    }
+  }
+  p->sup_start[s->nbody] = n;
+}
+
+int us_plumb_init(us_Plumb *p, const us_Structure *s, const int *inc_start, const int *inc,
+                  const double up[3], double mass_total) {
+  memset(p, 0, sizeof *p);
+  p->s = s;
+  p->inc_start = inc_start;
+  p->inc = inc;
+  memcpy(p->up, up, sizeof p->up);
+  p->hz[0] = up[1], p->hz[1] = -up[0], p->hz[2] = 0.0;
+  p->mass_total = mass_total;
+  size_t nb = (size_t)(s->nbody > 0 ? s->nbody : 1);
+  p->mark = us_calloc(nb, 1);
+  p->width = us_malloc(nb * sizeof(double));
+  p->sup_start = us_calloc(nb + 1, sizeof(int));
+  p->sup = us_malloc((size_t)(2 * s->ncontact + 1) * sizeof(us_PlumbSupport));
+  if (!p->mark || !p->width || !p->sup_start || !p->sup) return -1;
+  if (s->dim == 2) list_supports(p);
+  return 0;
+}
+
+void us_plumb_free(us_Plumb *p) {
+  us_free(p->log_c);
+  us_free(p->log_f);
+  us_free(p->path);
+  us_free(p->mark);
+  us_free(p->stack);
+  us_free(p->width);
+  us_free(p->sup_start);
+  us_free(p->sup);
+  memset(p, 0, sizeof *p);
+}
+
+/* A hop below u at position c; 1 found, 0 none. A support point on the
+ * line takes the whole load; else the nearest support points on either
+ * side share it by the lever rule. */
+static int find_hop(const us_Plumb *p, const us_Bitset *cur, int u, double c, Hop *h) {
   int best[2] = {-1, -1};
-  double pos[2] = {-INFINITY, INFINITY};
-  for (int m = p->inc_start[u]; m < p->inc_start[u + 1]; m++) {
-    const us_Contact *k = &s->contacts[p->inc[m]];
-    int v = other_side(k, u);
-    if (!present(p, cur, v) || !supports(p, k, u) || !in_cone(p, k, u)) continue;
-    double x = dot3(k->p, p->hz);
-    if (fabs(x - c) <= AT_POINT * width) {
-      h->k[0] = p->inc[m], h->k[1] = -1;
+  double tol = AT_POINT * p->width[u];
+  for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++) {
+    const us_PlumbSupport *q = &p->sup[m];
+    if (!present(p, cur, q->below)) continue;
+    if (fabs(q->pos - c) <= tol) {
+      h->k[0] = q->contact, h->k[1] = -1;
       h->w[0] = 1.0, h->w[1] = 0.0;
-      h->below[0] = h->below[1] = v;
+      h->below[0] = h->below[1] = q->below;
       h->pos[0] = c;
       h->split = 0;
       return 1;
     }
-    int side = x > c;
-    if (side ? x < pos[1] : x > pos[0]) best[side] = p->inc[m], pos[side] = x;
+    int side = q->pos > c;
+    if (best[side] < 0 || (side ? q->pos < p->sup[best[1]].pos : q->pos > p->sup[best[0]].pos))
+      best[side] = m;
   }
   if (best[0] < 0 || best[1] < 0) return 0;
   for (int q = 0; q < 2; q++) {
-    h->k[q] = best[q];
-    h->below[q] = other_side(&s->contacts[best[q]], u);
-    h->pos[q] = pos[q];
+    h->k[q] = p->sup[best[q]].contact;
+    h->below[q] = p->sup[best[q]].below;
+    h->pos[q] = p->sup[best[q]].pos;
   }
-  h->w[1] = (c - pos[0]) / (pos[1] - pos[0]);
+  h->w[1] = (c - h->pos[0]) / (h->pos[1] - h->pos[0]);
   h->w[0] = 1.0 - h->w[1];
   h->split = h->below[0] != h->below[1];
   if (!h->split) h->pos[0] = c; /* one body takes both: their resultant is on the line */
@@ -159,16 +193,6 @@ void us_plumb_undo(us_Plumb *p, double *f) {
   p->nlog = 0;
 }
 
-static double width_of(const us_Plumb *p, int u) {
-  const us_Body *b = &p->s->bodies[u];
-  double lo = INFINITY, hi = -INFINITY;
-  for (int k = 0; k < b->nvert; k++) {
-    double x = b->verts[2 * k] * p->hz[0] + b->verts[2 * k + 1] * p->hz[1];
-    lo = US_MIN(lo, x), hi = US_MAX(hi, x);
-  }
-  return hi > lo ? hi - lo : 0.0;
-}
-
 /* Push a line (body, position, load) to route on. */
 static int push_line(us_Plumb *p, int u, double c, double load) {
   if (US_GROW(p->stack, p->cap_stack, p->nstack + 1)) return -1;
@@ -188,7 +212,7 @@ static int route_one(us_Plumb *p, const us_Bitset *cur, int a, double *f) {
     if (hops >= PLUMB_HOPS) return 0;
     us_PlumbLine l = p->stack[--p->nstack];
     Hop h;
-    if (!find_hop(p, cur, l.body, l.pos, width_of(p, l.body), &h)) return 0;
+    if (!find_hop(p, cur, l.body, l.pos, &h)) return 0;
     for (int q = 0; q < 2 && (q == 0 || h.k[1] >= 0); q++)
       if (add_force(p, h.k[q], l.body, h.w[q] * l.load, f)) return -1;
     for (int q = 0; q <= h.split; q++) {

@@ -29,6 +29,12 @@ typedef struct us_PlumbLine {
   double load;           /* its vertical force, in units of the total weight */
 } us_PlumbLine;
 
+typedef struct us_PlumbSupport {
+  int contact;           /* a support contact point of the body */
+  int below;             /* the body on its other side (US_GROUND, fixed, movable) */
+  double pos;            /* its horizontal position */
+} us_PlumbSupport;
+
 typedef struct us_Plumb {
   /* the structure, its incidence (body -> contacts) and frame */
   const us_Structure *s;
@@ -36,6 +42,11 @@ typedef struct us_Plumb {
   double up[3];          /* against gravity */
   double hz[3];          /* the horizontal axis (2D) */
   double mass_total;     /* M: a body's weight is m_i / M in force units */
+  /* per body: its support points whose cone holds the vertical
+     (sup[sup_start[u] .. sup_start[u + 1])) and its width along hz */
+  int *sup_start;
+  us_PlumbSupport *sup;
+  double *width;
   /* undo log: contact index and its force before each change */
   int *log_c;
   double *log_f;
