@@ -10,8 +10,8 @@
 #   fig4-*.csv    the source's Figure 4: seconds per stability test against
 #                 the bodies in the tested sub-assembly, per method, on the
 #                 91-block pyramid and a 1,000-block wall (bench_fig4);
-#   scaling.csv   walls, pyramids and the stacker's random stacks from 100
-#                 to 10,000 blocks: plan and verify time, tests, peak memory,
+#   scaling.csv   walls and pyramids from 100 to 100,000 blocks, the
+#                 stacker's random stacks from 100 to about 9,000: plan and verify time, tests, peak memory,
 #                 and the fitted exponent from 1,000 blocks up.
 # Usage: bench/run.sh BUILD_DIR   (env QUICK=1, BENCH_OUT=dir, BENCH_LIMIT=s)
 set -uo pipefail
