@@ -12,6 +12,7 @@
 #include "stability/equilibrium.h"
 #include "lcp_dense.h"
 #include "test.h"
+#include "walks.h"
 
 /* Sanitizer builds look for memory errors, not statistics
  * (CMakeLists.txt): the random tests run a fifth of their cases there,
@@ -679,20 +680,6 @@ static us_Structure *random_scene(int frictional) {
   return s;
 }
 
-/* One step of a walk from a random body: in the first half remove one
- * while more than one is left (else add one), in the second add one back
- * (or remove one when all are present); a single-body structure stays. */
-static void walk_step(us_Bitset *sub, int nbody, int first_half) {
-  int i = (int)(rnd() * nbody), left = us_bitset_count(sub);
-  int removing = first_half ? left > 1 : left == nbody;
-  if (!removing && left == nbody) return;
-  while (us_bitset_get(sub, i) != removing) i = (i + 1) % nbody;
-  if (removing)
-    us_bitset_clear(sub, i);
-  else
-    us_bitset_set(sub, i);
-}
-
 /* Walk of sub-assemblies: remove random bodies one at a time until a few
  * are left, then add some back, each step tested on all three methods
  * (persistent workspaces, so lcp-reuse reuses both ways). Returns the
@@ -712,7 +699,7 @@ static int walk(const us_Structure *s, us_Stability **ws, long *counts) {
     } else {
       counts[v[0]]++;
     }
-    walk_step(&sub, s->nbody, step < steps / 2);
+    walk_step(&sub, s->nbody, step < steps / 2, &rng);
   }
   us_bitset_free(&sub);
   return bad;
@@ -1089,7 +1076,7 @@ static int walk_infinite(const us_Structure *s, us_Stability **ws, long *counts,
       bad += v[0] < 0 || (v[k] != -1 && v[k] != v[0]);
     }
     if (v[0] >= 0) counts[v[0]]++;
-    walk_step(&sub, s->nbody, step < s->nbody);
+    walk_step(&sub, s->nbody, step < s->nbody, &rng);
   }
   us_bitset_free(&sub);
   return bad;

@@ -13,6 +13,7 @@
 #include "piles.h"
 #include "scenes.h"
 #include "test.h"
+#include "walks.h"
 
 static void flip(us_Bitset *b, int i) { b->w[i >> 6] ^= (uint64_t)1 << (i & 63); }
 
@@ -187,16 +188,7 @@ static int removal_walk(us_Structure *s, Tally *t) {
 }
 
 static us_Structure *gen(int kind, double mu, int size, unsigned long seed) {
-  us_GenSettings g = us_gen_default_settings();
-  g.friction = mu;
-  g.seed = seed;
-  us_Error err;
-  switch (kind) {
-  case 0: g.rows = size, g.cols = size; return us_gen_wall(&g, &err);
-  case 1: g.n = size; return us_gen_pyramid(&g, &err);
-  case 2: g.n = size, g.loose = 6; return us_gen_arch(&g, &err);
-  default: g.rows = size, g.width = 12; return us_gen_stacker(&g, &err);
-  }
+  return walk_generated(kind, mu, size, seed, 0, 6);
 }
 
 static void report(const char *what, const Tally *t) {

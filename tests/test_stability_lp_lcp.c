@@ -9,6 +9,7 @@
 #include "piles.h"
 #include "scenes.h"
 #include "test.h"
+#include "walks.h"
 
 #ifdef US_TEST_SANITIZED
 #define US_TEST_SHARE 5
@@ -87,19 +88,6 @@ static int test_on(us_Stability *w, const us_Bitset *present, Tally *t) {
 static unsigned long long rng = 0x51ed27a5c3b1f4e9ULL;
 static double rnd(void) { return test_rnd(&rng); }
 
-/* One step of a walk: in the first half remove a random body while more
- * than one is left, in the second add one back. */
-static void walk_step(us_Bitset *sub, int nbody, int first_half) {
-  int i = (int)(rnd() * nbody), left = us_bitset_count(sub);
-  int removing = first_half ? left > 1 : left == nbody;
-  if (!removing && left == nbody) return;
-  while (us_bitset_get(sub, i) != removing) i = (i + 1) % nbody;
-  if (removing)
-    us_bitset_clear(sub, i);
-  else
-    us_bitset_set(sub, i);
-}
-
 /* A walk of 2 n sub-assemblies tested on lp (ws[0]) and lp-lcp (ws[1]);
  * returns the disagreements. */
 static int walk(const us_Structure *s, us_Stability **ws, Tally *t) {
@@ -114,23 +102,15 @@ static int walk(const us_Structure *s, us_Stability **ws, Tally *t) {
               us_bitset_count(&sub), s->nbody, s->friction);
       bad++;
     }
-    walk_step(&sub, s->nbody, step < steps / 2);
+    walk_step(&sub, s->nbody, step < steps / 2, &rng);
   }
   us_bitset_free(&sub);
   return bad;
 }
 
 static us_Structure *generated(int kind, double mu, int size, unsigned long seed) {
-  us_GenSettings g = us_gen_default_settings();
-  g.friction = mu;
-  g.seed = seed;
-  us_Error err;
-  switch (kind) {
-  case 0: g.rows = size, g.cols = size; return us_gen_wall(&g, &err);
-  case 1: g.n = size; return us_gen_pyramid(&g, &err);
-  case 2: g.n = size + 3, g.loose = 2; return us_gen_arch(&g, &err);
-  default: return pile_random(&rng, 4 + (int)(rnd() * 9)); /* mu: set_mu */
-  }
+  if (kind < 3) return walk_generated(kind, mu, size, seed, 3, 2);
+  return pile_random(&rng, 4 + (int)(rnd() * 9)); /* mu: set_mu */
 }
 
 /* Every contact of a pile gets coefficient mu (the piles draw their own). */
