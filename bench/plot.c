@@ -4,12 +4,13 @@
  * commas; lines starting with '#' are skipped. Each series gets a colour,
  * its points (and, with --lines, a polyline through them in x order), and
  * a least-squares fit of log y against log x over the points with
- * x >= --fit-from (default: all), whose slope is the fitted exponent shown
+ * --fit-from <= x <= --fit-to (default: all), whose slope is the fitted exponent shown
  * in the legend and printed on stdout ("series exponent points").
  *
  * OUT ending in .png: a PNG instead.
  *
- * Usage: plot OUT.svg TITLE XLABEL YLABEL [--lines] [--fit-from X] < points
+ * Usage: plot OUT.svg TITLE XLABEL YLABEL [--lines] [--fit-from X] [--fit-to X]
+ *        < points
  */
 #include <cairo-svg.h>
 #include <cairo.h>
@@ -40,7 +41,7 @@ typedef struct Plot {
   int ns;
   double lx0, lx1, ly0, ly1; /* decades spanned (log10) */
   int lines;
-  double fit_from;
+  double fit_from, fit_to;
 } Plot;
 
 static const double palette[MAX_SERIES][3] = {
@@ -88,12 +89,12 @@ static int read_points(Plot *p) {
   return 0;
 }
 
-/* Least squares of log y on log x over x >= fit_from. */
+/* Least squares of log y on log x over fit_from <= x <= fit_to. */
 static void fit(Plot *p, Series *s) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   int n = 0;
   for (int i = 0; i < s->n; i++) {
-    if (s->x[i] < p->fit_from) continue;
+    if (s->x[i] < p->fit_from || s->x[i] > p->fit_to) continue;
     double lx = log10(s->x[i]), ly = log10(s->y[i]);
     sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly, n++;
   }
@@ -198,14 +199,16 @@ static void draw_series(cairo_t *cr, const Plot *p, const Series *s, int k) {
 
 int main(int argc, char **argv) {
   if (argc < 5) {
-    fprintf(stderr, "usage: plot OUT.svg TITLE XLABEL YLABEL [--lines] [--fit-from X] < points\n");
+    fprintf(stderr, "usage: plot OUT.svg TITLE XLABEL YLABEL [--lines] [--fit-from X] [--fit-to X] < points\n");
     return 2;
   }
   Plot p;
   memset(&p, 0, sizeof p);
+  p.fit_to = INFINITY;
   for (int i = 5; i < argc; i++) {
     if (!strcmp(argv[i], "--lines")) p.lines = 1;
     else if (!strcmp(argv[i], "--fit-from") && i + 1 < argc) p.fit_from = atof(argv[++i]);
+    else if (!strcmp(argv[i], "--fit-to") && i + 1 < argc) p.fit_to = atof(argv[++i]);
     else return fprintf(stderr, "plot: unknown option %s\n", argv[i]), 2;
   }
   if (read_points(&p)) return fprintf(stderr, "plot: out of memory\n"), 1;
