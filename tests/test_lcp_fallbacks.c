@@ -77,26 +77,18 @@ static void check_loads(const Load *loads, int n) {
   }
 }
 
-/* Workloads where the LP decides under 1 % of the tests. */
+/* Workloads where the LP decides under 1 % of the tests: every one since
+ * the cone LCP's Lemke fallback (measured: none at all). Before it,
+ * stacker seeds 1, 3 and 4 sent 2 % to 17 % of their tests to the LP
+ * (the cone LCP's Dantzig pivoting ended degenerate). */
 static void under_one_percent(void) {
   static const Load loads[] = {
-      {"column50", 3, 50, 1, 0.01},    {"pyramid91", 1, 13, 1, 0.01},
-      {"wall10x10", 2, 10, 1, 0.01},   {"stacker seed 2", 0, 15, 2, 0.01},
-      {"stacker seed 5", 0, 15, 5, 0.01},
+      {"column50", 3, 50, 1, 0.01},      {"pyramid91", 1, 13, 1, 0.01},
+      {"wall10x10", 2, 10, 1, 0.01},     {"stacker seed 1", 0, 15, 1, 0.01},
+      {"stacker seed 2", 0, 15, 2, 0.01}, {"stacker seed 3", 0, 15, 3, 0.01},
+      {"stacker seed 4", 0, 15, 4, 0.01}, {"stacker seed 5", 0, 15, 5, 0.01},
   };
   check_loads(loads, (int)(sizeof loads / sizeof loads[0]));
 }
 
-/* The stacker seeds where the cone LCP still fails on some tests (its
- * Dantzig pivoting ends degenerate on nearly dependent clamped sets):
- * bounds at the measured level (before the cone LCP: 9 % to 61 %). */
-static void stacker_bounded(void) {
-  static const Load loads[] = {
-      {"stacker seed 1", 0, 15, 1, 0.20},
-      {"stacker seed 3", 0, 15, 3, 0.05},
-      {"stacker seed 4", 0, 15, 4, 0.05},
-  };
-  check_loads(loads, (int)(sizeof loads / sizeof loads[0]));
-}
-
-US_TEST_MAIN({"under_one_percent", under_one_percent}, {"stacker_bounded", stacker_bounded})
+US_TEST_MAIN({"under_one_percent", under_one_percent})

@@ -7,6 +7,7 @@
  * lcp, lcp-reuse and the LP (CLP) give the same verdict every time. */
 #include "stability/lcp.h"
 #include "stability/lcp_backend.h"
+#include "stability/lcp_lemke.h"
 #include "stability/lcp_sys.h"
 #include "stability/backend.h"
 #include "stability/equilibrium.h"
@@ -488,7 +489,9 @@ static void pivot_limit_falls_back(void) {
     CHECK_INT(test_on(w, &sub), ==, US_UNSTABLE);
     us_bitset_clear(&sub, 3);
     CHECK_INT(test_on(w, &sub), ==, US_STABLE);
-    CHECK(us_stability_info(w)->lp_fallbacks >= 1);
+    /* the cone LCP's run stops at the limit too: Lemke settles it */
+    CHECK(us_stability_info(w)->cone_lemke >= 1);
+    CHECK_INT(us_stability_info(w)->lp_fallbacks, ==, 0);
     /* lcp-reuse goes on from the LP's forces after a stable fallback */
     CHECK_INT(us_stability_info(w)->lcp_seeds > 0, ==, methods[k] == US_METHOD_LCP_REUSE);
     us_bitset_clear(&sub, 2);
@@ -602,7 +605,8 @@ static void backoff_when_lcp_fails(void) {
   long runs = in->tests - in->lcp_skips; /* tests that ran the LCP */
   CHECK(in->lcp_skips > 0);
   CHECK(runs < in->tests / 2);
-  CHECK(in->lp_fallbacks >= 1); /* skipped tests go to the cone LCP, then the LP */
+  /* skipped tests go to the cone LCP, Lemke where its run fails, then the LP */
+  CHECK(in->lp_fallbacks + in->cone_lemke >= 1);
   CHECK_INT(us_stability_info(scratch)->lcp_skips, ==, 0);
   us_bitset_free(&sub);
   us_stability_free(w);
@@ -847,7 +851,7 @@ static void settings_vary_limits(void) {
   rng = saved;
   static const int borders[4] = {0, 4, 16, 64};
   int bad = 0;
-  long fallbacks = 0, limited_fallbacks = 0;
+  long fallbacks = 0, limited_fallbacks = 0, lemke_fallbacks = 0;
   for (int j = 0; j < n; j++) {
     CHECK(scenes[j]);
     for (int b = 0; b < 4; b++) {
@@ -857,6 +861,8 @@ static void settings_vary_limits(void) {
     }
     custom_set = us_lcp_default_settings();
     custom_set.max_pivots = 1;
+    bad += custom_disagreements(scenes[j], &lemke_fallbacks); /* Lemke settles */
+    custom_set.lemke_max_dim = 0; /* no Lemke: the LP settles */
     bad += custom_disagreements(scenes[j], &limited_fallbacks);
   }
   /* the raw solver on the frictional wall's full LCP: the border limit
@@ -871,6 +877,7 @@ static void settings_vary_limits(void) {
   for (int j = 0; j < n; j++) us_structure_free(scenes[j]);
   CHECK_INT(bad, ==, 0);
   CHECK(limited_fallbacks > fallbacks);
+  CHECK(lemke_fallbacks < limited_fallbacks);
   for (int b = 0; b < 4; b++) CHECK_INT(solved[b], ==, 1);
   CHECK(refactors[0] > refactors[2] && refactors[2] >= refactors[3]);
 }
@@ -924,6 +931,75 @@ static int conditions_hold(us_Lcp *p) {
     }
   }
   return 1;
+}
+
+/* The cone LCP's Lemke fallback (lcp_lemke.c) on raw degenerate PSD LCPs:
+ * A = G^T G with every column of G doubled (A singular, ties in every
+ * ratio test) and b = G^T g. With g = -G l* for some l* >= 0 with zeros
+ * the minimum of |G l + g| is 0 and many indices have l = 0 and a = 0 at
+ * once; with g random it need not be. Lemke ends SOLVED with the LCP's
+ * conditions (one index free, mu = +inf, in half the cases) and a zero
+ * net wrench r = G l + g whenever a static l* was built in; with g random
+ * it may end on a (round-off) ray, which callers never trust. */
+static void lemke_degenerate_cone(void) {
+  enum { M = 3, H = 6, N = 2 * H };
+  us_LcpLemke k = {0};
+  int rays = 0;
+  for (int trial = 0; trial < 40; trial++) {
+    double G[M][N], g[M], A[N * N], b[N];
+    for (int r = 0; r < M; r++)
+      for (int j = 0; j < H; j++) G[r][j] = G[r][j + H] = uniform(-1, 1);
+    int stat = trial % 2;
+    for (int r = 0; r < M; r++) g[r] = stat ? 0.0 : uniform(-1, 1);
+    for (int j = 0; stat && j < N; j++) {
+      double l = j % 3 == 0 ? uniform(0, 1) : 0.0;
+      for (int r = 0; r < M; r++) g[r] -= G[r][j] * l;
+    }
+    for (int i = 0; i < N; i++) {
+      b[i] = 0.0;
+      for (int r = 0; r < M; r++) b[i] += G[r][i] * g[r];
+      for (int j = 0; j < N; j++) {
+        A[i * N + j] = 0.0;
+        for (int r = 0; r < M; r++) A[i * N + j] += G[r][i] * G[r][j];
+      }
+    }
+    Dense d = {N, A, b};
+    us_LcpOps ops = dense_ops(&d);
+    us_Lcp p;
+    CHECK(us_lcp_init(&p, N, &ops) == 0);
+    int all[N];
+    for (int i = 0; i < N; i++) all[i] = i;
+    if (trial % 4 >= 2) us_lcp_set_friction(&p, N - 1, 0, INFINITY);
+    us_lcp_add(&p, all, N);
+    long piv = 0;
+    us_LcpLemkeEnd e = us_lcp_lemke(&k, &p, 100, &piv);
+    /* a ray is round-off (the LCP is feasible): reported, never trusted;
+     * measured once in the 20 random-g trials, never with a static l* */
+    int ok = e == US_LCP_LEMKE_SOLVED ? conditions_hold(&p) : !stat && e == US_LCP_LEMKE_RAY;
+    rays += e == US_LCP_LEMKE_RAY;
+    double res = 0.0;
+    for (int r = 0; r < M; r++) {
+      double v = g[r];
+      for (int j = 0; j < N; j++) v += G[r][j] * p.f[j];
+      res = fmax(res, fabs(v));
+    }
+    us_LcpLemkeEnd capped = us_lcp_lemke(&k, &p, N - 1, &piv);
+    double keep = b[trial % N];
+    b[trial % N] = trial % 3 ? NAN : INFINITY; /* never pivoted on */
+    us_LcpLemkeEnd nonfinite = us_lcp_lemke(&k, &p, 100, &piv);
+    b[trial % N] = keep;
+    us_lcp_set_friction(&p, 1, 0, 0.5); /* a finite friction: not a cone LCP */
+    us_LcpLemkeEnd fric = us_lcp_lemke(&k, &p, 100, &piv);
+    us_lcp_free(&p);
+    CHECK(ok);
+    if (stat) CHECK(res <= 1e-9);
+    CHECK(piv > 0);
+    CHECK_INT(capped, ==, US_LCP_LEMKE_TOO_BIG);
+    CHECK_INT(nonfinite, ==, US_LCP_LEMKE_LIMIT);
+    CHECK_INT(fric, ==, US_LCP_LEMKE_NOT_PSD);
+  }
+  us_lcp_lemke_free(&k);
+  CHECK(rays <= 2);
 }
 
 /* Random redundant frictional stacks pushed sideways (as in
@@ -1139,5 +1215,5 @@ US_TEST_MAIN(T(worked_example), T(column_reuse), T(seed_from_forces), T(raw_pivo
              T(redundant_contacts), T(coincident_contacts), T(zero_mass_rejected),
              T(column_counters), T(pivot_limit_falls_back), T(out_of_memory), T(wall_takedown),
              T(backoff_when_lcp_fails), T(differential), T(settings_vary_limits),
-             T(raw_infinite_friction), T(raw_infinite_friction_stacks),
+             T(raw_infinite_friction), T(raw_infinite_friction_stacks), T(lemke_degenerate_cone),
              T(infinite_friction_structures))

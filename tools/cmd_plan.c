@@ -59,9 +59,10 @@ static void print_stats(const us_PlanStats *st) {
          "certificate checks %.6f s\n",
          st->time_total, st->time_setup, st->time_search, st->time_solve, st->time_check);
   printf("  memo %zu bytes; LCP pivots %ld, LP fallbacks %ld (re-seeded %ld, LCP skipped %ld), "
-         "reused %ld\n",
+         "reused %ld; cone Lemke settled %ld, failed %ld\n",
          st->memo_bytes, st->stability.pivots, st->stability.lp_fallbacks,
-         st->stability.lcp_seeds, st->stability.lcp_skips, st->stability.reused);
+         st->stability.lcp_seeds, st->stability.lcp_skips, st->stability.reused,
+         st->stability.cone_lemke, st->stability.cone_lemke_failed);
   cli_print_local_stats(&st->stability);
 }
 

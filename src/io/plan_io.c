@@ -61,6 +61,8 @@ static void write_stats(us_JsonOut *o, const us_PlanStats *st) {
   write_field_num(o, in, "lcp_seeds", (double)st->stability.lcp_seeds, 0);
   write_field_num(o, in, "lcp_skips", (double)st->stability.lcp_skips, 0);
   write_field_num(o, in, "reused", (double)st->stability.reused, 0);
+  write_field_num(o, in, "cone_lemke", (double)st->stability.cone_lemke, 0);
+  write_field_num(o, in, "cone_lemke_failed", (double)st->stability.cone_lemke_failed, 0);
   write_field_num(o, in, "solve_time", st->stability.solve_time, 0);
   write_field_num(o, in, "check_time", st->stability.check_time, 1);
   us_jo_raw(o, "    }\n  }\n");

@@ -86,6 +86,7 @@ us_LcpSettings us_lcp_default_settings(void) {
   s.cone_slack = 1e-12;
   s.energy_slack = 1e-10;
   s.max_backoff = 20;
+  s.lemke_max_dim = 800;
   return s;
 }
 

@@ -74,6 +74,9 @@ typedef struct us_LcpSettings {
   double energy_slack;   /* 1e-10: v^T M v must exceed f^T a by this */
   int max_backoff;       /* 20: lcp-reuse skips at most 2^(this-1) - 1
                             tests after failures in a row */
+  int lemke_max_dim;     /* 800: the cone LCP by Lemke (lcp_lemke.c) where
+                            its Dantzig run fails, up to this many columns
+                            (a dense tableau); larger ones go to the LP */
 } us_LcpSettings;
 
 us_LcpSettings us_lcp_default_settings(void);

@@ -54,6 +54,7 @@
 #include "lcp_backend.h"
 
 #include "lcp.h"
+#include "lcp_lemke.h"
 #include "lcp_sys.h"
 #include "backend.h"
 
@@ -69,6 +70,7 @@ typedef struct Cone {
   int valid;  /* lcp holds the solution of the last sub-assembly it saw */
   int failed; /* scratch solves that failed in a row (lcp-reuse) */
   long wait;  /* requests left before the next scratch attempt */
+  us_LcpLemke lemke; /* where the Dantzig run fails (lcp_lemke.c) */
 } Cone;
 
 typedef struct LcpWs {
@@ -108,6 +110,7 @@ static void lcp_destroy(void *ws) {
   us_lcp_sys_free(&w->sys);
   us_lcp_free(&w->cone.lcp);
   us_lcp_sys_free(&w->cone.sys);
+  us_lcp_lemke_free(&w->cone.lemke);
   if (w->lpws) us_backend_clp.destroy(w->lpws);
   us_free(w->idx);
   us_free(w->gone);
@@ -506,51 +509,95 @@ static int cone_solve(LcpWs *w, const us_EqSystem *sys, us_StabilityInfo *info) 
   return r == US_LCP_NOMEM ? -1 : k->valid;
 }
 
-/* The cone LCP decides: 1 decided (verdict, forces f), 0 not (the LP
- * will), -1 out of memory. Stable: its net wrench is ~0; unstable: a
- * clear net wrench with the dual-cone proof (which a solution of this
- * PSD LCP satisfies up to round-off). */
-static int cone_decide(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, double *f,
-                       us_StabilityInfo *info, const char *why, char *note, size_t note_sz) {
-  int r = cone_solve(w, sys, info);
-  if (r <= 0) return r;
+/* Edge forces >= 0 (round-off), then the cone LCP's net wrench: its
+ * largest component, the body, and the energy v^T M v. */
+static double cone_residual(LcpWs *w, int *worst, double *energy) {
   us_Lcp *p = &w->cone.lcp;
-  for (int i = 0; i < p->n; i++) /* round-off: edge forces >= 0 */
+  for (int i = 0; i < p->n; i++)
     if (p->live[i] && p->kind[i] == US_LCP_NORMAL && p->f[i] < 0) p->f[i] = 0.0;
+  return us_lcp_sys_residual(&w->cone.sys, p->f, worst, energy);
+}
+
+/* The proof failed on a_e >= -tol_a, which the Dantzig run accepts (times
+ * the scale): run once more with the proof's round-off slack. 1 ran to a
+ * solution (*res etc. fresh), 0 not, -1 out of memory. */
+static int cone_rerun(LcpWs *w, us_StabilityInfo *info, double *res, int *worst, double *energy) {
+  us_Lcp *p = &w->cone.lcp;
+  double tol = p->set.tol_a;
+  long piv0 = p->pivots;
+  p->set.tol_a = w->lset.cone_slack;
+  us_LcpResult rr = us_lcp_run(p);
+  p->set.tol_a = tol;
+  info->pivots += p->pivots - piv0;
+  if (rr == US_LCP_NOMEM) return -1;
+  w->cone.valid = rr == US_LCP_SOLVED;
+  if (rr != US_LCP_SOLVED) return 0;
+  *res = cone_residual(w, worst, energy);
+  return 1;
+}
+
+/* The verdict of the cone LCP's forces (its Dantzig run's, rerun allowed,
+ * or Lemke's): 1 decided (verdict, forces f), 0 not, -1 out of memory.
+ * Stable: its net wrench is ~0; unstable: a clear net wrench with the
+ * dual-cone proof (which a solution of this PSD LCP satisfies up to
+ * round-off). `by` names the solver in the note. */
+static int cone_verdict(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, double *f,
+                        us_StabilityInfo *info, int rerun, const char *by, const char *why,
+                        char *note, size_t note_sz) {
   int worst = -1;
-  double energy = 0.0, res = us_lcp_sys_residual(&w->cone.sys, p->f, &worst, &energy);
+  double energy = 0.0, res = cone_residual(w, &worst, &energy);
   if (res <= w->lset.eq_tol) {
     *verdict = US_STABLE;
     cone_to_forces(w, sys, f);
     int seeded = reseed(w, sys, f);
     if (seeded < 0) return -1;
     info->lcp_seeds += seeded;
-    snprintf(note, note_sz, "LCP %s; cone LCP: equilibrium (residual %.1e)%s", why, res,
+    snprintf(note, note_sz, "LCP %s; %s: equilibrium (residual %.1e)%s", why, by, res,
              seeded ? "; LCP re-seeded from it" : "");
     return 1;
   }
-  if (res >= w->lset.unstable_tol && !cone_dual_proof(w, sys, energy)) {
-    /* the run accepted a_e >= -tol_a (times the scale); the proof needs
-     * round-off: once more with that tolerance */
-    double tol = p->set.tol_a;
-    long piv0 = p->pivots;
-    p->set.tol_a = w->lset.cone_slack;
-    us_LcpResult rr = us_lcp_run(p);
-    p->set.tol_a = tol;
-    info->pivots += p->pivots - piv0;
-    if (rr == US_LCP_NOMEM) return -1;
-    w->cone.valid = rr == US_LCP_SOLVED;
-    if (rr != US_LCP_SOLVED) return 0;
-    for (int i = 0; i < p->n; i++)
-      if (p->live[i] && p->kind[i] == US_LCP_NORMAL && p->f[i] < 0) p->f[i] = 0.0;
-    res = us_lcp_sys_residual(&w->cone.sys, p->f, &worst, &energy);
+  if (rerun && res >= w->lset.unstable_tol && !cone_dual_proof(w, sys, energy)) {
+    int r = cone_rerun(w, info, &res, &worst, &energy);
+    if (r <= 0) return r;
   }
   if (!(res >= w->lset.unstable_tol && cone_dual_proof(w, sys, energy))) return 0;
   *verdict = US_UNSTABLE;
   w->last_body = worst;
-  snprintf(note, note_sz, "LCP %s; cone LCP: bodies accelerate (net wrench %.2g W on '%s')", why,
+  snprintf(note, note_sz, "LCP %s; %s: bodies accelerate (net wrench %.2g W on '%s')", why, by,
            res, us_id_text(w->s->bodies[worst].id).s);
   return 1;
+}
+
+/* The cone LCP by Lemke (lcp_lemke.c) where its Dantzig run failed or
+ * left the verdict open: from the start on the test's live set, then the
+ * same verdict. The cone LCP's state no longer follows its forces: it is
+ * dropped (a stable verdict re-seeds it). 1, 0 or -1 as cone_verdict. */
+static int cone_lemke_decide(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, double *f,
+                             us_StabilityInfo *info, const char *why, char *note,
+                             size_t note_sz) {
+  Cone *k = &w->cone;
+  if (cone_setup(w)) return -1;
+  start_scratch(w, &k->sys, &k->lcp, sys);
+  k->valid = 0;
+  us_LcpLemkeEnd e = us_lcp_lemke(&k->lemke, &k->lcp, w->lset.lemke_max_dim, &info->pivots);
+  if (e == US_LCP_LEMKE_NOMEM) return -1;
+  if (e == US_LCP_LEMKE_TOO_BIG || e == US_LCP_LEMKE_NOT_PSD) return 0;
+  int r = e == US_LCP_LEMKE_SOLVED
+              ? cone_verdict(w, sys, verdict, f, info, 0, "cone LCP by Lemke", why, note, note_sz)
+              : 0;
+  if (r >= 0) *(r ? &info->cone_lemke : &info->cone_lemke_failed) += 1;
+  return r;
+}
+
+/* The cone LCP decides: its Dantzig run (reused where it can be), then
+ * Lemke where that fails. 1 decided, 0 not (the LP will), -1 out of
+ * memory. */
+static int cone_decide(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, double *f,
+                       us_StabilityInfo *info, const char *why, char *note, size_t note_sz) {
+  int r = cone_solve(w, sys, info);
+  if (r > 0) r = cone_verdict(w, sys, verdict, f, info, 1, "cone LCP", why, note, note_sz);
+  if (r != 0) return r;
+  return cone_lemke_decide(w, sys, verdict, f, info, why, note, note_sz);
 }
 
 /* Settle a test the friction LCP did not decide: the cone LCP, then the LP. */

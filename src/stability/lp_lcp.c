@@ -16,12 +16,13 @@
  * and the x of any solution is feasible. M is skew-symmetric: z^T M z = 0 for
  * every z, so M is positive semidefinite, hence copositive-plus.
  *
- * Lemke's method (covering vector e, lexicographic ratio test, so no basis
- * repeats and the path is finite) therefore ends either with z0 leaving
- * (a solution: the x part is feasible, STABLE) or on a secondary ray
- * (z*, w*, z0*) + t (z^h, w^h, z0^h). On the ray z^h >= 0, z^h != 0 and
- * complementarity gives z^h . w^h = 0 = z^h^T M z^h + z0^h e . z^h, so
- * z0^h = 0 and w^h = M z^h >= 0; with M^T = -M, and w* . z^h = 0,
+ * Lemke's method (lemke.c: covering vector e, lexicographic ratio test,
+ * so no basis repeats and the path is finite) therefore ends either with
+ * z0 leaving (a solution: the x part is feasible, STABLE) or on a
+ * secondary ray (z*, w*, z0*) + t (z^h, w^h, z0^h). On the ray z^h >= 0,
+ * z^h != 0 and complementarity gives z^h . w^h = 0 = z^h^T M z^h +
+ * z0^h e . z^h, so z0^h = 0 and w^h = M z^h >= 0; with M^T = -M, and
+ * w* . z^h = 0,
  *   q . z^h = w* . z^h + z*^T w^h - z0* e . z^h = -z0* e . z^h < 0.
  * Writing z^h = (x^h, y1^h, y0^h): A^T y^h <= 0 and c . y^h > 0, i.e.
  *   u = y1^h - y0^h 1  has  G^T u <= 0  and  b . u > 0,
@@ -32,15 +33,8 @@
  * lazily in this workspace and counted in info->lp_fallbacks. The front
  * end re-checks stable forces (certificate.h) and the ray's mechanism.
  *
- * Tableau (condensed, Tucker's form): row i reads
- *   basic_i = qb_i + sum_j t[i][j] nonbasic_j,
- * dim rows and dim + 1 columns (the dim nonbasic members of the pairs and
- * z0). Variables are numbered w_i = i, z_i = dim + i, z0 = 2 dim; pos[v]
- * is the row of a basic v, or -(column + 1). Invariants between pivots:
- * exactly one of w_i, z_i is basic for every i but one pair (both
- * nonbasic) while z0 is basic; qb >= 0 up to round-off once z0 is in.
- * The lexicographic rule compares the rows' coefficients of the variables
- * that were basic when the run began (ref), the identity of the start.
+ * Tableau (lemke.h): pairs x_j = j, y_k = n + k (the sum row's y0 last),
+ * variables w_i = i, z_i = dim + i, z0 = 2 dim.
  *
  * Reuse. After each run the basic members of z are remembered by
  * identity, not position: x by (structure contact, cone slot), y by (body,
@@ -62,23 +56,15 @@
  */
 #include "lp_lcp.h"
 
+#include "lemke.h"
 #include "lp_gen.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
-#define PIVOT_EPS 1e-9     /* |entries| at most this never pivot */
 #define SETUP_EPS 1e-7     /* a warm start's pair needs a pivot above this */
-#define FEAS_EPS 1e-11     /* basic values above -this count as >= 0 */
-#define RATIO_TIE 1e-11    /* ratios this close are ties */
-#define LEX_TIE 1e-12      /* lexicographic entries this close are equal */
 #define RESID_TOL 1e-9     /* a feasible claim's max |G x - b| (b is at most 1) */
-#define PIVOTS_PER_DIM 20  /* default pivot limit: 20 dim + 200 */
-#define PIVOT_BASE 200
-#define DEADLINE_EVERY 64  /* pivots between looks at the clock */
-
-typedef enum RunEnd { RUN_GO, RUN_SOLVED, RUN_RAY, RUN_LIMIT, RUN_TIME } RunEnd;
 
 typedef struct LpLcpWs {
   const us_Structure *s;
@@ -87,14 +73,10 @@ typedef struct LpLcpWs {
   us_LpLcpOptions opt;
   us_EqGen gen;
   int n, m, dim;              /* columns and rows of G; pairs n + m + 1 */
-  double *t;                  /* dim rows of width dim + 1 */
-  double *qb;                 /* [dim] values of the basic variables */
-  int *rowvar, *colvar, *pos; /* [dim], [dim + 1], [2 dim + 1] */
-  int *ref;                   /* [dim] basic variable of each row at the run's start */
-  int *nz, *ties, *cand;      /* scratch: [dim + 1], [dim], [dim] */
+  us_Lemke lk;                /* the tableau and Lemke's state */
+  int *xl, *yl;               /* scratch of the warm start: [n], [m + 1] */
   double *x, *ray;            /* [n] solution, [m] Farkas ray */
-  int cap_t, cap_q, cap_rv, cap_cv, cap_pos, cap_ref, cap_nz, cap_ties, cap_cand, cap_x, cap_ray;
-  long pivots, limit;
+  int cap_xl, cap_yl, cap_x, cap_ray;
   double deadline;
   int *xstamp, *ystamp; /* remembered basis: [3 ncontact], [3 nbody + 1] */
   int stamp, have_basis;
@@ -110,8 +92,9 @@ static void lplcp_destroy(void *ws) {
   LpLcpWs *w = ws;
   if (!w) return;
   us_eq_gen_free(&w->gen);
-  double *d[] = {w->t, w->qb, w->x, w->ray};
-  int *i[] = {w->rowvar, w->colvar, w->pos, w->ref, w->nz, w->ties, w->cand, w->xstamp, w->ystamp};
+  us_lemke_free(&w->lk);
+  double *d[] = {w->x, w->ray};
+  int *i[] = {w->xl, w->yl, w->xstamp, w->ystamp};
   for (size_t k = 0; k < sizeof d / sizeof d[0]; k++) us_free(d[k]);
   for (size_t k = 0; k < sizeof i / sizeof i[0]; k++) us_free(i[k]);
   if (w->clp) us_backend_clp.destroy(w->clp);
@@ -146,14 +129,8 @@ static void *lplcp_create(const us_Structure *s, const us_StabilitySettings *set
 
 /* Room for a system of n columns and m rows. 0 or -1 (OOM). */
 static int lplcp_reserve(LpLcpWs *w, int n, int m) {
-  int dim = n + m + 1;
-  long cells = (long)dim * (long)(dim + 1);
-  if (cells > 1L << 28) return -1;
-  return US_GROW(w->t, w->cap_t, (int)cells) || US_GROW(w->qb, w->cap_q, dim) ||
-                 US_GROW(w->rowvar, w->cap_rv, dim) || US_GROW(w->colvar, w->cap_cv, dim + 1) ||
-                 US_GROW(w->pos, w->cap_pos, 2 * dim + 1) || US_GROW(w->ref, w->cap_ref, dim) ||
-                 US_GROW(w->nz, w->cap_nz, dim + 1) || US_GROW(w->ties, w->cap_ties, dim) ||
-                 US_GROW(w->cand, w->cap_cand, dim) || US_GROW(w->x, w->cap_x, n + 1) ||
+  return us_lemke_reserve(&w->lk, n + m + 1) || US_GROW(w->xl, w->cap_xl, n + 1) ||
+                 US_GROW(w->yl, w->cap_yl, m + 1) || US_GROW(w->x, w->cap_x, n + 1) ||
                  US_GROW(w->ray, w->cap_ray, m + 1)
              ? -1
              : 0;
@@ -162,16 +139,13 @@ static int lplcp_reserve(LpLcpWs *w, int n, int m) {
 static void lplcp_set_deadline(void *ws, double deadline) {
   LpLcpWs *w = ws;
   w->deadline = deadline;
+  w->lk.deadline = deadline;
   if (w->clp) us_backend_clp.set_deadline(w->clp, deadline);
 }
 
 /* -------------------------------------------------------------- tableau */
 
-static double *row_at(const LpLcpWs *w, int r) {
-  return w->t + (size_t)r * (size_t)(w->dim + 1);
-}
-
-static int complement(const LpLcpWs *w, int v) { return v < w->dim ? v + w->dim : v - w->dim; }
+static double *row_at(const LpLcpWs *w, int r) { return us_lemke_row(&w->lk, r); }
 
 /* Column j of G into the tableau: row x_j holds -A^T's entries (y1, y0),
  * the rows of y hold A's (the sum row: minus the column's sum). */
@@ -189,147 +163,14 @@ static void fill_column(LpLcpWs *w, int j) {
 
 /* The starting tableau w = M z + q + e z0: every w basic. */
 static void fill_tableau(LpLcpWs *w, const us_EqSystem *sys) {
-  int dim = w->dim;
-  memset(w->t, 0, (size_t)dim * (size_t)(dim + 1) * sizeof(double));
+  us_lemke_clear(&w->lk);
   for (int j = 0; j < w->n; j++) fill_column(w, j);
   double bsum = 0.0;
-  memset(w->qb, 0, (size_t)w->n * sizeof(double));
   for (int r = 0; r < w->m; r++) {
-    w->qb[w->n + r] = -sys->rhs[r];
+    w->lk.qb[w->n + r] = -sys->rhs[r];
     bsum += sys->rhs[r];
   }
-  w->qb[w->n + w->m] = bsum;
-  for (int i = 0; i < dim; i++) {
-    row_at(w, i)[dim] = 1.0;
-    w->rowvar[i] = w->pos[i] = i;
-    w->colvar[i] = dim + i;
-    w->pos[dim + i] = -(i + 1);
-  }
-  w->colvar[dim] = 2 * dim;
-  w->pos[2 * dim] = -(dim + 1);
-}
-
-/* Exchange the basic variable of row r with the nonbasic of column s.
- * Only the pivot row's non-zero columns are updated in the other rows. */
-static void pivot(LpLcpWs *w, int r, int s) {
-  int width = w->dim + 1, nnz = 0;
-  double *pr = row_at(w, r), p = pr[s];
-  for (int j = 0; j < width; j++) {
-    if (pr[j] == 0.0) continue;
-    pr[j] = -pr[j] / p;
-    w->nz[nnz++] = j;
-  }
-  pr[s] = 1.0 / p;
-  w->qb[r] = -w->qb[r] / p;
-  for (int i = 0; i < w->dim; i++) {
-    double *ri = row_at(w, i), f = ri[s];
-    if (i == r || f == 0.0) continue;
-    ri[s] = 0.0;
-    for (int k = 0; k < nnz; k++) ri[w->nz[k]] += f * pr[w->nz[k]];
-    w->qb[i] += f * w->qb[r];
-  }
-  int leave = w->rowvar[r], enter = w->colvar[s];
-  w->rowvar[r] = enter;
-  w->colvar[s] = leave;
-  w->pos[enter] = r;
-  w->pos[leave] = -(s + 1);
-  w->pivots++;
-}
-
-/* Pivot limit and, every DEADLINE_EVERY pivots, the clock. */
-static RunEnd limits(const LpLcpWs *w) {
-  if (w->pivots >= w->limit) return RUN_LIMIT;
-  if (w->deadline > 0 && w->pivots % DEADLINE_EVERY == 0 && us_now() >= w->deadline) return RUN_TIME;
-  return RUN_GO;
-}
-
-/* ---------------------------------------------------------------- Lemke */
-
-/* Row i's coefficient of the k-th reference variable (full-tableau sign:
- * the variable's column of B^-1). */
-static double lex_coef(const LpLcpWs *w, int i, int k) {
-  int p = w->pos[w->ref[k]];
-  if (p >= 0) return p == i ? 1.0 : 0.0;
-  return -row_at(w, i)[-p - 1];
-}
-
-/* Among the tied rows ties[0 .. nt), the lexicographic minimum of the
- * reference coefficients divided by each row's pivot (column s; s < 0:
- * the covering vector, 1). */
-static int lex_min(LpLcpWs *w, int nt, int s) {
-  for (int k = 0; k < w->dim && nt > 1; k++) {
-    double best = INFINITY;
-    for (int q = 0; q < nt; q++) {
-      int i = w->ties[q];
-      best = US_MIN(best, lex_coef(w, i, k) / (s < 0 ? 1.0 : -row_at(w, i)[s]));
-    }
-    int keep = 0;
-    for (int q = 0; q < nt; q++) {
-      int i = w->ties[q];
-      if (lex_coef(w, i, k) / (s < 0 ? 1.0 : -row_at(w, i)[s]) <= best + LEX_TIE)
-        w->ties[keep++] = i;
-    }
-    nt = keep;
-  }
-  return w->ties[0];
-}
-
-/* Lemke's first step: z0 enters at the most negative basic value; -1 if
- * none is negative (the start is a solution). */
-static int first_row(LpLcpWs *w) {
-  double best = -FEAS_EPS;
-  for (int i = 0; i < w->dim; i++) best = US_MIN(best, w->qb[i]);
-  if (best >= -FEAS_EPS) return -1;
-  int nt = 0;
-  for (int i = 0; i < w->dim; i++)
-    if (w->qb[i] <= best + RATIO_TIE) w->ties[nt++] = i;
-  return lex_min(w, nt, -1);
-}
-
-/* The leaving row for entering column s: least ratio, z0 first among ties,
- * then the lexicographic rule; -1 if nothing blocks (a ray). */
-static int ratio_row(LpLcpWs *w, int s) {
-  double best = INFINITY;
-  for (int i = 0; i < w->dim; i++) {
-    double a = -row_at(w, i)[s];
-    if (a > PIVOT_EPS) best = US_MIN(best, US_MAX(w->qb[i], 0.0) / a);
-  }
-  if (!isfinite(best)) return -1;
-  int nt = 0;
-  for (int i = 0; i < w->dim; i++) {
-    double a = -row_at(w, i)[s];
-    if (a <= PIVOT_EPS || US_MAX(w->qb[i], 0.0) / a > best + RATIO_TIE) continue;
-    if (w->rowvar[i] == 2 * w->dim) return i;
-    w->ties[nt++] = i;
-  }
-  return lex_min(w, nt, s);
-}
-
-/* Lemke's method from the current complementary basis with covering
- * vector e in its coordinates. RUN_RAY leaves the unblocked column in
- * *ray_col. */
-static RunEnd lemke(LpLcpWs *w, int *ray_col) {
-  int dim = w->dim, z0 = 2 * dim;
-  for (int i = 0; i < dim; i++) w->ref[i] = w->rowvar[i];
-  int r = first_row(w);
-  if (r < 0) return RUN_SOLVED;
-  int s = -w->pos[z0] - 1;
-  for (int i = 0; i < dim; i++) row_at(w, i)[s] = 1.0;
-  int leave = w->rowvar[r];
-  pivot(w, r, s);
-  while (leave != z0) {
-    RunEnd e = limits(w);
-    if (e != RUN_GO) return e;
-    s = -w->pos[complement(w, leave)] - 1;
-    r = ratio_row(w, s);
-    if (r < 0) {
-      *ray_col = s;
-      return RUN_RAY;
-    }
-    leave = w->rowvar[r];
-    pivot(w, r, s);
-  }
-  return RUN_SOLVED;
+  w->lk.qb[w->n + w->m] = bsum;
 }
 
 /* ---------------------------------------------------------------- reuse */
@@ -346,9 +187,9 @@ static int y_key(const LpLcpWs *w, const us_EqSystem *sys, int k) {
 static void save_basis(LpLcpWs *w, const us_EqSystem *sys) {
   w->stamp++;
   for (int j = 0; j < w->n; j++)
-    if (w->pos[w->dim + j] >= 0) w->xstamp[x_key(w, sys, j)] = w->stamp;
+    if (w->lk.pos[w->dim + j] >= 0) w->xstamp[x_key(w, sys, j)] = w->stamp;
   for (int k = 0; k <= w->m; k++)
-    if (w->pos[w->dim + w->n + k] >= 0) w->ystamp[y_key(w, sys, k)] = w->stamp;
+    if (w->lk.pos[w->dim + w->n + k] >= 0) w->ystamp[y_key(w, sys, k)] = w->stamp;
   w->have_basis = 1;
 }
 
@@ -356,9 +197,9 @@ static void save_basis(LpLcpWs *w, const us_EqSystem *sys) {
 static void remembered(LpLcpWs *w, const us_EqSystem *sys, int *nx, int *ny) {
   *nx = *ny = 0;
   for (int j = 0; j < w->n; j++)
-    if (w->xstamp[x_key(w, sys, j)] == w->stamp) w->cand[(*nx)++] = j;
+    if (w->xstamp[x_key(w, sys, j)] == w->stamp) w->xl[(*nx)++] = j;
   for (int k = 0; k <= w->m; k++)
-    if (w->ystamp[y_key(w, sys, k)] == w->stamp) w->ties[(*ny)++] = k;
+    if (w->ystamp[y_key(w, sys, k)] == w->stamp) w->yl[(*ny)++] = k;
 }
 
 /* The remembered pair (cand[bx], ties[by]) with the largest pivot above
@@ -367,9 +208,9 @@ static int best_pair(const LpLcpWs *w, int nx, int ny, int *bx, int *by) {
   double best = SETUP_EPS;
   *bx = *by = -1;
   for (int a = 0; a < ny; a++) {
-    const double *row = row_at(w, w->pos[w->n + w->ties[a]]); /* w_y_k is still basic */
+    const double *row = row_at(w, w->lk.pos[w->n + w->yl[a]]); /* w_y_k is still basic */
     for (int b = 0; b < nx; b++) {
-      double v = fabs(row[-w->pos[w->dim + w->cand[b]] - 1]); /* x_j is still nonbasic */
+      double v = fabs(row[-w->lk.pos[w->dim + w->xl[b]] - 1]); /* x_j is still nonbasic */
       if (v > best) best = v, *bx = b, *by = a;
     }
   }
@@ -377,31 +218,28 @@ static int best_pair(const LpLcpWs *w, int nx, int ny, int *bx, int *by) {
 }
 
 /* Bring the remembered pairs back (file head). *pairs: how many. */
-static RunEnd warm_setup(LpLcpWs *w, const us_EqSystem *sys, int *pairs) {
+static us_LemkeEnd warm_setup(LpLcpWs *w, const us_EqSystem *sys, int *pairs) {
   int nx, ny, bx, by;
   remembered(w, sys, &nx, &ny);
   *pairs = 0;
   while (best_pair(w, nx, ny, &bx, &by)) {
-    RunEnd e = limits(w);
-    if (e != RUN_GO) return e;
-    int j = w->cand[bx], k = w->ties[by];
-    pivot(w, w->pos[w->n + k], -w->pos[w->dim + j] - 1);                 /* x_j for w_y_k */
-    pivot(w, w->pos[j], -w->pos[w->dim + w->n + k] - 1);                 /* y_k for w_x_j */
-    w->cand[bx] = w->cand[--nx];
-    w->ties[by] = w->ties[--ny];
+    us_LemkeEnd e = us_lemke_limits(&w->lk);
+    if (e != US_LEMKE_GO) return e;
+    int j = w->xl[bx], k = w->yl[by];
+    us_lemke_pivot(&w->lk, w->lk.pos[w->n + k], -w->lk.pos[w->dim + j] - 1);                 /* x_j for w_y_k */
+    us_lemke_pivot(&w->lk, w->lk.pos[j], -w->lk.pos[w->dim + w->n + k] - 1);                 /* y_k for w_x_j */
+    w->xl[bx] = w->xl[--nx];
+    w->yl[by] = w->yl[--ny];
     (*pairs)++;
   }
-  return RUN_GO;
+  return US_LEMKE_GO;
 }
 
 /* ------------------------------------------------------------- verdicts */
 
 /* The x part of the basic solution into w->x; returns max |G x - b|. */
 static double read_solution(LpLcpWs *w, const us_EqSystem *sys) {
-  for (int j = 0; j < w->n; j++) {
-    int p = w->pos[w->dim + j];
-    w->x[j] = p >= 0 ? US_MAX(w->qb[p], 0.0) : 0.0;
-  }
+  for (int j = 0; j < w->n; j++) w->x[j] = US_MAX(us_lemke_value(&w->lk, w->dim + j), 0.0);
   double *r = w->ray; /* scratch: no ray on this path */
   for (int i = 0; i < w->m; i++) r[i] = -sys->rhs[i];
   for (int j = 0; j < w->n; j++)
@@ -412,18 +250,11 @@ static double read_solution(LpLcpWs *w, const us_EqSystem *sys) {
   return worst;
 }
 
-/* The ray's direction of variable v when column s enters. */
-static double ray_dir(const LpLcpWs *w, int v, int s) {
-  int p = w->pos[v];
-  if (p >= 0) return row_at(w, p)[s];
-  return w->colvar[s] == v ? 1.0 : 0.0;
-}
-
 /* u = y1^h - y0^h 1 into w->ray (file head). */
 static void read_ray(LpLcpWs *w, int s) {
   int y = w->dim + w->n;
-  double y0 = ray_dir(w, y + w->m, s);
-  for (int k = 0; k < w->m; k++) w->ray[k] = ray_dir(w, y + k, s) - y0;
+  double y0 = us_lemke_ray_dir(&w->lk, y + w->m, s);
+  for (int k = 0; k < w->m; k++) w->ray[k] = us_lemke_ray_dir(&w->lk, y + k, s) - y0;
 }
 
 /* CLP decides (created lazily); chained to its own previous solve when
@@ -477,14 +308,15 @@ static int accept_ray(LpLcpWs *w, const us_EqSystem *sys, int s, us_Verdict *ver
 }
 
 /* Tableau, warm start when allowed, Lemke. */
-static RunEnd run(LpLcpWs *w, const us_EqSystem *sys, int restart, int *pairs, int *ray_col) {
+static us_LemkeEnd run(LpLcpWs *w, const us_EqSystem *sys, int restart, int *pairs,
+                       int *ray_col) {
   fill_tableau(w, sys);
   *pairs = 0;
   if (w->opt.reuse && w->have_basis && !restart) {
-    RunEnd e = warm_setup(w, sys, pairs);
-    if (e != RUN_GO) return e;
+    us_LemkeEnd e = warm_setup(w, sys, pairs);
+    if (e != US_LEMKE_GO) return e;
   }
-  return lemke(w, ray_col);
+  return us_lemke_run(&w->lk, ray_col);
 }
 
 /* One run (cold, or warm when allowed) and its verdict: 1 decided or
@@ -492,22 +324,25 @@ static RunEnd run(LpLcpWs *w, const us_EqSystem *sys, int restart, int *pairs, i
 static int try_run(LpLcpWs *w, const us_EqSystem *sys, int cold, us_Verdict *verdict, double *f,
                    us_StabilityInfo *info, char *note, size_t note_sz, const char **why,
                    int *warm) {
-  long piv0 = w->pivots;
-  w->limit = piv0 + (w->set.max_pivots > 0 ? w->set.max_pivots
-                                           : (long)PIVOTS_PER_DIM * w->dim + PIVOT_BASE);
+  long piv0 = w->lk.pivots;
+  w->lk.limit = piv0 + (w->set.max_pivots > 0 ? w->set.max_pivots
+                                           : us_lemke_default_limit(w->dim));
   int pairs = 0, ray_col = -1;
-  RunEnd e = run(w, sys, cold, &pairs, &ray_col);
-  long piv = w->pivots - piv0;
+  us_LemkeEnd e = run(w, sys, cold, &pairs, &ray_col);
+  long piv = w->lk.pivots - piv0;
   info->pivots += piv;
   info->reused += pairs > 0;
   *warm = pairs > 0;
-  if (e == RUN_TIME) {
+  if (e == US_LEMKE_TIME) {
     snprintf(note, note_sz, "lp-lcp: time limit");
     return 1;
   }
-  if (e == RUN_SOLVED && accept_solution(w, sys, verdict, f, note, note_sz, piv, pairs)) return 1;
-  if (e == RUN_RAY && accept_ray(w, sys, ray_col, verdict, note, note_sz, piv, pairs)) return 1;
-  *why = e == RUN_LIMIT ? "hit the pivot limit" : e == RUN_RAY ? "ray rejected" : "solution inaccurate";
+  if (e == US_LEMKE_SOLVED && accept_solution(w, sys, verdict, f, note, note_sz, piv, pairs)) return 1;
+  if (e == US_LEMKE_RAY && accept_ray(w, sys, ray_col, verdict, note, note_sz, piv, pairs)) return 1;
+  *why = e == US_LEMKE_LIMIT       ? "hit the pivot limit"
+         : e == US_LEMKE_RAY       ? "ray rejected"
+         : e == US_LEMKE_NONFINITE ? "non-finite values"
+                                   : "solution inaccurate";
   return 0;
 }
 
