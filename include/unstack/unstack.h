@@ -365,6 +365,11 @@ typedef struct us_StabilityInfo {
   long local_plumb;      /* of local_stable: proven by plumb lines, no LP */
   long cone_lemke;       /* LCP tests settled by the cone LCP's Lemke fallback */
   long cone_lemke_failed; /* Lemke fallbacks that did not settle (to the LP) */
+  long cone3_outer;      /* 3D: tests whose inner-polygon LP was infeasible, so
+                            the outer polygons' LP ran (docs/cones3d.md) */
+  long cone3_refined;    /* 3D: directions added to contacts' friction polygons */
+  long cone3_open;       /* 3D: tests whose claim is the outer polygons' forces (no
+                            direction left to add); the certificate decides */
 } us_StabilityInfo;
 
 /* The certificate of an unstable verdict: a virtual motion of some bodies

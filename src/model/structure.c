@@ -137,6 +137,7 @@ int us_structure_add_point_body(us_Structure *s, const char *id, double mass,
   b->density = 1.0;
   b->com[0] = center[0];
   b->com[1] = center[1];
+  b->com[2] = s->dim == 3 ? center[2] : 0.0;
   b->inertia = 0.0; /* derived in finalize when not given */
   return i;
 }

@@ -21,8 +21,12 @@
 #include <math.h>
 
 static us_Status check_globals(const us_Structure *s, us_Error *err) {
-  if (s->dim != 2)
-    return us_error_set(err, US_ERR_INPUT, "dimension %d is not supported (only 2)", s->dim);
+  if (s->dim != 2 && s->dim != 3)
+    return us_error_set(err, US_ERR_INPUT, "dimension %d is not supported (2 or 3)", s->dim);
+  for (int i = 0; s->dim == 3 && i < s->nbody; i++) /* 3D geometry: not yet */
+    if (s->bodies[i].nvert > 0)
+      return us_error_set(err, US_ERR_INPUT, "body '%s': 3D bodies need explicit contacts and no polygon",
+                          us_id_text(s->bodies[i].id).s);
   for (int k = 0; k < 3; k++)
     if (!isfinite(s->gravity[k])) return us_error_set(err, US_ERR_INPUT, "gravity is not finite");
   if (isnan(s->friction) || s->friction < 0) /* INFINITY: no sliding */
@@ -32,6 +36,7 @@ static us_Status check_globals(const us_Structure *s, us_Error *err) {
     return us_error_set(err, US_ERR_INPUT, "contact tolerance is not finite");
   for (int k = 0; k < s->ncontact; k++)
     if (!isfinite(s->contacts[k].p[0]) || !isfinite(s->contacts[k].p[1]) ||
+        !isfinite(s->contacts[k].p[2]) ||
         isnan(s->contacts[k].mu) || s->contacts[k].mu < 0)
       return us_error_set(err, US_ERR_INPUT, "contact %d: non-finite point or bad friction", k);
   return US_OK;
@@ -61,7 +66,7 @@ static us_Status check_values(const us_Structure *s, const us_Body *b, us_Error 
       return us_error_set(err, US_ERR_INPUT,
                           "body '%s' has no polygon (only allowed with explicit contacts)",
                           us_id_text(b->id).s);
-    if (!isfinite(b->com[0]) || !isfinite(b->com[1]))
+    if (!isfinite(b->com[0]) || !isfinite(b->com[1]) || !isfinite(b->com[2]))
       return us_error_set(err, US_ERR_INPUT, "body '%s': centre is not finite",
                           us_id_text(b->id).s);
     if (!b->fixed && !(isfinite(b->mass) && b->mass > 0))

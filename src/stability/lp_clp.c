@@ -66,7 +66,7 @@ typedef struct ClpWs {
   us_LpSettings set;
   int last_body;    /* evidence of the last unstable verdict */
   /* basis of the previous solve, valid where *_stamp == stamp */
-  unsigned char *col_st, *row_st; /* [3 * s->ncontact], [3 * s->nbody] */
+  unsigned char *col_st, *row_st; /* [slots * s->ncontact], [nw * s->nbody] */
   int *col_stamp, *row_stamp;
   int stamp;
   unsigned char *st; /* [ncol + nrow] status handed to CLP */
@@ -92,13 +92,9 @@ static void clp_destroy(void *ws) {
 }
 
 static void *clp_create(const us_Structure *s, const us_StabilitySettings *set, us_Error *err) {
-  if (s->dim != 2) {
-    us_error_set(err, US_ERR_USAGE, "the LP backends support 2D structures only");
-    return NULL;
-  }
   ClpWs *w = us_calloc(1, sizeof *w);
-  size_t nc = 3 * (size_t)(s->ncontact > 0 ? s->ncontact : 1);
-  size_t nr = 3 * (size_t)(s->nbody > 0 ? s->nbody : 1);
+  size_t nc = (size_t)us_eq_gen_slots(s->dim) * (size_t)(s->ncontact > 0 ? s->ncontact : 1);
+  size_t nr = (size_t)(s->dim == 3 ? 6 : 3) * (size_t)(s->nbody > 0 ? s->nbody : 1);
   if (w) {
     w->set = us_lp_settings_resolve(&set->lp);
     w->last_body = -1;
@@ -135,11 +131,12 @@ static int clp_reserve(ClpWs *w, int nrow, int ncol) {
 
 /* Keys of column j and row r of the current system in the basis maps. */
 static size_t col_key(const us_EqSystem *sys, const us_EqGen *g, int j) {
-  return 3 * (size_t)sys->contact[g->col_contact[j]] + (size_t)us_eq_gen_slot(g, j);
+  return (size_t)us_eq_gen_slots(sys->dim) * (size_t)sys->contact[g->col_contact[j]] +
+         (size_t)us_eq_gen_slot(g, j);
 }
 
 static size_t row_key(const us_EqSystem *sys, int r) {
-  return 3 * (size_t)sys->body[r / 3] + (size_t)(r % 3);
+  return (size_t)sys->nw * (size_t)sys->body[r / sys->nw] + (size_t)(r % sys->nw);
 }
 
 /* Start from the latest status of each column and row, whatever solve
@@ -292,9 +289,8 @@ static us_Status clp_solve(void *ws, const us_EqSystem *sys, const int *added, i
   ClpWs *w = ws;
   w->last_body = -1;
   w->nray = 0;
-  int r = us_eq_generators(sys, w->set.n_column_mu, &w->gen);
-  if (r == -2) return us_error_set(err, US_ERR_USAGE, "the LP backends support 2D only");
-  if (r || clp_reserve(w, w->gen.nrow, w->gen.ncol))
+  if (us_eq_generators(sys, w->set.n_column_mu, &w->gen) ||
+      clp_reserve(w, w->gen.nrow, w->gen.ncol))
     return us_error_set(err, US_ERR_NOMEM, "out of memory building the LP");
   if (w->gen.ncol == 0) {
     /* solvers disagree on empty models: decided here */
