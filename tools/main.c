@@ -1,5 +1,6 @@
 /* unstack: command-line entry point; dispatches to one file per subcommand. */
 #include "cli.h"
+#include "options.h"
 
 #include <errno.h>
 #include <math.h>
@@ -74,6 +75,7 @@ const char *cli_value(const char *cmd, int argc, char **argv, int *i) {
 }
 
 int main(int argc, char **argv) {
+  cli_clock_start();
   static const struct {
     const char *name;
     int (*fn)(int, char **);

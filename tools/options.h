@@ -21,6 +21,12 @@ const char *cli_method_word(int i);
  * is a terminal; _off clears it. */
 void cli_progress_on(const char *cmd, CliCommon *c);
 void cli_progress_off(const CliCommon *c);
+/* --time-limit counts from the command's start (reading the file and
+ * finding contacts included): main calls cli_clock_start first, and a
+ * command hands the library cli_time_left(limit), the part left (at least
+ * 1 ms; limit itself when <= 0). */
+void cli_clock_start(void);
+double cli_time_left(double limit);
 /* --time-limit S into c->stab.time_limit; 0, or -1 (message printed). */
 int cli_time_limit(const char *cmd, const char *v, CliCommon *c);
 /* The local-test statistics lines of --stats (nothing when none ran). */

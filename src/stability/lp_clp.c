@@ -40,6 +40,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 
 /* A barrier point must hold every row to this, relative to the row's own
  * scale |rhs_r| + sum_j |G_rj| l_j (the certificate check asks 1e-6 of
@@ -58,6 +59,14 @@
  * in a few ms). */
 #define CLP_BARRIER_ROWS 1500
 
+/* CLP's barrier does not stop at Clp_setMaximumSeconds (a 10,050-block
+ * wall's check with --time-limit 2 ran 10 s), the dual simplex does. With
+ * a deadline the barrier runs only when the time left is at least this
+ * many seconds per row (the wall's 30,150 rows took 5.4 s: 1.8e-4 s per
+ * row; twice that for margin); else the dual simplex runs and stops at
+ * the deadline. */
+#define CLP_BARRIER_SEC_PER_ROW 4e-4
+
 typedef struct ClpWs {
   us_EqGen gen;
   double *bounds;   /* [nrow] row bounds (rhs) */
@@ -74,6 +83,7 @@ typedef struct ClpWs {
   double *ray;       /* the last infeasible solve's checked Farkas ray */
   int cap_ray, nray; /* nray = 0: none */
   double deadline;   /* us_now() time; 0: none */
+  double wall0, cpu0; /* us_now() and clock() seconds at creation */
 } ClpWs;
 
 static void clp_destroy(void *ws) {
@@ -98,6 +108,8 @@ static void *clp_create(const us_Structure *s, const us_StabilitySettings *set, 
   if (w) {
     w->set = us_lp_settings_resolve(&set->lp);
     w->last_body = -1;
+    w->wall0 = us_now();
+    w->cpu0 = (double)clock() / CLOCKS_PER_SEC;
     w->stamp = 1;
     w->col_st = us_malloc(nc);
     w->row_st = us_malloc(nr);
@@ -181,6 +193,17 @@ static void save_basis(Clp_Simplex *m, ClpWs *w, const us_EqSystem *sys) {
   }
 }
 
+/* CLP's time limit counts the process's CPU seconds; the deadline is wall
+ * time. On a loaded machine the process gets a share of a core, so the
+ * wall time left is scaled by the share measured since the workspace was
+ * created (1 until 50 ms have passed; at least 0.05). */
+static double clp_seconds_left(const ClpWs *w) {
+  double now = us_now(), wall = now - w->wall0;
+  double cpu = (double)clock() / CLOCKS_PER_SEC - w->cpu0;
+  double share = wall > 0.05 && cpu > 0 ? US_MIN(US_MAX(cpu / wall, 0.05), 1.0) : 1.0;
+  return US_MAX((w->deadline - now) * share, 1e-3);
+}
+
 /* Load G l = rhs, 0 <= l into a fresh model. */
 static Clp_Simplex *clp_load(ClpWs *w, const us_EqSystem *sys) {
   Clp_Simplex *m = Clp_newModel();
@@ -192,7 +215,7 @@ static Clp_Simplex *clp_load(ClpWs *w, const us_EqSystem *sys) {
   Clp_loadProblem(m, g->ncol, g->nrow, g->start, g->row, g->val, NULL, NULL, NULL, w->bounds,
                   w->bounds);
   Clp_setPrimalTolerance(m, w->set.primal_tol);
-  if (w->deadline > 0) Clp_setMaximumSeconds(m, US_MAX(w->deadline - us_now(), 1e-3));
+  if (w->deadline > 0) Clp_setMaximumSeconds(m, clp_seconds_left(w));
   return m;
 }
 
@@ -261,7 +284,9 @@ static Clp_Simplex *clp_run(ClpWs *w, const us_EqSystem *sys, int region,
   Clp_Simplex *m = clp_load(w, sys);
   if (!m) return NULL;
   int reused = warm_start(m, w, sys);
-  if (!reused && !region && w->gen.nrow >= CLP_BARRIER_ROWS) {
+  int barrier_fits = w->deadline <= 0 ||
+                     w->deadline - us_now() >= CLP_BARRIER_SEC_PER_ROW * (double)w->gen.nrow;
+  if (!reused && !region && w->gen.nrow >= CLP_BARRIER_ROWS && barrier_fits) {
     Clp_deleteModel(m);
     return clp_cold_big(w, sys);
   }
