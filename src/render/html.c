@@ -7,7 +7,8 @@
  *   ground    whether the half-plane y <= 0 supports the structure
  *   status    the plan's status word, or null without an order
  *   bodies    [{id, m (null when fixed), fixed, xy: [x0, y0, x1, ...], c: [x, y]}]
- *   contacts  [[a, b, px, py]]: a = -1 for the ground
+ *   contacts  [[a, b, px, py, nx, ny]]: a = -1 for the ground, the unit
+ *             normal from a into b
  *   steps     [[body, ...]]: step k removes these bodies
  *   blocked   [body, ...]: bodies that cannot be removed (status none)
  *   forces    null, or one entry per position 0..nsteps (the structure
@@ -194,6 +195,10 @@ static void put_contacts(FILE *fp, const us_Structure *s) {
     put_num(fp, k->p[0]);
     fputc(',', fp);
     put_num(fp, k->p[1]);
+    fputc(',', fp);
+    put_num(fp, k->n[0]);
+    fputc(',', fp);
+    put_num(fp, k->n[1]);
     fputc(']', fp);
   }
   fputs("]", fp);
