@@ -25,7 +25,8 @@ static const char help[] =
     "                        chosen by an output name ending in .html; docs/viewer.md)\n"
     "\n"
     "exit: 0 written, 1 --forces given but the structure does not stand (picture\n"
-    "written without forces), 2 usage or input error (nothing written)\n";
+    "written without forces), or --html and verify finds the order invalid (page\n"
+    "written, the failing step in red), 2 usage or input error (nothing written)\n";
 
 typedef struct {
   const char *file, *out, *plan;
