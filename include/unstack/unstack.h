@@ -664,7 +664,8 @@ US_API void us_plan_file_free(us_PlanFile *pf);
  * s's contact between the same bodies at the same point (within 1e-6 of
  * s->scale). A file without steps gives *certs = NULL. Steps that do not
  * follow the order, or contacts s does not have, are US_ERR_INPUT naming
- * the JSON path. Free with us_certs_free(*certs, pf->ngroups + 1). */
+ * the JSON path; so is a structure that is not 2D (not read yet). Free
+ * with us_certs_free(*certs, pf->ngroups + 1). */
 US_API us_Status us_plan_read_certs(const us_Structure *s, const char *path,
                                     const us_PlanFile *pf, us_Forces **certs, us_Error *err);
 US_API void us_certs_free(us_Forces *certs, int n);

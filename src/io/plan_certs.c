@@ -180,6 +180,9 @@ us_Status us_plan_read_certs(const us_Structure *s, const char *path, const us_P
   if (!s || !path || !pf || !certs || (pf->ngroups > 0 && !pf->group_start))
     return us_error_set(err, US_ERR_USAGE, "us_plan_read_certs: missing argument");
   *certs = NULL;
+  if (s->dim != 2)
+    return us_error_set(err, US_ERR_INPUT, "%s: certificates are read for 2D structures only "
+                        "(this one is %dD)", path, s->dim);
   CertCtx c = {{path, &local}, s, pf, NULL, NULL, NULL};
   size_t len = 0;
   char *text = us_io_slurp(path, &len, &local);
