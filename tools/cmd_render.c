@@ -6,6 +6,7 @@
 
 static const char help[] =
     "usage: unstack render FILE [--plan PLAN.json] [--forces] -o OUT.svg\n"
+    "       unstack render FILE [--plan PLAN.json] --html -o OUT.html\n"
     "\n"
     "Draw the structure in FILE as SVG: bodies coloured and numbered by their\n"
     "removal step when a plan is given (with a legend), contact points, and with\n"
@@ -20,13 +21,16 @@ static const char help[] =
     "  --no-labels           do not write body ids\n"
     "  --width PX            picture width in pixels (default 800)\n"
     "  --contact-tol T       contact detection tolerance\n"
+    "  --html                the interactive viewer, one self-contained page (also\n"
+    "                        chosen by an output name ending in .html; docs/viewer.md)\n"
     "\n"
     "exit: 0 written, 1 --forces given but the structure does not stand (picture\n"
-    "written without forces), 2 usage or input error (nothing written)\n";
+    "written without forces), or --html and verify finds the order invalid (page\n"
+    "written, the failing step in red), 2 usage or input error (nothing written)\n";
 
 typedef struct {
   const char *file, *out, *plan;
-  int forces;
+  int forces, html;
   us_RenderSettings r;
 } RenderArgs;
 
@@ -41,6 +45,8 @@ static int parse(int argc, char **argv, CliCommon *c, RenderArgs *a) {
       if (!(a->out = cli_value("render", argc, argv, &i))) return CLI_EXIT_ERR;
     } else if (!strcmp(argv[i], "--plan")) {
       if (!(a->plan = cli_value("render", argc, argv, &i))) return CLI_EXIT_ERR;
+    } else if (!strcmp(argv[i], "--html")) {
+      a->html = 1;
     } else if (!strcmp(argv[i], "--forces")) {
       a->forces = 1;
     } else if (!strcmp(argv[i], "--no-contacts")) {
@@ -61,6 +67,7 @@ static int parse(int argc, char **argv, CliCommon *c, RenderArgs *a) {
   }
   if (!a->file) return cli_fail("render", "no FILE given (see 'unstack render --help')");
   if (!a->out) return cli_fail("render", "no output given: use -o OUT.svg");
+  a->html = a->html || cli_html_name(a->out);
   return 0;
 }
 
@@ -104,7 +111,8 @@ int cmd_render(int argc, char **argv) {
     a.r.blocked = pf.blocked;
     a.r.nblocked = pf.nblocked;
     a.r.forces = a.forces && !falls ? &res.forces : NULL;
-    if (us_render_svg(s, &a.r, a.out, &err)) code = CLI_EXIT_ERR;
+    if (a.html) code = cli_render_html(s, a.plan, &pf, &c, &a.r, a.file, a.out, &err);
+    else if (us_render_svg(s, &a.r, a.out, &err)) code = CLI_EXIT_ERR;
   }
   if (code == CLI_EXIT_ERR) cli_error("render", &err);
   if (code == CLI_EXIT_OK && falls) {

@@ -40,4 +40,12 @@ int cli_common_option(const char *cmd, int argc, char **argv, int *i, CliCommon 
 /* Read and finalize a structure; prints the error and returns NULL. */
 us_Structure *cli_load(const char *cmd, const char *path, const CliCommon *c);
 
+/* render --html (cmd_render_html.c): does the output name end in .html or
+ * .htm; the viewer page of s with the plan file `plan` (NULL: none) read
+ * into pf, its certificates and a verification. Exit code; err set when
+ * CLI_EXIT_ERR. */
+int cli_html_name(const char *out);
+int cli_render_html(const us_Structure *s, const char *plan, const us_PlanFile *pf, CliCommon *c,
+                    const us_RenderSettings *r, const char *file, const char *out, us_Error *err);
+
 #endif

@@ -662,6 +662,18 @@ typedef struct us_PlanFile {
 } us_PlanFile;
 US_API us_Status us_plan_read(const us_Structure *s, const char *path, us_PlanFile *out, us_Error *err);
 US_API void us_plan_file_free(us_PlanFile *pf);
+/* The certificates of a plan file's "steps" (written by `plan
+ * --certificates`), for the plan pf read from the same file: *certs gets
+ * pf->ngroups + 1 entries as us_Plan.certs (certs[k] = the forces of the
+ * structure before step k, the last one empty), each contact matched to
+ * s's contact between the same bodies at the same point (within 1e-6 of
+ * s->scale). A file without steps gives *certs = NULL. Steps that do not
+ * follow the order, or contacts s does not have, are US_ERR_INPUT naming
+ * the JSON path; so is a structure that is not 2D (not read yet). Free
+ * with us_certs_free(*certs, pf->ngroups + 1). */
+US_API us_Status us_plan_read_certs(const us_Structure *s, const char *path,
+                                    const us_PlanFile *pf, us_Forces **certs, us_Error *err);
+US_API void us_certs_free(us_Forces *certs, int n);
 
 /* ------------------------------------------------------------------ render */
 
@@ -680,6 +692,30 @@ typedef struct us_RenderSettings {
 US_API us_RenderSettings us_render_default_settings(void);
 US_API us_Status us_render_svg(const us_Structure *s, const us_RenderSettings *r, const char *path,
                         us_Error *err);
+
+/* The interactive plan viewer (docs/viewer.md): one self-contained HTML
+ * page (inline SVG, script and style; no network) with a step slider,
+ * play/pause, the forces of each step, zoom, pan and hover. 2D only. */
+typedef struct us_HtmlSettings {
+  const char *title;        /* shown in the page (NULL: "unstack") */
+  us_PlanStatus status;     /* the plan's status (used with an order or
+                               blocked bodies) */
+  const us_Forces *certs;   /* NULL, or nsteps + 1 entries as us_Plan.certs:
+                               certs[k] = forces of the structure before step
+                               k of r's order (nsteps = r's steps, 0 without
+                               an order) */
+  int verified;             /* 1: `verify` holds us_verify_steps' report on
+                               r's order, shown in the page (a failing step in
+                               red) */
+  us_VerifyReport verify;
+} us_HtmlSettings;
+US_API us_HtmlSettings us_html_default_settings(void); /* no title, found, nothing verified */
+/* r: the order, steps and blocked bodies (the drawing fields are not used);
+ * NULL: the structure alone. Bad settings are US_ERR_USAGE, a structure
+ * that is not 2D US_ERR_INPUT, before the file is opened; the file is
+ * written atomically. */
+US_API us_Status us_render_html(const us_Structure *s, const us_RenderSettings *r,
+                                const us_HtmlSettings *h, const char *path, us_Error *err);
 
 /* An id quoted for a message (src/core/text.c): control characters, DEL,
  * C1 controls, bidi overrides, U+FFFE/U+FFFF and invalid UTF-8 bytes as
