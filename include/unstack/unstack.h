@@ -663,6 +663,10 @@ typedef struct us_GenSettings {
   double density;
   unsigned long seed;
   int max_tries;     /* random: attempts per row before giving up */
+  double depth;      /* 3D block depth along y (tower, pyramid3d; default 1);
+                        wall3d bricks are `thickness` deep */
+  double jitter;     /* tower: largest turn of a box about the vertical, in
+                        degrees (default 0) */
 } us_GenSettings;
 US_API us_GenSettings us_gen_default_settings(void);
 
@@ -675,6 +679,13 @@ US_API us_Structure *us_gen_random(const us_GenSettings *g, us_Error *err);
  * held by the blocks above them; only the finished structure is required to
  * stand (src/gen/stacker.c). */
 US_API us_Structure *us_gen_stacker(const us_GenSettings *g, us_Error *err);
+/* 3D (src/gen/solid.c, regular.c): a tower of g->n boxes (width x depth x
+ * height, each turned about the vertical by up to `jitter` degrees, seeded);
+ * a pyramid of g->n square courses in stack bond; the running-bond wall of
+ * us_gen_wall with bricks `thickness` deep. */
+US_API us_Structure *us_gen_tower(const us_GenSettings *g, us_Error *err);
+US_API us_Structure *us_gen_pyramid3d(const us_GenSettings *g, us_Error *err);
+US_API us_Structure *us_gen_wall3d(const us_GenSettings *g, us_Error *err);
 
 /* --------------------------------------------------------------------- I/O */
 
