@@ -189,22 +189,25 @@ static int used_dir(const us_Vec3 *used, int nu, us_Vec3 u) {
   return 0;
 }
 
-/* Patches of every touching face direction of P then Q (see above). */
-static int face_patches(Det3 *d, const us_Polyhedron *P, const us_Polyhedron *Q, int a, int b,
-                        int from, double tol, int *count) {
-  us_Vec3 used[16];
-  int nu = 0;
+/* The face axes of P and Q whose gap is >= -tol (touching directions,
+ * oriented from P to Q, parallel ones once) into dir[] (at most MAX_DIRS;
+ * *nd their count); returns the largest face-axis gap and its axis. */
+#define MAX_DIRS 32
+static double face_gaps(const us_Polyhedron *P, const us_Polyhedron *Q, double tol, us_Vec3 *dir,
+                        int *nd, us_Vec3 *best_axis) {
+  double best = -INFINITY;
+  *nd = 0;
   for (int side = 0; side < 2; side++) {
     const us_Polyhedron *F = side ? Q : P;
     for (int k = 0; k < F->nface; k++) {
       us_Vec3 u;
-      if (us_axis_gap(P, Q, us_face_normal(F, k), &u) < -tol || used_dir(used, nu, u)) continue;
-      if (nu < 16) used[nu++] = u;
-      if (patch(d, P, Q, u, a, b, from, tol)) return -1;
-      (*count)++;
+      double g = us_axis_gap(P, Q, us_face_normal(F, k), &u);
+      if (g > best) best = g, *best_axis = u;
+      if (g > tol) return g; /* apart */
+      if (g >= -tol && *nd < MAX_DIRS && !used_dir(dir, *nd, u)) dir[(*nd)++] = u;
     }
   }
-  return 0;
+  return best;
 }
 
 static us_Status overlap_error(const us_Structure *s, int i, int j, int pi, int pj, double depth,
@@ -234,14 +237,15 @@ static us_Status pair3(Det3 *d, int i, int j, double tol, us_Error *err) {
     for (int pj = 0; pj < B->npart; pj++) {
       const us_Polyhedron *P = &A->parts[pi], *Q = &B->parts[pj];
       if (!boxes_meet(P, Q, tol)) continue;
-      us_Vec3 axis;
-      double sep = us_convex_separation(P, Q, tol, &axis);
+      us_Vec3 axis = us_v3(0, 0, 1), dir[MAX_DIRS];
+      int nd = 0;
+      double sep = face_gaps(P, Q, tol, dir, &nd, &axis);
+      if (sep <= tol) sep = us_edge_separation(P, Q, tol, sep, &axis);
       if (sep > tol) continue;
       if (sep < -tol) return overlap_error(d->s, i, j, pi, pj, -sep, err);
-      int count = 0;
-      if (face_patches(d, P, Q, i, j, from, tol, &count) ||
-          (count == 0 && patch(d, P, Q, axis, i, j, from, tol)))
-        return nomem(err);
+      if (nd == 0) dir[nd++] = axis; /* no face touches: edge on edge, corners */
+      for (int k = 0; k < nd; k++)
+        if (patch(d, P, Q, dir[k], i, j, from, tol)) return nomem(err);
     }
   return US_OK;
 }

@@ -113,6 +113,11 @@ double us_axis_gap(const us_Polyhedron *a, const us_Polyhedron *b, us_Vec3 u, us
  * a gap > stop. *axis (may be NULL): the axis, oriented from a to b. */
 double us_convex_separation(const us_Polyhedron *a, const us_Polyhedron *b, double stop,
                             us_Vec3 *axis);
+/* The edge-pair half of that test: starting from best (the face axes'
+ * result, axis holding its axis), the largest gap over the edge cross
+ * products, stopping above stop. */
+double us_edge_separation(const us_Polyhedron *a, const us_Polyhedron *b, double stop, double best,
+                          us_Vec3 *axis);
 
 /* -------------------------------------------------------- boxes, rotation */
 

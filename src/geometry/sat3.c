@@ -65,9 +65,17 @@ static double face_axes(const us_Polyhedron *a, const us_Polyhedron *b, const us
 
 double us_convex_separation(const us_Polyhedron *a, const us_Polyhedron *b, double stop,
                             us_Vec3 *axis) {
-  us_Vec3 ax = us_v3(0, 0, 1), da[MAX_DIRS], db[MAX_DIRS];
+  us_Vec3 ax = us_v3(0, 0, 1);
   double best = face_axes(a, b, a, stop, -INFINITY, &ax);
   best = face_axes(a, b, b, stop, best, &ax);
+  best = us_edge_separation(a, b, stop, best, &ax);
+  if (axis) *axis = ax;
+  return best;
+}
+
+double us_edge_separation(const us_Polyhedron *a, const us_Polyhedron *b, double stop, double best,
+                          us_Vec3 *axis) {
+  us_Vec3 ax = *axis, da[MAX_DIRS], db[MAX_DIRS];
   int na = best <= stop ? edge_dirs(a, da) : 0, nb = best <= stop ? edge_dirs(b, db) : 0;
   int ma = na < MAX_DIRS ? na : a->nedge, mb = nb < MAX_DIRS ? nb : b->nedge;
   for (int e = 0; e < ma && best <= stop; e++)
@@ -75,6 +83,6 @@ double us_convex_separation(const us_Polyhedron *a, const us_Polyhedron *b, doub
       us_Vec3 c = us_v3_cross(dir_at(a, da, na, e), dir_at(b, db, nb, k));
       if (us_v3_norm(c) > EDGE_PARALLEL_SIN) try_axis(a, b, us_v3_unit(c), &best, &ax);
     }
-  if (axis) *axis = ax;
+  *axis = ax;
   return best;
 }

@@ -124,7 +124,8 @@ static const char *parts_diff(const us_Body *a, const us_Body *b) {
     if (p->nvert != q->nvert || p->nface != q->nface) return "part hull size";
     if (differ(p->verts, q->verts, 3 * p->nvert)) return "part vertices";
   }
-  if (differ(&a->inertia3[0][0], &b->inertia3[0][0], 9)) return "inertia tensor";
+  for (int r = 0; r < 3; r++)
+    if (differ(a->inertia3[r], b->inertia3[r], 3)) return "inertia tensor";
   return NULL;
 }
 
