@@ -114,17 +114,43 @@ US_API void us_bitset_fill(us_Bitset *b); /* set bits 0..nbits-1 */
 
 #define US_GROUND (-1) /* body index of the ground in contacts */
 
+/* A convex polyhedron (3D), one part of a body. Before finalize, verts
+ * holds the points given (nface == 0); finalize replaces them by their
+ * convex hull: the hull's vertices, its faces (coplanar facets merged into
+ * one planar convex polygon each) and its edges. */
+typedef struct us_Polyhedron {
+  int nvert;
+  double *verts;     /* 3*nvert coordinates */
+  int nface;         /* 0 until the hull is built */
+  int *face_start;   /* nface+1 offsets into face_vert */
+  int *face_vert;    /* each face's vertex indices, counter-clockwise seen
+                        from outside (right-hand rule: the outward normal) */
+  double *planes;    /* 4*nface: outward unit normal (nx, ny, nz) and d;
+                        n . x <= d for every vertex x */
+  int nedge;
+  int *edges;        /* 2*nedge vertex indices, each edge once */
+  double volume;     /* > 0 once built */
+} us_Polyhedron;
+
 typedef struct us_Body {
   char *id;          /* unique, user-given */
-  int nvert;         /* polygon vertices (2D), 0 for a body without geometry */
+  int nvert;         /* polygon vertices (2D), 0 for a body without geometry
+                        and for every 3D body (3D geometry is in parts) */
   double *verts;     /* 2*nvert, counter-clockwise after finalize */
   double mass;       /* > 0 for movable bodies; fixed bodies: infinite */
   double density;    /* used when mass was not given */
   double com[3];     /* centre of mass */
-  double inertia;    /* 2D: polar moment about com (kg m^2) */
+  double inertia;    /* 2D: polar moment about com (kg m^2); 3D: the mean
+                        principal moment, trace(inertia3) / 3 */
   double friction;   /* < 0: not given (use the structure default) */
   int fixed;         /* terrain, piers: never removed, never moves */
   int mass_given;
+  /* 3D only (0 / NULL in 2D): the body is the union of npart convex
+   * polyhedra (1 for a polyhedron or a box, more for a compound), in world
+   * coordinates; 0 parts: a body without geometry. */
+  int npart;
+  us_Polyhedron *parts;
+  double inertia3[3][3]; /* 3D: inertia tensor about com, world axes (kg m^2) */
 } us_Body;
 
 typedef struct us_Contact {
@@ -136,10 +162,11 @@ typedef struct us_Contact {
 } us_Contact;
 
 typedef struct us_Structure {
-  int dim;              /* 2 (3 reserved) */
-  double gravity[3];    /* default (0, -9.81, 0) */
+  int dim;              /* 2 or 3 */
+  double gravity[3];    /* default (0, -9.81, 0); 3D: (0, 0, -9.81) */
   double friction;      /* default contact coefficient (0.5) */
-  int ground;           /* 1: the half-plane y <= 0 is a fixed support */
+  int ground;           /* 1: the half-plane y <= 0 (3D: the half-space
+                           z <= 0) is a fixed support */
   double contact_tol;   /* > 0: one length tolerance for every contact and
                            shape test; <= 0 (default): each follows the
                            bodies involved (see us_ContactSettings) */
@@ -155,29 +182,43 @@ typedef struct us_Structure {
   int finalized;
   int cap_body, cap_contact;
   void *id_index;       /* private: id -> body index hash map */
+  double bbox3[6];      /* 3D: xmin, ymin, zmin, xmax, ymax, zmax (scale is its
+                           diagonal); 2D: the x, y range of bbox, z = 0 */
 } us_Structure;
 
 US_API us_Structure *us_structure_new(int dim);
 US_API void us_structure_free(us_Structure *s);
 
-/* Description of a polygon body (2D) for us_structure_add_body. Start from
- * us_default_body_def() and set what differs. */
+/* One convex part of a 3D body: the convex hull of nvert points. */
+typedef struct us_PartDef {
+  int nvert;          /* >= 4 points, not all (almost) in one plane */
+  const double *xyz;  /* 3*nvert coordinates (copied) */
+} us_PartDef;
+
+/* Description of a body for us_structure_add_body. Start from
+ * us_default_body_def() and set what differs. 2D: a polygon (nvert, xy).
+ * 3D: a convex polyhedron, the hull of nvert points xyz, or a compound of
+ * npart convex parts (then nvert is 0); one rigid body either way. */
 typedef struct us_BodyDef {
   const char *id;    /* required: unique, not "ground" (copied) */
-  int nvert;         /* required: number of vertices (>= 3 to finalize) */
-  const double *xy;  /* required: 2*nvert coordinates, any orientation (copied) */
+  int nvert;         /* 2D: number of vertices (>= 3 to finalize); 3D: of points */
+  const double *xy;  /* 2D: 2*nvert coordinates, any orientation (copied) */
   double density;    /* default 1; used when mass is not given */
-  double mass;       /* default 0: not given, density * area */
+  double mass;       /* default 0: not given, density * area (3D: volume) */
   int fixed;         /* default 0; 1: terrain or pier, never moves */
   double friction;   /* default -1: not given, the structure's coefficient */
+  const double *xyz; /* 3D: 3*nvert coordinates, the hull is taken (copied) */
+  int npart;         /* 3D compound: number of convex parts (default 0) */
+  const us_PartDef *parts; /* 3D compound: the parts (copied) */
 } us_BodyDef;
 
 /* The defaults above: id NULL, nvert 0, xy NULL, density 1, mass 0,
- * fixed 0, friction -1. */
+ * fixed 0, friction -1, xyz NULL, npart 0, parts NULL. */
 US_API us_BodyDef us_default_body_def(void);
 
-/* Add a polygon body. Returns the body index or -1 (err set: empty,
- * reserved or duplicate id, bad vertex array, OOM). */
+/* Add a body (a polygon in 2D, a convex polyhedron or compound in 3D).
+ * Returns the body index or -1 (err set: empty, reserved or duplicate id,
+ * bad vertex array, geometry of the other dimension, OOM). */
 US_API int us_structure_add_body(us_Structure *s, const us_BodyDef *def, us_Error *err);
 
 /* Thin wrapper of us_structure_add_body kept for old callers: the fields
@@ -186,7 +227,8 @@ US_API int us_structure_add_body(us_Structure *s, const us_BodyDef *def, us_Erro
 US_API int us_structure_add_polygon(us_Structure *s, const char *id, int nvert, const double *xy,
                              double density, double mass, int fixed, double friction,
                              us_Error *err);
-/* A body without geometry (only with explicit contacts). */
+/* A body without geometry (only with explicit contacts); center has dim
+ * components. */
 US_API int us_structure_add_point_body(us_Structure *s, const char *id, double mass,
                                 const double *center, int fixed, us_Error *err);
 /* Explicit contact; a = US_GROUND or a body index. mu < 0: use the rule
@@ -196,10 +238,12 @@ US_API int us_structure_add_contact(us_Structure *s, int a, int b, const double 
                              double mu, us_Error *err);
 US_API int us_structure_find_body(const us_Structure *s, const char *id); /* index or -1 */
 
-/* Validate geometry (>=3 vertices, finite, non-zero area, simple, not below
- * the ground, no interpenetration beyond the pair's tolerance), compute mass
- * properties, and detect contacts unless explicit contacts were given.
- * Messages name the body ids. */
+/* Validate geometry (2D: >=3 vertices, finite, non-zero area, simple; 3D:
+ * >= 4 points per part not in one plane, finite, the convex hull of each
+ * part built, parts of one body not overlapping; both: not below the
+ * ground, no interpenetration beyond the pair's tolerance), compute mass
+ * properties (3D: mass, com and the inertia tensor, exactly), and detect
+ * contacts unless explicit contacts were given. Messages name the body ids. */
 US_API us_Status us_structure_finalize(us_Structure *s, us_Error *err);
 
 /* The friction coefficient of a contact between two bodies (a may be
@@ -233,8 +277,9 @@ typedef struct us_ContactList {
   int n, cap;
 } us_ContactList;
 
-/* Detect vertex-on-edge contacts between all polygon bodies and with the
- * ground into `out` (caller-owned, zero-initialised or reused; its old
+/* Detect contacts (2D: vertex-on-edge; 3D: face-face patches, edge-face,
+ * vertex-face and edge-edge points, docs/format.md) between all bodies and
+ * with the ground into `out` (caller-owned, zero-initialised or reused; its old
  * entries are dropped); the structure is not changed. Polygons must be
  * counter-clockwise (as finalize leaves them). Broad phase over bodies,
  * then over the edges of each candidate pair, so the cost is near-linear
@@ -623,6 +668,10 @@ typedef struct us_GenSettings {
   double density;
   unsigned long seed;
   int max_tries;     /* random: attempts per row before giving up */
+  double depth;      /* 3D block depth along y (tower, pyramid3d; default 1);
+                        wall3d bricks are `thickness` deep */
+  double jitter;     /* tower: largest turn of a box about the vertical, in
+                        degrees (default 0) */
 } us_GenSettings;
 US_API us_GenSettings us_gen_default_settings(void);
 
@@ -635,6 +684,13 @@ US_API us_Structure *us_gen_random(const us_GenSettings *g, us_Error *err);
  * held by the blocks above them; only the finished structure is required to
  * stand (src/gen/stacker.c). */
 US_API us_Structure *us_gen_stacker(const us_GenSettings *g, us_Error *err);
+/* 3D (src/gen/solid.c, regular.c): a tower of g->n boxes (width x depth x
+ * height, each turned about the vertical by up to `jitter` degrees, seeded);
+ * a pyramid of g->n square courses in stack bond; the running-bond wall of
+ * us_gen_wall with bricks `thickness` deep. */
+US_API us_Structure *us_gen_tower(const us_GenSettings *g, us_Error *err);
+US_API us_Structure *us_gen_pyramid3d(const us_GenSettings *g, us_Error *err);
+US_API us_Structure *us_gen_wall3d(const us_GenSettings *g, us_Error *err);
 
 /* --------------------------------------------------------------------- I/O */
 
