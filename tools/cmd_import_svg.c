@@ -83,7 +83,7 @@ static int check_values(us_SvgSettings *s) {
 }
 
 static void report(const char *out, const us_Structure *s, const us_SvgInfo *in) {
-  printf("wrote %s: %d bodies (%d fixed), %d contacts; %d vertices snapped, %d curve segments "
+  printf("wrote %s: %d bodies (%d fixed), %d contacts; %d vertices snapped, %d curves "
          "flattened, %d elements skipped, %d ids generated, %d renamed; 1 drawing unit = %.6g\n",
          out, in->bodies, in->fixed, s->ncontact, in->snapped, in->curves, in->skipped,
          in->ids_generated, in->ids_renamed, in->unit);

@@ -41,6 +41,9 @@ int us_svg_number(const char **p, double *out);
  * (px, mm, cm, in, pt, pc, q), in user units (px). 0 ok; -1 not a length;
  * -2 a unit that needs a context (%, em, ex, ...); -3 not finite. */
 int us_svg_length(const char *s, double *out);
+/* The same, as the number and the size of its unit in metres (px when
+ * none is given). */
+int us_svg_length_unit(const char *s, double *num, double *unit_m);
 /* Size of one unit ("m", "cm", "mm", "in", "pt", "pc", "px", "q") in metres;
  * 0 for an unknown word. */
 double us_svg_unit_metres(const char *unit, size_t len);

@@ -96,18 +96,24 @@ double us_svg_unit_metres(const char *unit, size_t len) {
   return 0;
 }
 
-int us_svg_length(const char *s, double *out) {
+int us_svg_length_unit(const char *s, double *num, double *unit_m) {
   const char *p = s;
-  int r = us_svg_number(&p, out);
+  int r = us_svg_number(&p, num);
   if (r <= 0) return r ? -3 : -1;
   const char *u = p;
   while ((*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') || *p == '%') p++;
   size_t len = (size_t)(p - u);
   if (*us_svg_skip_ws(p)) return -1;
-  if (!len) return 0;
-  double m = us_svg_unit_metres(u, len);
-  if (m <= 0 || (len == 1 && *u == 'm')) return -2; /* "m" is no SVG unit */
-  *out *= m / (0.0254 / 96);
+  *unit_m = len ? us_svg_unit_metres(u, len) : 0.0254 / 96;
+  if (*unit_m <= 0 || (len == 1 && *u == 'm')) return -2; /* "m" is no SVG unit */
+  return 0;
+}
+
+int us_svg_length(const char *s, double *out) {
+  double num, um;
+  int r = us_svg_length_unit(s, &num, &um);
+  if (r) return r;
+  *out = um == 0.0254 / 96 ? num : num * (um / (0.0254 / 96));
   return isfinite(*out) ? 0 : -3;
 }
 
@@ -123,8 +129,15 @@ static const Op ops[] = {{"matrix", 6, 6, 6, "6"},      {"translate", 1, 2, 2, "
                          {"scale", 1, 2, 2, "1 or 2"},  {"rotate", 1, 1, 3, "1 or 3"},
                          {"skewX", 1, 1, 1, "1"},       {"skewY", 1, 1, 1, "1"}};
 
+/* Quarter turns exactly (rotate(180) is common in drawings, and cos(pi)
+ * in floating point leaves sin = 1.2e-16). */
 static us_SvgMatrix rotation(double deg) {
-  double r = deg * (PI / 180.0), c = cos(r), s = sin(r);
+  double q = fmod(deg, 360.0) / 90.0, r = deg * (PI / 180.0), c = cos(r), s = sin(r);
+  if (q == floor(q)) {
+    static const double qc[] = {1, 0, -1, 0}, qs[] = {0, 1, 0, -1};
+    int k = ((int)q % 4 + 4) % 4;
+    c = qc[k], s = qs[k];
+  }
   return (us_SvgMatrix){c, s, -s, c, 0, 0};
 }
 

@@ -377,11 +377,26 @@ static us_Status walk_children(Walk *w, const xmlNode *n, const Ctx *c) {
 
 /* ---------------------------------------------------------------- root */
 
-/* The root's size of one user unit in metres, per axis. */
+/* The root's width or height: the number and its unit's size in metres;
+ * absent or 0: *num = 0. */
+static us_Status root_size(Walk *w, const xmlNode *n, const char *name, double *num, double *um) {
+  char *v = attr(n, name);
+  *num = 0, *um = PX_METRES;
+  int r = v ? us_svg_length_unit(v, num, um) : 0;
+  int pct = v && strchr(v, '%');
+  xmlFree(v);
+  if (pct) return *num = 0, US_OK; /* a size relative to the viewer: none */
+  if (r == -2) return fail(w, n, US_ERR_PARSE, "%s: relative units (em, ex) are not supported", name);
+  if (r || *num < 0) return fail(w, n, US_ERR_PARSE, "%s is not a length >= 0", name);
+  return US_OK;
+}
+
+/* The root's size of one user unit in metres, per axis: the viewport's
+ * number per viewBox unit times the viewport unit, kept apart until the
+ * end so that "160mm" over a viewBox 160 wide is exactly 1 mm. */
 static us_Status root_units(Walk *w, const xmlNode *n) {
-  double wd, ht, v[4];
-  if (length_attr(w, n, "width", NAN, &wd) || length_attr(w, n, "height", NAN, &ht))
-    return w->err->code;
+  double wd, ht, uw, uh, v[4];
+  if (root_size(w, n, "width", &wd, &uw) || root_size(w, n, "height", &ht, &uh)) return w->err->code;
   char *vb = attr(n, "viewBox"), *par = attr(n, "preserveAspectRatio");
   const char *p = vb;
   int k = 0;
@@ -390,14 +405,14 @@ static us_Status root_units(Walk *w, const xmlNode *n) {
   int none = par && has_word(par, "none", 1), slice = par && has_word(par, "slice", 0);
   xmlFree(vb), xmlFree(par);
   if (bad) return fail(w, n, US_ERR_PARSE, "viewBox must be four numbers: min-x min-y width > 0 height > 0");
-  double sx = 1, sy = 1; /* viewport px per user unit */
+  double sx = PX_METRES, sy = PX_METRES; /* metres per user unit */
   if (vb && (wd > 0 || ht > 0)) {
-    sx = wd > 0 ? wd / v[2] : ht / v[3];
-    sy = ht > 0 ? ht / v[3] : sx;
+    sx = wd > 0 ? wd / v[2] * uw : ht / v[3] * uh;
+    sy = ht > 0 ? ht / v[3] * uh : sx;
     if (!none) sx = sy = slice ? US_MAX(sx, sy) : US_MIN(sx, sy);
   }
-  w->d->unit_metres[0] = sx * PX_METRES;
-  w->d->unit_metres[1] = sy * PX_METRES;
+  w->d->unit_metres[0] = sx;
+  w->d->unit_metres[1] = sy;
   return US_OK;
 }
 
