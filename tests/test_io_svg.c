@@ -482,13 +482,15 @@ static void fixed_marks(void) {
       "<g class='fixed'><g><rect id='g' x='10' width='1' height='1'/></g></g>"
       "<g inkscape:groupmode='layer' inkscape:label='FIXED'><rect id='layer' x='12' width='1' height='1'/></g>"
       "<rect id='cn' class='unfixed' x='14' width='1' height='1'/>"
+      "<g id='fixed_1_'><rect id='ai' x='16' width='1' height='1'/></g>"
+      "<rect id='fixedness' x='18' width='1' height='1'/>"
       "</svg>",
       &set, NULL, &err);
   CHECK(s);
-  const char *fixed[] = {"c", "d", "l", "g", "layer"}, *movable[] = {"dn", "ln", "cn"};
+  const char *fixed[] = {"c", "d", "l", "g", "layer", "ai"}, *movable[] = {"dn", "ln", "cn", "fixedness"};
   int ok = 1;
-  for (int k = 0; k < 5; k++) ok &= s->bodies[us_structure_find_body(s, fixed[k])].fixed == 1;
-  for (int k = 0; k < 3; k++) ok &= s->bodies[us_structure_find_body(s, movable[k])].fixed == 0;
+  for (int k = 0; k < 6; k++) ok &= s->bodies[us_structure_find_body(s, fixed[k])].fixed == 1;
+  for (int k = 0; k < 4; k++) ok &= s->bodies[us_structure_find_body(s, movable[k])].fixed == 0;
   us_structure_free(s);
   CHECK(ok);
 }
@@ -643,6 +645,39 @@ static void rounded_rect_warns(void) {
   CHECK_INT(info.skipped, ==, 0);
   CHECK(strstr(lastwarn, "rounded corners"));
   us_structure_free(s);
+}
+
+/* Adobe Illustrator 10's export: the SVG namespace and the styles come
+ * through internal entities, layers are groups named by id. */
+static void illustrator_entities(void) {
+  const char *svg =
+      "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+      "<!DOCTYPE svg PUBLIC \"-//W3C//DTD SVG 1.0//EN\" "
+      "\"http://www.w3.org/TR/2001/REC-SVG-20010904/DTD/svg10.dtd\" [\n"
+      "  <!ENTITY ns_svg \"http://www.w3.org/2000/svg\">\n"
+      "  <!ENTITY st0 \"fill:#C8B88A;display:inline\">\n"
+      "  <!ENTITY hide \"display:none\">\n"
+      "]>\n"
+      "<svg version=\"1.0\" id=\"Layer_1\" xmlns=\"&ns_svg;\" width=\"200px\" height=\"100px\"\n"
+      "  viewBox=\"0 0 200 100\" xml:space=\"preserve\">\n"
+      "<g id=\"fixed\"><rect x=\"10\" y=\"80\" style=\"&st0;\" width=\"180\" height=\"20\"/></g>\n"
+      "<g id=\"blocks\"><rect id=\"_x31_\" x=\"50\" y=\"50\" style=\"&st0;\" width=\"40\" height=\"30\"/>\n"
+      "<path style=\"&hide;\" d=\"M100,80h40V50h-40V80z\"/></g>\n"
+      "</svg>\n";
+  us_SvgSettings set = us_svg_default_settings();
+  set.unit = "px";
+  set.warn = count_warning;
+  us_Error err;
+  us_Structure *s = imp(svg, &set, NULL, &err);
+  if (!s) fprintf(stderr, "%s\n", err.msg);
+  CHECK(s);
+  int n = s->nbody, fixed = s->bodies[0].fixed;
+  double want[] = {50, 20, 90, 20, 90, 50, 50, 50};
+  int ok = body_is(s, "_x31_", want, 4, 1e-12);
+  us_structure_free(s);
+  CHECK_INT(n, ==, 2);
+  CHECK(fixed && ok);
+  CHECK_INT(nwarn, ==, 1); /* the path hidden through its style entity */
 }
 
 /* ------------------------------------------------------------ examples */
@@ -814,6 +849,6 @@ US_TEST_MAIN(T(rect_element), T(polygon_element), T(polyline_closed_or_skipped),
              T(nested_groups), T(units_and_viewbox), T(flip_and_ground),
              T(curves_within_tolerance), T(arc_and_smooth_curves), T(curves_after_transforms),
              T(unique_ids), T(fixed_marks), T(materials), T(snapping), T(snapping_corners_meet),
-             T(skipped_elements), T(rounded_rect_warns), T(inkscape_example), T(figure1_examples),
+             T(skipped_elements), T(rounded_rect_warns), T(illustrator_entities), T(inkscape_example), T(figure1_examples),
              T(malformed_xml), T(bad_path_data), T(non_finite_numbers), T(degenerate_shapes),
              T(bad_transforms), T(overlapping_shapes), T(bad_settings), T(out_of_memory))

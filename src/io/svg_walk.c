@@ -43,14 +43,23 @@ typedef struct Ctx {
 typedef struct Walk {
   us_SvgDoc *d;
   us_Error *err;
+  const char *root_ns; /* the root element's namespace name */
 } Walk;
 
 /* ---------------------------------------------------------------- helpers */
 
 static const char *name_of(const xmlNode *n) { return (const char *)n->name; }
 
-static int is_svg(const xmlNode *n) {
-  return !n->ns || (n->ns->href && !strcmp((const char *)n->ns->href, SVG_NS));
+static const char *ns_of(const xmlNode *n) {
+  return n->ns && n->ns->href ? (const char *)n->ns->href : "";
+}
+
+/* SVG's namespace, none, or the root's own: old Illustrator files declare
+ * xmlns="&ns_svg;" through an internal entity, which libxml2 leaves
+ * unexpanded in the namespace name (entities are not substituted here). */
+static int is_svg(const Walk *w, const xmlNode *n) {
+  const char *ns = ns_of(n);
+  return !*ns || !strcmp(ns, SVG_NS) || !strcmp(ns, w->root_ns);
 }
 
 /* An attribute without namespace (xmlFree it), or NULL. */
@@ -151,14 +160,22 @@ static int has_word(const char *s, const char *w, int first) {
   return 0;
 }
 
-/* class="... fixed ...", data-fixed (anything but "false" / "0"), or an
- * inkscape:label whose first word is "fixed". */
+/* An id "fixed", or "fixed" then '_', '-' or a digit: Illustrator writes
+ * a layer named "fixed" as <g id="fixed">, a second one as "fixed_1_". */
+static int id_fixed(const char *id) {
+  if (!id || !word_is(id, US_MIN(strlen(id), 5), "fixed")) return 0;
+  char c = id[5];
+  return !c || c == '_' || c == '-' || (c >= '0' && c <= '9');
+}
+
+/* class="... fixed ...", data-fixed (anything but "false" / "0"), an
+ * inkscape:label whose first word is "fixed", or an id as above. */
 static int marked_fixed(const xmlNode *n) {
-  char *c = attr(n, "class"), *df = attr(n, "data-fixed");
+  char *c = attr(n, "class"), *df = attr(n, "data-fixed"), *id = attr(n, "id");
   char *lab = (char *)xmlGetNsProp(n, (const xmlChar *)"label", (const xmlChar *)INKSCAPE_NS);
   int f = (c && has_word(c, "fixed", 0)) || (lab && has_word(lab, "fixed", 1)) ||
-          (df && strcmp(df, "false") && strcmp(df, "0"));
-  xmlFree(c), xmlFree(df), xmlFree(lab);
+          (df && strcmp(df, "false") && strcmp(df, "0")) || id_fixed(id);
+  xmlFree(c), xmlFree(df), xmlFree(lab), xmlFree(id);
   return f;
 }
 
@@ -186,8 +203,11 @@ static us_Status material(Walk *w, const xmlNode *n, const char *name, int posit
 /* display="none" (attribute or style): 1; visibility: sets ctx->hidden. */
 static int display_none(const xmlNode *n, Ctx *c) {
   char *disp = attr(n, "display"), *vis = attr(n, "visibility"), *style = attr(n, "style");
-  char sd[32] = "", sv[32] = "";
-  if (style) us_svg_style_get(style, "display", sd, sizeof sd), us_svg_style_get(style, "visibility", sv, sizeof sv);
+  char sd[32] = "", sv[32] = ""; /* the style property wins over the attribute */
+  if (style) {
+    us_svg_style_get(style, "display", sd, sizeof sd);
+    us_svg_style_get(style, "visibility", sv, sizeof sv);
+  }
   const char *v = sv[0] ? sv : vis;
   if (v) c->hidden = !strcmp(v, "hidden") || !strcmp(v, "collapse");
   int none = !strcmp(sd, "none") || (!sd[0] && disp && !strcmp(disp, "none"));
@@ -354,7 +374,7 @@ static us_Status nested_svg(Walk *w, const xmlNode *n, Ctx *c) {
 }
 
 static us_Status walk_element(Walk *w, const xmlNode *n, Ctx c) {
-  if (!is_svg(n)) return US_OK; /* editors' own elements */
+  if (!is_svg(w, n)) return US_OK; /* editors' own elements */
   const char *name = name_of(n);
   if (find(silent, name) >= 0) return US_OK;
   int kind = find(shapes, name), group = find(groups, name);
@@ -417,11 +437,13 @@ static us_Status root_units(Walk *w, const xmlNode *n) {
 }
 
 us_Status us_svg_walk(us_SvgDoc *d, void *xml_doc, us_Error *err) {
-  Walk w = {d, err};
   const xmlNode *root = xmlDocGetRootElement((xmlDoc *)xml_doc);
   if (!root) return us_error_set(err, US_ERR_PARSE, "%s: empty document", d->name);
-  if (strcmp(name_of(root), "svg") || !is_svg(root))
-    return fail(&w, root, US_ERR_PARSE, "not an SVG drawing (the root element must be <svg>)");
+  Walk w = {d, err, ns_of(root)};
+  const char *ns = w.root_ns;
+  if (strcmp(name_of(root), "svg") || (*ns && strcmp(ns, SVG_NS) && !strchr(ns, '&')))
+    return fail(&w, root, US_ERR_PARSE, "not an SVG drawing (the root element must be <svg>%s%s)",
+                *ns ? " in the SVG namespace, not " : "", ns);
   if (root_units(&w, root)) return err->code;
   Ctx c = {us_svg_identity(), 0, 0, -1, -1};
   double mu = -1;
