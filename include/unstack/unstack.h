@@ -703,6 +703,57 @@ US_API us_Structure *us_structure_parse(const char *text, const char *name, doub
 /* Write atomically (temporary file + rename): no partial file on error. */
 US_API us_Status us_structure_write(const us_Structure *s, const char *path, us_Error *err);
 
+/* SVG import (docs/svg.md): rect, polygon, closed polyline, path (curves
+ * flattened), circle and ellipse become polygon bodies; groups with
+ * transforms, viewBox and units are followed; y is flipped so that up is
+ * up, and the ground is the drawing's lowest point unless ground_at is
+ * set. Start from us_svg_default_settings(). */
+typedef struct us_SvgSettings {
+  const char *unit;   /* output length unit: "m" (default), "cm", "mm", "in",
+                         "pt", "pc", "px", or "user" (the drawing's root user
+                         units, the viewBox's, as they are) */
+  double scale;       /* the drawing is at 1:scale: lengths times scale (1) */
+  int ground;         /* 1 (default): the ground supports the structure */
+  int ground_at_set;  /* 1: the ground is the drawing's line y = ground_at
+                         (root user units, y down as in the file); 0
+                         (default): the lowest point of the drawing */
+  double ground_at;
+  double snap;        /* vertices this close to another body or the ground are
+                         moved onto it: < 0 (default) 1e-3 of the pair's
+                         smaller bounding-box diagonal; 0 off; > 0 this
+                         distance in root user units */
+  double flatten;     /* curves: largest distance of the polyline from the
+                         curve, relative to the curve's size (default 1e-3;
+                         0 < flatten <= 0.5) */
+  double friction;    /* >= 0: the structure's default coefficient; < 0
+                         (default): the root's data-friction, else 0.5 */
+  double contact_tol; /* > 0: as for us_structure_read */
+  void (*warn)(const char *msg, void *user); /* skipped elements (may be NULL) */
+  void *warn_user;
+} us_SvgSettings;
+US_API us_SvgSettings us_svg_default_settings(void);
+
+/* What an import did (optional out-parameter). */
+typedef struct us_SvgInfo {
+  int bodies, fixed;       /* bodies made, of them fixed */
+  int skipped;             /* elements skipped with a warning */
+  int curves;              /* curve segments flattened */
+  int snapped;             /* vertices moved by snapping */
+  int ids_generated;       /* shapes without an id */
+  int ids_renamed;         /* repeated ids made unique */
+  double unit;             /* output units per root user unit (x) */
+} us_SvgInfo;
+
+/* Read an SVG drawing into a finalized structure. Errors name the file,
+ * the line and the element (US_ERR_PARSE malformed XML or attribute,
+ * US_ERR_INPUT degenerate or overlapping shapes, US_ERR_IO, US_ERR_USAGE
+ * bad settings); NULL then. info may be NULL. */
+US_API us_Structure *us_structure_read_svg(const char *path, const us_SvgSettings *set,
+                                           us_SvgInfo *info, us_Error *err);
+US_API us_Structure *us_structure_parse_svg(const char *text, size_t len, const char *name,
+                                            const us_SvgSettings *set, us_SvgInfo *info,
+                                            us_Error *err);
+
 /* Plan files. Reading maps ids to body indices of s. */
 US_API us_Status us_plan_write(const us_Structure *s, const us_Plan *p, const us_PlanSettings *set,
                         const char *path, us_Error *err);
