@@ -24,6 +24,27 @@ void us_model_measure(us_Structure *s);
  * are point bodies (explicit contacts only). */
 static inline int us_body_has_shape(const us_Body *b) { return b->nvert > 0 || b->npart > 0; }
 
+/* The lowest and highest points of body b along "up" (y in 2D, z in 3D:
+ * the vertical axis of the generators and of the ground); a point body
+ * has its centre for both. */
+static inline void us_body_vertical_range(const us_Structure *s, const us_Body *b, double *lo,
+                                          double *hi) {
+  int up = s->dim == 3 ? 2 : 1;
+  *lo = *hi = b->com[up];
+  int first = 1;
+  for (int k = 0; k < b->nvert && s->dim == 2; k++, first = 0) {
+    double y = b->verts[2 * k + 1];
+    *lo = first || y < *lo ? y : *lo;
+    *hi = first || y > *hi ? y : *hi;
+  }
+  for (int p = 0; p < b->npart && s->dim == 3; p++)
+    for (int k = 0; k < b->parts[p].nvert; k++, first = 0) {
+      double z = b->parts[p].verts[3 * k + 2];
+      *lo = first || z < *lo ? z : *lo;
+      *hi = first || z > *hi ? z : *hi;
+    }
+}
+
 /* solid.c: 3D bodies. Copy a definition's point sets into parts (the
  * points given; the hulls come in finalize): 0, or -1 with err set (bad
  * arrays, out of memory). */
