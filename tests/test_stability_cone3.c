@@ -264,5 +264,98 @@ static void tower_plans(void) {
   us_structure_free(s);
 }
 
+/* The 2D structure s extruded along y into prisms `depth` deep (2D y is
+ * 3D z), then turned by `turn` about the vertical and shifted: the same
+ * bodies in the same order, contacts found by the 3D detector. */
+static us_Structure *extrude(const us_Structure *s, double depth, double turn) {
+  us_Structure *e = us_structure_new(3);
+  us_Error err;
+  e->gravity[0] = e->gravity[1] = 0.0, e->gravity[2] = -9.81;
+  e->friction = s->friction;
+  double c = cos(turn), sn = sin(turn), shift[2] = {3.5, -1.25};
+  for (int i = 0; i < s->nbody; i++) {
+    const us_Body *b = &s->bodies[i];
+    double *xyz = us_malloc(6 * (size_t)b->nvert * sizeof(double));
+    for (int k = 0; k < 2 * b->nvert; k++) {
+      double x = b->verts[2 * (k % b->nvert)], y = k < b->nvert ? 0.0 : depth;
+      xyz[3 * k] = c * x - sn * y + shift[0];
+      xyz[3 * k + 1] = sn * x + c * y + shift[1];
+      xyz[3 * k + 2] = b->verts[2 * (k % b->nvert) + 1];
+    }
+    us_BodyDef d = us_default_body_def();
+    d.id = b->id, d.nvert = 2 * b->nvert, d.xyz = xyz, d.fixed = b->fixed;
+    d.friction = b->friction;
+    if (b->mass_given) d.mass = b->mass;
+    int ok = us_structure_add_body(e, &d, &err) >= 0;
+    us_free(xyz);
+    if (!ok) break;
+  }
+  if (us_structure_finalize(e, &err) != US_OK) {
+    fprintf(stderr, "extrude: %s\n", err.msg);
+    us_structure_free(e);
+    return NULL;
+  }
+  return e;
+}
+
+/* A 2D structure and its extrusion (turned and shifted) give the same
+ * verdict on every sub-assembly tried: the full one and random subsets,
+ * for mu = 0 and mu = 0.5, on columns, pyramids, walls, arches and the
+ * stacker's random stacks. (A 3D solution mirrored through the mid-plane
+ * and averaged projects to a 2D one; a 2D one split over the two faces is
+ * a 3D one, so the verdicts must agree.) */
+static void extrusion_invariance(void) {
+  unsigned long long rng = 77;
+  int agree = 0, stable = 0, unstable = 0;
+  for (int kind = 0; kind < 5; kind++) {
+    for (int fr = 0; fr < 2; fr++) {
+      us_GenSettings g = us_gen_default_settings();
+      us_Error err;
+      g.friction = fr ? 0.5 : 0.0;
+      us_Structure *s = NULL;
+      if (kind == 0) g.n = 5, s = us_gen_column(&g, &err);
+      if (kind == 1) g.n = 4, s = us_gen_pyramid(&g, &err);
+      if (kind == 2) g.rows = g.cols = 4, s = us_gen_wall(&g, &err);
+      if (kind == 3) g.n = 7, g.radius = 2.0, g.thickness = 0.5, s = us_gen_arch(&g, &err);
+      if (kind == 4) g.rows = 6, g.width = 5, g.seed = 3, s = us_gen_stacker(&g, &err);
+      CHECK(s);
+      if (!s) continue;
+      us_Structure *e = extrude(s, 0.7, 2.0 * PI * test_rnd(&rng));
+      CHECK(e);
+      us_StabilitySettings set = us_stability_default_settings();
+      set.method = US_METHOD_LP;
+      us_Stability *w2 = us_stability_new(s, &set, &err);
+      us_Stability *w3 = e ? us_stability_new(e, &set, &err) : NULL;
+      CHECK(w2 && w3);
+      us_Bitset sub;
+      us_bitset_init(&sub, s->nbody);
+      us_StabilityResult r2, r3;
+      us_stability_result_init(&r2);
+      us_stability_result_init(&r3);
+      for (int t = 0; w2 && w3 && t < 25; t++) {
+        for (int i = 0; i < s->nbody; i++)
+          if (t == 0 || test_rnd(&rng) < 0.7) us_bitset_set(&sub, i);
+          else us_bitset_clear(&sub, i);
+        CHECK_OK(us_stability_test(w2, &sub, &r2, &err), &err);
+        CHECK_OK(us_stability_test(w3, &sub, &r3, &err), &err);
+        CHECK_INT(r3.verdict, ==, r2.verdict);
+        agree += r3.verdict == r2.verdict;
+        stable += r2.verdict == US_STABLE;
+        unstable += r2.verdict == US_UNSTABLE;
+      }
+      us_stability_result_free(&r2);
+      us_stability_result_free(&r3);
+      us_bitset_free(&sub);
+      us_stability_free(w2);
+      us_stability_free(w3);
+      us_structure_free(e);
+      us_structure_free(s);
+    }
+  }
+  CHECK(stable > 30 && unstable > 30); /* both verdicts exercised */
+  CHECK_INT(agree, ==, 5 * 2 * 25);
+}
+
 US_TEST_MAIN(T(tilted_plank_critical), T(pyramid_would_be_wrong), T(exact_cones),
-             T(backends_agree), T(tower_plans))
+             T(backends_agree), T(tower_plans),
+             T(extrusion_invariance))
