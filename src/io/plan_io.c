@@ -5,8 +5,9 @@
  * Steps: an "order" entry is a body id, or an array of ids removed in one
  * step (a group). Certificates: certs[k] holds the contact forces of the
  * structure before step k. Each written step
- * carries those forces in the contacts' frames (f_n along the normal, f_t
- * along t = (-n_y, n_x)) and an independent re-check (us_certificate_check)
+ * carries those forces in the contacts' frames (2D: f_n along the normal,
+ * f_t along t = (-n_y, n_x); 3D: f_n, f_t1, f_t2 along n and the frame of
+ * us_contact_frame) and an independent re-check (us_certificate_check)
  * of that sub-assembly, so a reader can judge the certificate without a
  * solver. Reading ignores steps and statistics: only the status and the
  * order matter, and every id in the order must name a distinct movable
@@ -73,7 +74,7 @@ static void write_cert_contact(us_JsonOut *o, const us_Structure *s, const us_Fo
   us_jo_raw(o, "          {");
   us_jo_contact_fields(o, s, c);
   us_jo_raw(o, ", \"force\": ");
-  us_jo_vec2(o, f->f + 2 * j);
+  us_jo_vecn(o, f->f + (size_t)s->dim * (size_t)j, s->dim);
   us_jo_raw(o, "}");
 }
 
