@@ -2,8 +2,9 @@
  * structure and the render settings, drawn by the SVG and PNG writers.
  *
  * Layout, top to bottom: a title band (26 px, when r->title), the drawing,
- * a legend (56 px, 76 with a row of swatches). World coordinates (y up)
- * map to pixels by X = ox + (x - x0) k, Y = oy + (y1 - y) k (y flipped);
+ * a legend (legend_layout: the ramp, lines of text beside or under it,
+ * a row of swatches; its height is known before the drawing is placed).
+ * World coordinates (y up) map to pixels by X = ox + (x - x0) k, Y = oy + (y1 - y) k (y flipped);
  * the view [x0, x0 + ww] x [y1 - wh, y1] is the bounding box of all
  * geometry, centres, contacts (and y = 0 with a ground) plus a margin of
  * 6% of its larger side. k makes the view as wide as the picture; when the
