@@ -10,6 +10,13 @@ missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# The browser test of the HTML viewer (tests/browser): Debian's chromium,
+# and node with npm for playwright-core. Node and npm are judged by their
+# commands: a node from another source (nodesource) bundles npm, and
+# Debian's npm package would conflict with it.
+command -v chromium >/dev/null 2>&1 || missing+=(chromium)
+command -v node >/dev/null 2>&1 || missing+=(nodejs)
+command -v npm >/dev/null 2>&1 || missing+=(npm)
 [ ${#missing[@]} -eq 0 ] && exit 0
 echo "installing: ${missing[*]}"
 SUDO=""

@@ -24,12 +24,18 @@ static const char help[] =
 
 static void print_forces(const us_Structure *s, const us_Forces *f) {
   int dim = s->dim;
-  printf("contact forces (a -> b, point, normal force, tangential force):\n");
+  printf(dim == 3 ? "contact forces (a -> b, point, normal force, tangential forces along t1, t2):\n"
+                  : "contact forces (a -> b, point, normal force, tangential force):\n");
   for (int k = 0; k < f->ncontact; k++) {
     const us_Contact *c = &s->contacts[f->contact[k]];
-    printf("  %s -> %s at (%.6g, %.6g): fn = %.6g, ft = %.6g\n",
-           c->a < 0 ? "ground" : us_id_text(s->bodies[c->a].id).s,
-           us_id_text(s->bodies[c->b].id).s, c->p[0], c->p[1], f->f[dim * k], f->f[dim * k + 1]);
+    const double *v = f->f + dim * k;
+    printf("  %s -> %s at ", c->a < 0 ? "ground" : us_id_text(s->bodies[c->a].id).s,
+           us_id_text(s->bodies[c->b].id).s);
+    if (dim == 3)
+      printf("(%.6g, %.6g, %.6g): fn = %.6g, ft = (%.6g, %.6g)\n", c->p[0], c->p[1], c->p[2],
+             v[0], v[1], v[2]);
+    else
+      printf("(%.6g, %.6g): fn = %.6g, ft = %.6g\n", c->p[0], c->p[1], v[0], v[1]);
   }
 }
 
@@ -78,6 +84,7 @@ int cmd_check(int argc, char **argv) {
   us_error_clear(&err);
   us_StabilityResult res;
   memset(&res, 0, sizeof res);
+  c.stab.time_limit = cli_time_left(c.stab.time_limit);
   us_Stability *w = us_stability_new(s, &c.stab, &err);
   int code = CLI_EXIT_ERR;
   if (w && us_stability_test_full(w, &res, &err) == US_OK) code = report(s, &res, forces);

@@ -1,5 +1,6 @@
 /* unstack generate: write a generated structure (column, pyramid, wall,
- * arch, random, stacker) as a structure file. */
+ * arch, random, stacker; in 3D tower, pyramid3d, wall3d) as a structure
+ * file. */
 #include "options.h"
 
 #include <limits.h>
@@ -28,10 +29,20 @@ static const char help[] =
     "                                         finished structure stands (14 x 12: ~75 blocks,\n"
     "                                         60 x 60: ~1,000)\n"
     "\n"
+    "3D kinds (\"dimension\": 3, z up):\n"
+    "  tower     --blocks N [--jitter DEG --seed S]\n"
+    "                                         N boxes stacked on one vertical axis, each\n"
+    "                                         turned about it by up to DEG degrees\n"
+    "  pyramid3d --rows N                     square courses in stack bond, each offset by\n"
+    "                                         half a block in x and y (N(N+1)(2N+1)/6 boxes)\n"
+    "  wall3d    --rows R --cols C [--thickness T]\n"
+    "                                         the running-bond wall with bricks T deep (0.5)\n"
+    "\n"
     "common options:\n"
     "  -o, --output FILE     structure file to write (required)\n"
     "  --block-width X       block width (default 1; not for random, stacker)\n"
     "  --block-height Y      block height (default 0.5)\n"
+    "  --block-depth D       3D block depth along y (tower, pyramid3d; default 1)\n"
     "  --friction MU         Coulomb coefficient written to the file (default 0.5;\n"
     "                        'infinite': no sliding)\n"
     "  --density D           density of every block (default 1)\n"
@@ -45,7 +56,8 @@ static const struct {
   const char *kind;
   GenFn fn;
 } kinds[] = {{"column", us_gen_column}, {"pyramid", us_gen_pyramid}, {"wall", us_gen_wall},
-             {"arch", us_gen_arch}, {"random", us_gen_random}, {"stacker", us_gen_stacker}};
+             {"arch", us_gen_arch}, {"random", us_gen_random}, {"stacker", us_gen_stacker},
+             {"tower", us_gen_tower}, {"pyramid3d", us_gen_pyramid3d}, {"wall3d", us_gen_wall3d}};
 
 /* Integer options and where they go. */
 static int int_option(const char *name, us_GenSettings *g, int **dst) {
@@ -65,6 +77,8 @@ static int real_option(const char *name, us_GenSettings *g, double **dst) {
          : !strcmp(name, "--thickness") ? &g->thickness
          : !strcmp(name, "--friction") ? &g->friction
          : !strcmp(name, "--density") ? &g->density
+         : !strcmp(name, "--block-depth") ? &g->depth
+         : !strcmp(name, "--jitter") ? &g->jitter
                                          : NULL;
   return *dst != NULL;
 }
@@ -110,7 +124,11 @@ int cmd_generate(int argc, char **argv) {
   GenFn fn = NULL;
   for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; k++)
     if (!strcmp(argv[1], kinds[k].kind)) fn = kinds[k].fn;
-  if (!fn) return cli_fail("generate", "unknown kind '%s' (column, pyramid, wall, arch, random, stacker)", argv[1]);
+  if (!fn)
+    return cli_fail("generate",
+                    "unknown kind '%s' (column, pyramid, wall, arch, random, stacker, tower, "
+                    "pyramid3d, wall3d)",
+                    argv[1]);
   us_GenSettings g = us_gen_default_settings();
   int default_rows = g.rows;
   g.rows = -1; /* to see whether --rows was given */
@@ -126,7 +144,7 @@ int cmd_generate(int argc, char **argv) {
   }
   if (!out) return cli_fail("generate", "no output given: use -o FILE");
   if (cli_check_output("generate", out, NULL, 0)) return CLI_EXIT_ERR;
-  if (fn == us_gen_pyramid && g.rows > 0) g.n = g.rows;
+  if ((fn == us_gen_pyramid || fn == us_gen_pyramid3d) && g.rows > 0) g.n = g.rows;
   if (g.rows < 0) g.rows = default_rows;
   if (fn == us_gen_random || fn == us_gen_stacker) {
     const char *kind = fn == us_gen_random ? "random" : "stacker";

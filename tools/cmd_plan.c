@@ -199,6 +199,7 @@ int cmd_plan(int argc, char **argv) {
   us_error_clear(&err);
   us_Plan p;
   int code = CLI_EXIT_ERR;
+  c.plan.time_limit = cli_time_left(c.plan.time_limit);
   us_Status pst = us_plan(s, &c.plan, &p, &err);
   cli_progress_off(&c);
   if (pst == US_OK) {

@@ -1,12 +1,12 @@
 /* unstack render: draw a structure, optionally with a plan and forces, as
- * SVG or PNG (docs/render.md).
+ * SVG or PNG (docs/render.md), or as the interactive HTML viewer
+ * (--html, cmd_render_html.c, docs/viewer.md).
  *
- * The flow: parse, pick the format (--format, else the output's
- * extension), check the output can be written, load the structure and the
- * plan, test the full structure when the title needs its verdict (no
- * plan) or --forces needs its forces, compose the title, write the
- * picture with the format's writer (write_picture: one branch per
- * format). */
+ * The flow: parse, check the output can be written, pick the format
+ * (--format or --html, else the output's extension), load the structure
+ * and the plan, test the full structure when a picture's title needs its
+ * verdict (no plan) or --forces needs its forces, compose the title, write
+ * with the format's writer (write_output: one branch per format). */
 #include "options.h"
 
 #include <stdio.h>
@@ -15,6 +15,7 @@
 
 static const char help[] =
     "usage: unstack render FILE [--plan PLAN.json] [--forces] -o OUT.svg|OUT.png\n"
+    "       unstack render FILE [--plan PLAN.json] --html -o OUT.html\n"
     "\n"
     "Draw the structure in FILE as SVG or PNG: a title with the plan's status\n"
     "(or, without a plan, whether the structure stands), bodies coloured and\n"
@@ -25,7 +26,9 @@ static const char help[] =
     "\n"
     "options:\n"
     "  -o, --output OUT      output file (required); .svg or .png picks the format\n"
-    "  --format svg|png      the format, whatever the output's name\n"
+    "  --format svg|png|html the format, whatever the output's name\n"
+    "  --html                the interactive viewer, one self-contained page (also\n"
+    "                        chosen by an output name ending in .html; docs/viewer.md)\n"
     "  --plan PLAN.json      colour and number bodies by removal order\n"
     "  --forces              draw the contact forces that hold the structure\n"
     "  --method M            backend for the stability test (default auto)\n"
@@ -38,17 +41,21 @@ static const char help[] =
     "                        stays within 16384 px a side and 64 million pixels)\n"
     "  --contact-tol T       contact detection tolerance\n"
     "\n"
-    "exit: 0 written, 1 --forces given but the structure does not stand, 3 --forces\n"
-    "given but the test is undecided (1 and 3: picture written without forces),\n"
+    "exit: 0 written, 1 --forces given but the structure does not stand, or --html\n"
+    "and verify finds the order invalid (page written, the failing step in red),\n"
+    "3 --forces given but the test is undecided (1 and 3: written without forces),\n"
     "2 usage or input error (nothing written)\n";
 
-typedef enum Format { FMT_NONE = 0, FMT_SVG, FMT_PNG } Format;
+typedef enum Format { FMT_NONE = 0, FMT_SVG, FMT_PNG, FMT_HTML } Format;
 
 /* Formats by name and by the output's extension. */
 static const struct {
   const char *name, *ext;
   Format f;
-} kFormats[] = {{"svg", ".svg", FMT_SVG}, {"png", ".png", FMT_PNG}};
+} kFormats[] = {{"svg", ".svg", FMT_SVG},
+                {"png", ".png", FMT_PNG},
+                {"html", ".html", FMT_HTML},
+                {"html", ".htm", FMT_HTML}};
 #define NFORMATS ((int)(sizeof kFormats / sizeof kFormats[0]))
 
 typedef struct {
@@ -67,7 +74,7 @@ static int size_option(const char *opt, const char *v, double *out) {
 static int format_option(const char *v, Format *f) {
   for (int i = 0; i < NFORMATS; i++)
     if (!strcmp(v, kFormats[i].name)) return *f = kFormats[i].f, 0;
-  return cli_fail("render", "unknown --format '%s' (svg, png)", v);
+  return cli_fail("render", "unknown --format '%s' (svg, png, html)", v);
 }
 
 /* Options with a value; 1 when argv[*i] is not one of them. */
@@ -97,6 +104,8 @@ static int parse(int argc, char **argv, CliCommon *c, RenderArgs *a) {
     if (cli_is_help(argv[i])) return fputs(help, stdout), -1;
     if ((r = value_option(argc, argv, &i, c, a)) != 1) {
       if (r) return r;
+    } else if (!strcmp(argv[i], "--html")) {
+      a->format = FMT_HTML;
     } else if (!strcmp(argv[i], "--forces")) {
       a->forces = 1;
     } else if (!strcmp(argv[i], "--no-contacts")) {
@@ -130,14 +139,17 @@ static int pick_format(RenderArgs *a) {
   if (!dot) return a->format = FMT_SVG, 0;
   for (int i = 0; i < NFORMATS; i++)
     if (same_ext(dot, kFormats[i].ext)) return a->format = kFormats[i].f, 0;
-  return cli_fail("render", "cannot tell the picture format from '%s': name it .svg or .png, "
-                  "or give --format svg|png", a->out);
+  return cli_fail("render", "cannot tell the picture format from '%s': name it .svg, .png or "
+                  ".html, or give --format svg|png|html", a->out);
 }
 
-/* Test the full structure: 0 done (res->verdict), -1 error. */
-static int full_test(const us_Structure *s, const CliCommon *c, us_StabilityResult *res,
-                     us_Error *err) {
-  us_Stability *w = us_stability_new(s, &c->stab, err);
+/* Test the full structure, within --time-limit or 10 s: 0 done
+ * (res->verdict), -1 error. */
+static int full_test(const us_Structure *s, const RenderArgs *a, const CliCommon *c,
+                     us_StabilityResult *res, us_Error *err) {
+  us_StabilitySettings set = c->stab;
+  if (!a->time_limit_given) set.time_limit = 10.0;
+  us_Stability *w = us_stability_new(s, &set, err);
   int r = w && us_stability_test_full(w, res, err) == US_OK ? 0 : -1;
   us_stability_free(w);
   return r;
@@ -161,16 +173,21 @@ static void make_title(char *buf, size_t n, const RenderArgs *a, const us_Struct
   snprintf(buf, n, "%s \xE2\x80\x94 %d bodies, %s", base ? base + 1 : a->file, s->nbody, what);
 }
 
-static us_Status write_picture(const RenderArgs *a, const us_Structure *s, us_Error *err) {
+/* The format's writer; an exit code. */
+static int write_output(const RenderArgs *a, const us_Structure *s, const us_PlanFile *pf,
+                        CliCommon *c, us_Error *err) {
+  us_Status st;
   switch (a->format) {
-  case FMT_PNG: return us_render_png(s, &a->r, a->out, err);
-  default: return us_render_svg(s, &a->r, a->out, err);
+  case FMT_HTML: return cli_render_html(s, a->plan, pf, c, &a->r, a->file, a->out, err);
+  case FMT_PNG: st = us_render_png(s, &a->r, a->out, err); break;
+  default: st = us_render_svg(s, &a->r, a->out, err); break;
   }
+  return st ? CLI_EXIT_ERR : CLI_EXIT_OK;
 }
 
-/* Settings from the plan, forces and title; then the picture. */
-static us_Status draw(RenderArgs *a, const us_Structure *s, const us_PlanFile *pf,
-                      const us_StabilityResult *res, us_Error *err) {
+/* Settings from the plan, forces and title; then the output. */
+static int draw(RenderArgs *a, const us_Structure *s, const us_PlanFile *pf,
+                const us_StabilityResult *res, CliCommon *c, us_Error *err) {
   char title[512];
   make_title(title, sizeof title, a, s, pf, res);
   a->r.order = pf->order;
@@ -181,7 +198,7 @@ static us_Status draw(RenderArgs *a, const us_Structure *s, const us_PlanFile *p
   a->r.nblocked = pf->nblocked;
   a->r.forces = a->forces && res->verdict == US_STABLE ? &res->forces : NULL;
   a->r.title = a->title ? a->title : title;
-  return write_picture(a, s, err);
+  return write_output(a, s, pf, c, err);
 }
 
 /* Exit code once the picture is written: --forces that could not be drawn. */
@@ -206,7 +223,6 @@ int cmd_render(int argc, char **argv) {
   const char *inputs[2] = {a.file, a.plan};
   if (cli_check_output("render", a.out, inputs, a.plan ? 2 : 1)) return CLI_EXIT_ERR;
   if (pick_format(&a)) return CLI_EXIT_ERR;
-  if (!a.time_limit_given) c.stab.time_limit = 10.0;
   us_Structure *s = cli_load("render", a.file, &c);
   if (!s) return CLI_EXIT_ERR;
   us_Error err;
@@ -218,10 +234,11 @@ int cmd_render(int argc, char **argv) {
   res.verdict = US_UNDECIDED;
   int code = CLI_EXIT_OK;
   if (a.plan && us_plan_read(s, a.plan, &pf, &err)) code = CLI_EXIT_ERR;
-  if (!code && (a.forces || !a.plan) && full_test(s, &c, &res, &err)) code = CLI_EXIT_ERR;
-  if (!code && draw(&a, s, &pf, &res, &err)) code = CLI_EXIT_ERR;
+  int verdict_needed = a.forces || (!a.plan && a.format != FMT_HTML);
+  if (!code && verdict_needed && full_test(s, &a, &c, &res, &err)) code = CLI_EXIT_ERR;
+  if (!code) code = draw(&a, s, &pf, &res, &c, &err);
   if (code == CLI_EXIT_ERR) cli_error("render", &err);
-  else code = forces_outcome(&a, &res);
+  else if (code == CLI_EXIT_OK) code = forces_outcome(&a, &res);
   us_stability_result_free(&res);
   us_plan_file_free(&pf);
   us_structure_free(s);

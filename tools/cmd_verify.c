@@ -90,6 +90,7 @@ static int check_removals(const us_Structure *s, const us_PlanFile *pf, us_Error
 static us_Status verify_with_progress(const us_Structure *s, CliCommon *c, const us_PlanFile *pf,
                                       us_VerifyReport *rep, us_Error *err) {
   cli_progress_on("verify", c);
+  c->stab.time_limit = cli_time_left(c->stab.time_limit);
   us_Status st = us_verify_steps(s, &c->stab, pf->order, pf->n, pf->group_start, pf->ngroups,
                                  rep, err);
   cli_progress_off(c);

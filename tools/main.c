@@ -1,5 +1,6 @@
 /* unstack: command-line entry point; dispatches to one file per subcommand. */
 #include "cli.h"
+#include "options.h"
 
 #include <errno.h>
 #include <math.h>
@@ -21,6 +22,7 @@ static const char usage[] =
     "  generate KIND   write a generated structure (column, pyramid, wall, arch, random)\n"
     "  count FILE      count the sub-assemblies connected to the ground (exit 0 exact, 1 refused)\n"
     "  classify FILE   stands, friction, top-down, one at a time, smallest group K (exit 0)\n"
+    "  import-svg SVG  turn a drawing (Inkscape, Illustrator) into a structure file\n"
     "\n"
     "Run 'unstack COMMAND --help' for a command's options. Exit code 2: usage or input error.\n";
 
@@ -74,12 +76,14 @@ const char *cli_value(const char *cmd, int argc, char **argv, int *i) {
 }
 
 int main(int argc, char **argv) {
+  cli_clock_start();
   static const struct {
     const char *name;
     int (*fn)(int, char **);
   } cmds[] = {{"check", cmd_check}, {"plan", cmd_plan}, {"verify", cmd_verify},
               {"render", cmd_render}, {"generate", cmd_generate},
-              {"count", cmd_count}, {"classify", cmd_classify}};
+              {"count", cmd_count}, {"classify", cmd_classify},
+              {"import-svg", cmd_import_svg}};
   if (argc < 2) {
     fputs(usage, stderr);
     return CLI_EXIT_ERR;

@@ -2,6 +2,7 @@
  * structure-loading options. */
 #include "options.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -121,6 +122,15 @@ void cli_progress_on(const char *cmd, CliCommon *c) {
 
 void cli_progress_off(const CliCommon *c) {
   if (c->stab.progress) fprintf(stderr, "\r\033[K");
+}
+
+static double clock_start = -1.0;
+
+void cli_clock_start(void) { clock_start = us_now(); }
+
+double cli_time_left(double limit) {
+  if (!(limit > 0) || clock_start < 0) return limit;
+  return fmax(limit - (us_now() - clock_start), 1e-3);
 }
 
 int cli_time_limit(const char *cmd, const char *v, CliCommon *c) {

@@ -21,6 +21,12 @@ const char *cli_method_word(int i);
  * is a terminal; _off clears it. */
 void cli_progress_on(const char *cmd, CliCommon *c);
 void cli_progress_off(const CliCommon *c);
+/* --time-limit counts from the command's start (reading the file and
+ * finding contacts included): main calls cli_clock_start first, and a
+ * command hands the library cli_time_left(limit), the part left (at least
+ * 1 ms; limit itself when <= 0). */
+void cli_clock_start(void);
+double cli_time_left(double limit);
 /* --time-limit S into c->stab.time_limit; 0, or -1 (message printed). */
 int cli_time_limit(const char *cmd, const char *v, CliCommon *c);
 /* The local-test statistics lines of --stats (nothing when none ran). */
@@ -33,5 +39,13 @@ const char *cli_count_method_word(int i);
 int cli_common_option(const char *cmd, int argc, char **argv, int *i, CliCommon *c);
 /* Read and finalize a structure; prints the error and returns NULL. */
 us_Structure *cli_load(const char *cmd, const char *path, const CliCommon *c);
+
+/* render --html (cmd_render_html.c): does the output name end in .html or
+ * .htm; the viewer page of s with the plan file `plan` (NULL: none) read
+ * into pf, its certificates and a verification. Exit code; err set when
+ * CLI_EXIT_ERR. */
+int cli_html_name(const char *out);
+int cli_render_html(const us_Structure *s, const char *plan, const us_PlanFile *pf, CliCommon *c,
+                    const us_RenderSettings *r, const char *file, const char *out, us_Error *err);
 
 #endif

@@ -114,17 +114,43 @@ US_API void us_bitset_fill(us_Bitset *b); /* set bits 0..nbits-1 */
 
 #define US_GROUND (-1) /* body index of the ground in contacts */
 
+/* A convex polyhedron (3D), one part of a body. Before finalize, verts
+ * holds the points given (nface == 0); finalize replaces them by their
+ * convex hull: the hull's vertices, its faces (coplanar facets merged into
+ * one planar convex polygon each) and its edges. */
+typedef struct us_Polyhedron {
+  int nvert;
+  double *verts;     /* 3*nvert coordinates */
+  int nface;         /* 0 until the hull is built */
+  int *face_start;   /* nface+1 offsets into face_vert */
+  int *face_vert;    /* each face's vertex indices, counter-clockwise seen
+                        from outside (right-hand rule: the outward normal) */
+  double *planes;    /* 4*nface: outward unit normal (nx, ny, nz) and d;
+                        n . x <= d for every vertex x */
+  int nedge;
+  int *edges;        /* 2*nedge vertex indices, each edge once */
+  double volume;     /* > 0 once built */
+} us_Polyhedron;
+
 typedef struct us_Body {
   char *id;          /* unique, user-given */
-  int nvert;         /* polygon vertices (2D), 0 for a body without geometry */
+  int nvert;         /* polygon vertices (2D), 0 for a body without geometry
+                        and for every 3D body (3D geometry is in parts) */
   double *verts;     /* 2*nvert, counter-clockwise after finalize */
   double mass;       /* > 0 for movable bodies; fixed bodies: infinite */
   double density;    /* used when mass was not given */
   double com[3];     /* centre of mass */
-  double inertia;    /* 2D: polar moment about com (kg m^2) */
+  double inertia;    /* 2D: polar moment about com (kg m^2); 3D: the mean
+                        principal moment, trace(inertia3) / 3 */
   double friction;   /* < 0: not given (use the structure default) */
   int fixed;         /* terrain, piers: never removed, never moves */
   int mass_given;
+  /* 3D only (0 / NULL in 2D): the body is the union of npart convex
+   * polyhedra (1 for a polyhedron or a box, more for a compound), in world
+   * coordinates; 0 parts: a body without geometry. */
+  int npart;
+  us_Polyhedron *parts;
+  double inertia3[3][3]; /* 3D: inertia tensor about com, world axes (kg m^2) */
 } us_Body;
 
 typedef struct us_Contact {
@@ -136,10 +162,11 @@ typedef struct us_Contact {
 } us_Contact;
 
 typedef struct us_Structure {
-  int dim;              /* 2 (3 reserved) */
-  double gravity[3];    /* default (0, -9.81, 0) */
+  int dim;              /* 2 or 3 */
+  double gravity[3];    /* default (0, -9.81, 0); 3D: (0, 0, -9.81) */
   double friction;      /* default contact coefficient (0.5) */
-  int ground;           /* 1: the half-plane y <= 0 is a fixed support */
+  int ground;           /* 1: the half-plane y <= 0 (3D: the half-space
+                           z <= 0) is a fixed support */
   double contact_tol;   /* > 0: one length tolerance for every contact and
                            shape test; <= 0 (default): each follows the
                            bodies involved (see us_ContactSettings) */
@@ -155,29 +182,43 @@ typedef struct us_Structure {
   int finalized;
   int cap_body, cap_contact;
   void *id_index;       /* private: id -> body index hash map */
+  double bbox3[6];      /* 3D: xmin, ymin, zmin, xmax, ymax, zmax (scale is its
+                           diagonal); 2D: the x, y range of bbox, z = 0 */
 } us_Structure;
 
 US_API us_Structure *us_structure_new(int dim);
 US_API void us_structure_free(us_Structure *s);
 
-/* Description of a polygon body (2D) for us_structure_add_body. Start from
- * us_default_body_def() and set what differs. */
+/* One convex part of a 3D body: the convex hull of nvert points. */
+typedef struct us_PartDef {
+  int nvert;          /* >= 4 points, not all (almost) in one plane */
+  const double *xyz;  /* 3*nvert coordinates (copied) */
+} us_PartDef;
+
+/* Description of a body for us_structure_add_body. Start from
+ * us_default_body_def() and set what differs. 2D: a polygon (nvert, xy).
+ * 3D: a convex polyhedron, the hull of nvert points xyz, or a compound of
+ * npart convex parts (then nvert is 0); one rigid body either way. */
 typedef struct us_BodyDef {
   const char *id;    /* required: unique, not "ground" (copied) */
-  int nvert;         /* required: number of vertices (>= 3 to finalize) */
-  const double *xy;  /* required: 2*nvert coordinates, any orientation (copied) */
+  int nvert;         /* 2D: number of vertices (>= 3 to finalize); 3D: of points */
+  const double *xy;  /* 2D: 2*nvert coordinates, any orientation (copied) */
   double density;    /* default 1; used when mass is not given */
-  double mass;       /* default 0: not given, density * area */
+  double mass;       /* default 0: not given, density * area (3D: volume) */
   int fixed;         /* default 0; 1: terrain or pier, never moves */
   double friction;   /* default -1: not given, the structure's coefficient */
+  const double *xyz; /* 3D: 3*nvert coordinates, the hull is taken (copied) */
+  int npart;         /* 3D compound: number of convex parts (default 0) */
+  const us_PartDef *parts; /* 3D compound: the parts (copied) */
 } us_BodyDef;
 
 /* The defaults above: id NULL, nvert 0, xy NULL, density 1, mass 0,
- * fixed 0, friction -1. */
+ * fixed 0, friction -1, xyz NULL, npart 0, parts NULL. */
 US_API us_BodyDef us_default_body_def(void);
 
-/* Add a polygon body. Returns the body index or -1 (err set: empty,
- * reserved or duplicate id, bad vertex array, OOM). */
+/* Add a body (a polygon in 2D, a convex polyhedron or compound in 3D).
+ * Returns the body index or -1 (err set: empty, reserved or duplicate id,
+ * bad vertex array, geometry of the other dimension, OOM). */
 US_API int us_structure_add_body(us_Structure *s, const us_BodyDef *def, us_Error *err);
 
 /* Thin wrapper of us_structure_add_body kept for old callers: the fields
@@ -186,7 +227,8 @@ US_API int us_structure_add_body(us_Structure *s, const us_BodyDef *def, us_Erro
 US_API int us_structure_add_polygon(us_Structure *s, const char *id, int nvert, const double *xy,
                              double density, double mass, int fixed, double friction,
                              us_Error *err);
-/* A body without geometry (only with explicit contacts). */
+/* A body without geometry (only with explicit contacts); center has dim
+ * components. */
 US_API int us_structure_add_point_body(us_Structure *s, const char *id, double mass,
                                 const double *center, int fixed, us_Error *err);
 /* Explicit contact; a = US_GROUND or a body index. mu < 0: use the rule
@@ -196,10 +238,12 @@ US_API int us_structure_add_contact(us_Structure *s, int a, int b, const double 
                              double mu, us_Error *err);
 US_API int us_structure_find_body(const us_Structure *s, const char *id); /* index or -1 */
 
-/* Validate geometry (>=3 vertices, finite, non-zero area, simple, not below
- * the ground, no interpenetration beyond the pair's tolerance), compute mass
- * properties, and detect contacts unless explicit contacts were given.
- * Messages name the body ids. */
+/* Validate geometry (2D: >=3 vertices, finite, non-zero area, simple; 3D:
+ * >= 4 points per part not in one plane, finite, the convex hull of each
+ * part built, parts of one body not overlapping; both: not below the
+ * ground, no interpenetration beyond the pair's tolerance), compute mass
+ * properties (3D: mass, com and the inertia tensor, exactly), and detect
+ * contacts unless explicit contacts were given. Messages name the body ids. */
 US_API us_Status us_structure_finalize(us_Structure *s, us_Error *err);
 
 /* The friction coefficient of a contact between two bodies (a may be
@@ -233,8 +277,9 @@ typedef struct us_ContactList {
   int n, cap;
 } us_ContactList;
 
-/* Detect vertex-on-edge contacts between all polygon bodies and with the
- * ground into `out` (caller-owned, zero-initialised or reused; its old
+/* Detect contacts (2D: vertex-on-edge; 3D: face-face patches, edge-face,
+ * vertex-face and edge-edge points, docs/format.md) between all bodies and
+ * with the ground into `out` (caller-owned, zero-initialised or reused; its old
  * entries are dropped); the structure is not changed. Polygons must be
  * counter-clockwise (as finalize leaves them). Broad phase over bodies,
  * then over the edges of each candidate pair, so the cost is near-linear
@@ -365,6 +410,11 @@ typedef struct us_StabilityInfo {
   long local_plumb;      /* of local_stable: proven by plumb lines, no LP */
   long cone_lemke;       /* LCP tests settled by the cone LCP's Lemke fallback */
   long cone_lemke_failed; /* Lemke fallbacks that did not settle (to the LP) */
+  long cone3_outer;      /* 3D: tests whose inner-polygon LP was infeasible, so
+                            the outer polygons' LP ran (docs/cones3d.md) */
+  long cone3_refined;    /* 3D: directions added to contacts' friction polygons */
+  long cone3_open;       /* 3D: tests whose claim is the outer polygons' forces (no
+                            direction left to add); the certificate decides */
 } us_StabilityInfo;
 
 /* The certificate of an unstable verdict: a virtual motion of some bodies
@@ -618,6 +668,10 @@ typedef struct us_GenSettings {
   double density;
   unsigned long seed;
   int max_tries;     /* random: attempts per row before giving up */
+  double depth;      /* 3D block depth along y (tower, pyramid3d; default 1);
+                        wall3d bricks are `thickness` deep */
+  double jitter;     /* tower: largest turn of a box about the vertical, in
+                        degrees (default 0) */
 } us_GenSettings;
 US_API us_GenSettings us_gen_default_settings(void);
 
@@ -630,6 +684,13 @@ US_API us_Structure *us_gen_random(const us_GenSettings *g, us_Error *err);
  * held by the blocks above them; only the finished structure is required to
  * stand (src/gen/stacker.c). */
 US_API us_Structure *us_gen_stacker(const us_GenSettings *g, us_Error *err);
+/* 3D (src/gen/solid.c, regular.c): a tower of g->n boxes (width x depth x
+ * height, each turned about the vertical by up to `jitter` degrees, seeded);
+ * a pyramid of g->n square courses in stack bond; the running-bond wall of
+ * us_gen_wall with bricks `thickness` deep. */
+US_API us_Structure *us_gen_tower(const us_GenSettings *g, us_Error *err);
+US_API us_Structure *us_gen_pyramid3d(const us_GenSettings *g, us_Error *err);
+US_API us_Structure *us_gen_wall3d(const us_GenSettings *g, us_Error *err);
 
 /* --------------------------------------------------------------------- I/O */
 
@@ -641,6 +702,57 @@ US_API us_Structure *us_structure_parse(const char *text, const char *name, doub
                                  us_Error *err);
 /* Write atomically (temporary file + rename): no partial file on error. */
 US_API us_Status us_structure_write(const us_Structure *s, const char *path, us_Error *err);
+
+/* SVG import (docs/svg.md): rect, polygon, closed polyline, path (curves
+ * flattened), circle and ellipse become polygon bodies; groups with
+ * transforms, viewBox and units are followed; y is flipped so that up is
+ * up, and the ground is the drawing's lowest point unless ground_at is
+ * set. Start from us_svg_default_settings(). */
+typedef struct us_SvgSettings {
+  const char *unit;   /* output length unit: "m" (default), "cm", "mm", "in",
+                         "pt", "pc", "px", or "user" (the drawing's root user
+                         units, the viewBox's, as they are) */
+  double scale;       /* the drawing is at 1:scale: lengths times scale (1) */
+  int ground;         /* 1 (default): the ground supports the structure */
+  int ground_at_set;  /* 1: the ground is the drawing's line y = ground_at
+                         (root user units, y down as in the file); 0
+                         (default): the lowest point of the drawing */
+  double ground_at;
+  double snap;        /* vertices this close to another body or the ground are
+                         moved onto it: < 0 (default) 1e-3 of the pair's
+                         smaller bounding-box diagonal; 0 off; > 0 this
+                         distance in root user units */
+  double flatten;     /* curves: largest distance of the polyline from the
+                         curve, relative to the curve's size (default 1e-3;
+                         0 < flatten <= 0.5) */
+  double friction;    /* >= 0: the structure's default coefficient; < 0
+                         (default): the root's data-friction, else 0.5 */
+  double contact_tol; /* > 0: as for us_structure_read */
+  void (*warn)(const char *msg, void *user); /* skipped elements (may be NULL) */
+  void *warn_user;
+} us_SvgSettings;
+US_API us_SvgSettings us_svg_default_settings(void);
+
+/* What an import did (optional out-parameter). */
+typedef struct us_SvgInfo {
+  int bodies, fixed;       /* bodies made, of them fixed */
+  int skipped;             /* elements skipped with a warning */
+  int curves;              /* curve segments flattened */
+  int snapped;             /* vertices moved by snapping */
+  int ids_generated;       /* shapes without an id */
+  int ids_renamed;         /* repeated ids made unique */
+  double unit;             /* output units per root user unit (x) */
+} us_SvgInfo;
+
+/* Read an SVG drawing into a finalized structure. Errors name the file,
+ * the line and the element (US_ERR_PARSE malformed XML or attribute,
+ * US_ERR_INPUT degenerate or overlapping shapes, US_ERR_IO, US_ERR_USAGE
+ * bad settings); NULL then. info may be NULL. */
+US_API us_Structure *us_structure_read_svg(const char *path, const us_SvgSettings *set,
+                                           us_SvgInfo *info, us_Error *err);
+US_API us_Structure *us_structure_parse_svg(const char *text, size_t len, const char *name,
+                                            const us_SvgSettings *set, us_SvgInfo *info,
+                                            us_Error *err);
 
 /* Plan files. Reading maps ids to body indices of s. */
 US_API us_Status us_plan_write(const us_Structure *s, const us_Plan *p, const us_PlanSettings *set,
@@ -657,6 +769,18 @@ typedef struct us_PlanFile {
 } us_PlanFile;
 US_API us_Status us_plan_read(const us_Structure *s, const char *path, us_PlanFile *out, us_Error *err);
 US_API void us_plan_file_free(us_PlanFile *pf);
+/* The certificates of a plan file's "steps" (written by `plan
+ * --certificates`), for the plan pf read from the same file: *certs gets
+ * pf->ngroups + 1 entries as us_Plan.certs (certs[k] = the forces of the
+ * structure before step k, the last one empty), each contact matched to
+ * s's contact between the same bodies at the same point (within 1e-6 of
+ * s->scale). A file without steps gives *certs = NULL. Steps that do not
+ * follow the order, or contacts s does not have, are US_ERR_INPUT naming
+ * the JSON path; so is a structure that is not 2D (not read yet). Free
+ * with us_certs_free(*certs, pf->ngroups + 1). */
+US_API us_Status us_plan_read_certs(const us_Structure *s, const char *path,
+                                    const us_PlanFile *pf, us_Forces **certs, us_Error *err);
+US_API void us_certs_free(us_Forces *certs, int n);
 
 /* ------------------------------------------------------------------ render */
 
@@ -684,6 +808,30 @@ US_API us_Status us_render_svg(const us_Structure *s, const us_RenderSettings *r
                         us_Error *err);
 US_API us_Status us_render_png(const us_Structure *s, const us_RenderSettings *r, const char *path,
                         us_Error *err);
+
+/* The interactive plan viewer (docs/viewer.md): one self-contained HTML
+ * page (inline SVG, script and style; no network) with a step slider,
+ * play/pause, the forces of each step, zoom, pan and hover. 2D only. */
+typedef struct us_HtmlSettings {
+  const char *title;        /* shown in the page (NULL: "unstack") */
+  us_PlanStatus status;     /* the plan's status (used with an order or
+                               blocked bodies) */
+  const us_Forces *certs;   /* NULL, or nsteps + 1 entries as us_Plan.certs:
+                               certs[k] = forces of the structure before step
+                               k of r's order (nsteps = r's steps, 0 without
+                               an order) */
+  int verified;             /* 1: `verify` holds us_verify_steps' report on
+                               r's order, shown in the page (a failing step in
+                               red) */
+  us_VerifyReport verify;
+} us_HtmlSettings;
+US_API us_HtmlSettings us_html_default_settings(void); /* no title, found, nothing verified */
+/* r: the order, steps and blocked bodies (the drawing fields are not used);
+ * NULL: the structure alone. Bad settings are US_ERR_USAGE, a structure
+ * that is not 2D US_ERR_INPUT, before the file is opened; the file is
+ * written atomically. */
+US_API us_Status us_render_html(const us_Structure *s, const us_RenderSettings *r,
+                                const us_HtmlSettings *h, const char *path, us_Error *err);
 
 /* An id quoted for a message (src/core/text.c): control characters, DEL,
  * C1 controls, bidi overrides, U+FFFE/U+FFFF and invalid UTF-8 bytes as

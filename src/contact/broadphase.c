@@ -1,4 +1,6 @@
-/* Broad phase of contact detection: sort and sweep over axis-aligned boxes.
+/* Broad phase of contact detection: sort and sweep over axis-aligned boxes,
+ * one design for both dimensions (boxes have dim axes; 3D bodies are boxed
+ * over all their parts).
  *
  * Every polygon body gets its box inflated by its own tolerance (at least
  * the tolerance of any pair it belongs to, which is the smaller of the two
@@ -18,14 +20,18 @@
  * a gap between them bounds the distance between the polygons from below,
  * so such a pair can have neither contacts nor overlap). The test is run
  * for polygons of at most SEP_MAX_VERTS vertices together, to keep it
- * cheap; larger pairs go to the narrow phase as they are. */
+ * cheap; larger pairs go to the narrow phase as they are. In 3D the
+ * narrow phase starts with its own separating-axis test (geometry/
+ * sat3.c), so box-overlapping pairs go there directly. */
 #include "contact.h"
+
+#include "geometry/geometry3.h"
 
 #include <math.h>
 #include <stdlib.h>
 
 typedef struct Box {
-  double lo[2], hi[2];
+  double lo[3], hi[3];
   int body;
   us_Vec2 axis;  /* unit normal of the body's longest edge */
   double alo, ahi; /* the body's own projection on it */
@@ -40,6 +46,7 @@ static int box_cmp_on(const Box *a, const Box *b, int ax) {
 }
 static int box_cmp_x(const void *pa, const void *pb) { return box_cmp_on(pa, pb, 0); }
 static int box_cmp_y(const void *pa, const void *pb) { return box_cmp_on(pa, pb, 1); }
+static int box_cmp_z(const void *pa, const void *pb) { return box_cmp_on(pa, pb, 2); }
 
 static int pair_cmp(const void *pa, const void *pb) {
   const us_BodyPair *a = pa, *b = pb;
@@ -71,23 +78,42 @@ static int make_boxes(const us_Structure *s, const double *tol, Box *bx) {
     double bb[4];
     us_poly_bbox(b->verts, b->nvert, bb);
     double t = tol[i];
-    bx[n] = (Box){{bb[0] - t, bb[1] - t}, {bb[2] + t, bb[3] + t}, i, us_v2(0, 0), 0, 0};
+    bx[n] = (Box){{bb[0] - t, bb[1] - t, 0}, {bb[2] + t, bb[3] + t, 0}, i, us_v2(0, 0), 0, 0};
     long_axis(b, &bx[n]);
     n++;
   }
   return n;
 }
 
-/* The axis (0 = x, 1 = y) along which the box centres spread most. */
-static int choose_axis(const Box *bx, int n) {
-  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+/* Boxes of 3D bodies (over all parts); returns their count. */
+static int make_boxes3(const us_Structure *s, const double *tol, Box *bx) {
+  int n = 0;
+  for (int i = 0; i < s->nbody; i++) {
+    const us_Body *b = &s->bodies[i];
+    if (b->npart < 1) continue;
+    double bb[6];
+    us_body_bbox3(b, bb);
+    bx[n] = (Box){{0}, {0}, i, us_v2(0, 0), 0, 0};
+    for (int d = 0; d < 3; d++) bx[n].lo[d] = bb[d] - tol[i], bx[n].hi[d] = bb[d + 3] + tol[i];
+    n++;
+  }
+  return n;
+}
+
+/* The axis (0 = x, 1 = y, 2 = z) along which the box centres spread most
+ * (the first of equal spreads). */
+static int choose_axis(const Box *bx, int n, int dim) {
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
   for (int k = 0; k < n; k++)
-    for (int d = 0; d < 2; d++) {
+    for (int d = 0; d < dim; d++) {
       double c = 0.5 * (bx[k].lo[d] + bx[k].hi[d]);
       lo[d] = US_MIN(lo[d], c);
       hi[d] = US_MAX(hi[d], c);
     }
-  return n > 0 && hi[1] - lo[1] > hi[0] - lo[0] ? 1 : 0;
+  int ax = 0;
+  for (int d = 1; n > 0 && d < dim; d++)
+    if (hi[d] - lo[d] > hi[ax] - lo[ax]) ax = d;
+  return ax;
 }
 
 #define SEP_MAX_VERTS 24
@@ -126,6 +152,7 @@ static int long_axis_separates(const Box *x, const us_Body *other, double gap) {
 }
 
 static int separated(const us_Structure *s, const double *tol, const Box *x, const Box *y) {
+  if (s->dim == 3) return 0; /* the narrow phase's own axis test */
   int i = x->body, j = y->body;
   const us_Body *a = &s->bodies[i], *b = &s->bodies[j];
   if (a->nvert + b->nvert > SEP_MAX_VERTS) return 0;
@@ -142,12 +169,19 @@ static int push_pair(us_BodyPair **pairs, int *np, int *cap, int a, int b) {
   return 0;
 }
 
+/* Do the boxes overlap on every axis but ax (the sweep's)? */
+static int overlap_others(const Box *a, const Box *b, int ax, int dim) {
+  for (int d = 0; d < dim; d++)
+    if (d != ax && (b->lo[d] > a->hi[d] || a->lo[d] > b->hi[d])) return 0;
+  return 1;
+}
+
 static int sweep(const us_Structure *s, const double *tol, const Box *bx, int n, int ax,
                  us_BodyPair **pairs, int *np, int *cap) {
-  int other = 1 - ax;
+  int dim = s->dim == 3 ? 3 : 2;
   for (int k = 0; k < n; k++)
     for (int m = k + 1; m < n && bx[m].lo[ax] <= bx[k].hi[ax]; m++) {
-      if (bx[m].lo[other] > bx[k].hi[other] || bx[k].lo[other] > bx[m].hi[other]) continue;
+      if (!overlap_others(&bx[k], &bx[m], ax, dim)) continue;
       if (s->bodies[bx[k].body].fixed && s->bodies[bx[m].body].fixed) continue;
       if (separated(s, tol, &bx[k], &bx[m])) continue;
       if (push_pair(pairs, np, cap, bx[k].body, bx[m].body)) return -1;
@@ -165,9 +199,10 @@ us_Status us_broadphase(const us_Structure *s, const double *tol, us_BodyPair **
     us_free(bx);
     return us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
   }
-  int n = make_boxes(s, tol, bx);
-  int ax = choose_axis(bx, n);
-  qsort(bx, (size_t)n, sizeof *bx, ax ? box_cmp_y : box_cmp_x);
+  int dim = s->dim == 3 ? 3 : 2;
+  int n = dim == 3 ? make_boxes3(s, tol, bx) : make_boxes(s, tol, bx);
+  int ax = choose_axis(bx, n, dim);
+  qsort(bx, (size_t)n, sizeof *bx, ax == 2 ? box_cmp_z : ax ? box_cmp_y : box_cmp_x);
   int rc = sweep(s, tol, bx, n, ax, pairs, npairs, &cap);
   us_free(bx);
   if (rc) {
@@ -188,7 +223,8 @@ us_Status us_broadphase_all(const us_Structure *s, us_BodyPair **pairs, int *npa
   for (int i = 0; i < s->nbody; i++)
     for (int j = i + 1; j < s->nbody; j++) {
       const us_Body *a = &s->bodies[i], *b = &s->bodies[j];
-      if (a->nvert < 3 || b->nvert < 3 || (a->fixed && b->fixed)) continue;
+      int sa = s->dim == 3 ? a->npart > 0 : a->nvert >= 3, sb = s->dim == 3 ? b->npart > 0 : b->nvert >= 3;
+      if (!sa || !sb || (a->fixed && b->fixed)) continue;
       if (push_pair(pairs, npairs, &cap, i, j)) {
         us_free(*pairs);
         *pairs = NULL;

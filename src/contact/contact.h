@@ -56,6 +56,12 @@ typedef struct us_Detect {
 /* Body i's edge index; NULL when out of memory. */
 us_EdgeGrid *us_detect_grid(us_Detect *d, int i);
 
+/* detect3.c: the contacts of a 3D structure into out (its old entries
+ * dropped), with each body's own tolerance tol[i]; reference: every pair
+ * of bodies instead of the broad phase's. */
+us_Status us_detect_contacts3(const us_Structure *s, const double *tol, int reference,
+                              us_ContactList *out, us_Error *err);
+
 /* Interpenetration of bodies i and j beyond tol: US_ERR_INPUT naming both. */
 us_Status us_pair_overlap(us_Detect *d, int i, int j, double tol, us_Error *err);
 

@@ -17,8 +17,12 @@
  * naming both bodies) and the vertex-on-edge contacts (pair.c). Polygons
  * must be counter-clockwise (finalize makes them so): a clockwise one is
  * US_ERR_INPUT. Bodies without geometry are ignored. On error the list is
- * left empty. The output order depends only on the input. */
+ * left empty. The output order depends only on the input. 3D structures
+ * take the same tolerances and broad phase, and their own narrow phase
+ * (detect3.c). */
 #include "contact.h"
+
+#include "geometry/geometry3.h"
 
 #include <math.h>
 #include <string.h>
@@ -29,7 +33,8 @@ static double *body_tols(const us_Structure *s, double given) {
   if (!tol) return NULL;
   for (int i = 0; i < s->nbody; i++) {
     const us_Body *b = &s->bodies[i];
-    tol[i] = given > 0 ? given : us_geom_tol(us_poly_diameter(b->verts, b->nvert));
+    double size = s->dim == 3 ? us_body_diameter(b) : us_poly_diameter(b->verts, b->nvert);
+    tol[i] = given > 0 ? given : us_geom_tol(size);
   }
   return tol;
 }
@@ -83,7 +88,8 @@ static us_Status pair_phase(const us_Structure *s, int reference, const double *
 }
 
 static us_Status check_input(const us_Structure *s, us_Error *err) {
-  if (s->dim != 2) return us_error_set(err, US_ERR_INPUT, "contact detection needs dim 2");
+  if (s->dim != 2 && s->dim != 3)
+    return us_error_set(err, US_ERR_INPUT, "contact detection needs dimension 2 or 3");
   for (int i = 0; i < s->nbody; i++) {
     const us_Body *b = &s->bodies[i];
     if (b->nvert >= 3 && us_poly_signed_area(b->verts, b->nvert) < 0)
@@ -121,6 +127,11 @@ us_Status us_detect_contacts(const us_Structure *s, const us_ContactSettings *se
   if (st) return st;
   double *tol = body_tols(s, set ? set->tol : 0.0);
   if (!tol) return us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
+  if (s->dim == 3) {
+    st = us_detect_contacts3(s, tol, set && set->reference, out, err);
+    us_free(tol);
+    return st;
+  }
   us_CandList l = {NULL, 0, 0};
   if (ground_contacts(s, tol, &l))
     st = us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");

@@ -28,6 +28,8 @@ us_GenSettings us_gen_default_settings(void) {
   g.density = 1.0;
   g.seed = 1;
   g.max_tries = 10000;
+  g.depth = 1.0;
+  g.jitter = 0.0;
   return g;
 }
 
@@ -47,7 +49,11 @@ us_Status us_gen_check_common(const us_GenSettings *g, const char *what, us_Erro
 }
 
 us_Structure *us_gen_begin(const us_GenSettings *g, us_Error *err) {
-  us_Structure *s = us_structure_new(2);
+  return us_gen_begin_dim(g, 2, err);
+}
+
+us_Structure *us_gen_begin_dim(const us_GenSettings *g, int dim, us_Error *err) {
+  us_Structure *s = us_structure_new(dim);
   if (!s) {
     us_error_set(err, US_ERR_NOMEM, "out of memory creating a structure");
     return NULL;
@@ -77,6 +83,37 @@ us_Status us_gen_add_box(us_Structure *s, const us_GenSettings *g, int k, double
                          double x1, double y1, us_Error *err) {
   double xy[8] = {x0, y0, x1, y0, x1, y1, x0, y1};
   return us_gen_add(s, g, k, 4, xy, err);
+}
+
+us_Status us_gen_add_solid(us_Structure *s, const us_GenSettings *g, int k, int n,
+                           const double *xyz, us_Error *err) {
+  char id[24];
+  us_Error local;
+  snprintf(id, sizeof id, "b%d", k + 1);
+  if (!err) err = &local;
+  us_BodyDef d = us_default_body_def();
+  d.id = id;
+  d.nvert = n;
+  d.xyz = xyz;
+  d.density = g->density;
+  return us_structure_add_body(s, &d, err) < 0 ? err->code : US_OK;
+}
+
+us_Status us_gen_add_prism(us_Structure *s, const us_GenSettings *g, int k, const double *xy,
+                           double z0, double z1, us_Error *err) {
+  double p[24];
+  for (int c = 0; c < 8; c++) {
+    p[3 * c] = xy[2 * (c % 4)];
+    p[3 * c + 1] = xy[2 * (c % 4) + 1];
+    p[3 * c + 2] = c < 4 ? z0 : z1;
+  }
+  return us_gen_add_solid(s, g, k, 8, p, err);
+}
+
+us_Status us_gen_add_box3(us_Structure *s, const us_GenSettings *g, int k, double x0, double y0,
+                          double z0, double x1, double y1, double z1, us_Error *err) {
+  double xy[8] = {x0, y0, x1, y0, x1, y1, x0, y1};
+  return us_gen_add_prism(s, g, k, xy, z0, z1, err);
 }
 
 us_Structure *us_gen_finish(us_Structure *s, us_Error *err) {

@@ -17,6 +17,8 @@ us_Status us_gen_check_positive(double v, const char *what, const char *name, us
 
 /* A new empty 2D structure on the ground with the settings' friction. */
 us_Structure *us_gen_begin(const us_GenSettings *g, us_Error *err);
+/* The same in dimension dim (2 or 3). */
+us_Structure *us_gen_begin_dim(const us_GenSettings *g, int dim, us_Error *err);
 
 /* Add polygon number `k` (0-based) with id "b<k+1>", density g->density,
  * movable, default friction. 0 or an error status. */
@@ -26,6 +28,18 @@ us_Status us_gen_add(us_Structure *s, const us_GenSettings *g, int k, int nvert,
 /* Axis-aligned box [x0, x1] x [y0, y1] as polygon number k. */
 us_Status us_gen_add_box(us_Structure *s, const us_GenSettings *g, int k, double x0, double y0,
                          double x1, double y1, us_Error *err);
+
+/* 3D: the convex hull of n points (3n coordinates) as body number k. */
+us_Status us_gen_add_solid(us_Structure *s, const us_GenSettings *g, int k, int n,
+                           const double *xyz, us_Error *err);
+/* 3D: a prism over a quadrilateral footprint (xy[8]) from z0 to z1; an
+ * axis-aligned box when the footprint is [x0, x1] x [y0, y1]. Corner
+ * coordinates are used as given, so faces computed from the same numbers
+ * coincide bit for bit. */
+us_Status us_gen_add_prism(us_Structure *s, const us_GenSettings *g, int k, const double *xy,
+                           double z0, double z1, us_Error *err);
+us_Status us_gen_add_box3(us_Structure *s, const us_GenSettings *g, int k, double x0, double y0,
+                          double z0, double x1, double y1, double z1, us_Error *err);
 
 /* Finalize s; on error free it and return NULL (err set). */
 us_Structure *us_gen_finish(us_Structure *s, us_Error *err);

@@ -9,7 +9,11 @@
  * Coordinates are computed from integer half-block indices, x = q * (w / 2),
  * so an edge shared by two blocks (side by side or one row above the other)
  * has bit-identical coordinates in both: contacts are exact, never a tiny
- * gap or overlap. */
+ * gap or overlap.
+ *
+ * The wall is one design for both dimensions: in 3D (wall3d) every brick
+ * is a box from y = 0 to y = thickness, rows going up along z (the 3D
+ * vertical), so the 3D wall is the 2D wall extruded. */
 #include "gen.h"
 
 /* The x coordinate of half-block index q. */
@@ -21,8 +25,10 @@ static double row_y(const us_GenSettings *g, int k) { return (double)k * g->heig
 /* Add block number *k spanning half-block indices [q0, q1] in row r. */
 static us_Status add_row_block(us_Structure *s, const us_GenSettings *g, int *k, int r, long q0,
                                long q1, us_Error *err) {
-  us_Status st = us_gen_add_box(s, g, *k, half_x(g, q0), row_y(g, r), half_x(g, q1),
-                                row_y(g, r + 1), err);
+  us_Status st = s->dim == 3 ? us_gen_add_box3(s, g, *k, half_x(g, q0), 0.0, row_y(g, r),
+                                               half_x(g, q1), g->thickness, row_y(g, r + 1), err)
+                             : us_gen_add_box(s, g, *k, half_x(g, q0), row_y(g, r), half_x(g, q1),
+                                              row_y(g, r + 1), err);
   if (!st) (*k)++;
   return st;
 }
@@ -89,16 +95,18 @@ static us_Status wall_row(us_Structure *s, const us_GenSettings *g, int *k, int 
 
 /* Wall in running bond: g->rows rows of g->cols bricks (odd rows one more,
  * with the half bricks): ceil(R/2) C + floor(R/2) (C + 1) bricks in all
- * (25 x 40: 1,012). */
-us_Structure *us_gen_wall(const us_GenSettings *g, us_Error *err) {
+ * (25 x 40: 1,012), in dimension dim. */
+static us_Structure *wall(const us_GenSettings *g, int dim, us_Error *err) {
+  const char *what = dim == 3 ? "wall3d" : "wall";
   long r = g ? (long)g->rows : 0, c = g ? (long)g->cols : 0;
   long total = (r + 1) / 2 * c + r / 2 * (c + 1);
-  if (check_blocks(g, "wall", g ? g->rows : 0, "rows", total, err)) return NULL;
+  if (check_blocks(g, what, g ? g->rows : 0, "rows", total, err)) return NULL;
   if (c < 1) {
-    us_error_set(err, US_ERR_USAGE, "wall: cols must be >= 1, got %ld", c);
+    us_error_set(err, US_ERR_USAGE, "%s: cols must be >= 1, got %ld", what, c);
     return NULL;
   }
-  us_Structure *s = us_gen_begin(g, err);
+  if (dim == 3 && us_gen_check_positive(g->thickness, what, "thickness", err)) return NULL;
+  us_Structure *s = us_gen_begin_dim(g, dim, err);
   us_Status st = s ? US_OK : US_ERR_NOMEM;
   int k = 0;
   for (int row = 0; !st && row < g->rows; row++) st = wall_row(s, g, &k, row, err);
@@ -108,3 +116,8 @@ us_Structure *us_gen_wall(const us_GenSettings *g, us_Error *err) {
   }
   return us_gen_finish(s, err);
 }
+
+us_Structure *us_gen_wall(const us_GenSettings *g, us_Error *err) { return wall(g, 2, err); }
+
+/* The wall in 3D: bricks g->thickness deep (y), rows along z. */
+us_Structure *us_gen_wall3d(const us_GenSettings *g, us_Error *err) { return wall(g, 3, err); }

@@ -43,6 +43,10 @@ us_Status us_io_sign_number(const us_IoCtx *c, const char *where, const char *fi
 /* [x, y]: an array of exactly two finite numbers. */
 us_Status us_io_vec2(const us_IoCtx *c, const char *where, const char *field, json_t *v,
                      double out[2]);
+/* An array of exactly n (2, 3 or 4) finite numbers: [x, y], [x, y, z],
+ * [w, x, y, z]. */
+us_Status us_io_vecn(const us_IoCtx *c, const char *where, const char *field, json_t *v, int n,
+                     double *out);
 us_Status us_io_bool(const us_IoCtx *c, const char *where, const char *field, json_t *v, int *out);
 
 
@@ -58,9 +62,20 @@ typedef struct us_JsonOut {
 void us_jo_number(us_JsonOut *o, double x);
 void us_jo_string(us_JsonOut *o, const char *s);
 void us_jo_vec2(us_JsonOut *o, const double *v); /* [x, y] */
-/* "a": id|"ground", "b": id, "point": [x, y], "normal": [nx, ny] of a contact. */
+void us_jo_vecn(us_JsonOut *o, const double *v, int n); /* [x, y(, z)] */
+/* "a": id|"ground", "b": id, "point": [x, y], "normal": [nx, ny] of a
+ * contact ([x, y, z] and [nx, ny, nz] in a 3D structure). */
 void us_jo_contact_fields(us_JsonOut *o, const us_Structure *s, const us_Contact *c);
 void us_jo_raw(us_JsonOut *o, const char *s);
 
+
+/* The geometry of a 3D body (structure_read3.c): "vertices" (>= 4
+ * [x, y, z]), "box" ({"center", "size", "rotation" [w, x, y, z] or "euler"
+ * [rx, ry, rz] degrees intrinsic z-y-x}) or "parts" (an array of objects
+ * each with "vertices" or "box"), as point sets: *parts (npart entries,
+ * each xyz owned) to free with us_io_solid_free. */
+us_Status us_io_read_solid(const us_IoCtx *c, const char *where, json_t *body, us_PartDef **parts,
+                           int *npart);
+void us_io_solid_free(us_PartDef *parts, int npart);
 
 #endif

@@ -55,6 +55,15 @@ void us_jo_vec2(us_JsonOut *o, const double *v) {
   fputc(']', o->fp);
 }
 
+void us_jo_vecn(us_JsonOut *o, const double *v, int n) {
+  fputc('[', o->fp);
+  for (int k = 0; k < n; k++) {
+    if (k) fputs(", ", o->fp);
+    us_jo_number(o, v[k]);
+  }
+  fputc(']', o->fp);
+}
+
 void us_jo_raw(us_JsonOut *o, const char *s) { fputs(s, o->fp); }
 
 
@@ -64,7 +73,7 @@ void us_jo_contact_fields(us_JsonOut *o, const us_Structure *s, const us_Contact
   us_jo_raw(o, ", \"b\": ");
   us_jo_string(o, s->bodies[c->b].id);
   us_jo_raw(o, ", \"point\": ");
-  us_jo_vec2(o, c->p);
+  us_jo_vecn(o, c->p, s->dim == 3 ? 3 : 2);
   us_jo_raw(o, ", \"normal\": ");
-  us_jo_vec2(o, c->n);
+  us_jo_vecn(o, c->n, s->dim == 3 ? 3 : 2);
 }

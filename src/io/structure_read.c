@@ -11,7 +11,12 @@
  * values a meaning (mass <= 0: "use the density") that a file must not
  * reach by accident. Unknown keys are errors unless they start with '_'.
  * A friction coefficient is a number >= 0 or the string "infinite" (no
- * sliding: mu = INFINITY, which JSON numbers cannot hold). */
+ * sliding: mu = INFINITY, which JSON numbers cannot hold).
+ *
+ * The dimension is read first, since it decides the structure and the
+ * length of every vector: 2D bodies have a "polygon", 3D bodies
+ * "vertices", "box" or "parts" (structure_read3.c); points, normals,
+ * centres and gravity have dim components. */
 #include <limits.h>
 #include <math.h>
 #include <string.h>
@@ -22,8 +27,9 @@
 
 static const char *const top_keys[] = {"dimension", "gravity",  "friction", "ground",
                                        "bodies",    "contacts", NULL};
-static const char *const body_keys[] = {"id",       "polygon", "density", "mass", "fixed",
-                                        "friction", "center",  "inertia", NULL};
+static const char *const body_keys[] = {"id",     "polygon",  "density",  "mass",
+                                        "fixed",  "friction", "center",   "inertia",
+                                        "vertices", "box",    "parts",    NULL};
 static const char *const contact_keys[] = {"a", "b", "point", "normal", "friction", NULL};
 
 /* Reader state: the structure under construction. */
@@ -44,17 +50,21 @@ static us_Status read_friction(Reader *r, const char *where, json_t *v, double *
   return us_io_sign_number(&r->c, where, "friction", v, 0, out);
 }
 
+/* "dimension": 2 (default) or 3. */
+static us_Status read_dimension(Reader *r, json_t *root, int *dim) {
+  json_t *v = json_object_get(root, "dimension");
+  double d = 2;
+  us_Status st = v ? us_io_number(&r->c, "", "dimension", v, &d) : US_OK;
+  if (!st && d != 2 && d != 3) st = us_io_bad(&r->c, "", "dimension: must be 2 or 3 (got %g)", d);
+  *dim = d == 3 ? 3 : 2;
+  return st;
+}
+
 static us_Status read_globals(Reader *r, json_t *root) {
   us_Status st = us_io_check_keys(&r->c, "", root, top_keys);
   json_t *v;
-  if (!st && (v = json_object_get(root, "dimension"))) {
-    double d = 0;
-    st = us_io_number(&r->c, "", "dimension", v, &d);
-    if (!st && d != 2)
-      st = us_io_bad(&r->c, "", "dimension: only dimension 2 is supported (got %g)", d);
-  }
   if (!st && (v = json_object_get(root, "gravity")))
-    st = us_io_vec2(&r->c, "", "gravity", v, r->s->gravity);
+    st = us_io_vecn(&r->c, "", "gravity", v, r->s->dim, r->s->gravity);
   if (!st && (v = json_object_get(root, "friction")))
     st = read_friction(r, "", v, &r->s->friction);
   if (!st && (v = json_object_get(root, "ground")))
@@ -83,7 +93,7 @@ static us_Status read_polygon(Reader *r, const char *where, json_t *v, double **
 
 /* Material fields shared by both kinds of body. */
 typedef struct BodyFields {
-  double density, mass, friction, inertia, center[2];
+  double density, mass, friction, inertia, center[3];
   int fixed;
 } BodyFields;
 
@@ -114,9 +124,12 @@ static us_Status add_point_body(Reader *r, const char *where, const char *id, js
   json_t *v = json_object_get(b, "center");
   if (!r->explicit_contacts)
     return us_io_bad(&r->c, where,
-                     "missing field 'polygon' (bodies without a polygon need explicit contacts)");
+                     r->s->dim == 3 ? "missing field 'vertices', 'box' or 'parts' (bodies without "
+                                      "geometry need explicit contacts)"
+                                    : "missing field 'polygon' (bodies without a polygon need "
+                                      "explicit contacts)");
   if (!v) return us_io_bad(&r->c, where, "missing field 'center' (a body without a polygon)");
-  us_Status st = us_io_vec2(&r->c, where, "center", v, g.center);
+  us_Status st = us_io_vecn(&r->c, where, "center", v, r->s->dim, g.center);
   if (st) return st;
   if (json_object_get(b, "density"))
     return us_io_bad(&r->c, where, "'density' needs a polygon (give 'mass')");
@@ -150,6 +163,37 @@ static us_Status add_polygon_body(Reader *r, const char *where, const char *id, 
   return st;
 }
 
+/* A 3D body: a polyhedron, a box or a compound (structure_read3.c). */
+static us_Status add_solid_body(Reader *r, const char *where, const char *id, json_t *b,
+                                const BodyFields *f) {
+  if (json_object_get(b, "center") || json_object_get(b, "inertia"))
+    return us_io_bad(&r->c, where, "'center' and 'inertia' are only for bodies without geometry");
+  us_PartDef *parts = NULL;
+  int np = 0;
+  us_Status st = us_io_read_solid(&r->c, where, b, &parts, &np);
+  us_BodyDef d = us_default_body_def();
+  d.id = id, d.density = f->density, d.mass = f->mass, d.fixed = f->fixed, d.friction = f->friction;
+  if (np == 1)
+    d.nvert = parts[0].nvert, d.xyz = parts[0].xyz;
+  else
+    d.npart = np, d.parts = parts;
+  if (!st && us_structure_add_body(r->s, &d, r->c.err) < 0) st = r->c.err->code;
+  us_io_solid_free(parts, np);
+  return st;
+}
+
+/* Geometry fields of the other dimension are errors that say so. */
+static us_Status check_dimension_fields(Reader *r, const char *where, json_t *b) {
+  static const char *const solid[] = {"vertices", "box", "parts"};
+  if (r->s->dim == 3 && json_object_get(b, "polygon"))
+    return us_io_bad(&r->c, where, "'polygon' is for dimension 2 (3D bodies have 'vertices', "
+                                   "'box' or 'parts')");
+  for (int k = 0; r->s->dim == 2 && k < 3; k++)
+    if (json_object_get(b, solid[k]))
+      return us_io_bad(&r->c, where, "'%s' is for dimension 3 (set \"dimension\": 3)", solid[k]);
+  return US_OK;
+}
+
 /* The id of body k: a unique non-empty string other than "ground". */
 static us_Status read_id(Reader *r, const char *where, json_t *b, const char **id) {
   json_t *v = json_object_get(b, "id");
@@ -176,9 +220,12 @@ static us_Status read_body(Reader *r, int k, json_t *b) {
   BodyFields f;
   st = us_io_check_keys(&r->c, where, b, body_keys);
   if (!st) st = read_material(r, where, b, &f);
+  if (!st) st = check_dimension_fields(r, where, b);
   if (st) return st;
   if (json_object_get(b, "polygon"))
     st = add_polygon_body(r, where, id, b, &f);
+  else if (json_object_get(b, "vertices") || json_object_get(b, "box") || json_object_get(b, "parts"))
+    st = add_solid_body(r, where, id, b, &f);
   else
     st = add_point_body(r, where, id, b, &f);
   return st;
@@ -220,13 +267,15 @@ static us_Status read_side(Reader *r, const char *where, json_t *c, const char *
 static us_Status read_normal(Reader *r, const char *where, json_t *c, double n[3]) {
   json_t *v = json_object_get(c, "normal");
   if (!v) return us_io_bad(&r->c, where, "missing field 'normal'");
-  us_Status st = us_io_vec2(&r->c, where, "normal", v, n);
+  int dim = r->s->dim;
+  us_Status st = us_io_vecn(&r->c, where, "normal", v, dim, n);
   if (st) return st;
   double len = hypot(n[0], n[1]);
+  if (dim == 3) len = hypot(len, n[2]);
   if (!(len > 1e-12)) return us_io_bad(&r->c, where, "normal: must not be zero");
   if (fabs(len - 1.0) > 1e-3)
     return us_io_bad(&r->c, where, "normal: must be a unit vector (length %g)", len);
-  n[0] /= len, n[1] /= len, n[2] = 0.0;
+  n[0] /= len, n[1] /= len, n[2] = dim == 3 ? n[2] / len : 0.0;
   return US_OK;
 }
 
@@ -243,7 +292,7 @@ static us_Status read_contact(Reader *r, int k, json_t *c) {
   if (!st && a == b) st = us_io_bad(&r->c, where, "a and b are the same body");
   if (!st && !(v = json_object_get(c, "point")))
     st = us_io_bad(&r->c, where, "missing field 'point'");
-  if (!st) st = us_io_vec2(&r->c, where, "point", v, p);
+  if (!st) st = us_io_vecn(&r->c, where, "point", v, r->s->dim, p);
   if (!st) st = read_normal(r, where, c, n);
   if (!st && (v = json_object_get(c, "friction")))
     st = read_friction(r, where, v, &mu);
@@ -273,7 +322,11 @@ static us_Status read_document(Reader *r, json_t *root, double contact_tol) {
   if (!json_is_object(root)) return us_io_bad(&r->c, "", "expected a JSON object at the top level");
   json_t *contacts = json_object_get(root, "contacts");
   r->explicit_contacts = contacts != NULL;
-  us_Status st = read_globals(r, root);
+  int dim = 2;
+  us_Status st = read_dimension(r, root, &dim);
+  if (!st && !(r->s = us_structure_new(dim)))
+    st = us_error_set(r->c.err, US_ERR_NOMEM, "%s: out of memory", r->c.name);
+  if (!st) st = read_globals(r, root);
   if (!st) st = read_bodies(r, root);
   if (!st && contacts) st = read_contacts(r, contacts);
   if (st) return st;
@@ -290,10 +343,6 @@ us_Structure *us_structure_parse(const char *text, const char *name, double cont
   Reader r = {{name ? name : "<input>", &local}, NULL, 0};
   json_t *root = us_io_parse_json(&r.c, text, strlen(text));
   us_Status st = root ? US_OK : local.code;
-  if (!st) {
-    r.s = us_structure_new(2);
-    if (!r.s) st = us_error_set(&local, US_ERR_NOMEM, "%s: out of memory", r.c.name);
-  }
   if (!st) st = read_document(&r, root, contact_tol);
   json_decref(root);
   if (st) {

@@ -10,7 +10,11 @@
  * it was given, friction when the body has its own, and the contacts only
  * when they were explicit (detected contacts are re-detected on reading).
  * An infinite friction coefficient is written as the string "infinite"
- * (JSON numbers cannot hold it), which the reader maps back to INFINITY. */
+ * (JSON numbers cannot hold it), which the reader maps back to INFINITY.
+ * 3D bodies are written as their hulls' vertices ("vertices", or "parts"
+ * of {"vertices"} for a compound): the hull of a hull's vertices is the
+ * same hull, and the coordinates are the ones read or generated, bit for
+ * bit, so a box written as its 8 corners reads back as the same box. */
 #include <math.h>
 
 #include "io.h"
@@ -29,7 +33,7 @@ static void write_material(us_JsonOut *o, const us_Body *b) {
   if (b->mass_given && b->mass > 0) {
     us_jo_raw(o, ", \"mass\": ");
     us_jo_number(o, b->mass);
-  } else if (b->nvert > 0 && b->density != 1.0) {
+  } else if ((b->nvert > 0 || b->npart > 0) && b->density != 1.0) {
     us_jo_raw(o, ", \"density\": ");
     us_jo_number(o, b->density);
   }
@@ -37,10 +41,37 @@ static void write_material(us_JsonOut *o, const us_Body *b) {
   if (b->friction >= 0) write_friction(o, ", ", b->friction);
 }
 
-static void write_body(us_JsonOut *o, const us_Body *b) {
+/* "[[x, y, z], ...]" of one part's vertices. */
+static void write_points(us_JsonOut *o, const us_Polyhedron *p) {
+  us_jo_raw(o, "[");
+  for (int k = 0; k < p->nvert; k++) {
+    if (k) us_jo_raw(o, ", ");
+    us_jo_vecn(o, p->verts + 3 * k, 3);
+  }
+  us_jo_raw(o, "]");
+}
+
+static void write_solid(us_JsonOut *o, const us_Body *b) {
+  if (b->npart == 1) {
+    us_jo_raw(o, ", \"vertices\": ");
+    write_points(o, &b->parts[0]);
+    return;
+  }
+  us_jo_raw(o, ", \"parts\": [");
+  for (int k = 0; k < b->npart; k++) {
+    us_jo_raw(o, k ? ", {\"vertices\": " : "{\"vertices\": ");
+    write_points(o, &b->parts[k]);
+    us_jo_raw(o, "}");
+  }
+  us_jo_raw(o, "]");
+}
+
+static void write_body(us_JsonOut *o, const us_Body *b, int dim) {
   us_jo_raw(o, "    {\"id\": ");
   us_jo_string(o, b->id);
-  if (b->nvert > 0) {
+  if (b->npart > 0) {
+    write_solid(o, b);
+  } else if (b->nvert > 0) {
     us_jo_raw(o, ", \"polygon\": [");
     for (int k = 0; k < b->nvert; k++) {
       if (k) us_jo_raw(o, ", ");
@@ -49,7 +80,7 @@ static void write_body(us_JsonOut *o, const us_Body *b) {
     us_jo_raw(o, "]");
   } else {
     us_jo_raw(o, ", \"center\": ");
-    us_jo_vec2(o, b->com);
+    us_jo_vecn(o, b->com, dim);
     if (b->inertia > 0) {
       us_jo_raw(o, ", \"inertia\": ");
       us_jo_number(o, b->inertia);
@@ -67,14 +98,15 @@ static void write_contact(us_JsonOut *o, const us_Structure *s, const us_Contact
 }
 
 static void write_structure(us_JsonOut *o, const us_Structure *s) {
-  us_jo_raw(o, "{\n  \"dimension\": 2,\n  \"gravity\": ");
-  us_jo_vec2(o, s->gravity);
+  us_jo_raw(o, s->dim == 3 ? "{\n  \"dimension\": 3,\n  \"gravity\": "
+                           : "{\n  \"dimension\": 2,\n  \"gravity\": ");
+  us_jo_vecn(o, s->gravity, s->dim == 3 ? 3 : 2);
   write_friction(o, ",\n  ", s->friction);
   us_jo_raw(o, s->ground ? ",\n  \"ground\": true,\n  \"bodies\": ["
                          : ",\n  \"ground\": false,\n  \"bodies\": [");
   for (int i = 0; i < s->nbody; i++) {
     us_jo_raw(o, i ? ",\n" : "\n");
-    write_body(o, &s->bodies[i]);
+    write_body(o, &s->bodies[i], s->dim == 3 ? 3 : 2);
   }
   us_jo_raw(o, s->nbody ? "\n  ]" : "]");
   if (s->explicit_contacts) {
@@ -91,8 +123,8 @@ static void write_structure(us_JsonOut *o, const us_Structure *s) {
 us_Status us_structure_write(const us_Structure *s, const char *path, us_Error *err) {
   if (!s || !path)
     return us_error_set(err, US_ERR_USAGE, "us_structure_write: no structure or path");
-  if (s->dim != 2)
-    return us_error_set(err, US_ERR_INPUT, "%s: only dimension 2 can be written", path);
+  if (s->dim != 2 && s->dim != 3)
+    return us_error_set(err, US_ERR_INPUT, "%s: dimension %d cannot be written", path, s->dim);
   us_AtomicFile *af = us_atomic_open(path, err);
   if (!af) return err ? err->code : US_ERR_IO;
   us_JsonOut o = {us_atomic_stream(af), 0, 0};

@@ -120,6 +120,19 @@ us_Status us_io_vec2(const us_IoCtx *c, const char *where, const char *field, js
   return US_OK;
 }
 
+us_Status us_io_vecn(const us_IoCtx *c, const char *where, const char *field, json_t *v, int n,
+                     double *out) {
+  static const char *const shape[] = {"", "", "[x, y]", "[x, y, z]", "[w, x, y, z]"};
+  int ok = json_is_array(v) && json_array_size(v) == (size_t)n;
+  for (int k = 0; ok && k < n; k++) ok = json_is_number(json_array_get(v, (size_t)k));
+  if (!ok) return us_io_bad(c, where, "%s: expected %s with %d numbers", field, shape[n], n);
+  for (int k = 0; k < n; k++) {
+    out[k] = json_number_value(json_array_get(v, (size_t)k));
+    if (!isfinite(out[k])) return us_io_bad(c, where, "%s: number is not finite", field);
+  }
+  return US_OK;
+}
+
 us_Status us_io_bool(const us_IoCtx *c, const char *where, const char *field, json_t *v, int *out) {
   if (!json_is_boolean(v)) return us_io_bad(c, where, "%s: expected true or false", field);
   *out = json_is_true(v);

@@ -1,6 +1,8 @@
 /* Mass properties of every body: mass, centre of mass and polar moment of
  * inertia about it.
  *
+ * 3D bodies: src/model/solid.c (exact volume integrals over the parts'
+ * hulls; the inertia tensor, and its mean principal moment as `inertia`).
  * Polygons (counter-clockwise after validation; either orientation works):
  * mass = density * area unless a mass was given, com = area centroid,
  * inertia = (polar moment about the centroid for density 1) * mass / area,
@@ -47,18 +49,25 @@ static double contact_radius(const us_Structure *s, int i) {
   double r = 0.0;
   for (int k = 0; k < s->ncontact; k++) {
     const us_Contact *c = &s->contacts[k];
-    if (c->a == i || c->b == i) r = US_MAX(r, hypot(c->p[0] - b->com[0], c->p[1] - b->com[1]));
+    if (c->a != i && c->b != i) continue;
+    double d = hypot(c->p[0] - b->com[0], c->p[1] - b->com[1]);
+    if (s->dim == 3) d = hypot(d, c->p[2] - b->com[2]);
+    r = US_MAX(r, d);
   }
   return r;
 }
 
 static void point_props(const us_Structure *s, int i) {
   us_Body *b = &s->bodies[i];
-  if (b->inertia > 0) return;
-  double r = contact_radius(s, i);
-  if (!(r > 0)) r = s->scale > 0 ? s->scale : 1.0;
-  double m = b->mass > 0 && isfinite(b->mass) ? b->mass : 1.0;
-  b->inertia = m * r * r / 3.0;
+  if (!(b->inertia > 0)) {
+    double r = contact_radius(s, i);
+    if (!(r > 0)) r = s->scale > 0 ? s->scale : 1.0;
+    double m = b->mass > 0 && isfinite(b->mass) ? b->mass : 1.0;
+    b->inertia = m * r * r / 3.0;
+  }
+  if (s->dim == 3) /* isotropic: statics does not depend on it */
+    for (int k = 0; k < 3; k++)
+      for (int j = 0; j < 3; j++) b->inertia3[k][j] = k == j ? b->inertia : 0.0;
 }
 
 double us_gravity_norm(const double *g) { return hypot(hypot(g[0], g[1]), g[2]); }
@@ -77,6 +86,9 @@ double us_total_weight(const us_Structure *s) {
 /* A movable body's mass and inertia must be finite and positive. */
 static us_Status check_body(const us_Body *b, us_Error *err) {
   if (b->fixed) return US_OK;
+  if (isinf(b->mass) && !b->mass_given && b->npart > 0)
+    return us_error_set(err, US_ERR_INPUT, "body '%s': density %g * volume overflows",
+                        us_id_text(b->id).s, b->density);
   if (isinf(b->mass) && !b->mass_given && b->nvert >= 3)
     return us_error_set(err, US_ERR_INPUT, "body '%s': density %g * area %g overflows",
                         us_id_text(b->id).s,
@@ -105,7 +117,9 @@ static us_Status check_weight(const us_Structure *s, us_Error *err) {
 us_Status us_model_mass_properties(us_Structure *s, us_Error *err) {
   for (int i = 0; i < s->nbody; i++) {
     us_Body *b = &s->bodies[i];
-    if (b->nvert >= 3)
+    if (b->npart > 0)
+      us_solid_mass_props(b);
+    else if (b->nvert >= 3)
       polygon_props(b);
     else
       point_props(s, i);

@@ -5,14 +5,15 @@
  * this file installs the list, so the dependency runs one way only.
  *
  * Invariants after finalize: polygons are counter-clockwise and simple;
- * movable bodies have mass > 0 and finite inertia; every contact has a unit
+ * 3D parts are convex hulls with outward faces; movable bodies have mass
+ * > 0 and finite inertia; every contact has a unit
  * normal pointing from a into b, a tangent basis, and mu >= 0; scale > 0.
  * contact_tol keeps the caller's value (<= 0: tolerances per pair). Fixed
  * bodies keep their geometry and take no mass. */
 #include "model.h"
 #include "massprops.h"
 
-#include "geometry/geometry.h"
+#include "geometry/geometry3.h"
 
 #include <math.h>
 #include <string.h>
@@ -22,8 +23,8 @@ us_Structure *us_structure_new(int dim) {
   if (!s) return NULL;
   s->dim = dim;
   s->gravity[0] = 0.0;
-  s->gravity[1] = -9.81;
-  s->gravity[2] = 0.0;
+  s->gravity[1] = dim == 3 ? 0.0 : -9.81;
+  s->gravity[2] = dim == 3 ? -9.81 : 0.0;
   s->friction = 0.5;
   s->ground = 1;
   s->contact_tol = 0.0;
@@ -35,6 +36,7 @@ void us_structure_free(us_Structure *s) {
   for (int i = 0; i < s->nbody; i++) {
     us_free(s->bodies[i].id);
     us_free(s->bodies[i].verts);
+    us_body_free_parts(&s->bodies[i]);
   }
   us_free(s->bodies);
   us_free(s->contacts);
@@ -90,7 +92,43 @@ us_BodyDef us_default_body_def(void) {
   return d;
 }
 
+/* The material fields every body takes from its definition. */
+static void set_material(us_Body *b, const us_BodyDef *def) {
+  b->density = def->density > 0 ? def->density : 1.0;
+  b->mass = def->mass;
+  b->mass_given = def->mass > 0;
+  b->fixed = def->fixed != 0;
+  b->friction = def->friction;
+}
+
+/* A 3D body: its parts' points copied (the hulls are built by finalize). */
+static int add_solid(us_Structure *s, const us_BodyDef *def, us_Error *err) {
+  us_Polyhedron *parts = NULL;
+  int np = 0;
+  if (us_solid_parts_from_def(def, &parts, &np, err)) return -1;
+  int i = add_body(s, def->id, err);
+  if (i < 0) {
+    for (int k = 0; k < np; k++) us_polyhedron_free(&parts[k]);
+    us_free(parts);
+    return -1;
+  }
+  us_Body *b = &s->bodies[i];
+  b->parts = parts;
+  b->npart = np;
+  set_material(b, def);
+  return i;
+}
+
 int us_structure_add_body(us_Structure *s, const us_BodyDef *def, us_Error *err) {
+  if (s->dim == 3 || def->xyz || def->npart) {
+    if (s->dim != 3 || def->xy) {
+      us_error_set(err, US_ERR_INPUT, "body '%s': %s", us_id_text(def->id ? def->id : "?").s,
+                   s->dim == 3 ? "a polygon (xy) in a 3D structure: give xyz or parts"
+                               : "points in 3D (xyz or parts) in a 2D structure");
+      return -1;
+    }
+    return add_solid(s, def, err);
+  }
   const char *id = def->id;
   int nvert = def->nvert;
   if (nvert < 0 || (nvert > 0 && !def->xy)) {
@@ -111,18 +149,16 @@ int us_structure_add_body(us_Structure *s, const us_BodyDef *def, us_Error *err)
   if (nvert > 0) memcpy(v, def->xy, (size_t)nvert * 2 * sizeof(double));
   b->verts = v;
   b->nvert = nvert;
-  b->density = def->density > 0 ? def->density : 1.0;
-  b->mass = def->mass;
-  b->mass_given = def->mass > 0;
-  b->fixed = def->fixed != 0;
-  b->friction = def->friction;
+  set_material(b, def);
   return i;
 }
 
 int us_structure_add_polygon(us_Structure *s, const char *id, int nvert, const double *xy,
                              double density, double mass, int fixed, double friction,
                              us_Error *err) {
-  us_BodyDef d = {id, nvert, xy, density, mass, fixed, friction};
+  us_BodyDef d = us_default_body_def();
+  d.id = id, d.nvert = nvert, d.xy = xy, d.density = density, d.mass = mass;
+  d.fixed = fixed, d.friction = friction;
   return us_structure_add_body(s, &d, err);
 }
 
@@ -137,6 +173,7 @@ int us_structure_add_point_body(us_Structure *s, const char *id, double mass,
   b->density = 1.0;
   b->com[0] = center[0];
   b->com[1] = center[1];
+  b->com[2] = s->dim == 3 ? center[2] : 0.0;
   b->inertia = 0.0; /* derived in finalize when not given */
   return i;
 }
@@ -155,18 +192,11 @@ void us_contact_frame(int dim, us_Contact *c) {
     memset(c->t[1], 0, sizeof c->t[1]);
     return;
   }
-  /* 3D: t1 orthogonal to n from the smallest component, t2 = n x t1 */
-  double a[3] = {0, 0, 0};
-  int k = fabs(c->n[0]) < fabs(c->n[1]) ? (fabs(c->n[0]) < fabs(c->n[2]) ? 0 : 2)
-                                        : (fabs(c->n[1]) < fabs(c->n[2]) ? 1 : 2);
-  a[k] = 1.0;
-  double t1[3] = {a[1] * c->n[2] - a[2] * c->n[1], a[2] * c->n[0] - a[0] * c->n[2],
-                  a[0] * c->n[1] - a[1] * c->n[0]};
-  double l = sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
-  for (int j = 0; j < 3; j++) c->t[0][j] = t1[j] / l;
-  c->t[1][0] = c->n[1] * c->t[0][2] - c->n[2] * c->t[0][1];
-  c->t[1][1] = c->n[2] * c->t[0][0] - c->n[0] * c->t[0][2];
-  c->t[1][2] = c->n[0] * c->t[0][1] - c->n[1] * c->t[0][0];
+  /* 3D: t1 orthogonal to n from its smallest component, t2 = n x t1 */
+  us_Vec3 t1, t2;
+  us_v3_frame(us_v3(c->n[0], c->n[1], c->n[2]), &t1, &t2);
+  c->t[0][0] = t1.x, c->t[0][1] = t1.y, c->t[0][2] = t1.z;
+  c->t[1][0] = t2.x, c->t[1][1] = t2.y, c->t[1][2] = t2.z;
 }
 
 int us_structure_add_contact(us_Structure *s, int a, int b, const double *p, const double *n,
@@ -222,6 +252,26 @@ static void bbox_add(double *bb, double x, double y) {
   if (y > bb[3]) bb[3] = y;
 }
 
+static void bbox3_add(double *bb, const double *p) {
+  for (int d = 0; d < 3; d++) {
+    if (p[d] < bb[d]) bb[d] = p[d];
+    if (p[d] > bb[d + 3]) bb[d + 3] = p[d];
+  }
+}
+
+/* The 3D box of every part, point body centre and contact point. */
+static void measure3(const us_Structure *s, double bb[6]) {
+  for (int d = 0; d < 3; d++) bb[d] = INFINITY, bb[d + 3] = -INFINITY;
+  for (int i = 0; i < s->nbody; i++) {
+    const us_Body *b = &s->bodies[i];
+    for (int p = 0; p < b->npart; p++)
+      for (int k = 0; k < b->parts[p].nvert; k++) bbox3_add(bb, b->parts[p].verts + 3 * k);
+    if (b->npart == 0) bbox3_add(bb, b->com);
+  }
+  for (int k = 0; k < s->ncontact; k++) bbox3_add(bb, s->contacts[k].p);
+  if (!(bb[0] <= bb[3])) memset(bb, 0, 6 * sizeof *bb);
+}
+
 void us_model_measure(us_Structure *s) {
   double bb[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
   double mass = 0.0;
@@ -233,8 +283,12 @@ void us_model_measure(us_Structure *s) {
   }
   for (int k = 0; k < s->ncontact; k++) bbox_add(bb, s->contacts[k].p[0], s->contacts[k].p[1]);
   if (!(bb[0] <= bb[2])) bb[0] = bb[1] = bb[2] = bb[3] = 0.0;
+  double b3[6] = {bb[0], bb[1], 0, bb[2], bb[3], 0};
+  if (s->dim == 3) measure3(s, b3);
+  if (s->dim == 3) bb[0] = b3[0], bb[1] = b3[1], bb[2] = b3[3], bb[3] = b3[4];
   memcpy(s->bbox, bb, sizeof bb);
-  double d = hypot(bb[2] - bb[0], bb[3] - bb[1]);
+  memcpy(s->bbox3, b3, sizeof b3);
+  double d = s->dim == 3 ? us_bbox3_diameter(b3) : hypot(bb[2] - bb[0], bb[3] - bb[1]);
   s->scale = d > 0 ? d : 1.0;
   double g = us_gravity_norm(s->gravity); /* no overflow: massprops.h */
   s->weight = g * mass > 0 ? g * mass : 1.0;

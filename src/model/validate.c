@@ -14,15 +14,17 @@
  * is on average thicker than the tolerance), and with a ground no vertex
  * may lie below y = -tol. Polygons are made counter-clockwise in place
  * (vertex 0 is kept). Interpenetration of two bodies is checked by contact
- * detection (contact/overlap.c) with the pair's tolerance. */
+ * detection (contact/overlap.c) with the pair's tolerance. 3D bodies get
+ * the same two passes from solid.c (points per part and finite values;
+ * then hulls, volume, parts not overlapping, ground). */
 #include "geometry/geometry.h"
 #include "model.h"
 
 #include <math.h>
 
 static us_Status check_globals(const us_Structure *s, us_Error *err) {
-  if (s->dim != 2)
-    return us_error_set(err, US_ERR_INPUT, "dimension %d is not supported (only 2)", s->dim);
+  if (s->dim != 2 && s->dim != 3)
+    return us_error_set(err, US_ERR_INPUT, "dimension %d is not supported (2 or 3)", s->dim);
   for (int k = 0; k < 3; k++)
     if (!isfinite(s->gravity[k])) return us_error_set(err, US_ERR_INPUT, "gravity is not finite");
   if (isnan(s->friction) || s->friction < 0) /* INFINITY: no sliding */
@@ -32,7 +34,7 @@ static us_Status check_globals(const us_Structure *s, us_Error *err) {
     return us_error_set(err, US_ERR_INPUT, "contact tolerance is not finite");
   for (int k = 0; k < s->ncontact; k++)
     if (!isfinite(s->contacts[k].p[0]) || !isfinite(s->contacts[k].p[1]) ||
-        isnan(s->contacts[k].mu) || s->contacts[k].mu < 0)
+        !isfinite(s->contacts[k].p[2]) || isnan(s->contacts[k].mu) || s->contacts[k].mu < 0)
       return us_error_set(err, US_ERR_INPUT, "contact %d: non-finite point or bad friction", k);
   return US_OK;
 }
@@ -42,7 +44,7 @@ static us_Status check_material(const us_Body *b, us_Error *err) {
   if (b->mass_given && !b->fixed && !(isfinite(b->mass) && b->mass > 0))
     return us_error_set(err, US_ERR_INPUT, "body '%s': mass %g must be finite and > 0",
                         us_id_text(b->id).s, b->mass);
-  if (b->nvert > 0 && !b->mass_given && !(isfinite(b->density) && b->density > 0))
+  if (us_body_has_shape(b) && !b->mass_given && !(isfinite(b->density) && b->density > 0))
     return us_error_set(err, US_ERR_INPUT, "body '%s': density %g must be finite and > 0",
                         us_id_text(b->id).s, b->density);
   if (isnan(b->friction))
@@ -56,18 +58,22 @@ static us_Status check_material(const us_Body *b, us_Error *err) {
 
 static us_Status check_values(const us_Structure *s, const us_Body *b, us_Error *err) {
   int explicit_ok = s->explicit_contacts || s->ncontact > 0;
-  if (b->nvert == 0) {
+  if (!us_body_has_shape(b)) {
     if (!explicit_ok)
       return us_error_set(err, US_ERR_INPUT,
-                          "body '%s' has no polygon (only allowed with explicit contacts)",
-                          us_id_text(b->id).s);
-    if (!isfinite(b->com[0]) || !isfinite(b->com[1]))
+                          "body '%s' has no %s (only allowed with explicit contacts)",
+                          us_id_text(b->id).s, s->dim == 3 ? "geometry" : "polygon");
+    if (!isfinite(b->com[0]) || !isfinite(b->com[1]) || !isfinite(b->com[2]))
       return us_error_set(err, US_ERR_INPUT, "body '%s': centre is not finite",
                           us_id_text(b->id).s);
     if (!b->fixed && !(isfinite(b->mass) && b->mass > 0))
       return us_error_set(err, US_ERR_INPUT, "body '%s': mass %g must be finite and > 0",
                           us_id_text(b->id).s, b->mass);
     return check_material(b, err);
+  }
+  if (b->npart > 0) {
+    us_Status st = us_solid_check_values(b, err);
+    return st ? st : check_material(b, err);
   }
   if (b->nvert < 3 || !b->verts)
     return us_error_set(err, US_ERR_INPUT, "body '%s': polygon has %d vertices (needs >= 3)",
@@ -140,6 +146,7 @@ us_Status us_model_validate(us_Structure *s, us_Error *err) {
   us_Status st = check_globals(s, err);
   for (int i = 0; !st && i < s->nbody; i++) st = check_values(s, &s->bodies[i], err);
   for (int i = 0; !st && i < s->nbody; i++)
-    if (s->bodies[i].nvert > 0) st = check_shape(s, &s->bodies[i], err);
+    if (s->bodies[i].npart > 0) st = us_solid_check_shape(s, &s->bodies[i], err);
+    else if (s->bodies[i].nvert > 0) st = check_shape(s, &s->bodies[i], err);
   return st;
 }

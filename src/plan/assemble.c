@@ -37,6 +37,8 @@
  * per growth of its part); about n on stacks built bottom-up. */
 #include "assemble.h"
 
+#include "model/model.h"
+
 #include <string.h>
 
 enum { NEW = 0, READY, PARKED, PLACED, OUT };
@@ -73,7 +75,8 @@ static int vec_push(IntVec *v, int x) {
 
 static int heap_less(const Asm *a, int x, int y) {
   if (a->key[x] != a->key[y]) return a->key[x] < a->key[y];
-  double cx = a->ctx->s->bodies[x].com[1], cy = a->ctx->s->bodies[y].com[1];
+  int up = a->ctx->s->dim == 3 ? 2 : 1;
+  double cx = a->ctx->s->bodies[x].com[up], cy = a->ctx->s->bodies[y].com[up];
   if (cx != cy) return cx < cy;
   return x < y;
 }
@@ -113,12 +116,10 @@ static void make_ready(Asm *a, int b) {
 
 /* ------------------------------------------------------------- set-up */
 
-static double lowest_point(const us_Body *b) {
-  if (b->nvert == 0) return b->com[1];
-  double y = b->verts[1];
-  for (int k = 1; k < b->nvert; k++)
-    if (b->verts[2 * k + 1] < y) y = b->verts[2 * k + 1];
-  return y;
+static double lowest_point(const us_Structure *s, const us_Body *b) {
+  double lo, hi;
+  us_body_vertical_range(s, b, &lo, &hi);
+  return lo;
 }
 
 static void asm_free(Asm *a) {
@@ -168,7 +169,7 @@ static int asm_init(Asm *a, us_SearchCtx *ctx, const us_Bitset *within, us_Assem
   for (int i = 0; i < n; i++) {
     a->head[i] = a->tail[i] = i;
     a->next[i] = -1;
-    a->key[i] = lowest_point(&ctx->s->bodies[i]);
+    a->key[i] = lowest_point(ctx->s, &ctx->s->bodies[i]);
     a->state[i] = us_bitset_get(within, i) ? NEW : OUT;
     if (a->state[i] == NEW) a->nwithin++;
   }

@@ -9,6 +9,8 @@
  * planned are candidates. */
 #include "order.h"
 
+#include "model/model.h"
+
 #include <stdlib.h>
 
 typedef struct {
@@ -16,12 +18,10 @@ typedef struct {
   int body;
 } Key;
 
-static double body_top(const us_Body *b) {
-  if (b->nvert == 0) return b->com[1];
-  double t = b->verts[1];
-  for (int k = 1; k < b->nvert; k++)
-    if (b->verts[2 * k + 1] > t) t = b->verts[2 * k + 1];
-  return t;
+static double body_top(const us_Structure *s, const us_Body *b) {
+  double lo, hi;
+  us_body_vertical_range(s, b, &lo, &hi);
+  return hi;
 }
 
 /* Descending height, ascending index. */
@@ -45,8 +45,8 @@ int us_plan_sort_highest(const us_Structure *s, int *bodies, int n) {
   if (!keys) return -1;
   for (int i = 0; i < n; i++) {
     const us_Body *b = &s->bodies[bodies[i]];
-    keys[i].top = body_top(b);
-    keys[i].mid = b->com[1];
+    keys[i].top = body_top(s, b);
+    keys[i].mid = b->com[s->dim == 3 ? 2 : 1];
     keys[i].body = bodies[i];
   }
   qsort(keys, (size_t)n, sizeof *keys, cmp_highest);

@@ -45,6 +45,8 @@ typedef struct us_EqSystem {
   double mass_total;   /* M: body i's gravity row is -(m_i / M) gdir */
   double gdir[3];      /* unit gravity direction (0 without gravity) */
   double length_scale; /* torque rows are divided by this */
+  const struct us_ConeSet *cones; /* 3D: the LP backends' polygonal cones
+                                     (lp_gen.h); NULL: the inner ones */
   int cap_body, cap_contact;
 } us_EqSystem;
 

@@ -157,7 +157,7 @@ static int cone_setup(LcpWs *w) {
 void *us_lcp_backend_create(const us_Structure *s, const us_StabilitySettings *set,
                             const us_LcpSettings *lcp, int reuse, us_Error *err) {
   if (s->dim != 2) {
-    us_error_set(err, US_ERR_USAGE, "the LCP backends support 2D structures only");
+    us_error_set(err, US_ERR_USAGE, "methods lcp and lcp-reuse support 2D structures only (the 3D LCP is not written yet; use lp or lpsolve)");
     return NULL;
   }
   LcpWs *w = us_calloc(1, sizeof *w);

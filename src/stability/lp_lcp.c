@@ -103,6 +103,10 @@ static void lplcp_destroy(void *ws) {
 
 void *us_lp_lcp_create(const us_Structure *s, const us_StabilitySettings *set,
                        const us_LpLcpOptions *opt, us_Error *err) {
+  if (s->dim != 2) { /* its basis keys and the dense tableau's cap are 2D's */
+    us_error_set(err, US_ERR_USAGE, "method lp-lcp supports 2D structures only (use lp or lpsolve)");
+    return NULL;
+  }
   LpLcpWs *w = us_calloc(1, sizeof *w);
   if (w) {
     w->s = s;
@@ -355,9 +359,7 @@ static us_Status lplcp_solve(void *ws, const us_EqSystem *sys, const int *added,
   w->nray = w->by_clp = w->clp_chain = 0;
   w->last_body = -1;
   *verdict = US_UNDECIDED;
-  int r = us_eq_generators(sys, w->lp.n_column_mu, &w->gen);
-  if (r == -2) return us_error_set(err, US_ERR_USAGE, "the LP backends support 2D only");
-  if (r) return us_error_set(err, US_ERR_NOMEM, "out of memory building the LP");
+  if (us_eq_generators(sys, w->lp.n_column_mu, &w->gen)) return us_error_set(err, US_ERR_NOMEM, "out of memory building the LP");
   w->n = w->gen.ncol, w->m = w->gen.nrow, w->dim = w->n + w->m + 1;
   if (w->n == 0) {
     *verdict = us_eq_no_columns_verdict(sys);

@@ -38,7 +38,7 @@
 typedef struct LpsWs {
   us_LpSettings set;
   us_EqGen gen;
-  double *col;      /* [1 + 6] one column with the objective entry first */
+  double *col;      /* [2 * 6] one column: two bodies' wrench rows at most */
   int *rowno;
   double *sol;      /* [ncol] */
   int cap_col;
@@ -46,14 +46,11 @@ typedef struct LpsWs {
 } LpsWs;
 
 static void *lps_create(const us_Structure *s, const us_StabilitySettings *set, us_Error *err) {
-  if (s->dim != 2) {
-    us_error_set(err, US_ERR_USAGE, "the LP backends support 2D structures only");
-    return NULL;
-  }
+  US_UNUSED(s);
   LpsWs *w = us_calloc(1, sizeof *w);
   if (w) w->set = us_lp_settings_resolve(&set->lp);
-  if (w) w->col = us_malloc(8 * sizeof(double));
-  if (w) w->rowno = us_malloc(8 * sizeof(int));
+  if (w) w->col = us_malloc(12 * sizeof(double));
+  if (w) w->rowno = us_malloc(12 * sizeof(int));
   if (!w || !w->col || !w->rowno) {
     if (w) us_free(w->col), us_free(w->rowno);
     us_free(w);
@@ -125,9 +122,7 @@ static us_Status lps_solve(void *ws, const us_EqSystem *sys, const int *added, i
   US_UNUSED(added), US_UNUSED(nadded), US_UNUSED(removed), US_UNUSED(nremoved);
   US_UNUSED(restart), US_UNUSED(info);
   LpsWs *w = ws;
-  int r = us_eq_generators(sys, w->set.n_column_mu, &w->gen);
-  if (r == -2) return us_error_set(err, US_ERR_USAGE, "the LP backends support 2D only");
-  if (r || US_GROW(w->sol, w->cap_col, w->gen.ncol + 1))
+  if (us_eq_generators(sys, w->set.n_column_mu, &w->gen) || US_GROW(w->sol, w->cap_col, w->gen.ncol + 1))
     return us_error_set(err, US_ERR_NOMEM, "out of memory building the LP");
   if (w->gen.ncol == 0) {
     /* lp_solve does not run empty models: decided here */

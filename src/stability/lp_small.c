@@ -185,7 +185,6 @@ static us_Status small_solve(void *ws, const us_EqSystem *sys, const int *added,
   w->nray = 0;
   w->last_body = -1;
   int r = us_eq_generators(sys, w->set.n_column_mu, &w->gen);
-  if (r == -2) return us_error_set(err, US_ERR_USAGE, "the LP backends support 2D only");
   int m = w->gen.nrow, n = w->gen.ncol;
   if (r || small_reserve(w, m, n)) return us_error_set(err, US_ERR_NOMEM, "out of memory building the LP");
   if (n == 0) {

@@ -51,6 +51,7 @@ struct us_Stability {
   const us_Backend *used_be; /* the backend that decided the last full system */
   void *used_ws;
   double t_created, t_progress; /* us_now() at creation, at the last progress call */
+  us_ConeSet cones;        /* 3D: the polygonal friction cones (lp_gen.h) */
 };
 
 /* ------------------------------------------------------------ small API */
@@ -185,6 +186,7 @@ void us_stability_free(us_Stability *w) {
   us_local_free(w->local);
   if (w->small) us_backend_small.destroy(w->small);
   us_eq_free(&w->eq);
+  us_cone_set_free(&w->cones);
   us_bitset_free(&w->movable);
   us_bitset_free(&w->cur);
   us_bitset_free(&w->last);
@@ -220,6 +222,10 @@ static int alloc_arrays(us_Stability *w) {
   w->acc = us_malloc(US_CERT_ACC * nb * sizeof(double));
   w->seen = us_malloc(nc);
   w->held = us_malloc(nb);
+  if (s->dim == 3) {
+    if (us_cone_set_init(&w->cones, s->ncontact)) return -1;
+    w->eq.cones = &w->cones;
+  }
   return !w->added || !w->removed || !w->acc || !w->seen || !w->held ? -1 : 0;
 }
 
@@ -361,6 +367,63 @@ static us_Status run_backend(us_Stability *w, us_StabilityResult *res, us_Error 
   return US_OK;
 }
 
+/* 3D: the circular friction cones between polygons (lp_gen.h). The inner
+ * polygons' LP first: feasible is a stable claim (its forces lie in the
+ * circular cones). Else the outer polygons' LP: infeasible is unstable
+ * (its Farkas ray holds for the circular cones, which lie inside). Else
+ * its forces leave some circles: each such contact gets the direction of
+ * its tangential force (a vertex of the inner polygon, a tangent side of
+ * the outer one), and the two LPs run again. When no direction can be
+ * added (every violating polygon full, or the violation within
+ * CONE_SLACK) the outer forces are the claim: the certificate check
+ * tests the circular cones, so a claim it rejects is UNDECIDED, never
+ * stable. Directions stay for later tests. */
+#define CONE_SLACK 1e-9   /* relative excess |f_t| - mu f_n left unrefined */
+#define CONE_ROUNDS 60    /* refinement rounds of one test at most */
+
+/* Add the directions of the outer forces that leave their circles: the
+ * number added, or -1 (OOM). */
+static int refine_cones(us_Stability *w) {
+  const us_EqSystem *e = &w->eq;
+  int added = 0;
+  for (int c = 0; c < e->ncontact; c++) {
+    double mu = e->mu[c];
+    if (!(mu > 0) || isinf(mu)) continue; /* exact cones */
+    const double *f = w->f + 3 * (size_t)c;
+    double ft = hypot(f[1], f[2]);
+    if (!(ft > mu * f[0] + CONE_SLACK * hypot(f[0], ft))) continue;
+    int r = us_cone_set_refine(&w->cones, e->contact[c], atan2(f[2], f[1]));
+    if (r < 0) return -1;
+    added += r;
+  }
+  w->info.cone3_refined += added;
+  return added;
+}
+
+static us_Status run_cones(us_Stability *w, us_StabilityResult *res, us_Error *err) {
+  int counted = 0;
+  for (int round = 0;; round++) {
+    w->cones.mode = US_CONE_INNER;
+    us_Status st = run_backend(w, res, err);
+    if (st || res->verdict != US_UNSTABLE) return st; /* stable, or no verdict */
+    if (!counted) w->info.cone3_outer++, counted = 1;
+    w->cones.mode = US_CONE_OUTER;
+    st = run_backend(w, res, err);
+    w->cones.mode = US_CONE_INNER;
+    if (st || res->verdict != US_STABLE) return st; /* unstable (exact), or no verdict */
+    int added = round < CONE_ROUNDS ? refine_cones(w) : 0;
+    if (added < 0) return us_error_set(err, US_ERR_NOMEM, "out of memory refining friction cones");
+    if (added == 0) {
+      w->info.cone3_open++;
+      snprintf(res->note, sizeof res->note,
+               "friction cones: outer polygons feasible after %d refinements, inner not: "
+               "the outer forces are the claim",
+               round);
+      return US_OK;
+    }
+  }
+}
+
 /* Forces of a stable claim into res (newtons), then the certificate. */
 static us_Status certify(us_Stability *w, us_StabilityResult *res, us_Error *err) {
   const us_EqSystem *e = &w->eq;
@@ -448,7 +511,7 @@ static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err)
     snprintf(res->note, sizeof res->note, "a body with weight touches nothing");
     return US_OK;
   }
-  us_Status st = run_backend(w, res, err);
+  us_Status st = w->s->dim == 3 ? run_cones(w, res, err) : run_backend(w, res, err);
   if (st) return st;
   if (res->verdict == US_STABLE) {
     st = certify(w, res, err);

@@ -15,7 +15,7 @@ expect 2 "unknown option" -- "$CLI" plan "$T/c.json" --frob
 expect 2 "bad method" -- "$CLI" check "$T/c.json" --method simplex
 expect 2 "bad number" -- "$CLI" plan "$T/c.json" --max-tests ten
 expect 2 "non-finite tolerance" -- "$CLI" check "$T/c.json" --contact-tol nan
-expect 2 "generate unknown kind" -- "$CLI" generate tower -o "$T/t.json"
+expect 2 "generate unknown kind" -- "$CLI" generate castle -o "$T/t.json"
 expect 2 "generate bad size" -- "$CLI" generate column --blocks 0 -o "$T/z.json"
 [ -e "$T/z.json" ] && bad "file written on error" || ok "no file written on error"
 expect 2 "render needs -o" -- "$CLI" render "$T/c.json"

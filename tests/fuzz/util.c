@@ -99,7 +99,10 @@ char *fz_slurp(const char *path, size_t *len) {
 int fz_small(const us_Structure *s) {
   if (s->nbody > FZ_MAX_BODIES) return 0;
   long nv = 0;
-  for (int i = 0; i < s->nbody; i++) nv += s->bodies[i].nvert;
+  for (int i = 0; i < s->nbody; i++) {
+    nv += s->bodies[i].nvert;
+    for (int k = 0; k < s->bodies[i].npart; k++) nv += s->bodies[i].parts[k].nvert;
+  }
   return nv <= FZ_MAX_VERTS;
 }
 
@@ -113,14 +116,30 @@ static int differ(const double *a, const double *b, int n) {
   return 0;
 }
 
+/* 3D parts: the same hulls (vertices bit for bit, face count). */
+static const char *parts_diff(const us_Body *a, const us_Body *b) {
+  if (a->npart != b->npart) return "part count";
+  for (int k = 0; k < a->npart; k++) {
+    const us_Polyhedron *p = &a->parts[k], *q = &b->parts[k];
+    if (p->nvert != q->nvert || p->nface != q->nface) return "part hull size";
+    if (differ(p->verts, q->verts, 3 * p->nvert)) return "part vertices";
+  }
+  for (int r = 0; r < 3; r++)
+    if (differ(a->inertia3[r], b->inertia3[r], 3)) return "inertia tensor";
+  return NULL;
+}
+
 static const char *body_diff(const us_Body *a, const us_Body *b) {
   if (strcmp(a->id, b->id)) return "id";
   if (a->nvert != b->nvert) return "vertex count";
   if (differ(a->verts, b->verts, 2 * a->nvert)) return "vertices";
+  const char *d = parts_diff(a, b);
+  if (d) return d;
   if (a->fixed != b->fixed) return "fixed";
   if (a->mass_given != b->mass_given) return "mass given";
   if (differ(&a->mass, &b->mass, 1)) return "mass";
-  if (!a->mass_given && a->nvert > 0 && differ(&a->density, &b->density, 1)) return "density";
+  if (!a->mass_given && (a->nvert > 0 || a->npart > 0) && differ(&a->density, &b->density, 1))
+    return "density";
   if (differ(a->com, b->com, 3)) return "centre of mass";
   if (differ(&a->inertia, &b->inertia, 1)) return "inertia";
   if (differ(&a->friction, &b->friction, 1)) return "friction";

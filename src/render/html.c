@@ -1,0 +1,326 @@
+/* The interactive plan viewer: one self-contained HTML page (docs/viewer.md)
+ * made of the page template src/render/viewer.html (embedded at build time,
+ * viewer.h) with the structure and plan as JSON in place of its marker.
+ *
+ * The data (read by the page's script; every index is 0-based):
+ *   title     string
+ *   ground    whether the half-plane y <= 0 supports the structure
+ *   status    the plan's status word, or null without an order
+ *   bodies    [{id, m (null when fixed), fixed, xy: [x0, y0, x1, ...], c: [x, y]}]
+ *   contacts  [[a, b, px, py, nx, ny]]: a = -1 for the ground, the unit
+ *             normal from a into b
+ *   steps     [[body, ...]]: step k removes these bodies
+ *   blocked   [body, ...]: bodies that cannot be removed (status none)
+ *   forces    null, or one entry per position 0..nsteps (the structure
+ *             before step k; the last, empty structure too): a flat list
+ *             [contact, fx, fy, ...] of the force on body b of each active
+ *             contact in world axes (f_n n + f_t t, t = (-n_y, n_x))
+ *   verify    null, or us_VerifyReport's fields (failed_step, unstable_body,
+ *             undecided_step: -1 when none)
+ *
+ * Safety invariant: the JSON sits in a <script type="application/json">
+ * element, whose content ends at the first "</script" (any case) and
+ * changes parsing state at "<!--". The writer never emits '<' inside the
+ * data: strings escape '<', '>' and '&' as \u003c, \u003e, \u0026 (and
+ * U+2028, U+2029, control characters, quote and backslash as JSON
+ * requires; invalid UTF-8 from the C API becomes U+FFFD), and numbers and
+ * punctuation contain none. The script reads user text with JSON.parse and
+ * places it with textContent only, so ids are never markup.
+ *
+ * Numbers: 9 significant digits (a thousandth of a pixel on any screen);
+ * a non-finite one refuses the page (US_ERR_INPUT) before the file is
+ * opened, as do a structure that is not 2D (the 3D viewer is not written)
+ * and settings that do not match the structure (US_ERR_USAGE). */
+#include "core/core.h"
+#include "render/viewer.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#define DATA_MARKER "@US_DATA@"
+
+/* ------------------------------------------------------------ checks */
+
+static int nsteps_of(const us_RenderSettings *r) {
+  if (!r || r->norder <= 0) return 0;
+  return r->group_start ? r->ngroups : r->norder;
+}
+static int step_first(const us_RenderSettings *r, int k) {
+  return r->group_start ? r->group_start[k] : k;
+}
+
+/* The order: bodies of s, each once, steps covering it in increasing
+ * offsets; blocked bodies of s outside the order. seen[i] is set for each
+ * body of either list. */
+static us_Status check_order(const us_Structure *s, const us_RenderSettings *r, char *seen,
+                             us_Error *err) {
+  if (r->norder < 0 || (r->norder > 0 && !r->order) || r->nblocked < 0 ||
+      (r->nblocked > 0 && !r->blocked))
+    return us_error_set(err, US_ERR_USAGE, "render --html: bad order or blocked list");
+  if (r->group_start && r->norder > 0 &&
+      (r->ngroups < 1 || r->group_start[0] != 0 || r->group_start[r->ngroups] != r->norder))
+    return us_error_set(err, US_ERR_USAGE, "render --html: steps do not cover the order");
+  for (int k = 0; r->group_start && k < nsteps_of(r); k++)
+    if (r->group_start[k + 1] <= r->group_start[k])
+      return us_error_set(err, US_ERR_USAGE, "render --html: step %d is empty", k);
+  for (int k = 0; k < r->norder + r->nblocked; k++) {
+    int i = k < r->norder ? r->order[k] : r->blocked[k - r->norder];
+    if (i < 0 || i >= s->nbody || seen[i] || s->bodies[i].fixed)
+      return us_error_set(err, US_ERR_USAGE, "render --html: order or blocked entry %d is not a "
+                          "movable body named once", k);
+    seen[i] = 1;
+  }
+  return US_OK;
+}
+
+static us_Status check_certs(const us_Structure *s, const us_Forces *certs, int n, us_Error *err) {
+  for (int k = 0; certs && k <= n; k++) {
+    const us_Forces *f = &certs[k];
+    if (f->ncontact < 0 || (f->ncontact > 0 && (!f->contact || !f->f)))
+      return us_error_set(err, US_ERR_USAGE, "render --html: bad forces at step %d", k);
+    for (int j = 0; j < f->ncontact; j++)
+      if (f->contact[j] < 0 || f->contact[j] >= s->ncontact)
+        return us_error_set(err, US_ERR_USAGE, "render --html: forces at step %d name contact "
+                            "%d, not in 0..%d", k, f->contact[j], s->ncontact - 1);
+  }
+  return US_OK;
+}
+
+static us_Status check_verify(const us_Structure *s, const us_HtmlSettings *h, int n,
+                              us_Error *err) {
+  const us_VerifyReport *v = &h->verify;
+  if (!h->verified) return US_OK;
+  if (v->failed_step < -1 || v->failed_step >= n || v->undecided_step < -1 ||
+      v->undecided_step >= n || v->unstable_body < -1 || v->unstable_body >= s->nbody)
+    return us_error_set(err, US_ERR_USAGE, "render --html: the verify report does not match "
+                        "the order");
+  return US_OK;
+}
+
+static int finite_xy(const double *v, int n) {
+  for (int k = 0; k < n; k++)
+    if (!isfinite(v[k])) return 0;
+  return 1;
+}
+
+/* Every number the page will hold is finite. */
+static us_Status check_numbers(const us_Structure *s, const us_Forces *certs, int n,
+                               us_Error *err) {
+  int ok = 1;
+  for (int i = 0; ok && i < s->nbody; i++) {
+    const us_Body *b = &s->bodies[i];
+    ok = finite_xy(b->verts, 2 * b->nvert) && finite_xy(b->com, 2) && (b->fixed || isfinite(b->mass));
+  }
+  for (int c = 0; ok && c < s->ncontact; c++)
+    ok = finite_xy(s->contacts[c].p, 2) && finite_xy(s->contacts[c].n, 2);
+  for (int k = 0; ok && certs && k <= n; k++) ok = finite_xy(certs[k].f, 2 * certs[k].ncontact);
+  if (!ok) return us_error_set(err, US_ERR_INPUT, "render --html: a coordinate, mass or force "
+                               "is not a finite number");
+  return US_OK;
+}
+
+static us_Status check_all(const us_Structure *s, const us_RenderSettings *r,
+                           const us_HtmlSettings *h, us_Error *err) {
+  if (s->dim != 2)
+    return us_error_set(err, US_ERR_INPUT, "render --html: only 2D structures can be shown "
+                        "(this one is %dD; the 3D viewer is not written yet)", s->dim);
+  if (!s->finalized)
+    return us_error_set(err, US_ERR_USAGE, "render --html: the structure is not finalized");
+  char *seen = us_calloc((size_t)s->nbody + 1, 1);
+  if (!seen) return us_error_set(err, US_ERR_NOMEM, "render --html: out of memory");
+  us_Status st = r ? check_order(s, r, seen, err) : US_OK;
+  us_free(seen);
+  int n = nsteps_of(r);
+  if (!st) st = check_certs(s, h->certs, n, err);
+  if (!st) st = check_verify(s, h, n, err);
+  if (!st) st = check_numbers(s, h->certs, n, err);
+  return st;
+}
+
+/* ------------------------------------------------------------ JSON */
+
+static void put_num(FILE *fp, double x) { fprintf(fp, "%.9g", x); }
+
+static void put_int(FILE *fp, int i) { fprintf(fp, "%d", i); }
+
+/* A JSON string safe inside <script> (see the file head). */
+static void put_str(FILE *fp, const char *s) {
+  fputc('"', fp);
+  while (s && *s) {
+    uint32_t c;
+    int n = us_utf8_next(s, &c);
+    if (c == '"' || c == '\\') fprintf(fp, "\\%c", (char)c);
+    else if (c < 0x20 || c == '<' || c == '>' || c == '&' || c == 0x2028 || c == 0x2029)
+      fprintf(fp, "\\u%04x", (unsigned)c);
+    else if (c == US_UTF8_INVALID) fputs("\\ufffd", fp);
+    else fwrite(s, 1, (size_t)n, fp);
+    s += n;
+  }
+  fputc('"', fp);
+}
+
+static void put_body(FILE *fp, const us_Body *b) {
+  fputs("{\"id\":", fp);
+  put_str(fp, b->id);
+  fputs(",\"m\":", fp);
+  if (b->fixed) fputs("null", fp);
+  else put_num(fp, b->mass);
+  fputs(b->fixed ? ",\"fixed\":true,\"xy\":[" : ",\"fixed\":false,\"xy\":[", fp);
+  for (int k = 0; k < 2 * b->nvert; k++) {
+    if (k) fputc(',', fp);
+    put_num(fp, b->verts[k]);
+  }
+  fputs("],\"c\":[", fp);
+  put_num(fp, b->com[0]);
+  fputc(',', fp);
+  put_num(fp, b->com[1]);
+  fputs("]}", fp);
+}
+
+static void put_bodies(FILE *fp, const us_Structure *s) {
+  fputs(",\n\"bodies\":[", fp);
+  for (int i = 0; i < s->nbody; i++) {
+    fputs(i ? ",\n" : "\n", fp);
+    put_body(fp, &s->bodies[i]);
+  }
+  fputs("]", fp);
+}
+
+static void put_contacts(FILE *fp, const us_Structure *s) {
+  fputs(",\n\"contacts\":[", fp);
+  for (int c = 0; c < s->ncontact; c++) {
+    const us_Contact *k = &s->contacts[c];
+    fprintf(fp, "%s[%d,%d,", c ? ",\n" : "\n", k->a == US_GROUND ? -1 : k->a, k->b);
+    put_num(fp, k->p[0]);
+    fputc(',', fp);
+    put_num(fp, k->p[1]);
+    fputc(',', fp);
+    put_num(fp, k->n[0]);
+    fputc(',', fp);
+    put_num(fp, k->n[1]);
+    fputc(']', fp);
+  }
+  fputs("]", fp);
+}
+
+static void put_index_list(FILE *fp, const int *v, int n) {
+  fputc('[', fp);
+  for (int k = 0; k < n; k++) {
+    if (k) fputc(',', fp);
+    put_int(fp, v[k]);
+  }
+  fputc(']', fp);
+}
+
+static void put_steps(FILE *fp, const us_RenderSettings *r) {
+  int n = nsteps_of(r);
+  fputs(",\n\"steps\":[", fp);
+  for (int k = 0; k < n; k++) {
+    fputs(k ? ",\n" : "\n", fp);
+    put_index_list(fp, r->order + step_first(r, k), step_first(r, k + 1) - step_first(r, k));
+  }
+  fputs("],\n\"blocked\":", fp);
+  put_index_list(fp, r ? r->blocked : NULL, r ? r->nblocked : 0);
+}
+
+/* Forces of one position: the force on body b in world axes. */
+static void put_forces_at(FILE *fp, const us_Structure *s, const us_Forces *f) {
+  fputc('[', fp);
+  for (int j = 0; j < f->ncontact; j++) {
+    const us_Contact *c = &s->contacts[f->contact[j]];
+    double fn = f->f[2 * j], ft = f->f[2 * j + 1];
+    fprintf(fp, "%s%d,", j ? "," : "", f->contact[j]);
+    put_num(fp, fn * c->n[0] - ft * c->n[1]);
+    fputc(',', fp);
+    put_num(fp, fn * c->n[1] + ft * c->n[0]);
+  }
+  fputc(']', fp);
+}
+
+static void put_forces(FILE *fp, const us_Structure *s, const us_Forces *certs, int n) {
+  fputs(",\n\"forces\":", fp);
+  if (!certs) {
+    fputs("null", fp);
+    return;
+  }
+  fputc('[', fp);
+  for (int k = 0; k <= n; k++) {
+    fputs(k ? ",\n" : "\n", fp);
+    put_forces_at(fp, s, &certs[k]);
+  }
+  fputc(']', fp);
+}
+
+static void put_verify(FILE *fp, const us_HtmlSettings *h) {
+  const us_VerifyReport *v = &h->verify;
+  fputs(",\n\"verify\":", fp);
+  if (!h->verified) {
+    fputs("null", fp);
+    return;
+  }
+  fprintf(fp, "{\"ok\":%s,\"full_unstable\":%s,\"failed_step\":%d,\"incomplete\":%s,"
+          "\"undecided\":%s,\"undecided_step\":%d,\"remaining\":%d,\"unstable_body\":%d,"
+          "\"note\":", v->ok ? "true" : "false", v->full_unstable ? "true" : "false",
+          v->failed_step, v->incomplete ? "true" : "false", v->undecided ? "true" : "false",
+          v->undecided_step, v->remaining, v->unstable_body);
+  char note[sizeof v->note + 1];
+  memcpy(note, v->note, sizeof v->note);
+  note[sizeof v->note] = 0; /* a report filled by hand may lack the NUL */
+  put_str(fp, note);
+  fputc('}', fp);
+}
+
+static void put_data(FILE *fp, const us_Structure *s, const us_RenderSettings *r,
+                     const us_HtmlSettings *h) {
+  int with_plan = r && (r->norder > 0 || r->nblocked > 0);
+  fputs("{\"title\":", fp);
+  put_str(fp, h->title ? h->title : "unstack");
+  fputs(s->ground ? ",\n\"ground\":true" : ",\n\"ground\":false", fp);
+  fputs(",\n\"status\":", fp);
+  if (with_plan) put_str(fp, us_plan_status_name(h->status));
+  else fputs("null", fp);
+  put_bodies(fp, s);
+  put_contacts(fp, s);
+  put_steps(fp, r);
+  put_forces(fp, s, h->certs, nsteps_of(r));
+  put_verify(fp, h);
+  fputs("}", fp);
+}
+
+/* ------------------------------------------------------------ driver */
+
+us_HtmlSettings us_html_default_settings(void) {
+  us_HtmlSettings h;
+  memset(&h, 0, sizeof h);
+  h.status = US_PLAN_FOUND;
+  h.verify.failed_step = h.verify.undecided_step = h.verify.unstable_body = -1;
+  return h;
+}
+
+/* The template around its one marker, then the data in between. */
+static void put_page(FILE *fp, const us_Structure *s, const us_RenderSettings *r,
+                     const us_HtmlSettings *h, const char *mark) {
+  const char *page = (const char *)us_viewer_html;
+  fwrite(page, 1, (size_t)(mark - page), fp);
+  put_data(fp, s, r, h);
+  fputs(mark + strlen(DATA_MARKER), fp);
+}
+
+us_Status us_render_html(const us_Structure *s, const us_RenderSettings *r,
+                         const us_HtmlSettings *h, const char *path, us_Error *err) {
+  us_Error local;
+  if (!err) err = &local; /* the steps below read err->code */
+  if (!s || !path) return us_error_set(err, US_ERR_USAGE, "render --html: no structure or no path");
+  us_HtmlSettings def = us_html_default_settings();
+  if (!h) h = &def;
+  const char *mark = strstr((const char *)us_viewer_html, DATA_MARKER);
+  if (!mark) return us_error_set(err, US_ERR_USAGE, "render --html: the page template has no "
+                                 "data marker (a build error)");
+  us_Status st = check_all(s, r, h, err);
+  if (st) return st;
+  us_AtomicFile *af = us_atomic_open(path, err);
+  if (!af) return err->code;
+  put_page((FILE *)us_atomic_stream(af), s, r, h, mark);
+  return us_atomic_commit(af, err);
+}

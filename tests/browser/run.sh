@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# The HTML plan viewer in a real browser (ctest browser.viewer; docs/viewer.md).
+# usage: run.sh CLI WORK_DIR
+# Makes structures, plans and pages with the built CLI in WORK_DIR, then
+# opens them in Debian's headless Chromium through playwright-core
+# (viewer.test.js). playwright-core is installed with `npm ci` into WORK_DIR
+# from this directory's package-lock.json when missing or when the lock
+# file changed. Screenshots: WORK_DIR/shots. A missing or broken Chromium,
+# node or npm is a failure, never a skip.
+set -uo pipefail
+CLI=$1
+W=$2
+HERE=$(cd "$(dirname "$0")" && pwd)
+die() { echo "FAIL $*"; exit 1; }
+mkdir -p "$W" || die "cannot create $W"
+
+# ---- the tools
+CHROME=${US_CHROMIUM:-/usr/bin/chromium}
+[ -x "$CHROME" ] || die "Chromium not found at $CHROME (scripts/deps.sh installs Debian's chromium)"
+command -v node >/dev/null || die "node not found (scripts/deps.sh installs nodejs)"
+if [ ! -f "$W/node_modules/playwright-core/package.json" ] ||
+   ! cmp -s "$HERE/package-lock.json" "$W/package-lock.json"; then
+  command -v npm >/dev/null || die "npm not found (scripts/deps.sh installs npm)"
+  cp "$HERE/package.json" "$HERE/package-lock.json" "$W/" || die "cannot copy the npm manifests"
+  echo "npm ci in $W"
+  (cd "$W" && npm ci --ignore-scripts --no-audit --no-fund --loglevel=error) ||
+    die "npm ci failed: playwright-core could not be installed (is the npm registry reachable?)"
+fi
+
+# ---- the pages
+run() { "$@" >"$W/cmd.log" 2>&1 || { cat "$W/cmd.log"; die "command failed: $*"; }; }
+run "$CLI" generate pyramid --rows 5 -o "$W/pyramid.json"
+run "$CLI" plan "$W/pyramid.json" --certificates -o "$W/pyramid-plan.json"
+run "$CLI" render "$W/pyramid.json" --plan "$W/pyramid-plan.json" --html -o "$W/pyramid.html"
+
+# a column of three taken apart from the bottom: verify fails after step 1
+cat >"$W/column-bad.json" <<'JSON'
+{"dimension": 2, "ground": true, "bodies": [
+  {"id": "bottom", "polygon": [[0, 0], [1, 0], [1, 1], [0, 1]]},
+  {"id": "middle", "polygon": [[0, 1], [1, 1], [1, 2], [0, 2]]},
+  {"id": "top", "polygon": [[0, 2], [1, 2], [1, 3], [0, 3]]}]}
+JSON
+cat >"$W/column-bad-plan.json" <<'JSON'
+{"format": "unstack-plan", "version": 1, "status": "found", "order": ["bottom", "middle", "top"]}
+JSON
+"$CLI" render "$W/column-bad.json" --plan "$W/column-bad-plan.json" -o "$W/column-bad.html" \
+  >"$W/cmd.log" 2>&1
+rc=$?
+[ $rc -eq 1 ] || { cat "$W/cmd.log"; die "render of an invalid plan: exit $rc, wanted 1"; }
+
+# ids that try to end the data's script element or start markup
+cat >"$W/ids.json" <<'JSON'
+{"dimension": 2, "ground": true, "bodies": [
+  {"id": "</script><script>window.pwned=1</script>", "polygon": [[0, 0], [1, 0], [1, 1], [0, 1]]},
+  {"id": "<!-- \"q\" & 'a' </SCRIPT >", "polygon": [[0, 1], [1, 1], [1, 2], [0, 2]]},
+  {"id": "\u2028<b>bold</b>\\", "polygon": [[0, 2], [1, 2], [1, 3], [0, 3]]}]}
+JSON
+run "$CLI" plan "$W/ids.json" --certificates -o "$W/ids-plan.json"
+run "$CLI" render "$W/ids.json" --plan "$W/ids-plan.json" --html -o "$W/ids.html"
+
+# ---- the browser
+node "$HERE/viewer.test.js" "$W" "$CHROME" "$W"

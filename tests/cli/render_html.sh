@@ -1,0 +1,49 @@
+# render --html (docs/viewer.md): the page is written for a plan with or
+# without certificates and for a structure alone; an output name ending in
+# .html chooses it; an order that verify rejects is written and exits 1;
+# bad input (another structure's plan, tampered certificates, a 3D file)
+# exits 2 and leaves the output as it was. The page itself is tested in a
+# browser (ctest browser.viewer) and its data by test_render_html.
+. "$(dirname "$0")/lib.sh"
+# absent FILE DESCRIPTION
+absent() { if [ -e "$1" ]; then bad "$2: $1 was written"; else ok "$2: nothing written"; fi; }
+page_has() { contains "$1" "$2" "$3"; }
+
+"$CLI" generate pyramid --rows 4 -o "$T/p.json" >/dev/null
+"$CLI" plan "$T/p.json" --certificates -o "$T/plan.json" >/dev/null
+"$CLI" plan "$T/p.json" -o "$T/plain.json" >/dev/null
+expect 0 "render --html with certificates" -- "$CLI" render "$T/p.json" --plan "$T/plan.json" --html -o "$T/a.html"
+page_has "$T/a.html" '"forces":[' "the page holds the plan's forces"
+page_has "$T/a.html" '"verify":{"ok":true' "the page holds verify's report"
+expect 0 "an output ending in .html chooses the viewer" -- "$CLI" render "$T/p.json" --plan "$T/plain.json" -o "$T/b.html"
+page_has "$T/b.html" '<!DOCTYPE html>' "the page is HTML"
+page_has "$T/b.html" '"forces":null' "a plan without certificates has no forces"
+expect 0 "the structure alone" -- "$CLI" render "$T/p.json" -o "$T/c.html"
+page_has "$T/c.html" '"status":null' "no plan, no status"
+# (the SVG namespace http://www.w3.org/2000/svg is a name, not a load)
+if grep -qiE "<script[^>]+src=|<link|(src|href)=.?https?:|url\\(.?https?:|@import|fetch\\(|XMLHttpRequest" \
+   "$T/a.html"; then bad "the page loads nothing from outside"
+else ok "the page loads nothing from outside"; fi
+
+# an order verify rejects: the column from the bottom up
+"$CLI" generate column --blocks 3 -o "$T/col.json" >/dev/null
+ids=$(grep -o '"id": "[^"]*"' "$T/col.json" | cut -d'"' -f4)
+set -- $ids
+printf '{"status": "found", "order": ["%s", "%s", "%s"]}\n' "$1" "$2" "$3" >"$T/bad-plan.json"
+expect 1 "an invalid order: written, exit 1" -- "$CLI" render "$T/col.json" --plan "$T/bad-plan.json" -o "$T/d.html"
+page_has "$T/d.html" '"failed_step":0' "the page names the failing step"
+contains "$T/err" "invalid" "stderr says the order is invalid"
+
+# bad input: exit 2, the old output kept
+echo old >"$T/keep.html"
+expect 2 "a plan for another structure" -- "$CLI" render "$T/col.json" --plan "$T/plan.json" -o "$T/keep.html"
+page_has "$T/keep.html" old "the old output is kept"
+sed 's/"point": \[/"point": [7/' "$T/plan.json" >"$T/tampered.json"
+expect 2 "a certificate at a point the structure has no contact" -- "$CLI" render "$T/p.json" --plan "$T/tampered.json" -o "$T/e.html"
+contains "$T/err" "steps[0].certificate.contacts[0]" "the message names the JSON path"
+absent "$T/e.html" "tampered certificates"
+"$CLI" generate tower --blocks 3 -o "$T/p3.json" >/dev/null
+expect 2 "a 3D file" -- "$CLI" render "$T/p3.json" --html -o "$T/f.html"
+contains "$T/err" "3D viewer is not written yet" "the message says why"
+absent "$T/f.html" "3D"
+finish

@@ -1,0 +1,268 @@
+/* Tests of the 3D statics with circular Coulomb cones (cone.c and the
+ * refinement in stability.c), on point bodies with explicit contacts:
+ *   - a block on a tilted plank stands iff tan(angle) <= mu, decided to
+ *     1e-6 of the critical friction for random slopes and frames;
+ *   - cases where an 8-sided inscribed or circumscribed pyramid gives the
+ *     wrong answer (the needed friction direction halfway between the
+ *     pyramid's edges) are decided by the circular cone;
+ *   - every stable verdict's forces pass the certificate check of the true
+ *     cone; lp (CLP) and lpsolve agree on random 3D stacks;
+ *   - the planner plans a 3D tower top-down; the LCP methods refuse 3D. */
+#include "stability/backend.h"
+#include "stability/lp_gen.h"
+#include "test.h"
+
+#include <math.h>
+#include <string.h>
+
+static const double PI = 3.14159265358979323846;
+
+/* A point block resting on a plane through the origin with slope `alpha`
+ * (radians) descending along azimuth phi: four contacts at the corners of
+ * a unit square on the plane, the centre of mass h above its middle. */
+static us_Structure *plank(double alpha, double phi, double mu, double h) {
+  us_Structure *s = us_structure_new(3);
+  us_Error err;
+  s->gravity[0] = s->gravity[1] = 0.0, s->gravity[2] = -9.81;
+  double n[3] = {sin(alpha) * cos(phi), sin(alpha) * sin(phi), cos(alpha)};
+  double u[3] = {cos(alpha) * cos(phi), cos(alpha) * sin(phi), -sin(alpha)}; /* downhill */
+  double v[3] = {-sin(phi), cos(phi), 0.0};
+  double c[3];
+  for (int j = 0; j < 3; j++) c[j] = h * n[j];
+  int b = us_structure_add_point_body(s, "block", 2.0, c, 0, &err);
+  for (int k = 0; k < 4; k++) {
+    double su = k % 2 ? 0.5 : -0.5, sv = k / 2 ? 0.5 : -0.5, p[3];
+    for (int j = 0; j < 3; j++) p[j] = su * u[j] + sv * v[j];
+    us_structure_add_contact(s, US_GROUND, b, p, n, mu, &err);
+  }
+  s->explicit_contacts = 1;
+  if (us_structure_finalize(s, &err) != US_OK) {
+    fprintf(stderr, "plank: %s\n", err.msg);
+    us_structure_free(s);
+    return NULL;
+  }
+  return s;
+}
+
+/* The full structure's verdict with a method into *v (UNDECIDED on an
+ * error); the certificate of a stable one must pass. info (optional)
+ * gets the workspace's statistics. */
+static void verdict_into(const us_Structure *s, us_Method m, us_StabilityInfo *info,
+                         us_Verdict *v) {
+  *v = US_UNDECIDED;
+  us_StabilitySettings set = us_stability_default_settings();
+  set.method = m;
+  us_Error err;
+  us_Stability *w = us_stability_new(s, &set, &err);
+  CHECK(w);
+  us_StabilityResult r;
+  us_stability_result_init(&r);
+  us_Status st = us_stability_test_full(w, &r, &err);
+  CHECK_OK(st, &err);
+  if (r.verdict == US_STABLE) CHECK(r.check.ok && r.check.max_cone_violation <= 1e-6);
+  if (info) *info = *us_stability_info(w);
+  *v = r.verdict;
+  us_stability_result_free(&r);
+  us_stability_free(w);
+}
+
+static us_Verdict verdict_of(const us_Structure *s, us_Method m, us_StabilityInfo *info) {
+  us_Verdict v;
+  verdict_into(s, m, info, &v);
+  return v;
+}
+
+/* tan(alpha) <= mu, to a relative 1e-6 on either side, random slopes and
+ * azimuths (so the needed friction direction falls anywhere in the
+ * contact frames), both LP backends. */
+static void tilted_plank_critical(void) {
+  unsigned long long rng = 11 * 0x9E3779B97F4A7C15ull;
+  long refined = 0;
+  for (int trial = 0; trial < 40; trial++) {
+    double alpha = (5.0 + 50.0 * test_rnd(&rng)) * PI / 180.0;
+    double phi = 2.0 * PI * test_rnd(&rng), t = tan(alpha);
+    for (int side = 0; side < 2; side++) {
+      double mu = t * (side ? 1.0 + 1e-6 : 1.0 - 1e-6);
+      us_Structure *s = plank(alpha, phi, mu, 0.1);
+      CHECK(s);
+      if (!s) continue;
+      us_StabilityInfo in;
+      us_Method m = trial % 4 == 3 ? US_METHOD_LPSOLVE : US_METHOD_LP;
+      us_Verdict v = verdict_of(s, m, &in);
+      CHECK_INT(v, ==, side ? US_STABLE : US_UNSTABLE);
+      refined += in.cone3_refined;
+      us_structure_free(s);
+    }
+  }
+  CHECK(refined > 0); /* the uniform polygons alone could not decide these */
+}
+
+/* Turn every contact's tangent frame about its normal by beta. */
+static void turn_frames(us_Structure *s, double beta) {
+  for (int k = 0; k < s->ncontact; k++) {
+    us_Contact *c = &s->contacts[k];
+    double t1[3], t2[3];
+    for (int j = 0; j < 3; j++) {
+      t1[j] = cos(beta) * c->t[0][j] + sin(beta) * c->t[1][j];
+      t2[j] = -sin(beta) * c->t[0][j] + cos(beta) * c->t[1][j];
+    }
+    memcpy(c->t[0], t1, sizeof t1);
+    memcpy(c->t[1], t2, sizeof t2);
+  }
+}
+
+/* The plank with its frames turned so that the uphill direction (where
+ * friction must act) lies at pi / 8 in every contact's frame: halfway
+ * between two edges of the uniform 8-sided polygon. */
+static us_Structure *plank_mid(double alpha, double phi, double mu) {
+  us_Structure *s = plank(alpha, phi, mu, 0.1);
+  if (!s) return NULL;
+  const us_Contact *c = &s->contacts[0];
+  double up[3] = {-cos(alpha) * cos(phi), -cos(alpha) * sin(phi), sin(alpha)};
+  double th = atan2(up[0] * c->t[1][0] + up[1] * c->t[1][1] + up[2] * c->t[1][2],
+                    up[0] * c->t[0][0] + up[1] * c->t[0][1] + up[2] * c->t[0][2]);
+  turn_frames(s, th - PI / 8); /* the uphill direction at angle pi / 8 */
+  return s;
+}
+
+/* An 8-sided inscribed pyramid reaches only mu cos(pi / 8) = 0.924 mu
+ * halfway between its edges, a circumscribed one mu / cos(pi / 8) =
+ * 1.082 mu: with tan(alpha) = 0.95 mu the inscribed pyramid would call a
+ * standing block unstable, with tan(alpha) = 1.05 mu the circumscribed one
+ * would call a sliding block stable. The circular cone decides both. */
+static void pyramid_would_be_wrong(void) {
+  for (int trial = 0; trial < 6; trial++) {
+    double alpha = (10.0 + 8.0 * trial) * PI / 180.0, phi = 0.7 * trial;
+    us_Structure *st = plank_mid(alpha, phi, tan(alpha) / 0.95);
+    us_Structure *sl = plank_mid(alpha, phi, tan(alpha) / 1.05);
+    CHECK(st && sl);
+    if (!st || !sl) continue;
+    us_StabilityInfo in;
+    CHECK_INT(verdict_of(st, US_METHOD_LP, &in), ==, US_STABLE);
+    CHECK(in.cone3_outer == 1 && in.cone3_refined > 0); /* the inner 8-gon failed */
+    CHECK_INT(verdict_of(sl, US_METHOD_LP, &in), ==, US_UNSTABLE);
+    CHECK(in.cone3_refined > 0); /* the outer 8-gon held */
+    CHECK_INT(verdict_of(sl, US_METHOD_LPSOLVE, NULL), ==, US_UNSTABLE);
+    us_structure_free(st);
+    us_structure_free(sl);
+  }
+}
+
+/* Zero and infinite friction are exact cones: a level block stands with
+ * mu = 0, a tilted one slides with mu = 0 and stands with mu = INFINITY,
+ * with no refinement at all. */
+static void exact_cones(void) {
+  us_StabilityInfo in;
+  us_Structure *s = plank(0.0, 0.0, 0.0, 0.1);
+  CHECK_INT(verdict_of(s, US_METHOD_LP, &in), ==, US_STABLE);
+  us_structure_free(s);
+  s = plank(0.3, 1.0, 0.0, 0.1);
+  CHECK_INT(verdict_of(s, US_METHOD_LP, &in), ==, US_UNSTABLE);
+  CHECK_INT(in.cone3_refined, ==, 0);
+  us_structure_free(s);
+  s = plank(1.2, 2.0, INFINITY, 0.1);
+  CHECK_INT(verdict_of(s, US_METHOD_LP, &in), ==, US_STABLE);
+  CHECK_INT(in.cone3_refined, ==, 0);
+  us_structure_free(s);
+}
+
+/* A stack of point blocks, each on four contacts to the one below (or the
+ * ground) with a random tilt and friction: the bodies' centres drift
+ * sideways at random, so some stacks tip and some slide. */
+static us_Structure *random_stack(unsigned long long *rng, int nb) {
+  us_Structure *s = us_structure_new(3);
+  us_Error err;
+  s->gravity[0] = s->gravity[1] = 0.0, s->gravity[2] = -9.81;
+  double base[3] = {0, 0, 0};
+  for (int i = 0; i < nb; i++) {
+    double tx = 0.5 * (test_rnd(rng) - 0.5), ty = 0.5 * (test_rnd(rng) - 0.5);
+    double n[3] = {tx, ty, 1.0}, l = sqrt(tx * tx + ty * ty + 1.0);
+    for (int j = 0; j < 3; j++) n[j] /= l;
+    double c[3] = {base[0] + 0.6 * (test_rnd(rng) - 0.5),
+                   base[1] + 0.6 * (test_rnd(rng) - 0.5), base[2] + 0.5};
+    char id[16];
+    snprintf(id, sizeof id, "b%d", i);
+    int b = us_structure_add_point_body(s, id, 1.0 + test_rnd(rng), c, 0, &err);
+    double mu = 0.2 + 0.6 * test_rnd(rng);
+    for (int k = 0; k < 4; k++) {
+      double p[3] = {base[0] + (k % 2 ? 0.5 : -0.5), base[1] + (k / 2 ? 0.5 : -0.5), base[2]};
+      p[2] -= (n[0] * (p[0] - base[0]) + n[1] * (p[1] - base[1])) / n[2]; /* on the plane */
+      us_structure_add_contact(s, i == 0 ? US_GROUND : b - 1, b, p, n, mu, &err);
+    }
+    base[0] = c[0], base[1] = c[1], base[2] = c[2] + 0.5;
+  }
+  s->explicit_contacts = 1;
+  if (us_structure_finalize(s, &err) != US_OK) {
+    us_structure_free(s);
+    return NULL;
+  }
+  return s;
+}
+
+/* lp and lpsolve agree on every prefix of random stacks (each prefix a
+ * sub-assembly of one workspace, so refinements carry over). */
+static void backends_agree(void) {
+  unsigned long long rng = 5 * 0x9E3779B97F4A7C15ull;
+  int stable = 0, unstable = 0;
+  for (int trial = 0; trial < 30; trial++) {
+    us_Structure *s = random_stack(&rng, 2 + trial % 5);
+    CHECK(s);
+    if (!s) continue;
+    us_StabilitySettings set = us_stability_default_settings();
+    us_Error err;
+    set.method = US_METHOD_LP;
+    us_Stability *a = us_stability_new(s, &set, &err);
+    set.method = US_METHOD_LPSOLVE;
+    us_Stability *b = us_stability_new(s, &set, &err);
+    CHECK(a && b);
+    us_Bitset sub;
+    us_bitset_init(&sub, s->nbody);
+    us_StabilityResult ra, rb;
+    us_stability_result_init(&ra);
+    us_stability_result_init(&rb);
+    for (int k = 0; a && b && k < s->nbody; k++) {
+      us_bitset_set(&sub, k);
+      CHECK_OK(us_stability_test(a, &sub, &ra, &err), &err);
+      CHECK_OK(us_stability_test(b, &sub, &rb, &err), &err);
+      CHECK_INT(ra.verdict, ==, rb.verdict);
+      CHECK(ra.verdict != US_UNDECIDED);
+      stable += ra.verdict == US_STABLE;
+      unstable += ra.verdict == US_UNSTABLE;
+    }
+    us_stability_result_free(&ra);
+    us_stability_result_free(&rb);
+    us_bitset_free(&sub);
+    us_stability_free(a);
+    us_stability_free(b);
+    us_structure_free(s);
+  }
+  CHECK(stable > 10 && unstable > 10); /* both verdicts exercised */
+}
+
+/* A straight 3D tower plans top-down; the LCP methods refuse 3D. */
+static void tower_plans(void) {
+  unsigned long long rng = 2 * 0x9E3779B97F4A7C15ull;
+  us_Structure *s = NULL;
+  for (int tries = 0; tries < 50 && !s; tries++) { /* a stack that stands */
+    s = random_stack(&rng, 6);
+    if (s && verdict_of(s, US_METHOD_LP, NULL) != US_STABLE) us_structure_free(s), s = NULL;
+  }
+  CHECK(s);
+  if (!s) return;
+  us_PlanSettings set = us_plan_default_settings();
+  us_Plan p;
+  us_Error err;
+  CHECK_OK(us_plan(s, &set, &p, &err), &err);
+  CHECK_INT(p.status, ==, US_PLAN_FOUND);
+  for (int k = 0; k < p.nsteps; k++) CHECK_INT(p.order[k], ==, s->nbody - 1 - k);
+  us_plan_free(&p);
+  us_StabilitySettings ss = us_stability_default_settings();
+  ss.method = US_METHOD_LCP_REUSE;
+  us_Stability *w = us_stability_new(s, &ss, &err);
+  CHECK(!w);
+  CHECK(strstr(err.msg, "2D") != NULL);
+  us_structure_free(s);
+}
+
+US_TEST_MAIN(T(tilted_plank_critical), T(pyramid_would_be_wrong), T(exact_cones),
+             T(backends_agree), T(tower_plans))
