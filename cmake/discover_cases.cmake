@@ -8,18 +8,25 @@
 # every munmap a cross-CPU TLB shootdown (ASan unmaps CLP's large
 # per-solve buffers): 4x slower sanitizer runs with the pool.
 #
-# Inputs (-D): EXE, MODULE, OUT, TIMEOUT.
+# LSAN_SUPP (sanitizer builds): LeakSanitizer's suppressions file, for the
+# leaks of system libraries (tests/lsan.supp).
+#
+# Inputs (-D): EXE, MODULE, OUT, TIMEOUT, LSAN_SUPP (may be empty).
 execute_process(COMMAND "${EXE}" --list OUTPUT_VARIABLE cases RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "${EXE} --list failed (${rc})")
 endif()
 string(REPLACE "\n" ";" cases "${cases}")
+set(env "OPENBLAS_NUM_THREADS=1")
+if(LSAN_SUPP)
+  set(env "${env};LSAN_OPTIONS=suppressions=${LSAN_SUPP}")
+endif()
 set(text "")
 foreach(c ${cases})
   if(c STREQUAL "")
     continue()
   endif()
   string(APPEND text "add_test([=[${MODULE}.${c}]=] [=[${EXE}]=] [=[${c}]=])\n")
-  string(APPEND text "set_tests_properties([=[${MODULE}.${c}]=] PROPERTIES TIMEOUT ${TIMEOUT} LABELS ${MODULE} ENVIRONMENT OPENBLAS_NUM_THREADS=1)\n")
+  string(APPEND text "set_tests_properties([=[${MODULE}.${c}]=] PROPERTIES TIMEOUT ${TIMEOUT} LABELS ${MODULE} ENVIRONMENT \"${env}\")\n")
 endforeach()
 file(WRITE "${OUT}" "${text}")

@@ -1,15 +1,30 @@
-/* Tests of the SVG renderer (src/render): the file is well-formed XML (a
- * small tag-nesting checker), one <polygon> per polygon body, ids escaped,
- * order numbers and legend present, force arrows pointing along the force
- * on body b, bad settings rejected before any file is written, and a write
- * into a missing directory failing with US_ERR_IO without leaving a file.
- * Ids holding characters XML cannot hold (controls, U+FFFE, U+FFFF, invalid
- * UTF-8) give a document libxml2 parses (libxml2 from scripts/deps.sh; the
- * case fails when the build did not find it). */
+/* Tests of the renderer (src/render): SVG and PNG pictures of one scene.
+ *
+ * SVG: the file is well-formed XML (a small tag-nesting checker), one
+ * <polygon> per polygon body, ids escaped, order numbers and legend
+ * present, force arrows pointing along the force on body b, bad settings
+ * rejected before any file is written, and a write into a missing
+ * directory failing with US_ERR_IO without leaving a file. Ids holding
+ * characters XML cannot hold (controls, U+FFFE, U+FFFF, invalid UTF-8) give
+ * a document libxml2 parses (libxml2 from scripts/deps.sh; the case fails
+ * when the build did not find it).
+ *
+ * PNG: structures from the generators, planned by the planner, drawn, and
+ * decoded again with cairo. A body's pixels are read at a point inside it
+ * found from the SVG of the same settings (the mean of its polygon's
+ * vertices, moved down by 30% of its height so that the step number
+ * written at its centre is not under it), and must be the ramp colour of
+ * its removal step, computed here from the plan (step / (steps - 1)), and
+ * the same as the SVG's fill. The ramp's lightness is checked with CIE L*
+ * (from relative luminance), not with the OKLab lightness the ramp is
+ * built in. */
 #define _POSIX_C_SOURCE 200809L
+#include "render/render.h"
 #include "scenes.h"
 #include "test.h"
 
+#include <cairo.h>
+#include <dirent.h>
 #include <unistd.h>
 #ifdef US_HAVE_LIBXML2
 #include <libxml/parser.h>
@@ -17,15 +32,29 @@
 
 static char g_dir[64];
 
-/* A fresh temporary directory for this run's files. */
+/* The temporary directory and whatever a failed case left in it. */
+static void remove_dir(void) {
+  DIR *d = opendir(g_dir);
+  struct dirent *e;
+  char path[400];
+  while (d && (e = readdir(d)))
+    if (e->d_name[0] != '.') snprintf(path, sizeof path, "%s/%s", g_dir, e->d_name), remove(path);
+  if (d) closedir(d);
+  rmdir(g_dir);
+}
+
+/* A fresh temporary directory for this run's files (removed at exit). */
 static const char *tmp_path(const char *name, char *buf, size_t n) {
   if (!g_dir[0]) {
     snprintf(g_dir, sizeof g_dir, "/tmp/us_test_render_XXXXXX");
     if (!mkdtemp(g_dir)) return NULL;
+    atexit(remove_dir);
   }
   snprintf(buf, n, "%s/%s", g_dir, name);
   return buf;
 }
+
+static void hex(us_Rgb c, char out[8]) { snprintf(out, 8, "#%02x%02x%02x", c.r, c.g, c.b); }
 
 /* Whole file as a string (us_malloc'd) or NULL. */
 static char *slurp(const char *path) {
@@ -165,8 +194,11 @@ static void with_order(void) {
            !strstr(svg, "r=\"2.00\"/>");
   /* step 1 (body "top") gets the dark end of the ramp, step 3 the light */
   const char *top = strstr(svg, "<title>top</title>"), *low = strstr(svg, "<title>low</title>");
-  ok = ok && top && low && !strncmp(strstr(top, "fill=\"") + 6, "#440154", 7) &&
-       !strncmp(strstr(low, "fill=\"") + 6, "#fde725", 7);
+  char first[8], last[8];
+  hex(us_ramp(0.0), first);
+  hex(us_ramp(1.0), last);
+  ok = ok && top && low && !strncmp(strstr(top, "fill=\"") + 6, first, 7) &&
+       !strncmp(strstr(low, "fill=\"") + 6, last, 7);
   us_free(svg);
   CHECK(ok);
   remove(path);
@@ -310,6 +342,103 @@ static void empty(void) {
   remove(path);
 }
 
+/* ------------------------------------------------------------------ PNG */
+
+/* A decoded PNG (cairo ARGB32, opaque: the bytes are the colour). */
+typedef struct Png {
+  cairo_surface_t *img;
+  int w, h, stride;
+  const unsigned char *data;
+} Png;
+
+static int png_open(Png *p, const char *path) {
+  p->img = cairo_image_surface_create_from_png(path);
+  if (cairo_surface_status(p->img) != CAIRO_STATUS_SUCCESS) {
+    cairo_surface_destroy(p->img);
+    p->img = NULL;
+    return 0;
+  }
+  cairo_surface_flush(p->img);
+  p->w = cairo_image_surface_get_width(p->img);
+  p->h = cairo_image_surface_get_height(p->img);
+  p->stride = cairo_image_surface_get_stride(p->img);
+  p->data = cairo_image_surface_get_data(p->img);
+  return 1;
+}
+
+static void png_close(Png *p) {
+  if (p->img) cairo_surface_destroy(p->img);
+  p->img = NULL;
+}
+
+static us_Rgb pixel(const Png *p, double x, double y) {
+  int i = (int)floor(x), j = (int)floor(y);
+  if (i < 0 || j < 0 || i >= p->w || j >= p->h) return (us_Rgb){1, 2, 3};
+  uint32_t v;
+  memcpy(&v, p->data + (size_t)j * (size_t)p->stride + 4 * (size_t)i, 4);
+  return (us_Rgb){(unsigned char)(v >> 16), (unsigned char)(v >> 8), (unsigned char)v};
+}
+
+static int near_rgb(us_Rgb a, us_Rgb b, int tol) {
+  return abs(a.r - b.r) <= tol && abs(a.g - b.g) <= tol && abs(a.b - b.b) <= tol;
+}
+
+/* CIE L* from sRGB (D65 relative luminance): independent of the OKLab
+ * lightness the ramp is built with. */
+static double cie_lstar(us_Rgb c) {
+  double v[3] = {c.r / 255.0, c.g / 255.0, c.b / 255.0};
+  for (int i = 0; i < 3; i++) v[i] = v[i] <= 0.04045 ? v[i] / 12.92 : pow((v[i] + 0.055) / 1.055, 2.4);
+  double y = 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2];
+  return y > 216.0 / 24389.0 ? 116.0 * cbrt(y) - 16.0 : y * 24389.0 / 27.0;
+}
+
+/* p as a blend (1 - a) x + a y of two colours (antialiased lines): a, or
+ * -1 when p is more than 3 levels off every blend. */
+static double blend(us_Rgb p, us_Rgb x, us_Rgb y) {
+  double d[3] = {y.r - x.r, y.g - x.g, y.b - x.b}, q[3] = {p.r - x.r, p.g - x.g, p.b - x.b};
+  double a = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) / (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  a = a < 0 ? 0 : (a > 1 ? 1 : a);
+  for (int i = 0; i < 3; i++)
+    if (fabs(q[i] - a * d[i]) > 3.0) return -1;
+  return a;
+}
+
+/* A body as the SVG draws it: mean of its polygon's vertices, pixel
+ * bounding box, fill attribute. */
+typedef struct BodyPx {
+  double cx, cy, w, h;
+  char fill[32];
+} BodyPx;
+
+static int svg_body(const char *svg, const char *id, BodyPx *b) {
+  char key[80];
+  snprintf(key, sizeof key, "<title>%s</title><polygon points=\"", id);
+  const char *p = strstr(svg, key);
+  if (!p) return 0;
+  p += strlen(key);
+  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY}, x, y;
+  int n = 0, used;
+  b->cx = b->cy = 0;
+  while (sscanf(p, "%lf,%lf%n", &x, &y, &used) == 2) {
+    b->cx += x, b->cy += y, n++;
+    lo[0] = fmin(lo[0], x), lo[1] = fmin(lo[1], y), hi[0] = fmax(hi[0], x), hi[1] = fmax(hi[1], y);
+    p += used;
+  }
+  const char *f = strstr(p, "fill=\"");
+  if (!n || !f) return 0;
+  b->cx /= n, b->cy /= n, b->w = hi[0] - lo[0], b->h = hi[1] - lo[1];
+  snprintf(b->fill, sizeof b->fill, "%.*s", (int)strcspn(f + 6, "\""), f + 6);
+  return 1;
+}
+
+/* A number attribute of the first element after `at` (NAN if none). */
+static double attr(const char *at, const char *name) {
+  char key[32];
+  snprintf(key, sizeof key, " %s=\"", name);
+  const char *p = at ? strstr(at, key) : NULL;
+  return p ? strtod(p + strlen(key), NULL) : NAN;
+}
+
 /* 1 when libxml2 parses the file as XML 1.0 without any error. */
 static int libxml_parses(const char *path) {
 #ifdef US_HAVE_LIBXML2
@@ -341,7 +470,14 @@ static void hostile_ids(void) {
   CHECK(tmp_path("hostile.svg", path, sizeof path));
   us_RenderSettings r = us_render_default_settings();
   CHECK_OK(us_render_svg(s, &r, path, &err), &err);
+  char png_path[128];
+  us_Status png_st = us_render_png(s, &r, tmp_path("hostile.png", png_path, sizeof png_path), &err);
   us_structure_free(s);
+  CHECK_OK(png_st, &err); /* cairo gets cleaned text: no error state */
+  Png png = {0};
+  CHECK(png_open(&png, png_path));
+  png_close(&png);
+  remove(png_path);
   char *svg = slurp(path);
   CHECK(svg != NULL);
   int ok = well_formed(svg) && !strchr(svg, 0x1b) && !strchr(svg, 0x07) &&
@@ -362,10 +498,338 @@ static void checker(void) {
   CHECK(!well_formed("<a/><b/>"));
 }
 
-static void cleanup(void) {
-  if (g_dir[0]) CHECK(rmdir(g_dir) == 0);
+/* Render s with r as name.png and name.svg; the SVG text (us_malloc'd). */
+static char *render_both(const us_Structure *s, const us_RenderSettings *r, const char *name,
+                         char *png_path, size_t n) {
+  char svg_path[128], file[64];
+  us_Error err;
+  snprintf(file, sizeof file, "%s.svg", name);
+  if (!tmp_path(file, svg_path, sizeof svg_path) || us_render_svg(s, r, svg_path, &err)) return NULL;
+  snprintf(file, sizeof file, "%s.png", name);
+  if (!tmp_path(file, png_path, n) || us_render_png(s, r, png_path, &err)) {
+    fprintf(stderr, "render_both: %s\n", err.msg);
+    return NULL;
+  }
+  char *svg = slurp(svg_path);
+  remove(svg_path);
+  return svg;
 }
 
-US_TEST_MAIN(T(checker), T(plain), T(with_order), T(with_forces), T(errors), T(point_bodies), T(empty),
-             T(hostile_ids),
-             T(cleanup))
+static us_Structure *pyramid(int rows) {
+  us_GenSettings g = us_gen_default_settings();
+  g.n = rows;
+  us_Error err;
+  return us_gen_pyramid(&g, &err);
+}
+
+/* step[i]: 1-based removal step of body i in plan p (0: not in it). */
+static void plan_steps(const us_Plan *p, int *step) {
+  for (int g = 0; g < p->ngroups; g++) {
+    int a = p->group_start ? p->group_start[g] : g, b = p->group_start ? p->group_start[g + 1] : g + 1;
+    for (int k = a; k < b; k++) step[p->order[k]] = g + 1;
+  }
+}
+
+static void settings_from_plan(us_RenderSettings *r, const us_Plan *p) {
+  r->order = p->order;
+  r->norder = p->nsteps;
+  r->group_start = p->group_start;
+  r->ngroups = p->ngroups;
+  r->blocked = p->blocked;
+  r->nblocked = p->nblocked;
+}
+
+/* Every body of a planned pyramid has, in the PNG, the ramp colour of its
+ * removal step, and the SVG's fill is the same colour; sizes and title. */
+static void png_plan_colours(void) {
+  us_Error err;
+  us_Structure *s = pyramid(5);
+  CHECK(s != NULL);
+  us_PlanSettings ps = us_plan_default_settings();
+  us_Plan plan;
+  memset(&plan, 0, sizeof plan);
+  CHECK_OK(us_plan(s, &ps, &plan, &err), &err);
+  CHECK_INT(plan.status, ==, US_PLAN_FOUND);
+  us_RenderSettings r = us_render_default_settings();
+  settings_from_plan(&r, &plan);
+  r.title = "pyramid \xE2\x80\x94 15 bodies, plan found";
+  char png_path[128];
+  char *svg = render_both(s, &r, "plan", png_path, sizeof png_path);
+  Png png = {0};
+  int opened = svg && png_open(&png, png_path), step[64] = {0}, bad = 0, title_ink = 0;
+  plan_steps(&plan, step);
+  double svg_h = attr(svg, "height");
+  for (int i = 0; opened && i < s->nbody; i++) {
+    BodyPx b;
+    char want[8];
+    us_Rgb c = us_ramp(plan.ngroups > 1 ? (step[i] - 1.0) / (plan.ngroups - 1.0) : 0.0);
+    hex(c, want);
+    us_Rgb got = pixel(&png, b.cx, svg_body(svg, s->bodies[i].id, &b) ? b.cy + 0.3 * b.h : -1);
+    if (!near_rgb(got, c, 1) || strcmp(b.fill, want) || step[i] == 0) {
+      fprintf(stderr, "body %s step %d: png %d,%d,%d svg %s, want %s\n", s->bodies[i].id, step[i],
+              got.r, got.g, got.b, b.fill, want);
+      bad++;
+    }
+  }
+  for (int x = 0; opened && x < png.w; x++)
+    for (int y = 0; y < 24; y++) title_ink += cie_lstar(pixel(&png, x, y)) < 30;
+  int w = png.w, h = png.h;
+  png_close(&png);
+  us_free(svg);
+  us_plan_free(&plan);
+  us_structure_free(s);
+  CHECK(opened);
+  CHECK_INT(bad, ==, 0);
+  CHECK_INT(w, ==, 800);
+  CHECK_NEAR(h, svg_h, 0);
+  CHECK(title_ink > 50);
+  remove(png_path);
+}
+
+/* The ramp grows in lightness (CIE L*) from dark to light, and so does
+ * the legend's strip in the PNG. */
+static void ramp_lightness(void) {
+  double prev = -1;
+  for (int i = 0; i <= 100; i++) {
+    double l = cie_lstar(us_ramp(i / 100.0));
+    CHECK(l > prev + 0.2);
+    prev = l;
+  }
+  CHECK(cie_lstar(us_ramp(0)) < 25 && cie_lstar(us_ramp(1)) > 85);
+  us_Structure *col = scene_column(3);
+  CHECK(col != NULL);
+  int order[3] = {2, 1, 0};
+  us_RenderSettings r = us_render_default_settings();
+  r.order = order, r.norder = 3;
+  char png_path[128];
+  char *svg = render_both(col, &r, "ramp", png_path, sizeof png_path);
+  us_structure_free(col);
+  const char *strip = svg ? strstr(svg, "fill=\"url(#ramp)\"") : NULL;
+  while (strip && strip > svg && strncmp(strip, "<rect", 5)) strip--;
+  double x = attr(strip, "x"), y = attr(strip, "y"), w = attr(strip, "width"), h = attr(strip, "height");
+  us_free(svg);
+  Png png = {0};
+  int opened = png_open(&png, png_path), drops = 0;
+  double first = cie_lstar(pixel(&png, x + 2, y + h / 2)), last = first;
+  for (double px = x + 2; opened && px < x + w - 2; px++) {
+    double l = cie_lstar(pixel(&png, px, y + h / 2));
+    drops += l < last - 0.5;
+    last = l;
+  }
+  png_close(&png);
+  CHECK(opened && isfinite(x + y + w + h));
+  CHECK_INT(drops, ==, 0);
+  CHECK(last - first > 50);
+  remove(png_path);
+}
+
+/* --forces draws arrows: pixels of the arrow colour appear in the drawing
+ * where there were none. */
+static void png_forces_arrows(void) {
+  us_Error err;
+  us_Structure *s = pyramid(4);
+  CHECK(s != NULL);
+  us_StabilitySettings set = us_stability_default_settings();
+  us_Stability *w = us_stability_new(s, &set, &err);
+  us_StabilityResult res;
+  us_stability_result_init(&res);
+  us_Status st = w ? us_stability_test_full(w, &res, &err) : US_ERR_NOMEM;
+  us_stability_free(w);
+  us_RenderSettings r = us_render_default_settings();
+  char plain[128], forced[128], file[32];
+  us_Status st1 = st, st2 = st;
+  if (!st) st1 = us_render_png(s, &r, tmp_path("noforces.png", plain, sizeof plain), &err);
+  r.forces = &res.forces;
+  snprintf(file, sizeof file, "forces.png");
+  if (!st) st2 = us_render_png(s, &r, tmp_path(file, forced, sizeof forced), &err);
+  int verdict = res.verdict;
+  us_stability_result_free(&res);
+  us_structure_free(s);
+  CHECK_OK(st, &err);
+  CHECK_INT(verdict, ==, US_STABLE);
+  CHECK_OK(st1, &err);
+  CHECK_OK(st2, &err);
+  Png a = {0}, b = {0};
+  int ok = png_open(&a, plain) && png_open(&b, forced), diff = 0, red_a = 0, red_b = 0, white = 1;
+  us_Rgb red = {214, 39, 40};
+  int rows = ok ? US_MIN(a.h, b.h) - 80 : 0; /* the drawing, not the legend */
+  for (int y = 0; ok && y < rows; y++)
+    for (int x = 0; x < a.w; x++) {
+      us_Rgb p = pixel(&a, x, y), q = pixel(&b, x, y);
+      diff += !near_rgb(p, q, 0);
+      red_a += near_rgb(p, red, 1);
+      red_b += near_rgb(q, red, 1);
+      if (y < 3) white &= near_rgb(p, (us_Rgb){255, 255, 255}, 0); /* no title band */
+    }
+  int wb = b.w;
+  png_close(&a);
+  png_close(&b);
+  CHECK(ok);
+  CHECK_INT(wb, ==, 800);
+  CHECK_INT(red_a, ==, 0);
+  CHECK(red_b > 100);
+  CHECK(diff >= red_b);
+  CHECK(white);
+  remove(plain);
+  remove(forced);
+}
+
+/* A plan with status none: the blocked voussoirs are hatched (both hatch
+ * colours inside each), the others keep the neutral fill; the SVG names
+ * the pattern and the legend says "cannot be removed". */
+static void png_none_blocked(void) {
+  us_Error err;
+  us_GenSettings g = us_gen_default_settings();
+  g.n = 7;
+  us_Structure *s = us_gen_arch(&g, &err);
+  CHECK(s != NULL);
+  us_PlanSettings ps = us_plan_default_settings();
+  us_Plan plan;
+  memset(&plan, 0, sizeof plan);
+  us_Status st = us_plan(s, &ps, &plan, &err);
+  us_RenderSettings r = us_render_default_settings();
+  settings_from_plan(&r, &plan);
+  r.show_labels = 0; /* ids would be written where the pixels are read */
+  char png_path[128];
+  char *svg = st ? NULL : render_both(s, &r, "none", png_path, sizeof png_path);
+  Png png = {0};
+  int opened = svg && png_open(&png, png_path), bad = 0, nblocked = plan.nblocked;
+  const us_Hatch *h = &us_hatches[US_HATCH_BLOCKED];
+  int *blocked = us_calloc((size_t)s->nbody, sizeof *blocked);
+  for (int k = 0; blocked && k < plan.nblocked; k++) blocked[plan.blocked[k]] = 1;
+  for (int i = 0; opened && blocked && i < s->nbody; i++) {
+    BodyPx b;
+    int found = svg_body(svg, s->bodies[i].id, &b), base = 0, line = 0, other = 0;
+    for (int dx = -4; found && dx <= 4; dx++)
+      for (int dy = -4; dy <= 4; dy++) {
+        double a = blend(pixel(&png, b.cx + dx, b.cy + dy), h->base, h->line);
+        base += a >= 0 && a < 0.1, line += a > 0.5, other += a < 0;
+      }
+    int hatched = base > 0 && line > 0 && other == 0;
+    us_Rgb c = pixel(&png, b.cx, b.cy);
+    char got[8];
+    hex(c, got);
+    if (!found || (blocked[i] ? !hatched || strcmp(b.fill, "url(#blocked)")
+                              : hatched || strcmp(b.fill, got))) {
+      fprintf(stderr, "body %s (blocked %d): base %d line %d other %d, svg %s, png %s\n",
+              s->bodies[i].id, blocked[i], base, line, other, b.fill, got);
+      bad++;
+    }
+  }
+  int legend = svg && strstr(svg, ">cannot be removed</text>") && strstr(svg, ">5 cannot be removed</text>");
+  png_close(&png);
+  us_free(blocked);
+  us_free(svg);
+  us_PlanStatus status = plan.status;
+  us_plan_free(&plan);
+  us_structure_free(s);
+  CHECK_OK(st, &err);
+  CHECK_INT(status, ==, US_PLAN_NONE);
+  CHECK_INT(nblocked, ==, 5);
+  CHECK(opened);
+  CHECK_INT(bad, ==, 0);
+  CHECK(legend);
+  remove(png_path);
+}
+
+/* Sizes: the width asked for; a height asked for is the height; too large
+ * or too small is a usage error before any file; a tall structure at an
+ * automatic height stays within the limits, the drawing shrunk to fit. */
+static void png_sizes(void) {
+  us_Error err;
+  us_Structure *s = scene_column(40);
+  CHECK(s != NULL);
+  char path[128], none[128];
+  tmp_path("size.png", path, sizeof path);
+  tmp_path("nothing.png", none, sizeof none);
+  us_RenderSettings r = us_render_default_settings();
+  r.width_px = 300;
+  us_Status st1 = us_render_png(s, &r, path, &err);
+  Png a = {0};
+  int ok1 = !st1 && png_open(&a, path), w1 = a.w, h1 = a.h;
+  png_close(&a);
+  r.height_px = 200;
+  us_Status st2 = us_render_png(s, &r, path, &err);
+  int ok2 = !st2 && png_open(&a, path), w2 = a.w, h2 = a.h;
+  png_close(&a);
+  r.height_px = 0, r.width_px = 20000;
+  us_Status big_w = us_render_png(s, &r, none, &err);
+  r.width_px = 800, r.height_px = 20000;
+  us_Status big_h = us_render_png(s, &r, none, &err);
+  r.height_px = 60, r.title = "t"; /* title and legend take more */
+  us_Status small_h = us_render_png(s, &r, none, &err);
+  int wrote = access(none, F_OK) == 0;
+  /* the limits themselves, small: 400 px wide, at most 1000 a side and
+     300,000 pixels: the column (about 8 times as tall as wide) gets 750 */
+  us_Scene sc;
+  r = us_render_default_settings();
+  r.width_px = 400;
+  us_Status st3 = us_scene_build(&sc, s, &r, 1000, 300000, &err);
+  int inside = 1;
+  for (int k = 0; !st3 && k < 2 * 4 * 40; k += 2)
+    inside &= sc.pts[k] >= 0 && sc.pts[k] <= sc.w && sc.pts[k + 1] >= sc.draw_top &&
+              sc.pts[k + 1] <= sc.draw_bottom;
+  double sw = sc.w, sh = sc.h;
+  if (!st3) us_scene_free(&sc);
+  us_structure_free(s);
+  CHECK_OK(st1, &err);
+  CHECK(ok1 && w1 == 300 && h1 > 1000);
+  CHECK_OK(st2, &err);
+  CHECK(ok2 && w2 == 300 && h2 == 200);
+  CHECK_INT(big_w, ==, US_ERR_USAGE);
+  CHECK_INT(big_h, ==, US_ERR_USAGE);
+  CHECK_INT(small_h, ==, US_ERR_USAGE);
+  CHECK(!wrote);
+  CHECK_OK(st3, &err);
+  CHECK_NEAR(sw, 400, 0);
+  CHECK_NEAR(sh, 750, 0);
+  CHECK(inside);
+  remove(path);
+}
+
+/* Nothing is written on an error: an existing file keeps its content
+ * after a bad order, a missing directory is US_ERR_IO, and every failed
+ * allocation is US_ERR_NOMEM with the old file untouched. */
+static void png_errors(void) {
+  us_Error err;
+  us_Structure *s = scene_column(3);
+  CHECK(s != NULL);
+  char path[128], bad[160];
+  tmp_path("old.png", path, sizeof path);
+  FILE *fp = fopen(path, "w");
+  CHECK(fp != NULL);
+  fputs("old", fp);
+  fclose(fp);
+  us_RenderSettings r = us_render_default_settings();
+  int order[2] = {0, 9};
+  r.order = order, r.norder = 2;
+  us_Status st1 = us_render_png(s, &r, path, &err);
+  r.norder = 0;
+  snprintf(bad, sizeof bad, "%s/no_such_dir/x.png", g_dir);
+  us_Status st2 = us_render_png(s, &r, bad, &err);
+  int nomem_only = 1, done = 0;
+  for (long n = 0; n < 1000 && !done; n++) {
+    us_alloc_fail_after(n);
+    us_Status st = us_render_png(s, &r, path, &err);
+    us_alloc_fail_after(-1);
+    char *text = st ? slurp(path) : NULL;
+    if (st && (st != US_ERR_NOMEM || !text || strcmp(text, "old"))) nomem_only = 0;
+    us_free(text);
+    done = st == US_OK;
+  }
+  Png png = {0};
+  int decoded = png_open(&png, path);
+  png_close(&png);
+  us_structure_free(s);
+  CHECK_INT(st1, ==, US_ERR_USAGE);
+  CHECK_INT(st2, ==, US_ERR_IO);
+  CHECK(access(bad, F_OK) != 0);
+  CHECK(nomem_only);
+  CHECK(done);
+  CHECK(decoded);
+  remove(path);
+}
+
+US_TEST_MAIN(T(checker), T(plain), T(with_order), T(with_forces), T(errors), T(point_bodies), T(empty), T(hostile_ids),
+             T(png_plan_colours), T(ramp_lightness), T(png_forces_arrows), T(png_none_blocked),
+             T(png_sizes), T(png_errors))

@@ -795,9 +795,18 @@ typedef struct us_RenderSettings {
   int show_contacts;      /* default 1 */
   int show_labels;        /* default 1 */
   double width_px;        /* default 800 */
+  double height_px;       /* 0 (default): as the drawing needs, within the
+                             format's limits; else exactly this, the drawing
+                             fitted and centred */
+  const char *title;      /* a line above the drawing (NULL: none) */
 } us_RenderSettings;
 US_API us_RenderSettings us_render_default_settings(void);
+/* Draw s (docs/render.md) as SVG or PNG, written atomically: on any error
+ * (bad settings: US_ERR_USAGE, before the file is opened) nothing is
+ * written. A PNG is at most 16384 px a side and 64 million pixels. */
 US_API us_Status us_render_svg(const us_Structure *s, const us_RenderSettings *r, const char *path,
+                        us_Error *err);
+US_API us_Status us_render_png(const us_Structure *s, const us_RenderSettings *r, const char *path,
                         us_Error *err);
 
 /* The interactive plan viewer (docs/viewer.md): one self-contained HTML

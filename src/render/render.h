@@ -1,0 +1,120 @@
+/* Pictures of a structure (src/render): the colour ramp, the scene (one
+ * drawing description, computed once from structure + settings) and its two
+ * writers, SVG text and PNG through cairo.
+ *
+ * A scene is in pixels, y down, origin at the picture's top-left corner:
+ * every position, size and colour a writer needs is in it, so the writers
+ * only translate shapes into their format and never decide what to draw. */
+#ifndef US_RENDER_H
+#define US_RENDER_H
+
+#include "core/core.h"
+
+#include <stdio.h>
+
+/* 8-bit sRGB: both writers use these bytes as they are. */
+typedef struct us_Rgb {
+  unsigned char r, g, b;
+} us_Rgb;
+
+/* The removal-order ramp at t in [0, 1] (clamped): dark purple (removed
+ * first) through blue, teal and green to yellow, lightness increasing
+ * linearly (src/render/ramp.c). */
+us_Rgb us_ramp(double t);
+/* OKLab lightness in [0, 1] of an sRGB colour. */
+double us_rgb_lightness(us_Rgb c);
+
+/* A fill: a solid colour, or that colour crossed by hatch lines. */
+typedef struct us_Paint {
+  us_Rgb fill;
+  int hatch;        /* index into us_hatches, or -1 for a solid fill */
+} us_Paint;
+
+/* The hatches: on a ground of colour `base`, lines of colour `line`,
+ * `width` px wide, `gap` px apart, at `angle` degrees (counter-clockwise on
+ * the page from the x axis); `name` is the SVG pattern id. A hatched
+ * paint's fill is its hatch's base. */
+typedef struct us_Hatch {
+  const char *name;
+  us_Rgb base, line;
+  double angle, gap, width;
+} us_Hatch;
+enum { US_HATCH_GROUND, US_HATCH_FIXED, US_HATCH_BLOCKED, US_NHATCH };
+extern const us_Hatch us_hatches[US_NHATCH];
+
+/* One line of text: anchored at (x, y) on its baseline, or on its middle
+ * when `centred`; `anchor` -1 start, 0 middle, 1 end. */
+typedef struct us_SceneText {
+  const char *text;   /* NULL: nothing to draw */
+  double x, y, size;
+  int anchor, centred, bold;
+  us_Rgb color;
+} us_SceneText;
+
+/* A body: a polygon (pts[2 first .. 2 (first + npt) - 1]) or, without
+ * geometry, a dot of radius US_POINT_BODY_PX at (cx, cy). */
+#define US_POINT_BODY_PX 6.0
+typedef struct us_SceneBody {
+  int body;           /* index into the structure */
+  int first, npt;
+  double cx, cy;
+  us_Paint paint;
+  us_SceneText label; /* step number (text in num) or id */
+  char num[12];
+} us_SceneBody;
+
+/* An axis-aligned box, for the legend's swatches. */
+typedef struct us_SceneBox {
+  double x, y, w, h;
+  us_Paint paint;
+} us_SceneBox;
+
+#define US_SCENE_TEXTS 12
+#define US_SCENE_BOXES 4
+#define US_RAMP_STOPS 21
+
+typedef struct us_Scene {
+  double w, h;            /* the picture, whole pixels */
+  double stroke;          /* body outline width */
+  double ground_y;        /* top of the ground band (>= draw_bottom: none) */
+  double draw_top, draw_bottom; /* the drawing's band; the ground fills
+                                   [ground_y, draw_bottom] */
+  int nbody;
+  us_SceneBody *bodies;
+  double *pts;            /* body vertices, pixels */
+  int ndot;
+  double *dots;           /* contact points (x, y) */
+  double dot_r;
+  us_Rgb dot_color;
+  int narrow;
+  double *arrows;         /* force arrows (x1, y1, x2, y2), head at (x2, y2) */
+  double arrow_width, arrow_head;
+  us_Rgb arrow_color;
+  int has_ramp;           /* the legend's ramp strip */
+  us_SceneBox ramp_box;
+  us_Rgb ramp[US_RAMP_STOPS]; /* us_ramp at evenly spaced t */
+  int nbox;
+  us_SceneBox boxes[US_SCENE_BOXES];
+  int ntext;              /* title and legend lines */
+  us_SceneText texts[US_SCENE_TEXTS];
+  char text_buf[US_SCENE_TEXTS][192];
+} us_Scene;
+
+/* Largest PNG: sides and area, so that a huge structure gives a bounded
+ * picture (about 256 MB of pixels at most). */
+#define US_PNG_MAX_SIDE 16384.0
+#define US_PNG_MAX_PIXELS 64e6
+
+/* Build the scene of s under r, at most max_side pixels a side and
+ * max_pixels in area (the height shrinks the drawing to fit; a width or
+ * height asked for beyond them is US_ERR_USAGE). Checks r against s
+ * (US_ERR_USAGE). The scene points into s and r->title: keep them alive. */
+us_Status us_scene_build(us_Scene *sc, const us_Structure *s, const us_RenderSettings *r,
+                         double max_side, double max_pixels, us_Error *err);
+void us_scene_free(us_Scene *sc);
+
+/* The writers: the scene to an open stream. */
+void us_scene_write_svg(FILE *fp, const us_Scene *sc, const us_Structure *s);
+us_Status us_scene_write_png(FILE *fp, const us_Scene *sc, const char *path, us_Error *err);
+
+#endif
