@@ -6,6 +6,7 @@
 #define _XOPEN_SOURCE 700
 #include "core/core.h"
 #include "test.h"
+#include "tmpfiles.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -121,16 +122,6 @@ static void id_text(void) {
   CHECK(strlen(t.s) <= 83 && !strchr(t.s, 0x1b));
 }
 
-static char g_dir[64];
-
-static const char *tmp_path(const char *name, char *buf, size_t n) {
-  if (!g_dir[0]) {
-    snprintf(g_dir, sizeof g_dir, "/tmp/us_test_core_XXXXXX");
-    if (!mkdtemp(g_dir)) return NULL;
-  }
-  snprintf(buf, n, "%s/%s", g_dir, name);
-  return buf;
-}
 
 static us_Status put(const char *path, const char *text, us_Error *err) {
   us_AtomicFile *af = us_atomic_open(path, err);
@@ -151,7 +142,7 @@ static int has(const char *path, const char *text) {
 
 static int leftovers(void) {
   char cmd[128];
-  snprintf(cmd, sizeof cmd, "ls %s | grep -q '\\.tmp\\.'", g_dir);
+  snprintf(cmd, sizeof cmd, "ls %s | grep -q '\\.tmp\\.'", test_dir);
   return system(cmd) == 0;
 }
 
@@ -160,8 +151,8 @@ static int leftovers(void) {
 static void output_files(void) {
   us_Error err;
   char a[128], b[128], l[128];
-  CHECK(tmp_path("a.txt", a, sizeof a) && tmp_path("b.txt", b, sizeof b) &&
-        tmp_path("l.txt", l, sizeof l));
+  CHECK(test_tmp_path("a.txt", a, sizeof a) && test_tmp_path("b.txt", b, sizeof b) &&
+        test_tmp_path("l.txt", l, sizeof l));
   CHECK_OK(put(a, "one", &err), &err);
   CHECK(has(a, "one"));
   CHECK(chmod(a, 0640) == 0);
@@ -190,16 +181,16 @@ static void output_files(void) {
 static void output_refusals(void) {
   us_Error err;
   char a[128], b[128], l[128], miss[160];
-  CHECK(tmp_path("ro.txt", a, sizeof a) && tmp_path("h.txt", b, sizeof b) &&
-        tmp_path("s.txt", l, sizeof l));
-  snprintf(miss, sizeof miss, "%s/no/such/x.txt", g_dir);
+  CHECK(test_tmp_path("ro.txt", a, sizeof a) && test_tmp_path("h.txt", b, sizeof b) &&
+        test_tmp_path("s.txt", l, sizeof l));
+  snprintf(miss, sizeof miss, "%s/no/such/x.txt", test_dir);
   CHECK_OK(put(a, "keep", &err), &err);
   CHECK(chmod(a, 0444) == 0);
   CHECK(us_atomic_open(a, &err) == NULL && err.code == US_ERR_IO && strstr(err.msg, "not writable"));
   CHECK(us_output_check(a, NULL, 0, &err) == US_ERR_IO && strstr(err.msg, "not writable"));
   CHECK(has(a, "keep"));
   CHECK(chmod(a, 0644) == 0);
-  CHECK(us_atomic_open(g_dir, &err) == NULL && strstr(err.msg, "is a directory"));
+  CHECK(us_atomic_open(test_dir, &err) == NULL && strstr(err.msg, "is a directory"));
   CHECK(us_output_check(miss, NULL, 0, &err) == US_ERR_IO && strstr(err.msg, "cannot write"));
   CHECK(us_atomic_open(miss, &err) == NULL && err.code == US_ERR_IO);
   CHECK(link(a, b) == 0 && symlink("ro.txt", l) == 0);
@@ -208,12 +199,12 @@ static void output_refusals(void) {
         strstr(err.msg, "output would overwrite input"));
   CHECK(us_output_check(l, inputs, 1, &err) == US_ERR_IO);
   char dotted[160];
-  snprintf(dotted, sizeof dotted, "%s/./ro.txt", g_dir);
+  snprintf(dotted, sizeof dotted, "%s/./ro.txt", test_dir);
   CHECK(us_output_check(dotted, inputs, 1, &err) == US_ERR_IO);
   us_error_clear(&err);
   CHECK(us_output_check(miss, NULL, 0, NULL) == US_ERR_IO); /* NULL err is fine */
   char fresh[128];
-  CHECK(tmp_path("fresh.txt", fresh, sizeof fresh));
+  CHECK(test_tmp_path("fresh.txt", fresh, sizeof fresh));
   CHECK_OK(us_output_check(fresh, inputs, 1, &err), &err);
   CHECK(access(fresh, F_OK) != 0); /* the check touches nothing */
   remove(l), remove(b), remove(a);
@@ -222,7 +213,7 @@ static void output_refusals(void) {
 /* Out of memory inside us_atomic_open fails cleanly, without a leak. */
 static void output_nomem(void) {
   char a[128];
-  CHECK(tmp_path("oom.txt", a, sizeof a));
+  CHECK(test_tmp_path("oom.txt", a, sizeof a));
   for (int n = 0; n < 4; n++) {
     us_Error err;
     us_alloc_fail_after(n);
@@ -236,7 +227,7 @@ static void output_nomem(void) {
 }
 
 static void cleanup(void) {
-  if (g_dir[0]) CHECK(rmdir(g_dir) == 0);
+  if (test_dir[0]) CHECK(rmdir(test_dir) == 0);
 }
 
 US_TEST_MAIN(T(bitset_basics), T(bitset_set_many), T(alloc_failure_hook), T(error_messages),

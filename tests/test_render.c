@@ -22,6 +22,7 @@
 #include "render/render.h"
 #include "scenes.h"
 #include "test.h"
+#include "tmpfiles.h"
 
 #include <cairo.h>
 #include <dirent.h>
@@ -30,45 +31,10 @@
 #include <libxml/parser.h>
 #endif
 
-static char g_dir[64];
 
-/* The temporary directory and whatever a failed case left in it. */
-static void remove_dir(void) {
-  DIR *d = opendir(g_dir);
-  struct dirent *e;
-  char path[400];
-  while (d && (e = readdir(d)))
-    if (e->d_name[0] != '.') snprintf(path, sizeof path, "%s/%s", g_dir, e->d_name), remove(path);
-  if (d) closedir(d);
-  rmdir(g_dir);
-}
-
-/* A fresh temporary directory for this run's files (removed at exit). */
-static const char *tmp_path(const char *name, char *buf, size_t n) {
-  if (!g_dir[0]) {
-    snprintf(g_dir, sizeof g_dir, "/tmp/us_test_render_XXXXXX");
-    if (!mkdtemp(g_dir)) return NULL;
-    atexit(remove_dir);
-  }
-  snprintf(buf, n, "%s/%s", g_dir, name);
-  return buf;
-}
 
 static void hex(us_Rgb c, char out[8]) { snprintf(out, 8, "#%02x%02x%02x", c.r, c.g, c.b); }
 
-/* Whole file as a string (us_malloc'd) or NULL. */
-static char *slurp(const char *path) {
-  FILE *fp = fopen(path, "rb");
-  if (!fp) return NULL;
-  fseek(fp, 0, SEEK_END);
-  long n = ftell(fp);
-  fseek(fp, 0, SEEK_SET);
-  char *s = us_malloc((size_t)n + 1);
-  if (s && fread(s, 1, (size_t)n, fp) != (size_t)n) us_free(s), s = NULL;
-  if (s) s[n] = 0;
-  fclose(fp);
-  return s;
-}
 
 static int count(const char *hay, const char *needle) {
   int n = 0;
@@ -152,11 +118,11 @@ static void plain(void) {
   char path[128];
   us_Structure *s = scene(&err);
   CHECK(s != NULL);
-  CHECK(tmp_path("plain.svg", path, sizeof path));
+  CHECK(test_tmp_path("plain.svg", path, sizeof path));
   us_RenderSettings r = us_render_default_settings();
   CHECK_NEAR(r.width_px, 800, 0);
   CHECK_OK(us_render_svg(s, &r, path, &err), &err);
-  char *svg = slurp(path);
+  char *svg = test_slurp(path);
   us_structure_free(s);
   CHECK(svg != NULL);
   int ok = well_formed(svg) && count(svg, "<polygon") == 4 &&
@@ -178,14 +144,14 @@ static void with_order(void) {
   char path[128];
   us_Structure *s = scene(&err);
   CHECK(s != NULL);
-  CHECK(tmp_path("order.svg", path, sizeof path));
+  CHECK(test_tmp_path("order.svg", path, sizeof path));
   int order[3] = {2, 1, 0};
   us_RenderSettings r = us_render_default_settings();
   r.order = order;
   r.norder = 3;
   r.show_contacts = 0;
   CHECK_OK(us_render_svg(s, &r, path, &err), &err);
-  char *svg = slurp(path);
+  char *svg = test_slurp(path);
   us_structure_free(s);
   CHECK(svg != NULL);
   int ok = well_formed(svg) && count(svg, "<polygon") == 4 && strstr(svg, "removed first") &&
@@ -210,7 +176,7 @@ static void with_forces(void) {
   char path[128];
   us_Structure *s = scene(&err);
   CHECK(s != NULL);
-  CHECK(tmp_path("forces.svg", path, sizeof path));
+  CHECK(test_tmp_path("forces.svg", path, sizeof path));
   int nc = s->ncontact, idx[64];
   double f[128];
   CHECK(nc <= 64);
@@ -226,7 +192,7 @@ static void with_forces(void) {
   us_RenderSettings r = us_render_default_settings();
   r.forces = &fo;
   CHECK_OK(us_render_svg(s, &r, path, &err), &err);
-  char *svg = slurp(path);
+  char *svg = test_slurp(path);
   CHECK(svg != NULL);
   int ok = well_formed(svg) && count(svg, "marker-end=\"url(#arrow)\"") == nc &&
            strstr(svg, "arrows: contact forces");
@@ -252,7 +218,7 @@ static void errors(void) {
   char path[128], bad[160];
   us_Structure *s = scene(&err);
   CHECK(s != NULL);
-  CHECK(tmp_path("bad.svg", path, sizeof path));
+  CHECK(test_tmp_path("bad.svg", path, sizeof path));
   us_RenderSettings r = us_render_default_settings();
   int order[2] = {0, 7};
   r.order = order, r.norder = 2;
@@ -271,7 +237,7 @@ static void errors(void) {
   us_Status st4 = us_render_svg(s, &r, path, &err);
   int wrote = exists(path);
   r.width_px = 300;
-  snprintf(bad, sizeof bad, "%s/no_such_dir/x.svg", g_dir);
+  snprintf(bad, sizeof bad, "%s/no_such_dir/x.svg", test_dir);
   us_Status st5 = us_render_svg(s, &r, bad, &err);
   int bad_exists = exists(bad), io_msg = strstr(err.msg, "no_such_dir") != NULL;
   s->dim = 3;
@@ -309,12 +275,12 @@ static void point_bodies(void) {
       us_structure_add_point_body(s, "p2", 1, c2, 0, &err) >= 0 &&
       scene_polygon(s, "sq", 4, sq, 0) >= 0;
   us_RenderSettings r = us_render_default_settings();
-  us_Status st = tmp_path("points.svg", path, sizeof path) ? us_render_svg(s, &r, path, &err)
+  us_Status st = test_tmp_path("points.svg", path, sizeof path) ? us_render_svg(s, &r, path, &err)
                                                            : US_ERR_IO;
   us_structure_free(s);
   CHECK(ok);
   CHECK_OK(st, &err);
-  char *svg = slurp(path);
+  char *svg = test_slurp(path);
   CHECK(svg != NULL);
   ok = well_formed(svg) && count(svg, "r=\"6\"") == 2 && count(svg, "<polygon") == 1 &&
        strstr(svg, ">sq</text>") && strstr(svg, ">p2</text>");
@@ -329,11 +295,11 @@ static void empty(void) {
   char path[128];
   us_Structure *s = us_structure_new(2);
   CHECK(s != NULL);
-  us_Status st = tmp_path("empty.svg", path, sizeof path) ? us_render_svg(s, NULL, path, &err)
+  us_Status st = test_tmp_path("empty.svg", path, sizeof path) ? us_render_svg(s, NULL, path, &err)
                                                           : US_ERR_IO;
   us_structure_free(s);
   CHECK_OK(st, &err);
-  char *svg = slurp(path);
+  char *svg = test_slurp(path);
   CHECK(svg != NULL);
   int ok = well_formed(svg) && !strstr(svg, "<polygon") && strstr(svg, "0 bodies (0 fixed)") &&
            !strstr(svg, "nan") && !strstr(svg, "inf");
@@ -467,18 +433,18 @@ static void hostile_ids(void) {
     CHECK(us_structure_add_polygon(s, ids[i], 4, xy, 1, 0, 0, -1, &err) >= 0);
   }
   CHECK_OK(us_structure_finalize(s, &err), &err);
-  CHECK(tmp_path("hostile.svg", path, sizeof path));
+  CHECK(test_tmp_path("hostile.svg", path, sizeof path));
   us_RenderSettings r = us_render_default_settings();
   CHECK_OK(us_render_svg(s, &r, path, &err), &err);
   char png_path[128];
-  us_Status png_st = us_render_png(s, &r, tmp_path("hostile.png", png_path, sizeof png_path), &err);
+  us_Status png_st = us_render_png(s, &r, test_tmp_path("hostile.png", png_path, sizeof png_path), &err);
   us_structure_free(s);
   CHECK_OK(png_st, &err); /* cairo gets cleaned text: no error state */
   Png png = {0};
   CHECK(png_open(&png, png_path));
   png_close(&png);
   remove(png_path);
-  char *svg = slurp(path);
+  char *svg = test_slurp(path);
   CHECK(svg != NULL);
   int ok = well_formed(svg) && !strchr(svg, 0x1b) && !strchr(svg, 0x07) &&
            !strstr(svg, "\xef\xbf\xbe") && !strstr(svg, "\xef\xbf\xbf") && !strstr(svg, "\xff") &&
@@ -504,13 +470,13 @@ static char *render_both(const us_Structure *s, const us_RenderSettings *r, cons
   char svg_path[128], file[64];
   us_Error err;
   snprintf(file, sizeof file, "%s.svg", name);
-  if (!tmp_path(file, svg_path, sizeof svg_path) || us_render_svg(s, r, svg_path, &err)) return NULL;
+  if (!test_tmp_path(file, svg_path, sizeof svg_path) || us_render_svg(s, r, svg_path, &err)) return NULL;
   snprintf(file, sizeof file, "%s.png", name);
-  if (!tmp_path(file, png_path, n) || us_render_png(s, r, png_path, &err)) {
+  if (!test_tmp_path(file, png_path, n) || us_render_png(s, r, png_path, &err)) {
     fprintf(stderr, "render_both: %s\n", err.msg);
     return NULL;
   }
-  char *svg = slurp(svg_path);
+  char *svg = test_slurp(svg_path);
   remove(svg_path);
   return svg;
 }
@@ -638,10 +604,10 @@ static void png_forces_arrows(void) {
   us_RenderSettings r = us_render_default_settings();
   char plain[128], forced[128], file[32];
   us_Status st1 = st, st2 = st;
-  if (!st) st1 = us_render_png(s, &r, tmp_path("noforces.png", plain, sizeof plain), &err);
+  if (!st) st1 = us_render_png(s, &r, test_tmp_path("noforces.png", plain, sizeof plain), &err);
   r.forces = &res.forces;
   snprintf(file, sizeof file, "forces.png");
-  if (!st) st2 = us_render_png(s, &r, tmp_path(file, forced, sizeof forced), &err);
+  if (!st) st2 = us_render_png(s, &r, test_tmp_path(file, forced, sizeof forced), &err);
   int verdict = res.verdict;
   us_stability_result_free(&res);
   us_structure_free(s);
@@ -740,8 +706,8 @@ static void png_sizes(void) {
   us_Structure *s = scene_column(40);
   CHECK(s != NULL);
   char path[128], none[128];
-  tmp_path("size.png", path, sizeof path);
-  tmp_path("nothing.png", none, sizeof none);
+  test_tmp_path("size.png", path, sizeof path);
+  test_tmp_path("nothing.png", none, sizeof none);
   us_RenderSettings r = us_render_default_settings();
   r.width_px = 300;
   us_Status st1 = us_render_png(s, &r, path, &err);
@@ -795,7 +761,7 @@ static void png_errors(void) {
   us_Structure *s = scene_column(3);
   CHECK(s != NULL);
   char path[128], bad[160];
-  tmp_path("old.png", path, sizeof path);
+  test_tmp_path("old.png", path, sizeof path);
   FILE *fp = fopen(path, "w");
   CHECK(fp != NULL);
   fputs("old", fp);
@@ -805,14 +771,14 @@ static void png_errors(void) {
   r.order = order, r.norder = 2;
   us_Status st1 = us_render_png(s, &r, path, &err);
   r.norder = 0;
-  snprintf(bad, sizeof bad, "%s/no_such_dir/x.png", g_dir);
+  snprintf(bad, sizeof bad, "%s/no_such_dir/x.png", test_dir);
   us_Status st2 = us_render_png(s, &r, bad, &err);
   int nomem_only = 1, done = 0;
   for (long n = 0; n < 1000 && !done; n++) {
     us_alloc_fail_after(n);
     us_Status st = us_render_png(s, &r, path, &err);
     us_alloc_fail_after(-1);
-    char *text = st ? slurp(path) : NULL;
+    char *text = st ? test_slurp(path) : NULL;
     if (st && (st != US_ERR_NOMEM || !text || strcmp(text, "old"))) nomem_only = 0;
     us_free(text);
     done = st == US_OK;

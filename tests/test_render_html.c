@@ -13,33 +13,12 @@
 #define _POSIX_C_SOURCE 200809L
 #include "scenes.h"
 #include "test.h"
+#include "tmpfiles.h"
 
 #include <jansson.h>
 #include <unistd.h>
 
-static char g_dir[64];
 
-static const char *tmp_path(const char *name, char *buf, size_t n) {
-  if (!g_dir[0]) {
-    snprintf(g_dir, sizeof g_dir, "/tmp/us_test_html_XXXXXX");
-    if (!mkdtemp(g_dir)) return NULL;
-  }
-  snprintf(buf, n, "%s/%s", g_dir, name);
-  return buf;
-}
-
-static char *slurp(const char *path) {
-  FILE *fp = fopen(path, "rb");
-  if (!fp) return NULL;
-  fseek(fp, 0, SEEK_END);
-  long n = ftell(fp);
-  fseek(fp, 0, SEEK_SET);
-  char *s = us_malloc((size_t)n + 1);
-  if (s && fread(s, 1, (size_t)n, fp) != (size_t)n) us_free(s), s = NULL;
-  if (s) s[n] = 0;
-  fclose(fp);
-  return s;
-}
 
 static int spit(const char *path, const char *text) {
   FILE *fp = fopen(path, "wb");
@@ -67,11 +46,11 @@ static json_t *page_data(const us_Structure *s, const us_RenderSettings *r,
                          const us_HtmlSettings *h, const char *name, char **page_out) {
   char path[128];
   us_Error err;
-  if (us_render_html(s, r, h, tmp_path(name, path, sizeof path), &err)) {
+  if (us_render_html(s, r, h, test_tmp_path(name, path, sizeof path), &err)) {
     fprintf(stderr, "us_render_html: %s\n", err.msg);
     return NULL;
   }
-  char *page = slurp(path), *data = page ? data_of(page) : NULL;
+  char *page = test_slurp(path), *data = page ? data_of(page) : NULL;
   json_error_t je;
   json_t *root = data ? json_loads(data, 0, &je) : NULL;
   if (data && !root) fprintf(stderr, "data does not parse: %s\n", je.text);
@@ -232,7 +211,7 @@ static void refused(const us_Structure *s, const us_RenderSettings *r, const us_
   char path[128];
   us_Error err;
   us_error_clear(&err);
-  tmp_path("refused.html", path, sizeof path);
+  test_tmp_path("refused.html", path, sizeof path);
   us_Status st = us_render_html(s, r, h, path, &err);
   if (st != want || access(path, F_OK) == 0 || !err.msg[0]) {
     fprintf(stderr, "refused: got %s (%s), wanted %s\n", us_status_name(st), err.msg,
@@ -273,7 +252,7 @@ static void out_of_memory_leaves_nothing(void) {
   us_Structure *s = scene_column(3);
   CHECK(s);
   char path[128];
-  tmp_path("oom.html", path, sizeof path);
+  test_tmp_path("oom.html", path, sizeof path);
   us_Status st = US_ERR_NOMEM;
   int n = 0, bad = 0;
   for (; st == US_ERR_NOMEM && n < 1000; n++) {
@@ -304,7 +283,7 @@ static int same_forces(const us_Forces *a, const us_Forces *b) {
 static us_Status round_trip(const us_Structure *s, const us_Plan *p, const char *name,
                             us_Forces **certs, int *ngroups, us_Error *err) {
   char path[128];
-  tmp_path(name, path, sizeof path);
+  test_tmp_path(name, path, sizeof path);
   us_PlanSettings set = us_plan_default_settings();
   us_PlanFile pf;
   us_Status st = us_plan_write(s, p, &set, path, err);
@@ -363,7 +342,7 @@ static void certs_absent_or_tampered(void) {
   us_Structure *s = scene_column(2);
   CHECK(s);
   char path[128];
-  tmp_path("t.json", path, sizeof path);
+  test_tmp_path("t.json", path, sizeof path);
   us_PlanFile pf;
   us_Error err;
   us_Forces dummy, *certs = &dummy;
