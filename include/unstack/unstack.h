@@ -672,6 +672,12 @@ typedef struct us_GenSettings {
                         wall3d bricks are `thickness` deep */
   double jitter;     /* tower: largest turn of a box about the vertical, in
                         degrees (default 0) */
+  int segments;      /* dome: voussoirs per course (default 12) */
+  double oculus;     /* dome: half-angle of the opening at the top, degrees
+                        from the vertical, in (0, 90) (default 15) */
+  int cap;           /* dome: close the opening with one keystone cap (0) */
+  int nremove;       /* jenga: pieces left out, remove[2k] the level (1-based */
+  const int *remove; /*   from the bottom), remove[2k+1] the position 1..3 */
 } us_GenSettings;
 US_API us_GenSettings us_gen_default_settings(void);
 
@@ -691,6 +697,21 @@ US_API us_Structure *us_gen_stacker(const us_GenSettings *g, us_Error *err);
 US_API us_Structure *us_gen_tower(const us_GenSettings *g, us_Error *err);
 US_API us_Structure *us_gen_pyramid3d(const us_GenSettings *g, us_Error *err);
 US_API us_Structure *us_gen_wall3d(const us_GenSettings *g, us_Error *err);
+/* A hemispherical dome on the ground (src/gen/dome.c): g->n courses of
+ * g->segments voussoirs between latitude 0 and 90 - oculus degrees, inner
+ * radius `radius`, `thickness` thick; with `cap`, one keystone over the
+ * opening. */
+US_API us_Structure *us_gen_dome(const us_GenSettings *g, us_Error *err);
+/* A Jenga tower (src/gen/jenga.c): g->n levels of 3 pieces 3 w x w x h
+ * (w = width, h = height), alternating direction, without the pieces
+ * listed in remove. */
+US_API us_Structure *us_gen_jenga(const us_GenSettings *g, us_Error *err);
+/* The stacker in 3D (src/gen/random3d.c): up to g->n boxes (width x depth
+ * x height) dropped at random (seeded) onto a square of g->width boxes'
+ * side, each resting on the highest boxes under it and kept only while
+ * the whole stands; stops at n boxes or after max_tries drops in a row
+ * are discarded (then fewer: the count is s->nbody). */
+US_API us_Structure *us_gen_random3d(const us_GenSettings *g, us_Error *err);
 
 /* --------------------------------------------------------------------- I/O */
 

@@ -30,6 +30,8 @@ us_GenSettings us_gen_default_settings(void) {
   g.max_tries = 10000;
   g.depth = 1.0;
   g.jitter = 0.0;
+  g.segments = 12;
+  g.oculus = 15.0;
   return g;
 }
 
