@@ -115,6 +115,10 @@ static void push_at(const us_Structure *s, const Units *u, double *a, int i, con
                     const double *F, double sign) {
   const double *c = s->bodies[i].com;
   double r[3] = {(p[0] - c[0]) * u->inv_l, (p[1] - c[1]) * u->inv_l, (p[2] - c[2]) * u->inv_l};
+  if (F[0] == 0.0 && F[1] == 0.0 && F[2] == 0.0) { /* adds nothing but the lever arm */
+    a[7] = US_MAX(a[7], fast_norm3(r));
+    return;
+  }
   for (int j = 0; j < 3; j++) a[j] += sign * F[j];
   a[3] += sign * (r[1] * F[2] - r[2] * F[1]);
   a[4] += sign * (r[2] * F[0] - r[0] * F[2]);
@@ -158,9 +162,16 @@ static int one_force(const us_Structure *s, const Units *u, const us_Contact *k,
                      double *F, double *cone, double *sign) {
   int dim = s->dim;
   double fc[3] = {0.0, 0.0, 0.0};
+  int zero = 1;
   for (int j = 0; j < dim; j++) {
     if (!isfinite(f[j])) return -1;
     fc[j] = f[j] * u->inv_w;
+    zero &= fc[j] == 0.0;
+  }
+  if (zero) { /* an idle contact (most side joints of a wall): inside, no sign */
+    F[0] = F[1] = F[2] = 0.0;
+    *cone = *sign = 0.0;
+    return 0;
   }
   for (int j = 0; j < 3; j++) F[j] = fc[0] * k->n[j];
   for (int t = 1; t < dim; t++)
