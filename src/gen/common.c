@@ -126,3 +126,16 @@ us_Structure *us_gen_finish(us_Structure *s, us_Error *err) {
   return s;
 }
 
+
+us_Status us_gen_stands(const us_Structure *s, int *stable, us_Error *err) {
+  us_StabilitySettings set = us_stability_default_settings();
+  us_Stability *w = us_stability_new(s, &set, err);
+  if (!w) return err->code;
+  us_StabilityResult res;
+  us_stability_result_init(&res);
+  us_Status st = us_stability_test_full(w, &res, err);
+  *stable = !st && res.verdict == US_STABLE;
+  us_stability_result_free(&res);
+  us_stability_free(w);
+  return st;
+}

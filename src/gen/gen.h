@@ -43,6 +43,9 @@ us_Status us_gen_add_box3(us_Structure *s, const us_GenSettings *g, int k, doubl
 
 /* Finalize s; on error free it and return NULL (err set). */
 us_Structure *us_gen_finish(us_Structure *s, us_Error *err);
+/* *stable = 1 when the whole of the finalized s stands (default stability
+ * settings: the generators that keep a drop only while all stands). */
+us_Status us_gen_stands(const us_Structure *s, int *stable, us_Error *err);
 
 /* Random numbers: us_rng_next / us_rng_below (src/core/rng.c), seeded
  * with g->seed, so a seed gives the same structure on every platform. */

@@ -90,27 +90,6 @@ static us_Structure *build(const Stacker *k, int r, long q, us_Error *err) {
   return us_gen_finish(s, err);
 }
 
-/* Test the whole of s: *stable = 1 when the verdict is stable. */
-static us_Status stands(const us_Structure *s, int *stable, us_Error *err) {
-  us_StabilitySettings set = us_stability_default_settings();
-  us_Stability *w = us_stability_new(s, &set, err);
-  if (!w) return err->code;
-  us_Bitset all = {0};
-  us_StabilityResult res = {0};
-  us_Status st = US_OK;
-  if (us_bitset_init(&all, s->nbody)) {
-    st = us_error_set(err, US_ERR_NOMEM, "random: out of memory");
-  } else {
-    us_bitset_fill(&all);
-    st = us_stability_test(w, &all, &res, err);
-  }
-  *stable = !st && res.verdict == US_STABLE;
-  us_stability_result_free(&res);
-  us_bitset_free(&all);
-  us_stability_free(w);
-  return st;
-}
-
 /* Append block (r, q) to the kept blocks. */
 static us_Status keep(Stacker *k, int r, long q, us_Error *err) {
   if (k->n == k->cap) {
@@ -139,7 +118,7 @@ static us_Status attempt(Stacker *k, us_Structure **out, int *kept, us_Error *er
   us_Structure *s = build(k, r, q, err);
   if (!s) return err->code;
   int stable = 0;
-  us_Status st = stands(s, &stable, err);
+  us_Status st = us_gen_stands(s, &stable, err);
   if (!st && stable) st = keep(k, r, q, err);
   if (st || !stable) {
     us_structure_free(s);

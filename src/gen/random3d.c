@@ -88,20 +88,6 @@ static us_Structure *build(const Drops *d, int count, us_Error *err) {
   return us_gen_finish(s, err);
 }
 
-/* *stable = 1 when the whole of s stands (default settings). */
-static us_Status stands(const us_Structure *s, int *stable, us_Error *err) {
-  us_StabilitySettings set = us_stability_default_settings();
-  us_Stability *w = us_stability_new(s, &set, err);
-  if (!w) return err->code;
-  us_StabilityResult res;
-  us_stability_result_init(&res);
-  us_Status st = us_stability_test_full(w, &res, err);
-  *stable = !st && res.verdict == US_STABLE;
-  us_stability_result_free(&res);
-  us_stability_free(w);
-  return st;
-}
-
 /* Does the candidate (box d->n, already written into q and level) keep
  * the whole standing? Boxes on the ground always do. */
 static us_Status candidate_stands(const Drops *d, int *stable, us_Error *err) {
@@ -109,7 +95,7 @@ static us_Status candidate_stands(const Drops *d, int *stable, us_Error *err) {
   if (d->level[d->n] == 0) return US_OK;
   us_Structure *s = build(d, d->n + 1, err);
   if (!s) return err->code;
-  us_Status st = stands(s, stable, err);
+  us_Status st = us_gen_stands(s, stable, err);
   us_structure_free(s);
   return st;
 }
