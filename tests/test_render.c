@@ -240,7 +240,7 @@ static void errors(void) {
   snprintf(bad, sizeof bad, "%s/no_such_dir/x.svg", test_dir);
   us_Status st5 = us_render_svg(s, &r, bad, &err);
   int bad_exists = exists(bad), io_msg = strstr(err.msg, "no_such_dir") != NULL;
-  s->dim = 3;
+  s->dim = 4; /* no such dimension */
   us_Status st7 = us_render_svg(s, NULL, path, &err);
   int wrote3d = exists(path);
   s->dim = 2;

@@ -1,6 +1,7 @@
 /* unstack render: draw a structure, optionally with a plan and forces, as
  * SVG or PNG (docs/render.md), or as the interactive HTML viewer
- * (--html, cmd_render_html.c, docs/viewer.md).
+ * (--html, cmd_render_html.c, docs/viewer.md). 3D structures are drawn
+ * axonometrically (--view AZ,EL) as SVG or PNG; the viewer is 2D only.
  *
  * The flow: parse, check the output can be written, pick the format
  * (--format or --html, else the output's extension), load the structure
@@ -9,20 +10,21 @@
  * with the format's writer (write_output: one branch per format). */
 #include "options.h"
 
-#include <stdio.h>
 #include <ctype.h>
+#include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 static const char help[] =
     "usage: unstack render FILE [--plan PLAN.json] [--forces] -o OUT.svg|OUT.png\n"
     "       unstack render FILE [--plan PLAN.json] --html -o OUT.html\n"
     "\n"
-    "Draw the structure in FILE as SVG or PNG: a title with the plan's status\n"
-    "(or, without a plan, whether the structure stands), bodies coloured and\n"
-    "numbered by their removal step when a plan is given (with a legend), bodies\n"
-    "that cannot be removed (a plan with status none) hatched red, contact\n"
-    "points, and with --forces the certificate forces of the full structure as\n"
-    "arrows scaled to the largest.\n"
+    "Draw the structure in FILE as SVG or PNG (a 3D one in an axonometric view,\n"
+    "--view): a title with the plan's status (or, without a plan, whether the\n"
+    "structure stands), bodies coloured and numbered by their removal step when a\n"
+    "plan is given (with a legend), bodies that cannot be removed (a plan with\n"
+    "status none) hatched red, contact points, and with --forces the certificate\n"
+    "forces of the full structure as arrows scaled to the largest.\n"
     "\n"
     "options:\n"
     "  -o, --output OUT      output file (required); .svg or .png picks the format\n"
@@ -39,6 +41,8 @@ static const char help[] =
     "  --width PX            picture width in pixels (default 800; PNG at most 16384)\n"
     "  --height PX           picture height (default: as the drawing needs; a PNG\n"
     "                        stays within 16384 px a side and 64 million pixels)\n"
+    "  --view AZ,EL          3D: azimuth and elevation of the view in degrees\n"
+    "                        (default 35,25; EL in [-90, 90]; docs/render.md)\n"
     "  --contact-tol T       contact detection tolerance\n"
     "\n"
     "exit: 0 written, 1 --forces given but the structure does not stand, or --html\n"
@@ -71,6 +75,20 @@ static int size_option(const char *opt, const char *v, double *out) {
   return 0;
 }
 
+/* --view AZ,EL: two numbers, the elevation in [-90, 90]. */
+static int view_option(const char *v, us_RenderSettings *r) {
+  char buf[64];
+  const char *comma = strchr(v, ',');
+  size_t n = comma ? (size_t)(comma - v) : 0;
+  if (comma && n < sizeof buf) memcpy(buf, v, n), buf[n] = 0;
+  if (!comma || n >= sizeof buf || cli_parse_double(buf, &r->view_az) ||
+      cli_parse_double(comma + 1, &r->view_el) || !(fabs(r->view_az) <= 3600.0) ||
+      !(fabs(r->view_el) <= 90.0))
+    return cli_fail("render", "--view needs AZ,EL in degrees (azimuth in [-3600, 3600], "
+                    "elevation in [-90, 90]), got '%s'", v);
+  return 0;
+}
+
 static int format_option(const char *v, Format *f) {
   for (int i = 0; i < NFORMATS; i++)
     if (!strcmp(v, kFormats[i].name)) return *f = kFormats[i].f, 0;
@@ -82,7 +100,7 @@ static int value_option(int argc, char **argv, int *i, CliCommon *c, RenderArgs 
   const char *o = argv[*i], *v;
   if (strcmp(o, "-o") && strcmp(o, "--output") && strcmp(o, "--plan") && strcmp(o, "--width") &&
       strcmp(o, "--height") && strcmp(o, "--format") && strcmp(o, "--title") &&
-      strcmp(o, "--time-limit"))
+      strcmp(o, "--time-limit") && strcmp(o, "--view"))
     return 1;
   if (!(v = cli_value("render", argc, argv, i))) return CLI_EXIT_ERR;
   if (!strcmp(o, "-o") || !strcmp(o, "--output")) a->out = v;
@@ -91,6 +109,7 @@ static int value_option(int argc, char **argv, int *i, CliCommon *c, RenderArgs 
   else if (!strcmp(o, "--width")) return size_option(o, v, &a->r.width_px);
   else if (!strcmp(o, "--height")) return size_option(o, v, &a->r.height_px);
   else if (!strcmp(o, "--format")) return format_option(v, &a->format);
+  else if (!strcmp(o, "--view")) return view_option(v, &a->r);
   else if (cli_time_limit("render", v, c)) return CLI_EXIT_ERR;
   else a->time_limit_given = 1;
   return 0;

@@ -820,6 +820,9 @@ typedef struct us_RenderSettings {
                              format's limits; else exactly this, the drawing
                              fitted and centred */
   const char *title;      /* a line above the drawing (NULL: none) */
+  double view_az, view_el;/* 3D: the axonometric view's azimuth and
+                             elevation in degrees (default 35, 25; el in
+                             [-90, 90]; docs/render.md) */
 } us_RenderSettings;
 US_API us_RenderSettings us_render_default_settings(void);
 /* Draw s (docs/render.md) as SVG or PNG, written atomically: on any error

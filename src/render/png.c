@@ -1,8 +1,8 @@
 /* The PNG writer: a scene (src/render/scene.c) drawn with cairo on an
  * ARGB32 image surface, then encoded as PNG into the caller's stream. It
  * decides nothing about what is drawn; it only spells the scene's shapes
- * in cairo calls, in the SVG writer's order (back to front: ground,
- * bodies, labels, contact dots, arrows, legend).
+ * in cairo calls, in the SVG writer's order (back to front: ground or the
+ * 3D ground grid, bodies (3D: faces far to near), labels, contact dots, arrows, legend).
  *
  * Colours are the scene's bytes: a solid fill with full alpha lands in the
  * image unchanged, so the pixel inside a body is exactly its scene colour
@@ -136,6 +136,16 @@ static void draw_ground(cairo_t *cr, const us_Scene *sc) {
   cairo_stroke(cr);
 }
 
+static void draw_grid(cairo_t *cr, const us_Scene *sc) {
+  set_rgb(cr, sc->line_color);
+  cairo_set_line_width(cr, sc->line_width);
+  for (int k = 0; k < sc->nline; k++) {
+    cairo_move_to(cr, sc->lines[4 * k], sc->lines[4 * k + 1]);
+    cairo_line_to(cr, sc->lines[4 * k + 2], sc->lines[4 * k + 3]);
+  }
+  cairo_stroke(cr);
+}
+
 static void draw_bodies(cairo_t *cr, const us_Scene *sc) {
   for (int i = 0; i < sc->nbody; i++) {
     const us_SceneBody *b = &sc->bodies[i];
@@ -208,6 +218,7 @@ static void draw_scene(cairo_t *cr, const us_Scene *sc) {
   cairo_paint(cr);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   if (sc->ground_y < sc->draw_bottom) draw_ground(cr, sc);
+  if (sc->nline) draw_grid(cr, sc);
   draw_bodies(cr, sc);
   if (sc->ndot) draw_dots(cr, sc);
   if (sc->narrow) draw_arrows(cr, sc);

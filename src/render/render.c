@@ -21,6 +21,8 @@ us_RenderSettings us_render_default_settings(void) {
   r.show_contacts = 1;
   r.show_labels = 1;
   r.width_px = 800.0;
+  r.view_az = 35.0;
+  r.view_el = 25.0;
   return r;
 }
 

@@ -61,6 +61,8 @@ typedef struct us_SceneBody {
   us_Paint paint;
   us_SceneText label; /* step number (text in num) or id */
   char num[12];
+  double depth;       /* 3D: centroid along the view direction (larger is
+                         nearer the viewer); 0 in 2D */
 } us_SceneBody;
 
 /* An axis-aligned box, for the legend's swatches. */
@@ -80,7 +82,13 @@ typedef struct us_Scene {
   double draw_top, draw_bottom; /* the drawing's band; the ground fills
                                    [ground_y, draw_bottom] */
   int nbody;
-  us_SceneBody *bodies;
+  us_SceneBody *bodies;   /* 2D: one per body; 3D: one per face turned to
+                             the viewer, far to near */
+  int labels_apart;       /* 1: labels drawn after every body (3D) */
+  int nline;
+  double *lines;          /* 3D ground grid (x1, y1, x2, y2), under the bodies */
+  double line_width;
+  us_Rgb line_color;
   double *pts;            /* body vertices, pixels */
   int ndot;
   double *dots;           /* contact points (x, y) */
@@ -99,6 +107,35 @@ typedef struct us_Scene {
   us_SceneText texts[US_SCENE_TEXTS];
   char text_buf[US_SCENE_TEXTS][192];
 } us_Scene;
+
+/* The view: world to pixels. A world point p is first projected to
+ * (x, y) = (p . r, p . u) (2D: r = x, u = y), then X = ox + (x - x0) k,
+ * Y = oy + (y1 - y) k. e points from the scene toward the viewer. */
+typedef struct us_SceneView {
+  double x0, y1;   /* left and top edges of the view, projected */
+  double ww, wh;   /* width and height of the view, projected */
+  double k;        /* pixels per world unit */
+  double ox, oy;   /* pixel position of (x0, y1) */
+  double span;     /* larger side of the view */
+  double r[3], u[3], e[3]; /* right, up, toward the viewer (unit, orthogonal) */
+} us_SceneView;
+
+/* The axonometric axes of azimuth az and elevation el (degrees, see
+ * src/render/scene3.c) into v->r, v->u, v->e. */
+void us_scene3_axes(us_SceneView *v, double az, double el);
+/* p in pixels under v. */
+void us_scene_px(const us_SceneView *v, const double p[3], double *X, double *Y);
+/* Entries (faces and point bodies) and face vertices a 3D scene needs. */
+void us_scene3_count(const us_Structure *s, size_t *nentry, size_t *npt);
+/* Grow bb (xmin, ymin, xmax, ymax, projected) by the bodies and the grid. */
+void us_scene3_bounds(const us_Structure *s, const us_SceneView *v, double bb[4]);
+/* The visible faces, far to near, painted from proto[body] (paint; label
+ * text and colour) and shaded; labels at the bodies' projected centres;
+ * the ground grid. sc->bodies and sc->pts hold us_scene3_count's sizes,
+ * sc->lines 4 US_GRID_LINES doubles. proto's depths are used as marks. */
+#define US_GRID_LINES 64
+void us_scene3_bodies(us_Scene *sc, const us_SceneView *v, const us_Structure *s,
+                      us_SceneBody *proto);
 
 /* Largest PNG: sides and area, so that a huge structure gives a bounded
  * picture (about 256 MB of pixels at most). */

@@ -26,6 +26,13 @@
  * body and left out when under 5 px; dots and outlines thin out with the
  * typical body size, so a wall of a thousand bricks stays legible.
  *
+ * 3D structures (src/render/scene3.c): world points are projected onto the
+ * view's right and up axes (us_SceneView; 2D: x and y as they are) before
+ * the same fit; the bodies become their visible faces, painted far to near
+ * and shaded, with labels at the projected centres of mass, and the ground
+ * band becomes a grid on z = 0. Contacts and arrows (f_n n + f_t1 t1 +
+ * f_t2 t2) are projected the same way in both dimensions.
+ *
  * Errors: bad settings (order or force indices out of range, repeated
  * bodies in the order, sizes out of range) are US_ERR_USAGE; nothing is
  * allocated by a failed build. */
@@ -48,13 +55,7 @@ const us_Hatch us_hatches[US_NHATCH] = {
 static const us_Rgb kSandstone = {217, 199, 163}, kLeftOut = {228, 228, 228};
 static const us_Rgb kBlack = {0, 0, 0}, kWhite = {255, 255, 255};
 
-typedef struct View {
-  double x0, y1;   /* world left and top edges of the view */
-  double ww, wh;   /* world width and height of the view */
-  double k;        /* pixels per world unit */
-  double ox, oy;   /* pixel position of (x0, y1) */
-  double span;     /* larger side of the world view */
-} View;
+typedef us_SceneView View; /* render.h */
 
 /* The legend's text and layout (legend_layout). */
 typedef struct Legend {
@@ -69,6 +70,7 @@ typedef struct Info {
   int nsteps;      /* steps of the order */
   int nfixed, nleft; /* fixed bodies; movable ones neither ordered nor blocked */
   double fmax;       /* largest force drawn (0: none) */
+  us_SceneBody *proto; /* 3D: each body's paint and label text */
   double title_h;
   Legend legend;
 } Info;
@@ -129,9 +131,12 @@ static us_Status check_rest(const us_Structure *s, const us_RenderSettings *r, i
 
 static us_Status check_settings(const us_Structure *s, const us_RenderSettings *r, Info *in,
                                 us_Error *err) {
-  if (s->dim != 2)
-    return us_error_set(err, US_ERR_USAGE, "render: only 2D structures can be drawn (dim %d)",
+  if (s->dim != 2 && s->dim != 3)
+    return us_error_set(err, US_ERR_USAGE, "render: cannot draw a structure of dimension %d",
                         s->dim);
+  if (s->dim == 3 && !(isfinite(r->view_az) && r->view_el >= -90.0 && r->view_el <= 90.0))
+    return us_error_set(err, US_ERR_USAGE, "render: bad view (azimuth %g, elevation %g): the "
+                        "elevation is in [-90, 90] degrees", r->view_az, r->view_el);
   us_Status st = check_order(s, r, in->step, err);
   if (!st) st = check_rest(s, r, in->step, err);
   if (st) return st;
@@ -153,16 +158,23 @@ static void grow_box(double *bb, double x, double y) {
 }
 
 /* World bounding box of everything drawn, with the margin. */
-static us_Status world_view(const us_Structure *s, View *v, us_Error *err) {
+static us_Status world_view(const us_Structure *s, const us_RenderSettings *r, View *v,
+                            us_Error *err) {
   double bb[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
-  for (int i = 0; i < s->nbody; i++) {
+  if (s->dim == 3) us_scene3_axes(v, r->view_az, r->view_el), us_scene3_bounds(s, v, bb);
+  else v->r[0] = v->u[1] = v->e[2] = 1.0; /* the plane as it is */
+  for (int i = 0; s->dim == 2 && i < s->nbody; i++) {
     const us_Body *b = &s->bodies[i];
     for (int k = 0; k < b->nvert; k++) grow_box(bb, b->verts[2 * k], b->verts[2 * k + 1]);
     if (b->nvert == 0) grow_box(bb, b->com[0], b->com[1]);
   }
-  for (int c = 0; c < s->ncontact; c++) grow_box(bb, s->contacts[c].p[0], s->contacts[c].p[1]);
+  for (int c = 0; c < s->ncontact; c++) {
+    const double *p = s->contacts[c].p;
+    grow_box(bb, p[0] * v->r[0] + p[1] * v->r[1] + p[2] * v->r[2],
+             p[0] * v->u[0] + p[1] * v->u[1] + p[2] * v->u[2]);
+  }
   if (!(bb[0] <= bb[2])) bb[0] = bb[1] = bb[2] = bb[3] = 0.0; /* nothing to draw */
-  if (s->ground) grow_box(bb, bb[0], 0.0);
+  if (s->ground && s->dim == 2) grow_box(bb, bb[0], 0.0);
   if (!isfinite(bb[0] + bb[1] + bb[2] + bb[3]))
     return us_error_set(err, US_ERR_INPUT, "render: the structure has non-finite coordinates");
   double span = US_MAX(bb[2] - bb[0], bb[3] - bb[1]);
@@ -285,11 +297,26 @@ static void body_label(us_SceneBody *sb, const View *v, const us_Structure *s,
   if (!numbered && !(r->norder == 0 && r->show_labels)) return;
   snprintf(sb->num, sizeof sb->num, "%d", step);
   const char *text = numbered ? sb->num : b->id;
+  int light = us_rgb_lightness(sb->paint.fill) < 0.6 && sb->paint.hatch < 0;
+  if (s->dim == 3) { /* placed and sized by us_scene3_bodies */
+    sb->label = (us_SceneText){text, 0, 0, 0, 0, 1, 0, light ? kWhite : kBlack};
+    return;
+  }
   double fs = label_size(v, b, strlen(text)), x, y;
   if (fs <= 0) return;
   label_point(s, sb->body, &x, &y);
-  int light = us_rgb_lightness(sb->paint.fill) < 0.6 && sb->paint.hatch < 0;
   sb->label = (us_SceneText){text, px_x(v, x), px_y(v, y), fs, 0, 1, 0, light ? kWhite : kBlack};
+}
+
+/* 3D: paints and label texts per body, then the faces (scene3.c). */
+static void put_bodies3(us_Scene *sc, const View *v, const us_Structure *s,
+                        const us_RenderSettings *r, const Info *in) {
+  for (int i = 0; i < s->nbody; i++) {
+    in->proto[i].body = i;
+    in->proto[i].paint = body_paint(s, r, in, i);
+    body_label(&in->proto[i], v, s, r, in);
+  }
+  us_scene3_bodies(sc, v, s, in->proto);
 }
 
 static void put_bodies(us_Scene *sc, const View *v, const us_Structure *s,
@@ -316,44 +343,47 @@ static void put_bodies(us_Scene *sc, const View *v, const us_Structure *s,
 /* -------------------------------------------------------- dots, arrows */
 
 static void put_dots(us_Scene *sc, const View *v, const us_Structure *s) {
-  for (int c = 0; c < s->ncontact; c++) {
-    sc->dots[2 * c] = px_x(v, s->contacts[c].p[0]);
-    sc->dots[2 * c + 1] = px_y(v, s->contacts[c].p[1]);
-  }
+  for (int c = 0; c < s->ncontact; c++)
+    us_scene_px(v, s->contacts[c].p, &sc->dots[2 * c], &sc->dots[2 * c + 1]);
   sc->ndot = s->ncontact;
   sc->dot_color = (us_Rgb){34, 34, 34};
 }
 
-/* Force on body b of contact k of f, in world coordinates. */
-static void force_vec(const us_Structure *s, const us_Forces *f, int k, double *fx, double *fy) {
+/* Force on body b of contact k of f, in world coordinates: f_n n + f_t1 t1
+ * (+ f_t2 t2 in 3D; f holds dim components a contact). */
+static void force_vec(const us_Structure *s, const us_Forces *f, int k, double out[3]) {
   const us_Contact *c = &s->contacts[f->contact[k]];
-  double fn = f->f[2 * k], ft = f->f[2 * k + 1];
-  *fx = fn * c->n[0] + ft * c->t[0][0];
-  *fy = fn * c->n[1] + ft * c->t[0][1];
+  const double *fk = f->f + (size_t)s->dim * (size_t)k;
+  for (int d = 0; d < 3; d++)
+    out[d] = fk[0] * c->n[d] + fk[1] * c->t[0][d] + (s->dim == 3 ? fk[2] * c->t[1][d] : 0.0);
 }
+
+static double norm3(const double *a) { return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
 
 /* Largest finite force magnitude of f (0: none). */
 static double force_max(const us_Structure *s, const us_Forces *f) {
-  double fmax = 0.0, fx, fy;
+  double fmax = 0.0, fv[3];
   for (int k = 0; f && k < f->ncontact; k++) {
-    force_vec(s, f, k, &fx, &fy);
-    if (isfinite(fx) && isfinite(fy)) fmax = US_MAX(fmax, hypot(fx, fy));
+    force_vec(s, f, k, fv);
+    if (isfinite(norm3(fv))) fmax = US_MAX(fmax, norm3(fv));
   }
   return fmax;
 }
 
 /* Arrows scaled so the longest (fmax) is 12% of the view; arrows under
- * half a pixel are left out. */
+ * half a pixel (as drawn, after projection) are left out. */
 static void put_arrows(us_Scene *sc, const View *v, const us_Structure *s, const us_Forces *f,
                        double fmax) {
-  double scale = 0.12 * v->span / fmax, fx, fy;
+  double scale = 0.12 * v->span / fmax, fv[3];
   for (int k = 0; k < f->ncontact; k++) {
-    force_vec(s, f, k, &fx, &fy);
-    if (!isfinite(fx) || !isfinite(fy) || hypot(fx, fy) * scale * v->k < 0.5) continue;
+    force_vec(s, f, k, fv);
+    if (!isfinite(norm3(fv))) continue;
     const double *p = s->contacts[f->contact[k]].p;
-    double *a = &sc->arrows[4 * sc->narrow++];
-    a[0] = px_x(v, p[0]), a[1] = px_y(v, p[1]);
-    a[2] = px_x(v, p[0] + fx * scale), a[3] = px_y(v, p[1] + fy * scale);
+    double q[3] = {p[0] + fv[0] * scale, p[1] + fv[1] * scale, p[2] + fv[2] * scale};
+    double *a = &sc->arrows[4 * sc->narrow];
+    us_scene_px(v, p, &a[0], &a[1]);
+    us_scene_px(v, q, &a[2], &a[3]);
+    if (hypot(a[2] - a[0], a[3] - a[1]) >= 0.5) sc->narrow++;
   }
 }
 
@@ -444,15 +474,19 @@ static void put_legend(us_Scene *sc, const us_RenderSettings *r, const Info *in)
 
 static us_Status alloc_parts(us_Scene *sc, const us_Structure *s, const us_RenderSettings *r,
                              Info *in, us_Error *err) {
-  size_t nv = 0;
+  size_t nv = 0, ne = (size_t)s->nbody;
   for (int i = 0; i < s->nbody; i++) nv += (size_t)s->bodies[i].nvert;
+  if (s->dim == 3) us_scene3_count(s, &ne, &nv);
   size_t nf = r->forces && r->forces->ncontact > 0 ? (size_t)r->forces->ncontact : 0;
   in->step = us_calloc((size_t)s->nbody + 1, sizeof *in->step);
-  sc->bodies = us_calloc((size_t)s->nbody + 1, sizeof *sc->bodies);
+  in->proto = us_calloc((size_t)s->nbody + 1, sizeof *in->proto);
+  sc->bodies = us_calloc(ne + 1, sizeof *sc->bodies);
+  sc->lines = us_malloc(4 * US_GRID_LINES * sizeof *sc->lines);
   sc->pts = us_malloc((2 * nv + 1) * sizeof *sc->pts);
   sc->dots = us_malloc((2 * (size_t)s->ncontact + 1) * sizeof *sc->dots);
   sc->arrows = us_malloc((4 * nf + 1) * sizeof *sc->arrows);
-  if (in->step && sc->bodies && sc->pts && sc->dots && sc->arrows) return US_OK;
+  if (in->step && in->proto && sc->bodies && sc->lines && sc->pts && sc->dots && sc->arrows)
+    return US_OK;
   return us_error_set(err, US_ERR_NOMEM, "render: out of memory");
 }
 
@@ -462,9 +496,11 @@ static void fill_scene(us_Scene *sc, const View *v, const us_Structure *s,
   sc->arrow_width = 1.5;
   sc->arrow_head = 9.0;
   if (r->title) put_title(sc, r->title);
-  sc->ground_y = s->ground ? US_MAX(px_y(v, 0.0), sc->draw_top) : sc->draw_bottom;
+  int band = s->ground && s->dim == 2; /* 3D: the grid instead */
+  sc->ground_y = band ? US_MAX(px_y(v, 0.0), sc->draw_top) : sc->draw_bottom;
   line_sizes(sc, v, s);
-  put_bodies(sc, v, s, r, in);
+  if (s->dim == 3) put_bodies3(sc, v, s, r, in);
+  else put_bodies(sc, v, s, r, in);
   if (r->show_contacts) put_dots(sc, v, s);
   if (in->fmax > 0) put_arrows(sc, v, s, r->forces, in->fmax);
   put_legend(sc, r, in);
@@ -486,10 +522,11 @@ us_Status us_scene_build(us_Scene *sc, const us_Structure *s, const us_RenderSet
   us_Status st = alloc_parts(sc, s, r, &in, err);
   if (!st) st = check_settings(s, r, &in, err);
   if (!st) plan_bands(&in, s, r);
-  if (!st) st = world_view(s, &v, err);
+  if (!st) st = world_view(s, r, &v, err);
   if (!st) st = fit_view(sc, &v, r, &in, max_side, max_pixels, err);
   if (!st) fill_scene(sc, &v, s, r, &in);
   us_free(in.step);
+  us_free(in.proto);
   if (st) us_scene_free(sc);
   return st;
 }
@@ -499,5 +536,6 @@ void us_scene_free(us_Scene *sc) {
   us_free(sc->pts);
   us_free(sc->dots);
   us_free(sc->arrows);
+  us_free(sc->lines);
   memset(sc, 0, sizeof *sc);
 }

@@ -1,7 +1,8 @@
 # unstack render: the format from --format or the output's extension (PNG
 # files are PNG, SVG files XML), sizes, the title's status, and every error
 # (bad --format, an extension that names no format, unwritable outputs, bad
-# input, a PNG too large) is exit 2 with nothing written.
+# input, a PNG too large) is exit 2 with nothing written; a 3D structure
+# as PNG and SVG, turned by --view, bad views refused.
 . "$(dirname "$0")/lib.sh"
 "$CLI" generate column --blocks 3 -o "$T/c.json" >/dev/null || bad "generate column"
 "$CLI" plan "$T/c.json" -o "$T/c-plan.json" >/dev/null || bad "plan column"
@@ -58,6 +59,25 @@ contains "$T/t.svg" "my &lt;column&gt;" "--title replaces the title, escaped"
 expect 1 "render --forces, does not stand" -- "$CLI" render "$DATA/lean_wall_mu0.json" --forces -o "$T/f.png"
 contains "$T/err" "does not stand" "says it does not stand"
 check_png "$T/f.png" "picture written without forces"
+
+# 3D: an axonometric picture; --view turns it; bad views are usage errors
+"$CLI" generate pyramid3d --rows 3 -o "$T/p3.json" >/dev/null || bad "generate pyramid3d"
+"$CLI" plan "$T/p3.json" -o "$T/p3-plan.json" >/dev/null || bad "plan pyramid3d"
+expect 0 "render 3D to PNG" -- "$CLI" render "$T/p3.json" --plan "$T/p3-plan.json" --forces -o "$T/p3.png"
+check_png "$T/p3.png" "3D PNG"
+expect 0 "render 3D to SVG" -- "$CLI" render "$T/p3.json" --plan "$T/p3-plan.json" -o "$T/p3.svg"
+check_svg "$T/p3.svg" "3D SVG"
+contains "$T/p3.svg" "p3.json — 14 bodies, plan found, 14 steps" "3D title with the plan's status"
+contains "$T/p3.svg" '<g class="grid"' "3D ground grid"
+expect 0 "render 3D --view 120,50" -- "$CLI" render "$T/p3.json" --plan "$T/p3-plan.json" --view 120,50 -o "$T/p3b.png"
+cmp -s "$T/p3.png" "$T/p3b.png" && bad "--view changed nothing" || ok "--view changes the picture"
+for v in 35 35,91 a,b 35,25x ,25; do
+  expect 2 "--view $v" -- "$CLI" render "$T/p3.json" --view "$v" -o "$T/v.png"
+  absent "$T/v.png" "bad --view $v"
+done
+contains "$T/err" "--view needs AZ,EL" "names the option"
+expect 2 "3D --html" -- "$CLI" render "$T/p3.json" --html -o "$T/p3.html"
+absent "$T/p3.html" "3D viewer"
 
 # errors: exit 2, nothing written
 expect 2 "--format gif" -- "$CLI" render "$T/c.json" --format gif -o "$T/g.png"
