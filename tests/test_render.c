@@ -22,6 +22,7 @@
 #include "render/render.h"
 #include "scenes.h"
 #include "test.h"
+#include "pngread.h"
 #include "tmpfiles.h"
 
 #include <cairo.h>
@@ -310,40 +311,9 @@ static void empty(void) {
 
 /* ------------------------------------------------------------------ PNG */
 
-/* A decoded PNG (cairo ARGB32, opaque: the bytes are the colour). */
-typedef struct Png {
-  cairo_surface_t *img;
-  int w, h, stride;
-  const unsigned char *data;
-} Png;
 
-static int png_open(Png *p, const char *path) {
-  p->img = cairo_image_surface_create_from_png(path);
-  if (cairo_surface_status(p->img) != CAIRO_STATUS_SUCCESS) {
-    cairo_surface_destroy(p->img);
-    p->img = NULL;
-    return 0;
-  }
-  cairo_surface_flush(p->img);
-  p->w = cairo_image_surface_get_width(p->img);
-  p->h = cairo_image_surface_get_height(p->img);
-  p->stride = cairo_image_surface_get_stride(p->img);
-  p->data = cairo_image_surface_get_data(p->img);
-  return 1;
-}
 
-static void png_close(Png *p) {
-  if (p->img) cairo_surface_destroy(p->img);
-  p->img = NULL;
-}
 
-static us_Rgb pixel(const Png *p, double x, double y) {
-  int i = (int)floor(x), j = (int)floor(y);
-  if (i < 0 || j < 0 || i >= p->w || j >= p->h) return (us_Rgb){1, 2, 3};
-  uint32_t v;
-  memcpy(&v, p->data + (size_t)j * (size_t)p->stride + 4 * (size_t)i, 4);
-  return (us_Rgb){(unsigned char)(v >> 16), (unsigned char)(v >> 8), (unsigned char)v};
-}
 
 static int near_rgb(us_Rgb a, us_Rgb b, int tol) {
   return abs(a.r - b.r) <= tol && abs(a.g - b.g) <= tol && abs(a.b - b.b) <= tol;

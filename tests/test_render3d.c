@@ -18,6 +18,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "render/render.h"
 #include "test.h"
+#include "pngread.h"
 #include "tmpfiles.h"
 
 #include <cairo.h>
@@ -105,40 +106,17 @@ static us_Structure *boxes(int n, const double (*lo)[3], const double (*size)[3]
 
 /* ------------------------------------------------------------------ PNG */
 
-typedef struct Png {
-  cairo_surface_t *img;
-  int w, h, stride;
-  const unsigned char *data;
-} Png;
-
 static int png_render(Png *p, const us_Structure *s, const us_RenderSettings *r, const char *name) {
   char path[128];
   us_Error err;
   p->img = NULL;
   if (!test_tmp_path(name, path, sizeof path) || us_render_png(s, r, path, &err)) return 0;
-  p->img = cairo_image_surface_create_from_png(path);
+  int ok = png_open(p, path);
   remove(path);
-  if (cairo_surface_status(p->img) != CAIRO_STATUS_SUCCESS) return 0;
-  cairo_surface_flush(p->img);
-  p->w = cairo_image_surface_get_width(p->img);
-  p->h = cairo_image_surface_get_height(p->img);
-  p->stride = cairo_image_surface_get_stride(p->img);
-  p->data = cairo_image_surface_get_data(p->img);
-  return 1;
+  return ok;
 }
 
-static void png_close(Png *p) {
-  if (p->img) cairo_surface_destroy(p->img);
-  p->img = NULL;
-}
 
-static us_Rgb pixel(const Png *p, double x, double y) {
-  int i = (int)floor(x), j = (int)floor(y);
-  if (!p->img || i < 0 || j < 0 || i >= p->w || j >= p->h) return (us_Rgb){1, 2, 3};
-  uint32_t v;
-  memcpy(&v, p->data + (size_t)j * (size_t)p->stride + 4 * (size_t)i, 4);
-  return (us_Rgb){(unsigned char)(v >> 16), (unsigned char)(v >> 8), (unsigned char)v};
-}
 
 static us_Rgb pixel_at(const Png *p, const Fit *f, double x, double y, double z) {
   double X, Y, q[3] = {x, y, z};
