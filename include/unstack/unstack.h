@@ -426,8 +426,9 @@ typedef struct us_StabilityInfo {
 typedef struct us_Mechanism {
   int nbody, cap;
   int *body;             /* the moving bodies */
-  double *v;             /* 3 per body (2D): vx, vy, omega; omega in rad per
-                            unit of the structure's scale */
+  double *v;             /* per body, 3 in 2D: vx, vy, omega; 6 in 3D: vx,
+                            vy, vz, omega x, y, z; omega in rad per unit
+                            of the structure's scale */
   int ok;                /* the independent check (us_mechanism_check) passed */
   double worst_power;    /* most negative power of a unit cone generator
                             (relative; 0 if none), or +INF when unchecked */

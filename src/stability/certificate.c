@@ -332,24 +332,41 @@ void us_mechanism_free(us_Mechanism *m) {
   memset(m, 0, sizeof *m);
 }
 
-/* Velocity of body slot q of m at point p (lever arms divided by L). */
+/* Velocities per mechanism body: 3 in 2D (vx, vy, omega), 6 in 3D (v, omega). */
+static int mech_stride(const us_Structure *s) { return s->dim == 3 ? 6 : 3; }
+
+/* Velocity of body slot q of m at point p: v + omega x r, the lever arm r
+ * divided by L (2D: omega about z). */
 static void point_velocity(const us_Structure *s, const Units *u, const us_Mechanism *m, int q,
                            const double *p, double *out) {
-  const double *v = m->v + 3 * (size_t)q, *c = s->bodies[m->body[q]].com;
-  double rx = (p[0] - c[0]) * u->inv_l, ry = (p[1] - c[1]) * u->inv_l;
-  out[0] = v[0] - v[2] * ry;
-  out[1] = v[1] + v[2] * rx;
+  int dof = mech_stride(s);
+  const double *v = m->v + (size_t)dof * (size_t)q, *c = s->bodies[m->body[q]].com;
+  double r[3] = {(p[0] - c[0]) * u->inv_l, (p[1] - c[1]) * u->inv_l, 0.0};
+  if (dof == 3) {
+    out[0] = v[0] - v[2] * r[1];
+    out[1] = v[1] + v[2] * r[0];
+    out[2] = 0.0;
+    return;
+  }
+  r[2] = (p[2] - c[2]) * u->inv_l;
+  const double *w = v + 3;
+  out[0] = v[0] + w[1] * r[2] - w[2] * r[1];
+  out[1] = v[1] + w[2] * r[0] - w[0] * r[2];
+  out[2] = v[2] + w[0] * r[1] - w[1] * r[0];
 }
 
 /* The least power of the unit generators of contact k's cone for relative
- * velocity vr (of b against a). */
+ * velocity vr (of b against a): the normal part minus mu times the
+ * tangential part's length, over the generator's length (the circular
+ * cone in 3D, exactly; mu = INFINITY the half-space). */
 static double least_power(const us_Contact *k, const double *vr) {
-  double pn = k->n[0] * vr[0] + k->n[1] * vr[1];
-  double pt = k->t[0][0] * vr[0] + k->t[0][1] * vr[1];
+  double pn = k->n[0] * vr[0] + k->n[1] * vr[1] + k->n[2] * vr[2];
+  double t[3] = {vr[0] - pn * k->n[0], vr[1] - pn * k->n[1], vr[2] - pn * k->n[2]};
+  double pt = norm3(t);
   if (k->mu == 0.0) return pn;
-  if (isinf(k->mu)) return US_MIN(pn, -fabs(pt));
+  if (isinf(k->mu)) return US_MIN(pn, -pt);
   double h = hypot(1.0, k->mu);
-  return (pn - k->mu * fabs(pt)) / h;
+  return (pn - k->mu * pt) / h;
 }
 
 /* slot[i]: body i's index in m, or -1. Returns the worst power over the
@@ -365,10 +382,10 @@ static double worst_contact_power(const us_Structure *s, const Units *u, const u
     const us_Contact *k = &s->contacts[c];
     int qa = k->a >= 0 ? slot[k->a] : -1, qb = k->b >= 0 ? slot[k->b] : -1;
     if ((qa < 0 && qb < 0) || !usable(s, present, c)) continue;
-    double va[2] = {0, 0}, vb[2] = {0, 0};
+    double va[3] = {0, 0, 0}, vb[3] = {0, 0, 0};
     if (qa >= 0) point_velocity(s, u, m, qa, k->p, va);
     if (qb >= 0) point_velocity(s, u, m, qb, k->p, vb);
-    double vr[2] = {vb[0] - va[0], vb[1] - va[1]};
+    double vr[3] = {vb[0] - va[0], vb[1] - va[1], vb[2] - va[2]};
     double p = least_power(k, vr);
     if (!isfinite(p)) return -INFINITY;
     worst = US_MIN(worst, p);
@@ -379,14 +396,17 @@ static double worst_contact_power(const us_Structure *s, const Units *u, const u
 /* Normalize m so that gravity's power is 1; 0, or -1 if it is not > 0. */
 static int normalize_mechanism(const us_Structure *s, const Units *u, const us_Bitset *present,
                                us_Mechanism *m) {
+  int dof = mech_stride(s);
   double pg = 0.0;
   for (int q = 0; q < m->nbody; q++) {
     int i = m->body[q];
     if (i < 0 || i >= s->nbody || s->bodies[i].fixed || !us_bitset_get(present, i)) return -1;
-    pg += s->bodies[i].mass / u->m * (u->gdir[0] * m->v[3 * q] + u->gdir[1] * m->v[3 * q + 1]);
+    const double *v = m->v + (size_t)dof * (size_t)q;
+    double up = u->gdir[0] * v[0] + u->gdir[1] * v[1] + (dof == 6 ? u->gdir[2] * v[2] : 0.0);
+    pg += s->bodies[i].mass / u->m * up;
   }
   if (!(pg > 0) || !isfinite(pg)) return -1;
-  for (int q = 0; q < 3 * m->nbody; q++) m->v[q] /= pg;
+  for (int q = 0; q < dof * m->nbody; q++) m->v[q] /= pg;
   return 0;
 }
 
@@ -395,7 +415,7 @@ int us_mechanism_check_list(const us_Structure *s, const us_Bitset *present, us_
   Units u = units_of(s);
   m->ok = 0;
   m->worst_power = INFINITY;
-  if (s->dim != 2 || m->nbody <= 0 || normalize_mechanism(s, &u, present, m)) return 0;
+  if (m->nbody <= 0 || normalize_mechanism(s, &u, present, m)) return 0;
   for (int q = 0; q < m->nbody; q++) slot[m->body[q]] = q;
   m->worst_power = worst_contact_power(s, &u, present, m, slot, list, nlist);
   for (int q = 0; q < m->nbody; q++) slot[m->body[q]] = -1;

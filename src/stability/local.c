@@ -40,8 +40,10 @@
 #include "local.h"
 
 #include "certificate.h"
+#include "lp_gen.h"
 #include "lp_small.h"
 #include "plumb.h"
+#include "geometry/geometry3.h"
 #include "model/massprops.h"
 
 #include <math.h>
@@ -65,7 +67,8 @@ struct us_Local {
   us_EqSystem eq;
   int dim;
   int *inc_start, *inc;  /* body -> contacts */
-  double *lo, *hi;       /* horizontal extent of each body */
+  int nax;               /* horizontal axes: 1 in 2D, 2 in 3D */
+  double *lo, *hi;       /* [nbody * 2] horizontal extents of each body */
   double up[3];          /* against gravity */
   us_Bitset base;
   int have_base;
@@ -74,13 +77,14 @@ struct us_Local {
   int *reg, nreg;        /* [nbody] the region */
   int *added, *removed, nadd, nrem;
   int touching;          /* some removed body touches S */
-  double foot_lo, foot_hi;
+  double foot_lo[2], foot_hi[2]; /* the change's horizontal extent */
   double *f, *saved;     /* LP solution; base values it replaces */
   int cap_f, cap_saved;
   int *list, *slot;      /* mechanism check: contacts of R, body slots */
   long seed_tries, seed_hits; /* level-0 support LPs run, and proofs found */
   double mass;           /* movable mass, summed once for the checks */
   us_Plumb plumb;        /* plumb-line load paths (plumb.h) */
+  us_ConeSet *cones;     /* 3D: the friction polygons (shared), or NULL */
 };
 
 /* ------------------------------------------------------------- set-up */
@@ -109,22 +113,49 @@ static int build_incidence(us_Local *L) {
   return 0;
 }
 
-/* Extent of every body along the horizontal axis h (perpendicular to
- * gravity in the plane; any axis when there is no gravity). */
+/* Unit vector "up" (against gravity; +y, or +z in 3D, without gravity)
+ * and the horizontal axes perpendicular to it (one in 2D, two in 3D). */
+static void measure_axes(us_Local *L, double h[2][3]) {
+  const us_Structure *s = L->s;
+  double g = us_gravity_norm(s->gravity);
+  for (int j = 0; j < 3; j++) L->up[j] = g > 0 ? -s->gravity[j] / g : 0.0;
+  if (!(g > 0)) L->up[s->dim == 3 ? 2 : 1] = 1.0;
+  if (s->dim == 2) {
+    L->up[2] = 0.0;
+    h[0][0] = L->up[1], h[0][1] = -L->up[0], h[0][2] = 0.0;
+    return;
+  }
+  us_Vec3 t1, t2;
+  us_v3_frame((us_Vec3){L->up[0], L->up[1], L->up[2]}, &t1, &t2);
+  h[0][0] = t1.x, h[0][1] = t1.y, h[0][2] = t1.z;
+  h[1][0] = t2.x, h[1][1] = t2.y, h[1][2] = t2.z;
+}
+
+static void widen(double *lo, double *hi, const double h[2][3], int nax, const double *p) {
+  for (int a = 0; a < nax; a++) {
+    double x = h[a][0] * p[0] + h[a][1] * p[1] + h[a][2] * p[2];
+    lo[a] = US_MIN(lo[a], x), hi[a] = US_MAX(hi[a], x);
+  }
+}
+
+/* Extent of every body along the horizontal axes (its vertices, all
+ * parts in 3D, and its centre for point bodies). */
 static void measure_extents(us_Local *L) {
   const us_Structure *s = L->s;
-  double g = hypot(s->gravity[0], s->gravity[1]);
-  double gx = g > 0 ? s->gravity[0] / g : 0.0, gy = g > 0 ? s->gravity[1] / g : -1.0;
-  double hx = -gy, hy = gx;
-  L->up[0] = -gx, L->up[1] = -gy, L->up[2] = 0.0;
+  double h[2][3] = {{0, 0, 0}, {0, 0, 0}};
+  measure_axes(L, h);
+  L->nax = s->dim == 3 ? 2 : 1;
   for (int i = 0; i < s->nbody; i++) {
     const us_Body *b = &s->bodies[i];
-    double lo = b->com[0] * hx + b->com[1] * hy, hi = lo;
-    for (int k = 0; k < b->nvert; k++) {
-      double x = b->verts[2 * k] * hx + b->verts[2 * k + 1] * hy;
-      lo = US_MIN(lo, x), hi = US_MAX(hi, x);
+    double *lo = L->lo + 2 * (size_t)i, *hi = L->hi + 2 * (size_t)i;
+    lo[0] = lo[1] = INFINITY, hi[0] = hi[1] = -INFINITY;
+    widen(lo, hi, h, L->nax, b->com);
+    for (int k = 0; k < b->nvert && s->dim == 2; k++) {
+      double p[3] = {b->verts[2 * k], b->verts[2 * k + 1], 0.0};
+      widen(lo, hi, h, L->nax, p);
     }
-    L->lo[i] = lo, L->hi[i] = hi;
+    for (int q = 0; q < b->npart && s->dim == 3; q++)
+      for (int k = 0; k < b->parts[q].nvert; k++) widen(lo, hi, h, L->nax, b->parts[q].verts + 3 * k);
   }
 }
 
@@ -153,7 +184,7 @@ void us_local_free(us_Local *L) {
 }
 
 us_Local *us_local_new(const us_Structure *s, const us_StabilitySettings *set,
-                       const us_Backend *be, us_Error *err) {
+                       const us_Backend *be, us_ConeSet *cones, us_Error *err) {
   us_Local *L = us_calloc(1, sizeof *L);
   if (!L) return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)"), NULL;
   L->s = s;
@@ -162,8 +193,8 @@ us_Local *us_local_new(const us_Structure *s, const us_StabilitySettings *set,
   L->dim = s->dim;
   size_t nb = (size_t)(s->nbody > 0 ? s->nbody : 1);
   size_t nc = (size_t)(s->ncontact > 0 ? s->ncontact : 1) * (size_t)s->dim;
-  L->lo = us_malloc(nb * sizeof(double));
-  L->hi = us_malloc(nb * sizeof(double));
+  L->lo = us_malloc(2 * nb * sizeof(double));
+  L->hi = us_malloc(2 * nb * sizeof(double));
   L->fbase = us_calloc(nc, sizeof(double));
   L->in_r = us_calloc(nb, 1);
   L->reg = us_malloc(nb * sizeof(int));
@@ -178,6 +209,8 @@ us_Local *us_local_new(const us_Structure *s, const us_StabilitySettings *set,
     us_local_free(L);
     return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)"), NULL;
   }
+  L->cones = cones;
+  L->eq.cones = cones;
   measure_extents(L);
   L->mass = us_movable_mass(s);
   if (us_plumb_init(&L->plumb, s, L->inc_start, L->inc, L->up, L->eq.mass_total)) {
@@ -277,8 +310,28 @@ static void region_clear(us_Local *L) {
 }
 
 static void widen_foot(us_Local *L, int i) {
-  L->foot_lo = US_MIN(L->foot_lo, L->lo[i]);
-  L->foot_hi = US_MAX(L->foot_hi, L->hi[i]);
+  for (int a = 0; a < L->nax; a++) {
+    L->foot_lo[a] = US_MIN(L->foot_lo[a], L->lo[2 * (size_t)i + (size_t)a]);
+    L->foot_hi[a] = US_MAX(L->foot_hi[a], L->hi[2 * (size_t)i + (size_t)a]);
+  }
+}
+
+static void foot_set(us_Local *L, double lo, double hi) {
+  L->foot_lo[0] = L->foot_lo[1] = lo;
+  L->foot_hi[0] = L->foot_hi[1] = hi;
+}
+
+/* Does body v's horizontal extent overlap the footprint's (strictly, by
+ * more than a relative margin) on every axis? */
+static int under_foot(const us_Local *L, int v) {
+  for (int a = 0; a < L->nax; a++) {
+    double flo = L->foot_lo[a], fhi = L->foot_hi[a];
+    double margin = isfinite(fhi - flo) ? 1e-9 * (fhi - flo) : 0.0;
+    if (L->hi[2 * (size_t)v + (size_t)a] - margin <= flo ||
+        L->lo[2 * (size_t)v + (size_t)a] + margin >= fhi)
+      return 0;
+  }
+  return 1;
 }
 
 /* added / removed against the base, word by word. */
@@ -300,7 +353,7 @@ static void diff_base(us_Local *L, const us_Bitset *cur) {
 static void seed_region(us_Local *L, const us_Bitset *cur) {
   const us_Structure *s = L->s;
   L->touching = 0;
-  L->foot_lo = INFINITY, L->foot_hi = -INFINITY;
+  foot_set(L, INFINITY, -INFINITY);
   for (int q = 0; q < L->nadd; q++) {
     region_add(L, L->added[q]);
     widen_foot(L, L->added[q]);
@@ -344,14 +397,13 @@ static int supports(const us_Local *L, const us_Contact *k, int u) {
 /* Level 1: the supporters under the footprint, followed down (BFS). */
 static void grow_supporters(us_Local *L, const us_Bitset *cur) {
   const us_Structure *s = L->s;
-  double margin = isfinite(L->foot_hi - L->foot_lo) ? 1e-9 * (L->foot_hi - L->foot_lo) : 0.0;
   for (int q = 0; q < L->nreg; q++) {
     int u = L->reg[q];
     for (int m = L->inc_start[u]; m < L->inc_start[u + 1]; m++) {
       const us_Contact *k = &s->contacts[L->inc[m]];
       int v = k->a == u ? k->b : k->a;
       if (v < 0 || L->in_r[v] || !us_bitset_get(cur, v) || !supports(L, k, u)) continue;
-      if (L->hi[v] - margin <= L->foot_lo || L->lo[v] + margin >= L->foot_hi) continue;
+      if (!under_foot(L, v)) continue;
       region_add(L, v);
     }
   }
@@ -386,6 +438,8 @@ static int grow_rings(us_Local *L, const us_Bitset *cur) {
 static us_Status solve_region(us_Local *L, const us_Bitset *cur, int fixed, us_Verdict *v,
                               us_StabilityResult *res, us_StabilityInfo *info, us_Error *err) {
   us_EqRegion g = {L->reg, L->nreg, L->in_r, L->inc_start, L->inc, fixed};
+  if (L->cones) /* fixed: inner polygons (stable proofs); support: outer (unstable) */
+    L->cones->mode = fixed ? US_CONE_INNER : US_CONE_OUTER;
   if (us_eq_build_region(&L->eq, cur, &g, L->fbase))
     return us_error_set(err, US_ERR_NOMEM, "out of memory building a local system");
   if (US_GROW(L->f, L->cap_f, L->eq.ncontact * L->dim + 1))
@@ -393,17 +447,21 @@ static us_Status solve_region(us_Local *L, const us_Bitset *cur, int fixed, us_V
   info->local_lps++;
   L->ray_be = L->be;
   L->ray_ws = L->bws[0];
-  if (L->eq.nbody * 3 <= US_SMALL_ROWS) {
-    us_Status st = us_backend_small.solve(L->small, &L->eq, NULL, 0, NULL, 0, 0, v, L->f, info,
-                                          res->note, sizeof res->note, err);
-    if (st || *v != US_UNDECIDED) {
+  us_Status st = US_OK;
+  *v = US_UNDECIDED;
+  if (L->eq.nbody * L->eq.nw <= US_SMALL_ROWS) {
+    st = us_backend_small.solve(L->small, &L->eq, NULL, 0, NULL, 0, 0, v, L->f, info, res->note,
+                                sizeof res->note, err);
+    if (!st && *v != US_UNDECIDED) {
       L->ray_be = &us_backend_small;
       L->ray_ws = L->small;
-      return st;
     }
   }
-  return L->be->solve(L->bws[fixed], &L->eq, NULL, 0, NULL, 0, 0, v, L->f, info, res->note,
+  if (!st && *v == US_UNDECIDED)
+    st = L->be->solve(L->bws[fixed], &L->eq, NULL, 0, NULL, 0, 0, v, L->f, info, res->note,
                       sizeof res->note, err);
+  if (L->cones) L->cones->mode = US_CONE_INNER; /* the full system's default */
+  return st;
 }
 
 /* Merge the fixed LP's forces into fbase and re-check R's bodies; undo
@@ -463,12 +521,13 @@ int us_mechanism_from_ray(us_Mechanism *m, const us_EqSystem *e, const double *y
   m->nbody = 0;
   m->ok = 0;
   m->worst_power = INFINITY;
-  if (e->nw != 3 || ny != e->nbody * 3) return 0;
+  size_t nw = (size_t)e->nw; /* a row block's duals are the body's velocities */
+  if (ny != e->nbody * e->nw) return 0;
   if (e->nbody > m->cap) {
     int *b = us_realloc(m->body, (size_t)e->nbody * sizeof(int));
     if (!b) return -1;
     m->body = b;
-    double *v = us_realloc(m->v, (size_t)e->nbody * 3 * sizeof(double));
+    double *v = us_realloc(m->v, (size_t)e->nbody * 6 * sizeof(double));
     if (!v) return -1;
     m->v = v;
     m->cap = e->nbody;
@@ -479,7 +538,7 @@ int us_mechanism_from_ray(us_Mechanism *m, const us_EqSystem *e, const double *y
   m->nbody = e->nbody;
   for (int q = 0; q < e->nbody; q++) {
     m->body[q] = e->body[q];
-    for (int k = 0; k < 3; k++) m->v[3 * q + k] = sg * y[3 * q + k];
+    for (size_t k = 0; k < nw; k++) m->v[nw * (size_t)q + k] = sg * y[nw * (size_t)q + k];
   }
   return 0;
 }
@@ -574,7 +633,7 @@ static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityR
   int nseed = seeded ? L->nreg : -1;
   grow_supporters(L, cur);
   /* regions the small solver takes whole are never handed back early */
-  int closed = 0, coned = 0, limit = US_MAX((int)(LOCAL_GLOBAL_SHARE * size), US_SMALL_ROWS / 3);
+  int closed = 0, coned = 0, limit = US_MAX((int)(LOCAL_GLOBAL_SHARE * size), US_SMALL_ROWS / L->eq.nw);
   for (;;) {
     if (L->nreg > limit && !closed) return US_LOCAL_GLOBAL;
     r = try_fixed(L, cur, res, info, err);
@@ -589,7 +648,7 @@ static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityR
     if (!coned) { /* level 2: every supporter of R, followed down */
       coned = 1;
       int before = L->nreg;
-      L->foot_lo = -INFINITY, L->foot_hi = INFINITY;
+      foot_set(L, -INFINITY, INFINITY);
       grow_supporters(L, cur);
       if (L->nreg > before) continue;
     }

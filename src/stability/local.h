@@ -21,11 +21,17 @@ typedef struct us_Local us_Local;
 
 enum { US_LOCAL_STABLE = 1, US_LOCAL_UNSTABLE = 2, US_LOCAL_GLOBAL = 3 };
 
+struct us_ConeSet;
+
 /* A local tester on structure s whose small LPs are solved by backend be
- * (an LP backend with Farkas rays: CLP). NULL on OOM or a backend error
- * (err set). */
+ * (an LP backend with Farkas rays: CLP). 3D: cones are the polygonal
+ * friction cones shared with the full system (lp_gen.h); the fixed LP
+ * uses the inner polygons (feasible: stable for the circular cones), the
+ * support LP the outer ones (infeasible: unstable for them); their
+ * refinements, made by the full system, serve the local LPs too. NULL on
+ * OOM or a backend error (err set). */
 us_Local *us_local_new(const us_Structure *s, const us_StabilitySettings *set,
-                       const us_Backend *be, us_Error *err);
+                       const us_Backend *be, struct us_ConeSet *cones, us_Error *err);
 void us_local_free(us_Local *L);
 
 /* Decide `cur` (movable bits of the sub-assembly) locally. Returns
@@ -48,7 +54,7 @@ void us_local_forget(us_Local *L);
  * -1 on OOM. */
 int us_local_forces(const us_Local *L, const us_Bitset *cur, us_Forces *f);
 
-/* A Farkas ray y (ny = 3 * e->nbody values) of system e as a mechanism
+/* A Farkas ray y (ny = e->nw * e->nbody values) of system e as a mechanism
  * (unchecked, oriented so that gravity drives it). 0 or -1 on OOM. */
 int us_mechanism_from_ray(us_Mechanism *m, const us_EqSystem *e, const double *y, int ny);
 

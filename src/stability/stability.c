@@ -258,9 +258,9 @@ us_Stability *us_stability_new_backend(const us_Structure *s, const us_Stability
   }
   w->t_created = us_now();
   w->t_progress = 0.0; /* the first test reports at once */
-  /* local tests: the CLP backend itself (never a test's stand-in), 2D */
-  if (be == &us_backend_clp && set->local >= 0 && s->dim == 2) {
-    w->local = us_local_new(s, set, be, err);
+  /* local tests: the CLP backend itself (never a test's stand-in) */
+  if (be == &us_backend_clp && set->local >= 0) {
+    w->local = us_local_new(s, set, be, s->dim == 3 ? &w->cones : NULL, err);
     w->small = w->local ? us_backend_small.create(s, set, err) : NULL;
     if (!w->local || !w->small) {
       us_stability_free(w);
@@ -347,7 +347,7 @@ static us_Status run_backend(us_Stability *w, us_StabilityResult *res, us_Error 
   double t0 = us_now();
   w->used_be = w->be;
   w->used_ws = w->bws;
-  if (w->small && w->eq.nbody * 3 <= US_SMALL_ROWS) { /* tiny: the dense simplex first */
+  if (w->small && w->eq.nbody * w->eq.nw <= US_SMALL_ROWS) { /* tiny: the dense simplex first */
     us_Status st = us_backend_small.solve(w->small, &w->eq, NULL, 0, NULL, 0, 1, &res->verdict,
                                           w->f, &w->info, res->note, sizeof res->note, err);
     if (st || res->verdict != US_UNDECIDED) {
