@@ -334,6 +334,39 @@ static void random3d_bad_settings(void) {
   CHECK(us_gen_random3d(&g, &err) == NULL && err.code == US_ERR_USAGE && strstr(err.msg, "blocks"));
 }
 
+/* --------------------------------------------------- wall3d with returns */
+
+/* A walled corner (4 courses of 6 columns, returns of 3 bricks at both
+ * ends; src/gen/corner.c): 4 (6 + 2 x 3) - 2 bricks (the odd courses'
+ * main walls lose a brick to the returns' through bricks); it stands, the
+ * planner takes it apart one brick at a time, and the order re-checks
+ * step by step (us_verify_order: fresh tests, certificates re-checked). */
+static void wall3d_corner_plans(void) {
+  us_GenSettings g = us_gen_default_settings();
+  us_Error err;
+  g.rows = 4, g.cols = 6, g.returns = 3;
+  us_Structure *s = us_gen_wall3d(&g, &err);
+  CHECK(s != NULL);
+  int nb = s->nbody;
+  us_Verdict v = verdict_of(s, NULL);
+  us_PlanSettings set = us_plan_default_settings();
+  us_StabilitySettings sset = us_stability_default_settings();
+  us_Plan p = {0};
+  us_VerifyReport rep = {0};
+  us_Status st = us_plan(s, &set, &p, &err);
+  int found = !st && p.status == US_PLAN_FOUND, steps = found ? p.nsteps : -1;
+  us_Status vst = found ? us_verify_order(s, &sset, p.order, p.nsteps, &rep, &err) : US_ERR_USAGE;
+  us_plan_free(&p);
+  us_structure_free(s);
+  CHECK_INT(nb, ==, 4 * (6 + 2 * 3) - 2);
+  CHECK_INT(v, ==, US_STABLE);
+  CHECK(found);
+  CHECK_INT(steps, ==, nb);
+  CHECK_INT(vst, ==, US_OK);
+  CHECK(rep.ok);
+}
+
 US_TEST_MAIN(T(dome_layout), T(dome_cap), T(dome_stands), T(dome_one_at_a_time), T(dome_bad_settings),
              T(jenga_layout), T(jenga_removals), T(jenga_ids), T(jenga_bad_settings),
-             T(random3d_stands), T(random3d_fewer), T(random3d_seeded), T(random3d_bad_settings))
+             T(random3d_stands), T(random3d_fewer), T(random3d_seeded), T(random3d_bad_settings),
+             T(wall3d_corner_plans))

@@ -36,8 +36,13 @@ static const char help[] =
     "                                         turned about it by up to DEG degrees\n"
     "  pyramid3d --rows N                     square courses in stack bond, each offset by\n"
     "                                         half a block in x and y (N(N+1)(2N+1)/6 boxes)\n"
-    "  wall3d    --rows R --cols C [--thickness T]\n"
-    "                                         the running-bond wall with bricks T deep (0.5)\n"
+    "  wall3d    --rows R --cols C [--thickness T] [--returns L]\n"
+    "                                         the running-bond wall with bricks T deep (0.5);\n"
+    "                                         --returns adds at both ends a return wall of L\n"
+    "                                         bricks' length (outer face) along +y, bonded at\n"
+    "                                         the corner: the main wall's corner brick runs\n"
+    "                                         through in courses 1, 3, ..., the return's in\n"
+    "                                         2, 4, ...; needs T < block width (0: straight)\n"
     "  dome      --courses N --segments M --radius R --thickness T --oculus DEG [--cap]\n"
     "                                         a hemispherical dome of N courses (10) of M\n"
     "                                         voussoirs (12) on the ground, inner radius R (3),\n"
@@ -113,6 +118,7 @@ typedef struct Extra {
   double rand_width;  /* --width, 0 when not given */
   const char *remove; /* --remove list, NULL when not given */
   int height_given, tries_given;
+  int returns_given; /* --returns, for wall3d only */
 } Extra;
 
 static int parse_option(int argc, char **argv, int *i, us_GenSettings *g, Extra *x) {
@@ -130,6 +136,12 @@ static int parse_option(int argc, char **argv, int *i, us_GenSettings *g, Extra 
     if (!(v = cli_value("generate", argc, argv, i))) return CLI_EXIT_ERR;
     if (cli_parse_double(v, &x->rand_width) || x->rand_width <= 0)
       return cli_fail("generate", "--width needs a positive number, got '%s'", v);
+  } else if (!strcmp(name, "--returns")) {
+    if (!(v = cli_value("generate", argc, argv, i))) return CLI_EXIT_ERR;
+    if (cli_parse_long(v, &n) || n < 0)
+      return cli_fail("generate", "--returns needs a non-negative integer (bricks), got '%s'", v);
+    if (n > INT_MAX) return cli_fail("generate", "--returns: %s is too large (at most %d)", v, INT_MAX);
+    g->returns = (int)n, x->returns_given = 1;
   } else if (!strcmp(name, "--seed")) {
     if (!(v = cli_value("generate", argc, argv, i))) return CLI_EXIT_ERR;
     if (cli_parse_long(v, &n) || n < 0)
@@ -186,6 +198,7 @@ static int settle(GenFn fn, us_GenSettings *g, const Extra *x, double block_widt
   if (fn == us_gen_jenga && !x->height_given) g->height = 0.6 * g->width; /* the game's pieces */
   if (fn == us_gen_random3d && !x->tries_given) g->max_tries = 200;
   if (x->remove && fn != us_gen_jenga) return cli_fail("generate", "--remove is for jenga");
+  if (x->returns_given && fn != us_gen_wall3d) return cli_fail("generate", "--returns is for wall3d");
   if (fn == us_gen_random || fn == us_gen_stacker || fn == us_gen_random3d) {
     const char *kind = fn == us_gen_random ? "random" : fn == us_gen_stacker ? "stacker" : "random3d";
     if (g->width != block_width)
@@ -219,7 +232,7 @@ int cmd_generate(int argc, char **argv) {
   int default_rows = g.rows;
   g.rows = -1; /* to see whether --rows was given */
   double block_width = g.width;
-  Extra x = {0, NULL, 0, 0};
+  Extra x = {0, NULL, 0, 0, 0};
   const char *out = NULL;
   for (int i = 2; i < argc; i++) {
     if (cli_is_help(argv[i])) return fputs(help, stdout), CLI_EXIT_OK;

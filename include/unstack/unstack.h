@@ -679,6 +679,9 @@ typedef struct us_GenSettings {
   int cap;           /* dome: close the opening with one keystone cap (0) */
   int nremove;       /* jenga: pieces left out, remove[2k] the level (1-based */
   const int *remove; /*   from the bottom), remove[2k+1] the position 1..3 */
+  int returns;       /* wall3d: a return wall of this many bricks' length
+                        along +y at both ends, bonded at the corners
+                        (src/gen/corner.c); 0 (default): a straight wall */
 } us_GenSettings;
 US_API us_GenSettings us_gen_default_settings(void);
 
@@ -694,7 +697,8 @@ US_API us_Structure *us_gen_stacker(const us_GenSettings *g, us_Error *err);
 /* 3D (src/gen/solid.c, regular.c): a tower of g->n boxes (width x depth x
  * height, each turned about the vertical by up to `jitter` degrees, seeded);
  * a pyramid of g->n square courses in stack bond; the running-bond wall of
- * us_gen_wall with bricks `thickness` deep. */
+ * us_gen_wall with bricks `thickness` deep, with `returns`, return walls at
+ * both ends. */
 US_API us_Structure *us_gen_tower(const us_GenSettings *g, us_Error *err);
 US_API us_Structure *us_gen_pyramid3d(const us_GenSettings *g, us_Error *err);
 US_API us_Structure *us_gen_wall3d(const us_GenSettings *g, us_Error *err);

@@ -47,6 +47,21 @@ us_Structure *us_gen_finish(us_Structure *s, us_Error *err);
  * settings: the generators that keep a drop only while all stands). */
 us_Status us_gen_stands(const us_Structure *s, int *stable, us_Error *err);
 
+/* The masonry grid (regular.c, corner.c): the coordinate of half-block
+ * index q, q * (w / 2), and of course boundary k, k * h. One expression
+ * each, so a face shared by two blocks has bit-identical coordinates. */
+static inline double us_gen_half(const us_GenSettings *g, long q) { return (double)q * (0.5 * g->width); }
+static inline double us_gen_course(const us_GenSettings *g, int k) { return (double)k * g->height; }
+
+/* Checks shared by the block generators (regular.c): common settings,
+ * block size, a count `n` named `nname` >= 1, and `total` bodies within
+ * the limit. */
+us_Status us_gen_check_blocks(const us_GenSettings *g, const char *what, int n, const char *nname,
+                              long total, us_Error *err);
+
+/* wall3d with g->returns != 0: the wall with corner returns (corner.c). */
+us_Structure *us_gen_wall3d_returns(const us_GenSettings *g, us_Error *err);
+
 /* Random numbers: us_rng_next / us_rng_below (src/core/rng.c), seeded
  * with g->seed, so a seed gives the same structure on every platform. */
 

@@ -13,14 +13,15 @@
  *
  * The wall is one design for both dimensions: in 3D (wall3d) every brick
  * is a box from y = 0 to y = thickness, rows going up along z (the 3D
- * vertical), so the 3D wall is the 2D wall extruded. */
+ * vertical), so the 3D wall is the 2D wall extruded. With corner returns
+ * (g->returns > 0) the 3D wall is built by corner.c on the same grid. */
 #include "gen.h"
 
 /* The x coordinate of half-block index q. */
-static double half_x(const us_GenSettings *g, long q) { return (double)q * (0.5 * g->width); }
+static double half_x(const us_GenSettings *g, long q) { return us_gen_half(g, q); }
 
 /* The y coordinate of row boundary k. */
-static double row_y(const us_GenSettings *g, int k) { return (double)k * g->height; }
+static double row_y(const us_GenSettings *g, int k) { return us_gen_course(g, k); }
 
 /* Add block number *k spanning half-block indices [q0, q1] in row r. */
 static us_Status add_row_block(us_Structure *s, const us_GenSettings *g, int *k, int r, long q0,
@@ -35,8 +36,8 @@ static us_Status add_row_block(us_Structure *s, const us_GenSettings *g, int *k,
 
 /* Checks shared by the block generators: common settings, block size, a
  * positive count `n` named `nname`, and a total below the body limit. */
-static us_Status check_blocks(const us_GenSettings *g, const char *what, int n,
-                              const char *nname, long total, us_Error *err) {
+us_Status us_gen_check_blocks(const us_GenSettings *g, const char *what, int n, const char *nname,
+                              long total, us_Error *err) {
   us_Status st = us_gen_check_common(g, what, err);
   if (!st) st = us_gen_check_positive(g->width, what, "block width", err);
   if (!st) st = us_gen_check_positive(g->height, what, "block height", err);
@@ -49,7 +50,7 @@ static us_Status check_blocks(const us_GenSettings *g, const char *what, int n,
 
 /* Column: g->n blocks of g->width x g->height, aligned, b1 on the ground. */
 us_Structure *us_gen_column(const us_GenSettings *g, us_Error *err) {
-  if (check_blocks(g, "column", g ? g->n : 0, "n", g ? (long)g->n : 0, err)) return NULL;
+  if (us_gen_check_blocks(g, "column", g ? g->n : 0, "n", g ? (long)g->n : 0, err)) return NULL;
   us_Structure *s = us_gen_begin(g, err);
   us_Status st = s ? US_OK : US_ERR_NOMEM;
   for (int k = 0, r = 0; !st && r < g->n; r++) st = add_row_block(s, g, &k, r, 0, 2, err);
@@ -65,7 +66,7 @@ us_Structure *us_gen_column(const us_GenSettings *g, us_Error *err) {
  * one below. n rows hold n (n + 1) / 2 blocks (13 rows: 91). */
 us_Structure *us_gen_pyramid(const us_GenSettings *g, us_Error *err) {
   long n = g ? (long)g->n : 0;
-  if (check_blocks(g, "pyramid", g ? g->n : 0, "n (rows)", n * (n + 1) / 2, err)) return NULL;
+  if (us_gen_check_blocks(g, "pyramid", g ? g->n : 0, "n (rows)", n * (n + 1) / 2, err)) return NULL;
   us_Structure *s = us_gen_begin(g, err);
   us_Status st = s ? US_OK : US_ERR_NOMEM;
   int k = 0;
@@ -100,7 +101,7 @@ static us_Structure *wall(const us_GenSettings *g, int dim, us_Error *err) {
   const char *what = dim == 3 ? "wall3d" : "wall";
   long r = g ? (long)g->rows : 0, c = g ? (long)g->cols : 0;
   long total = (r + 1) / 2 * c + r / 2 * (c + 1);
-  if (check_blocks(g, what, g ? g->rows : 0, "rows", total, err)) return NULL;
+  if (us_gen_check_blocks(g, what, g ? g->rows : 0, "rows", total, err)) return NULL;
   if (c < 1) {
     us_error_set(err, US_ERR_USAGE, "%s: cols must be >= 1, got %ld", what, c);
     return NULL;
@@ -119,5 +120,9 @@ static us_Structure *wall(const us_GenSettings *g, int dim, us_Error *err) {
 
 us_Structure *us_gen_wall(const us_GenSettings *g, us_Error *err) { return wall(g, 2, err); }
 
-/* The wall in 3D: bricks g->thickness deep (y), rows along z. */
-us_Structure *us_gen_wall3d(const us_GenSettings *g, us_Error *err) { return wall(g, 3, err); }
+/* The wall in 3D: bricks g->thickness deep (y), rows along z; with
+ * g->returns, the returns at both ends (corner.c). */
+us_Structure *us_gen_wall3d(const us_GenSettings *g, us_Error *err) {
+  if (g && g->returns != 0) return us_gen_wall3d_returns(g, err);
+  return wall(g, 3, err);
+}

@@ -1,6 +1,7 @@
 # The 3D generators end to end: each kind writes a 3D structure file with
 # the expected body count; bad 3D settings are usage errors that write
-# nothing; dome, jenga and random3d go through generate -> check -> plan.
+# nothing; dome, jenga and random3d go through generate -> check -> plan;
+# wall3d --returns 0 is the straight wall, with returns it is checked.
 # (Reading the files back, their contacts and mass properties:
 # tests/test_gen3d.c; their statics: tests/test_gen3d_known.c.)
 . "$(dirname "$0")/lib.sh"
@@ -11,6 +12,11 @@ expect 0 "pyramid3d" -- "$CLI" generate pyramid3d --rows 4 -o "$T/p.json"
 contains "$T/out" "30 bodies" "pyramid3d: 4 courses are 16 + 9 + 4 + 1 boxes"
 expect 0 "wall3d" -- "$CLI" generate wall3d --rows 4 --cols 5 --thickness 0.3 -o "$T/w.json"
 contains "$T/out" "22 bodies" "wall3d: 2 x 5 + 2 x 6 bricks"
+expect 0 "wall3d --returns 0" -- "$CLI" generate wall3d --rows 4 --cols 5 --thickness 0.3 --returns 0 -o "$T/w0.json"
+cmp -s "$T/w.json" "$T/w0.json" && ok "wall3d: --returns 0 is the straight wall" || bad "wall3d: --returns 0 differs"
+expect 0 "wall3d with returns" -- "$CLI" generate wall3d --rows 4 --cols 6 --returns 3 -o "$T/wr.json"
+contains "$T/out" "46 bodies" "wall3d --returns 3: 4 (6 + 2 x 3) - 2 bricks"
+expect 0 "wall3d with returns: check" -- "$CLI" check "$T/wr.json"
 expect 2 "tower: negative jitter" -- "$CLI" generate tower --jitter -1 -o "$T/bad1.json"
 contains "$T/err" "jitter" "message names the jitter"
 expect 2 "pyramid3d: zero depth" -- "$CLI" generate pyramid3d --block-depth 0 -o "$T/bad2.json"
@@ -49,5 +55,10 @@ expect 2 "remove is for jenga" -- "$CLI" generate tower --remove 1:1 -o "$T/bad7
 expect 2 "random3d: block width" -- "$CLI" generate random3d --block-width 2 -o "$T/bad8.json"
 contains "$T/err" "--width" "message points to --width"
 expect 2 "random3d: width below 1" -- "$CLI" generate random3d --width 0.5 -o "$T/bad9.json"
+expect 2 "wall3d: negative returns" -- "$CLI" generate wall3d --returns -2 -o "$T/bad10.json"
+contains "$T/err" "--returns needs a non-negative integer" "message names --returns"
+expect 2 "wall3d: returns on bricks as deep as long" -- "$CLI" generate wall3d --returns 2 --thickness 1 -o "$T/bad11.json"
+contains "$T/err" "thickness" "message names the thickness"
+expect 2 "returns is for wall3d" -- "$CLI" generate wall --returns 2 -o "$T/bad12.json"
 ls "$T"/bad*.json >/dev/null 2>&1 && bad "file written on error" || ok "no file written on any error"
 finish
