@@ -44,14 +44,15 @@ static us_Structure *plank(double alpha, double phi, double mu, double h) {
   return s;
 }
 
-/* The full structure's verdict with a method into *v (UNDECIDED on an
- * error); the certificate of a stable one must pass. info (optional)
- * gets the workspace's statistics. */
-static void verdict_into(const us_Structure *s, us_Method m, us_StabilityInfo *info,
-                         us_Verdict *v) {
+/* The full structure's verdict with a method and local tests on (1) or
+ * off (-1) into *v (UNDECIDED on an error); the certificate of a stable
+ * one must pass. info (optional) gets the workspace's statistics. */
+static void verdict_local(const us_Structure *s, us_Method m, int local, us_StabilityInfo *info,
+                          us_Verdict *v) {
   *v = US_UNDECIDED;
   us_StabilitySettings set = us_stability_default_settings();
   set.method = m;
+  set.local = local;
   us_Error err;
   us_Stability *w = us_stability_new(s, &set, &err);
   CHECK(w);
@@ -64,6 +65,17 @@ static void verdict_into(const us_Structure *s, us_Method m, us_StabilityInfo *i
   *v = r.verdict;
   us_stability_result_free(&r);
   us_stability_free(w);
+}
+
+/* The verdict of the full LP with its cone refinement (local tests off:
+ * info counts its refinements); the local tests (plumb lines, which test
+ * the circular cones directly, and region LPs) must agree. */
+static void verdict_into(const us_Structure *s, us_Method m, us_StabilityInfo *info,
+                         us_Verdict *v) {
+  us_Verdict lv;
+  verdict_local(s, m, -1, info, v);
+  verdict_local(s, m, 1, NULL, &lv);
+  CHECK_INT(lv, ==, *v);
 }
 
 static us_Verdict verdict_of(const us_Structure *s, us_Method m, us_StabilityInfo *info) {

@@ -449,7 +449,7 @@ static us_Status solve_region(us_Local *L, const us_Bitset *cur, int fixed, us_V
   L->ray_ws = L->bws[0];
   us_Status st = US_OK;
   *v = US_UNDECIDED;
-  if (L->eq.nbody * L->eq.nw <= US_SMALL_ROWS) {
+  if (us_small_fits(&L->eq)) {
     st = us_backend_small.solve(L->small, &L->eq, NULL, 0, NULL, 0, 0, v, L->f, info, res->note,
                                 sizeof res->note, err);
     if (!st && *v != US_UNDECIDED) {

@@ -9,6 +9,14 @@
  * first: measured faster than CLP up to here on the local tests of walls
  * and pyramids. */
 #define US_SMALL_ROWS 60
+/* Does system e go to the small solver first? 2D only: a 3D region's
+ * tableau is as wide as its cone generators (8 and more per contact, ~250
+ * contacts for 10 bodies of pyramid3d), and pivoting through it densely
+ * cost 10 to 30 times CLP's time (pyramid3d, 385 boxes: plan 3.0 s with
+ * it for up to 96 contacts, 0.33 s without). */
+static inline int us_small_fits(const us_EqSystem *e) {
+  return e->dim == 2 && e->nbody * e->nw <= US_SMALL_ROWS;
+}
 
 extern const us_Backend us_backend_small;
 

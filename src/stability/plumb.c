@@ -1,29 +1,38 @@
 /* The plumb-line load path (plumb.h; argument in docs/local.md).
  *
  * Algorithm, per added body a with weight share w = m_a / M and plumb
- * position c = com_a . h (h the horizontal axis):
+ * position c = the horizontal coordinates of com_a (one axis h in 2D, two
+ * in 3D):
  *   u = a; repeat: find a hop below u at c, add w to it, u = the body
  *   below, until the body below is the ground or a fixed body.
- * A hop is a support contact of u (one that pushes u up, with a present
- * body, the ground or a fixed body on the other side) that the line
- * crosses: a contact point at c (within 1e-9 of u's width), or two
- * contact points with the same body and normal on either side of c,
- * sharing the vertical force w up by the lever rule (weights (s2 - c) /
- * (s2 - s1) and (c - s1) / (s2 - s1)), whose resultant then acts on the
- * line. The force w up on u is, as contact components (force on the
- * contact's b side, normal n from a into b): +-(w up . n, w up . t); the
- * hop is admissible only if those lie in each point's cone (normal part
- * positive, |tangential| <= mu normal). The body below receives the
- * opposite force at the same points: the same vertical force on the same
- * line, which it passes on at the next hop.
+ * A hop is a set of support contact points of u (each pushes u up, with a
+ * present body, the ground or a fixed body on the other side) whose
+ * shares of the vertical force w have their resultant on the line:
+ *   2D: a point at c (within 1e-9 of u's width), or the nearest points on
+ *       either side of c, weights (s2 - c) / (s2 - s1) and (c - s1) /
+ *       (s2 - s1) (the lever rule);
+ *   3D: a point at c, or the corners of a triangle of support points that
+ *       holds c, weights its barycentric coordinates (all >= 0, within the
+ *       same relative tolerance); triangles whose corners lie on one body
+ *       below are tried first, so that the line stays one line.
+ * The force w up on u is, as contact components (force on the contact's b
+ * side, normal n from a into b): +-(w up . n, w up . t1 [, w up . t2]);
+ * the hop is admissible only if those lie in each point's cone (normal
+ * part positive, |tangential| <= mu normal). The bodies below receive the
+ * opposite forces at the same points; the points on one body give it a
+ * vertical force on the line through their weighted mean, on which its
+ * own line goes on (at c itself when one body takes the whole hop).
  *
  * Invariants: every change to f is logged (contact, old components)
  * before it is made, so a failed route, or us_plumb_undo, restores f
  * exactly; p->path lists each body whose contacts changed once (mark[]).
  * A line descends strictly (each hop's contact has an upward normal
- * part), and a route stops after nbody hops per line regardless.
+ * part), and a route stops after PLUMB_HOPS hops per added body
+ * regardless.
  */
 #include "plumb.h"
+
+#include "geometry/geometry3.h"
 
 #include <math.h>
 #include <string.h>
@@ -33,13 +42,14 @@
 #define SAME_NORMAL 1e-9 /* normals closer than this (1 - cos) are one contact face */
 #define CONE_SLACK 1e-12 /* relative slack of the hop's own cone test */
 #define PLUMB_HOPS 4096  /* hops one added body's lines may take */
+#define PLUMB_MAX_TRI 48 /* 3D: support points of a body searched for triangles at most */
 
 typedef struct Hop {
-  int k[2];      /* contact indices (k[1] = -1: one point) */
-  double w[2];   /* their shares of the load */
-  int below[2];  /* the bodies under them (US_GROUND, fixed or present movable) */
-  int split;     /* 0: one line goes on in below[0] at pos[0]; 1: two */
-  double pos[2]; /* where the lines go on */
+  int n;         /* points carrying the load: 1 to 3 */
+  int k[3];      /* their contact indices */
+  double w[3];   /* their shares of the load (sum 1) */
+  int below[3];  /* the bodies under them (US_GROUND, fixed or present movable) */
+  double pos[3][2]; /* their horizontal positions */
 } Hop;
 
 static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -59,28 +69,44 @@ static int supports(const us_Plumb *p, const us_Contact *k, int u) {
 }
 
 /* The contact components of a vertical force `load` (along up) on body u
- * through contact k: d[0] normal, d[1] tangential (2D). */
-static void components(const us_Plumb *p, const us_Contact *k, int u, double load, double d[2]) {
+ * through contact k: d[0] normal, d[1] (and d[2] in 3D) tangential. */
+static void components(const us_Plumb *p, const us_Contact *k, int u, double load, double d[3]) {
   double sg = u == k->b ? load : -load;
   d[0] = sg * dot3(p->up, k->n);
   d[1] = sg * dot3(p->up, k->t[0]);
+  d[2] = p->s->dim == 3 ? sg * dot3(p->up, k->t[1]) : 0.0;
 }
 
 static int in_cone(const us_Plumb *p, const us_Contact *k, int u) {
-  double d[2];
+  double d[3];
   components(p, k, u, 1.0, d);
   if (!(d[0] > 0.0)) return 0;
-  return isinf(k->mu) || fabs(d[1]) <= (k->mu + CONE_SLACK) * d[0];
+  return isinf(k->mu) || hypot(d[1], d[2]) <= (k->mu + CONE_SLACK) * d[0];
 }
 
+/* The horizontal coordinates of point x. */
+static void horizontal(const us_Plumb *p, const double *x, double out[2]) {
+  out[0] = dot3(x, p->hz[0]);
+  out[1] = p->nax == 2 ? dot3(x, p->hz[1]) : 0.0;
+}
+
+/* The largest horizontal extent of body u (its vertices, all parts). */
 static double width_of(const us_Plumb *p, int u) {
   const us_Body *b = &p->s->bodies[u];
-  double lo = INFINITY, hi = -INFINITY;
-  for (int k = 0; k < b->nvert; k++) {
-    double x = b->verts[2 * k] * p->hz[0] + b->verts[2 * k + 1] * p->hz[1];
-    lo = US_MIN(lo, x), hi = US_MAX(hi, x);
+  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY}, h[2];
+  for (int k = 0; k < b->nvert && p->s->dim == 2; k++) {
+    double x[3] = {b->verts[2 * k], b->verts[2 * k + 1], 0.0};
+    horizontal(p, x, h);
+    for (int a = 0; a < p->nax; a++) lo[a] = US_MIN(lo[a], h[a]), hi[a] = US_MAX(hi[a], h[a]);
   }
-  return hi > lo ? hi - lo : 0.0;
+  for (int q = 0; q < b->npart && p->s->dim == 3; q++)
+    for (int k = 0; k < b->parts[q].nvert; k++) {
+      horizontal(p, b->parts[q].verts + 3 * k, h);
+      for (int a = 0; a < p->nax; a++) lo[a] = US_MIN(lo[a], h[a]), hi[a] = US_MAX(hi[a], h[a]);
+    }
+  double w = 0.0;
+  for (int a = 0; a < p->nax; a++) w = hi[a] > lo[a] ? US_MAX(w, hi[a] - lo[a]) : w;
+  return w;
 }
 
 /* Each body's support points whose cone holds a vertical load, with the
@@ -95,7 +121,9 @@ static void list_supports(us_Plumb *p) {
     for (int m = p->inc_start[u]; m < p->inc_start[u + 1]; m++) {
       const us_Contact *k = &s->contacts[p->inc[m]];
       if (!supports(p, k, u) || !in_cone(p, k, u)) continue;
-      p->sup[n++] = (us_PlumbSupport){p->inc[m], other_side(k, u), dot3(k->p, p->hz)};
+      us_PlumbSupport q = {p->inc[m], other_side(k, u), {0.0, 0.0}};
+      horizontal(p, k->p, q.pos);
+      p->sup[n++] = q;
     }
   }
   p->sup_start[s->nbody] = n;
@@ -108,7 +136,17 @@ int us_plumb_init(us_Plumb *p, const us_Structure *s, const int *inc_start, cons
   p->inc_start = inc_start;
   p->inc = inc;
   memcpy(p->up, up, sizeof p->up);
-  p->hz[0] = up[1], p->hz[1] = -up[0], p->hz[2] = 0.0;
+  memset(p->hz, 0, sizeof p->hz);
+  if (s->dim == 3) {
+    us_Vec3 t1, t2;
+    us_v3_frame((us_Vec3){up[0], up[1], up[2]}, &t1, &t2);
+    p->nax = 2;
+    p->hz[0][0] = t1.x, p->hz[0][1] = t1.y, p->hz[0][2] = t1.z;
+    p->hz[1][0] = t2.x, p->hz[1][1] = t2.y, p->hz[1][2] = t2.z;
+  } else {
+    p->nax = 1;
+    p->hz[0][0] = up[1], p->hz[0][1] = -up[0];
+  }
   p->mass_total = mass_total;
   size_t nb = (size_t)(s->nbody > 0 ? s->nbody : 1);
   p->mark = us_calloc(nb, 1);
@@ -116,7 +154,7 @@ int us_plumb_init(us_Plumb *p, const us_Structure *s, const int *inc_start, cons
   p->sup_start = us_calloc(nb + 1, sizeof(int));
   p->sup = us_malloc((size_t)(2 * s->ncontact + 1) * sizeof(us_PlumbSupport));
   if (!p->mark || !p->width || !p->sup_start || !p->sup) return -1;
-  if (s->dim == 2) list_supports(p);
+  list_supports(p);
   return 0;
 }
 
@@ -132,38 +170,107 @@ void us_plumb_free(us_Plumb *p) {
   memset(p, 0, sizeof *p);
 }
 
-/* A hop below u at position c; 1 found, 0 none. A support point on the
- * line takes the whole load; else the nearest support points on either
- * side share it by the lever rule. */
-static int find_hop(const us_Plumb *p, const us_Bitset *cur, int u, double c, Hop *h) {
+static void hop_point(const us_Plumb *p, Hop *h, int j, int m, double w) {
+  const us_PlumbSupport *q = &p->sup[m];
+  h->k[j] = q->contact;
+  h->below[j] = q->below;
+  h->w[j] = w;
+  h->pos[j][0] = q->pos[0], h->pos[j][1] = q->pos[1];
+}
+
+/* A support point of u on the line at c (within tol): its index, or -1. */
+static int point_on_line(const us_Plumb *p, const us_Bitset *cur, int u, const double c[2],
+                         double tol) {
+  for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++) {
+    const us_PlumbSupport *q = &p->sup[m];
+    if (present(p, cur, q->below) && fabs(q->pos[0] - c[0]) <= tol &&
+        fabs(q->pos[1] - c[1]) <= tol)
+      return m;
+  }
+  return -1;
+}
+
+/* 2D: the nearest support points on either side of c share the load by
+ * the lever rule. 1 found, 0 none. */
+static int hop_lever(const us_Plumb *p, const us_Bitset *cur, int u, const double c[2], Hop *h) {
   int best[2] = {-1, -1};
-  double tol = AT_POINT * p->width[u];
   for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++) {
     const us_PlumbSupport *q = &p->sup[m];
     if (!present(p, cur, q->below)) continue;
-    if (fabs(q->pos - c) <= tol) {
-      h->k[0] = q->contact, h->k[1] = -1;
-      h->w[0] = 1.0, h->w[1] = 0.0;
-      h->below[0] = h->below[1] = q->below;
-      h->pos[0] = c;
-      h->split = 0;
-      return 1;
-    }
-    int side = q->pos > c;
-    if (best[side] < 0 || (side ? q->pos < p->sup[best[1]].pos : q->pos > p->sup[best[0]].pos))
+    int side = q->pos[0] > c[0];
+    if (best[side] < 0 ||
+        (side ? q->pos[0] < p->sup[best[1]].pos[0] : q->pos[0] > p->sup[best[0]].pos[0]))
       best[side] = m;
   }
   if (best[0] < 0 || best[1] < 0) return 0;
-  for (int q = 0; q < 2; q++) {
-    h->k[q] = p->sup[best[q]].contact;
-    h->below[q] = p->sup[best[q]].below;
-    h->pos[q] = p->sup[best[q]].pos;
-  }
-  h->w[1] = (c - h->pos[0]) / (h->pos[1] - h->pos[0]);
-  h->w[0] = 1.0 - h->w[1];
-  h->split = h->below[0] != h->below[1];
-  if (!h->split) h->pos[0] = c; /* one body takes both: their resultant is on the line */
+  double s1 = p->sup[best[0]].pos[0], s2 = p->sup[best[1]].pos[0], w1 = (c[0] - s1) / (s2 - s1);
+  h->n = 2;
+  hop_point(p, h, 0, best[0], 1.0 - w1);
+  hop_point(p, h, 1, best[1], w1);
   return 1;
+}
+
+/* Barycentric weights of c in triangle (a, b, d) of horizontal points:
+ * 1 if all are >= -tol (then clamped to [0, 1], summing to 1), else 0;
+ * 0 for a triangle thinner than tol. */
+static int barycentric(const double *a, const double *b, const double *d, const double c[2],
+                       double tol, double w[3]) {
+  double e1x = b[0] - a[0], e1y = b[1] - a[1], e2x = d[0] - a[0], e2y = d[1] - a[1];
+  double det = e1x * e2y - e1y * e2x, span = hypot(e1x, e1y) + hypot(e2x, e2y);
+  if (!(fabs(det) > tol * span)) return 0;
+  double rx = c[0] - a[0], ry = c[1] - a[1];
+  w[1] = (rx * e2y - ry * e2x) / det;
+  w[2] = (e1x * ry - e1y * rx) / det;
+  w[0] = 1.0 - w[1] - w[2];
+  double t = tol / span;
+  if (w[0] < -t || w[1] < -t || w[2] < -t) return 0;
+  double sum = 0.0;
+  for (int j = 0; j < 3; j++) sum += (w[j] = US_MAX(w[j], 0.0));
+  for (int j = 0; j < 3; j++) w[j] /= sum;
+  return 1;
+}
+
+/* 3D: a triangle of u's support points that holds c, its corners on one
+ * body below when same_body (else anywhere). 1 found, 0 none. */
+static int hop_triangle(const us_Plumb *p, const us_Bitset *cur, int u, const double c[2],
+                        double tol, int same_body, Hop *h) {
+  int m0 = p->sup_start[u], m1 = p->sup_start[u + 1];
+  for (int i = m0; i < m1; i++) {
+    const us_PlumbSupport *qi = &p->sup[i];
+    if (!present(p, cur, qi->below)) continue;
+    for (int j = i + 1; j < m1; j++) {
+      const us_PlumbSupport *qj = &p->sup[j];
+      if ((same_body && qj->below != qi->below) || !present(p, cur, qj->below)) continue;
+      for (int k = j + 1; k < m1; k++) {
+        const us_PlumbSupport *qk = &p->sup[k];
+        if ((same_body && qk->below != qi->below) || !present(p, cur, qk->below)) continue;
+        double w[3];
+        if (!barycentric(qi->pos, qj->pos, qk->pos, c, tol, w)) continue;
+        h->n = 3;
+        hop_point(p, h, 0, i, w[0]);
+        hop_point(p, h, 1, j, w[1]);
+        hop_point(p, h, 2, k, w[2]);
+        return 1;
+      }
+    }
+  }
+  return 0;
+}
+
+/* A hop below u at position c; 1 found, 0 none. A support point on the
+ * line takes the whole load; else the lever rule (2D) or a triangle (3D,
+ * one body below first). */
+static int find_hop(const us_Plumb *p, const us_Bitset *cur, int u, const double c[2], Hop *h) {
+  double tol = AT_POINT * p->width[u];
+  int m = point_on_line(p, cur, u, c, tol);
+  if (m >= 0) {
+    h->n = 1;
+    hop_point(p, h, 0, m, 1.0);
+    return 1;
+  }
+  if (p->nax == 1) return hop_lever(p, cur, u, c, h);
+  if (p->sup_start[u + 1] - p->sup_start[u] > PLUMB_MAX_TRI) return 0;
+  return hop_triangle(p, cur, u, c, tol, 1, h) || hop_triangle(p, cur, u, c, tol, 0, h);
 }
 
 static void mark_body(us_Plumb *p, int v) {
@@ -175,28 +282,53 @@ static void mark_body(us_Plumb *p, int v) {
 /* Add share w of load on u to contact kc, logging its old value. */
 static int add_force(us_Plumb *p, int kc, int u, double load, double *f) {
   const us_Contact *k = &p->s->contacts[kc];
-  if (US_GROW(p->log_c, p->cap_c, p->nlog + 1) || US_GROW(p->log_f, p->cap_f, 2 * (p->nlog + 1)))
+  if (US_GROW(p->log_c, p->cap_c, p->nlog + 1) || US_GROW(p->log_f, p->cap_f, 3 * (p->nlog + 1)))
     return -1;
-  double *fk = f + 2 * (size_t)kc, d[2];
+  size_t dim = (size_t)p->s->dim;
+  double *fk = f + dim * (size_t)kc, d[3];
   p->log_c[p->nlog] = kc;
-  memcpy(p->log_f + 2 * (size_t)p->nlog, fk, 2 * sizeof(double));
+  memcpy(p->log_f + 3 * (size_t)p->nlog, fk, dim * sizeof(double));
   p->nlog++;
   components(p, k, u, load, d);
-  fk[0] += d[0];
-  fk[1] += d[1];
+  for (size_t j = 0; j < dim; j++) fk[j] += d[j];
   return 0;
 }
 
 void us_plumb_undo(us_Plumb *p, double *f) {
+  size_t dim = (size_t)p->s->dim;
   for (int q = p->nlog - 1; q >= 0; q--)
-    memcpy(f + 2 * (size_t)p->log_c[q], p->log_f + 2 * (size_t)q, 2 * sizeof(double));
+    memcpy(f + dim * (size_t)p->log_c[q], p->log_f + 3 * (size_t)q, dim * sizeof(double));
   p->nlog = 0;
 }
 
 /* Push a line (body, position, load) to route on. */
-static int push_line(us_Plumb *p, int u, double c, double load) {
+static int push_line(us_Plumb *p, int u, const double c[2], double load) {
   if (US_GROW(p->stack, p->cap_stack, p->nstack + 1)) return -1;
-  p->stack[p->nstack++] = (us_PlumbLine){u, c, load};
+  p->stack[p->nstack++] = (us_PlumbLine){u, {c[0], c[1]}, load};
+  return 0;
+}
+
+/* After hop h of a line (position c, load) on u: the forces, and one line
+ * on in each movable body below, at the weighted mean of its points (c
+ * itself when one body takes the whole hop). 0 or -1 (OOM). */
+static int take_hop(us_Plumb *p, const Hop *h, int u, const double c[2], double load, double *f) {
+  for (int q = 0; q < h->n; q++)
+    if (add_force(p, h->k[q], u, h->w[q] * load, f)) return -1;
+  for (int q = 0; q < h->n; q++) {
+    int v = h->below[q], first = 1;
+    for (int r = 0; r < q; r++) first = first && h->below[r] != v;
+    if (!first || held(p, v)) continue;
+    double w = 0.0, at[2] = {0.0, 0.0};
+    for (int r = q; r < h->n; r++) {
+      if (h->below[r] != v) continue;
+      w += h->w[r];
+      at[0] += h->w[r] * h->pos[r][0], at[1] += h->w[r] * h->pos[r][1];
+    }
+    if (w >= 1.0 - 1e-15) at[0] = c[0], at[1] = c[1]; /* one body: on the line */
+    else if (w > 0) at[0] /= w, at[1] /= w;
+    mark_body(p, v);
+    if (push_line(p, v, at, w * load)) return -1;
+  }
   return 0;
 }
 
@@ -207,20 +339,15 @@ static int route_one(us_Plumb *p, const us_Bitset *cur, int a, double *f) {
   const us_Body *b = &p->s->bodies[a];
   mark_body(p, a);
   p->nstack = 0;
-  if (push_line(p, a, dot3(b->com, p->hz), b->mass / p->mass_total)) return -1;
+  double c[2];
+  horizontal(p, b->com, c);
+  if (push_line(p, a, c, b->mass / p->mass_total)) return -1;
   for (int hops = 0; p->nstack > 0; hops++) {
     if (hops >= PLUMB_HOPS) return 0;
     us_PlumbLine l = p->stack[--p->nstack];
     Hop h;
     if (!find_hop(p, cur, l.body, l.pos, &h)) return 0;
-    for (int q = 0; q < 2 && (q == 0 || h.k[1] >= 0); q++)
-      if (add_force(p, h.k[q], l.body, h.w[q] * l.load, f)) return -1;
-    for (int q = 0; q <= h.split; q++) {
-      int v = h.below[q];
-      if (held(p, v)) continue;
-      mark_body(p, v);
-      if (push_line(p, v, h.pos[q], h.split ? h.w[q] * l.load : l.load)) return -1;
-    }
+    if (take_hop(p, &h, l.body, l.pos, l.load, f)) return -1;
   }
   return 1;
 }
@@ -229,7 +356,6 @@ int us_plumb_route(us_Plumb *p, const us_Bitset *cur, const int *added, int nadd
   for (int q = 0; q < p->npath; q++) p->mark[p->path[q]] = 0;
   p->npath = 0;
   p->nlog = 0;
-  if (p->s->dim != 2) return 0;
   if (US_GROW(p->path, p->cap_path, p->s->nbody + 1)) return -1;
   for (int q = 0; q < nadd; q++) {
     int r = route_one(p, cur, added[q], f);

@@ -5,9 +5,10 @@
  * equilibrium.h) and bodies added to it, route each added body's weight
  * straight down: along the vertical line through its centre of mass,
  * from body to supporting body, to the ground or a fixed body. Each hop
- * adds a vertical force to one support contact of the body above, split
- * between two of its contact points by the lever rule so that it acts on
- * the line. Every body on the line then receives and passes on the same
+ * adds a vertical force to the support contacts of the body above, split
+ * between two of its contact points by the lever rule (2D), or among the
+ * three corners of a triangle of them that holds the line by barycentric
+ * weights (3D), so that it acts on the line. Every body on the line then receives and passes on the same
  * vertical force on the same line: its net force and torque do not
  * change. The added forces lie in the cones (each hop's is checked), and
  * cones are convex, so f plus them holds B and the added bodies; the
@@ -16,7 +17,9 @@
  * Cost: O(path length x contacts per body); no LP. It fails (and changes
  * nothing) when a line meets no support below it at its position (a
  * cantilever, an arch's voussoir), or a support whose cone does not hold
- * the vertical (a steep contact with little friction). 2D only for now.
+ * the vertical (a steep contact with little friction). In 3D the triangle
+ * search costs O(k^3) in a body's k support points, and bodies with more
+ * than PLUMB_MAX_TRI of them are left to the LPs.
  */
 #ifndef US_STABILITY_PLUMB_H
 #define US_STABILITY_PLUMB_H
@@ -25,14 +28,14 @@
 
 typedef struct us_PlumbLine {
   int body;
-  double pos;            /* horizontal position of the line */
+  double pos[2];         /* horizontal position of the line (1 axis in 2D) */
   double load;           /* its vertical force, in units of the total weight */
 } us_PlumbLine;
 
 typedef struct us_PlumbSupport {
   int contact;           /* a support contact point of the body */
   int below;             /* the body on its other side (US_GROUND, fixed, movable) */
-  double pos;            /* its horizontal position */
+  double pos[2];         /* its horizontal position */
 } us_PlumbSupport;
 
 typedef struct us_Plumb {
@@ -40,7 +43,8 @@ typedef struct us_Plumb {
   const us_Structure *s;
   const int *inc_start, *inc;
   double up[3];          /* against gravity */
-  double hz[3];          /* the horizontal axis (2D) */
+  int nax;               /* horizontal axes: 1 in 2D, 2 in 3D */
+  double hz[2][3];       /* the horizontal axes */
   double mass_total;     /* M: a body's weight is m_i / M in force units */
   /* per body: its support points whose cone holds the vertical
      (sup[sup_start[u] .. sup_start[u + 1])) and its width along hz */

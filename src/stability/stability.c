@@ -347,7 +347,7 @@ static us_Status run_backend(us_Stability *w, us_StabilityResult *res, us_Error 
   double t0 = us_now();
   w->used_be = w->be;
   w->used_ws = w->bws;
-  if (w->small && w->eq.nbody * w->eq.nw <= US_SMALL_ROWS) { /* tiny: the dense simplex first */
+  if (w->small && us_small_fits(&w->eq)) { /* tiny: the dense simplex first */
     us_Status st = us_backend_small.solve(w->small, &w->eq, NULL, 0, NULL, 0, 1, &res->verdict,
                                           w->f, &w->info, res->note, sizeof res->note, err);
     if (st || res->verdict != US_UNDECIDED) {
