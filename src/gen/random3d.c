@@ -19,7 +19,9 @@
  *
  * Keeping a drop: a box on the ground (level 0) is kept without a test (the
  * previous structure's forces plus the ground under the new box hold
- * everything). Otherwise the structure of the kept boxes plus the new one
+ * everything). Otherwise the box alone, its neighbours held still, must
+ * stand (candidate_alone: a necessary condition, one tiny LP); then the
+ * structure of the kept boxes plus the new one
  * is built, finalized and tested whole with the default stability settings
  * (the LP); the box is kept iff the verdict is stable, and the height map
  * is raised over its cells. The run stops when n boxes are kept, or after
@@ -35,6 +37,7 @@
 #include "gen.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 typedef struct Drops {
   const us_GenSettings *g;
@@ -88,11 +91,44 @@ static us_Structure *build(const Drops *d, int count, us_Error *err) {
   return us_gen_finish(s, err);
 }
 
+/* Can the candidate (box d->n) stand with every box that could touch it
+ * held still (its level and the ones below and above, footprints within
+ * one box: a box above may touch its top edges)? A
+ * necessary condition: forces that held the whole would, restricted to
+ * the candidate's contacts, hold it against supports that do not move. So
+ * a candidate that fails here is discarded without the whole's LP (most
+ * discarded drops are: they overhang). One LP of 6 rows. */
+static us_Status candidate_alone(const Drops *d, int *stable, us_Error *err) {
+  us_Structure *s = us_gen_begin_dim(d->g, 3, err);
+  us_Status st = s ? US_OK : US_ERR_NOMEM;
+  long qx = d->q[2 * d->n], qy = d->q[2 * d->n + 1];
+  int lv = d->level[d->n], k = 0;
+  for (int i = 0; !st && i < d->n; i++) {
+    if (d->level[i] < lv - 1 || d->level[i] > lv + 1) continue;
+    if (labs(d->q[2 * i] - qx) > 4 || labs(d->q[2 * i + 1] - qy) > 4) continue;
+    st = add_drop(s, d, i, err);
+    if (!st) s->bodies[k++].fixed = 1;
+  }
+  if (!st) st = add_drop(s, d, d->n, err);
+  if (st) {
+    us_structure_free(s);
+    return st;
+  }
+  s = us_gen_finish(s, err);
+  if (!s) return err->code;
+  st = us_gen_stands(s, stable, err);
+  us_structure_free(s);
+  return st;
+}
+
 /* Does the candidate (box d->n, already written into q and level) keep
- * the whole standing? Boxes on the ground always do. */
+ * the whole standing? Boxes on the ground always do; a candidate that
+ * cannot stand with its neighbours held still never does. */
 static us_Status candidate_stands(const Drops *d, int *stable, us_Error *err) {
   *stable = 1;
   if (d->level[d->n] == 0) return US_OK;
+  us_Status st0 = candidate_alone(d, stable, err);
+  if (st0 || !*stable) return st0;
   us_Structure *s = build(d, d->n + 1, err);
   if (!s) return err->code;
   us_Status st = us_gen_stands(s, stable, err);
