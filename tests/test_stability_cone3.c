@@ -368,6 +368,215 @@ static void extrusion_invariance(void) {
   CHECK_INT(agree, ==, 5 * 2 * 25);
 }
 
+/* A copy of the 3D structure s (single-part bodies) with every point moved
+ * to M p + shift and gravity turned by M (for a rotation) or kept (for a
+ * scaling: turn_g = 0); the ground as given, plus, with floor, a fixed
+ * slab 40 x 40 x 1 under z = 0 (moved like the rest) standing for it. */
+static us_Structure *transformed(const us_Structure *s, const double M[9], const double shift[3],
+                                 int turn_g, int ground, int floor) {
+  us_Structure *e = us_structure_new(3);
+  us_Error err;
+  e->friction = s->friction;
+  e->ground = ground;
+  for (int j = 0; j < 3; j++)
+    e->gravity[j] = turn_g ? M[3 * j] * s->gravity[0] + M[3 * j + 1] * s->gravity[1] +
+                                 M[3 * j + 2] * s->gravity[2]
+                           : s->gravity[j];
+  int ok = 1;
+  for (int i = 0; ok && i <= s->nbody; i++) {
+    double slab[24], *xyz = slab;
+    int n = 8;
+    if (i == s->nbody) {
+      if (!floor) break;
+      for (int k = 0; k < 8; k++) {
+        slab[3 * k] = k & 1 ? 20.0 : -20.0, slab[3 * k + 1] = k & 2 ? 20.0 : -20.0;
+        slab[3 * k + 2] = k & 4 ? 0.0 : -1.0;
+      }
+    } else {
+      const us_Body *b = &s->bodies[i];
+      if (b->npart != 1) { /* compounds are not needed here */
+        ok = 0;
+        break;
+      }
+      n = b->parts[0].nvert;
+      xyz = us_malloc(3 * (size_t)n * sizeof(double));
+      memcpy(xyz, b->parts[0].verts, 3 * (size_t)n * sizeof(double));
+    }
+    double *out = us_malloc(3 * (size_t)n * sizeof(double));
+    for (int k = 0; k < n; k++)
+      for (int j = 0; j < 3; j++)
+        out[3 * k + j] = M[3 * j] * xyz[3 * k] + M[3 * j + 1] * xyz[3 * k + 1] +
+                         M[3 * j + 2] * xyz[3 * k + 2] + shift[j];
+    us_BodyDef d = us_default_body_def();
+    d.id = i == s->nbody ? "floor" : s->bodies[i].id;
+    d.nvert = n, d.xyz = out, d.fixed = i == s->nbody;
+    if (i < s->nbody) d.friction = s->bodies[i].friction;
+    ok = us_structure_add_body(e, &d, &err) >= 0;
+    us_free(out);
+    if (xyz != slab) us_free(xyz);
+  }
+  if (!ok || us_structure_finalize(e, &err) != US_OK) {
+    fprintf(stderr, "transformed: %s\n", err.msg);
+    us_structure_free(e);
+    return NULL;
+  }
+  return e;
+}
+
+/* A random rotation (Euler angles) into M. */
+static void random_rotation(unsigned long long *rng, double M[9]) {
+  double a = 2 * PI * test_rnd(rng), b = PI * test_rnd(rng), c = 2 * PI * test_rnd(rng);
+  double ca = cos(a), sa = sin(a), cb = cos(b), sb = sin(b), cc = cos(c), sc = sin(c);
+  double r[9] = {ca * cc - sa * cb * sc, -ca * sc - sa * cb * cc, sa * sb,
+                 sa * cc + ca * cb * sc, -sa * sc + ca * cb * cc, -ca * sb,
+                 sb * sc, sb * cc, cb};
+  memcpy(M, r, sizeof r);
+}
+
+/* Verdicts of sub-assemblies of a (bodies 0..n-1) and b (the same bodies
+ * first; fixed extras always present) agree: the full structure, every
+ * prefix from the top down and random subsets. Counts into agree and the
+ * verdict tallies. */
+static void compare_verdicts(const us_Structure *a, const us_Structure *b, int n,
+                             unsigned long long *rng, int *agree, int *tally) {
+  us_StabilitySettings set = us_stability_default_settings();
+  us_Error err;
+  us_Stability *wa = us_stability_new(a, &set, &err), *wb = us_stability_new(b, &set, &err);
+  CHECK(wa && wb);
+  us_Bitset sa, sb;
+  us_bitset_init(&sa, a->nbody);
+  us_bitset_init(&sb, b->nbody);
+  us_StabilityResult ra, rb;
+  us_stability_result_init(&ra);
+  us_stability_result_init(&rb);
+  for (int t = 0; wa && wb && t < n + 20; t++) {
+    for (int i = 0; i < b->nbody; i++) {
+      int on = i >= n ? 1 : t < n ? i < n - t : test_rnd(rng) < 0.7;
+      if (on) us_bitset_set(&sb, i);
+      else us_bitset_clear(&sb, i);
+      if (i < a->nbody && on) us_bitset_set(&sa, i);
+      else if (i < a->nbody) us_bitset_clear(&sa, i);
+    }
+    for (int i = n; i < a->nbody; i++) us_bitset_set(&sa, i);
+    CHECK_OK(us_stability_test(wa, &sa, &ra, &err), &err);
+    CHECK_OK(us_stability_test(wb, &sb, &rb, &err), &err);
+    CHECK_INT(rb.verdict, ==, ra.verdict);
+    *agree += rb.verdict == ra.verdict;
+    tally[ra.verdict == US_STABLE]++;
+  }
+  us_stability_result_free(&ra);
+  us_stability_result_free(&rb);
+  us_bitset_free(&sa);
+  us_bitset_free(&sb);
+  us_stability_free(wa);
+  us_stability_free(wb);
+}
+
+/* Rigid motions and scalings change no verdict: a 3D structure turned
+ * about the vertical and shifted; turned by a random rotation with
+ * gravity turned with it (the ground replaced by a fixed slab in both);
+ * scaled by 3.7 and by 0.02 (masses by the cube). On pyramid3d, jenga
+ * with pieces out, a jittered tower and random3d piles, mu 0.5 and 0.2. */
+static void transform_invariance(void) {
+  unsigned long long rng = 4242;
+  int agree = 0, total = 0, tally[2] = {0, 0};
+  for (int kind = 0; kind < 4; kind++) {
+    for (int fr = 0; fr < 2; fr++) {
+      us_GenSettings g = us_gen_default_settings();
+      us_Error err;
+      g.friction = fr ? 0.2 : 0.5;
+      us_Structure *s = NULL;
+      if (kind == 0) g.n = 3, s = us_gen_pyramid3d(&g, &err);
+      if (kind == 1) {
+        static const int rm[4] = {2, 1, 3, 3};
+        g.n = 5, g.remove = rm, g.nremove = 2;
+        s = us_gen_jenga(&g, &err);
+      }
+      if (kind == 2) g.n = 8, g.jitter = 40.0, g.seed = 5, s = us_gen_tower(&g, &err);
+      if (kind == 3) g.n = 14, g.width = 2.5, g.seed = 9 + (unsigned)fr, s = us_gen_random3d(&g, &err);
+      CHECK(s);
+      if (!s) continue;
+      double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, R[9], zero[3] = {0, 0, 0};
+      double th = 2 * PI * test_rnd(&rng), Z[9] = {cos(th), -sin(th), 0, sin(th), cos(th), 0, 0, 0, 1};
+      double shift[3] = {4.0 * test_rnd(&rng) - 2.0, 4.0 * test_rnd(&rng) - 2.0, 0.0};
+      double big[9] = {3.7, 0, 0, 0, 3.7, 0, 0, 0, 3.7}, tiny[9] = {0.02, 0, 0, 0, 0.02, 0, 0, 0, 0.02};
+      double far[3] = {10.0 * test_rnd(&rng), -7.0, 3.0 * test_rnd(&rng)};
+      random_rotation(&rng, R);
+      us_Structure *t[4] = {transformed(s, Z, shift, 1, 1, 0), transformed(s, big, zero, 0, 1, 0),
+                            transformed(s, tiny, zero, 0, 1, 0), transformed(s, R, far, 1, 0, 1)};
+      us_Structure *slab = transformed(s, I, zero, 1, 0, 1); /* the original on a slab */
+      for (int k = 0; k < 4; k++) {
+        CHECK(t[k]);
+        if (!t[k] || !slab) continue;
+        compare_verdicts(k == 3 ? slab : s, t[k], s->nbody, &rng, &agree, tally);
+        total += s->nbody + 20;
+      }
+      for (int k = 0; k < 4; k++) us_structure_free(t[k]);
+      us_structure_free(slab);
+      us_structure_free(s);
+    }
+  }
+  CHECK_INT(agree, ==, total);
+  CHECK(tally[0] > 40 && tally[1] > 40); /* both verdicts exercised */
+}
+
+/* A 3D counterweight: a plank on a pier carries a load on its far end,
+ * which tips it unless a tall counterweight stands on its back end. The
+ * counterweight is the highest body, but removing it first drops the plank
+ * and the load: DFS (highest first) must step back and take the load
+ * first; every search finds load, counterweight, plank, pier, and the
+ * plank with the load alone is unstable. */
+static void counterweight_backtracks(void) {
+  us_Structure *s = us_structure_new(3);
+  us_Error err;
+  s->gravity[2] = -9.81;
+  s->friction = 0.6;
+  static const double box[4][6] = {{0, 0, 0, 1, 1, 1},          /* pier */
+                                   {-0.5, 0, 1, 2, 1, 1.2},      /* plank, COM over the pier */
+                                   {-0.5, 0, 1.2, 0, 1, 2.7},    /* counterweight, tall */
+                                   {1.5, 0, 1.2, 2, 1, 1.7}};    /* load, 1 m out */
+  static const char *ids[4] = {"pier", "plank", "weight", "load"};
+  for (int i = 0; i < 4; i++) {
+    double xyz[24];
+    for (int k = 0; k < 8; k++) {
+      xyz[3 * k] = box[i][k & 1 ? 3 : 0], xyz[3 * k + 1] = box[i][k & 2 ? 4 : 1];
+      xyz[3 * k + 2] = box[i][k & 4 ? 5 : 2];
+    }
+    us_BodyDef d = us_default_body_def();
+    d.id = ids[i], d.nvert = 8, d.xyz = xyz;
+    CHECK(us_structure_add_body(s, &d, &err) >= 0);
+  }
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  us_Bitset sub;
+  us_bitset_init(&sub, 4);
+  us_bitset_set(&sub, 0), us_bitset_set(&sub, 1), us_bitset_set(&sub, 3);
+  us_StabilitySettings ss = us_stability_default_settings();
+  us_Stability *w = us_stability_new(s, &ss, &err);
+  us_StabilityResult r;
+  us_stability_result_init(&r);
+  CHECK_OK(us_stability_test(w, &sub, &r, &err), &err);
+  CHECK_INT(r.verdict, ==, US_UNSTABLE); /* plank and load alone tip */
+  us_bitset_set(&sub, 2);
+  CHECK_OK(us_stability_test(w, &sub, &r, &err), &err);
+  CHECK_INT(r.verdict, ==, US_STABLE);
+  us_stability_result_free(&r);
+  us_stability_free(w);
+  us_bitset_free(&sub);
+  static const us_Search searches[3] = {US_SEARCH_DFS, US_SEARCH_BFS, US_SEARCH_ASSEMBLE};
+  for (int k = 0; k < 3; k++) {
+    us_PlanSettings set = us_plan_default_settings();
+    set.search = searches[k];
+    us_Plan p;
+    CHECK_OK(us_plan(s, &set, &p, &err), &err);
+    CHECK_INT(p.status, ==, US_PLAN_FOUND);
+    CHECK_INT(p.nsteps, ==, 4);
+    if (p.nsteps == 4) CHECK(p.order[0] == 3 && p.order[1] == 2 && p.order[3] == 0);
+    if (k == 0) CHECK(p.stats.unstable > 0); /* DFS tried the counterweight first */
+    us_plan_free(&p);
+  }
+  us_structure_free(s);
+}
+
 US_TEST_MAIN(T(tilted_plank_critical), T(pyramid_would_be_wrong), T(exact_cones),
              T(backends_agree), T(tower_plans),
-             T(extrusion_invariance))
+             T(extrusion_invariance), T(transform_invariance), T(counterweight_backtracks))
