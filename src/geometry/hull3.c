@@ -287,9 +287,14 @@ static void emit_face(const Hull *h, Faces *F, int seed, Out *o) {
   for (int k = 0; k < F->npts; k++) F->uv[k] = us_v2(us_v3_dot(h->q[F->pts[k]], t1), us_v3_dot(h->q[F->pts[k]], t2));
   int m = us_hull2(F->uv, F->npts, h->tol, F->idx, F->work);
   if (m < 3) return;
-  us_Vec3 nw = us_v3(0, 0, 0);
-  for (int k = 0; k < m; k++)
-    nw = us_v3_add(nw, us_v3_cross(h->q[F->pts[F->idx[k]]], h->q[F->pts[F->idx[(k + 1) % m]]]));
+  /* Newell's sum with edge vectors from the face's first point: a face whose
+   * points share a coordinate exactly (a level face) gets exactly zero
+   * there, where absolute points left ~1e-17 of tilt, which mu = 0 turned
+   * into spurious slides (tests/test_stability_local3d.c) */
+  us_Vec3 nw = us_v3(0, 0, 0), q0 = h->q[F->pts[F->idx[0]]];
+  for (int k = 1; k + 1 < m; k++)
+    nw = us_v3_add(nw, us_v3_cross(us_v3_sub(h->q[F->pts[F->idx[k]]], q0),
+                                   us_v3_sub(h->q[F->pts[F->idx[k + 1]]], q0)));
   nw = us_v3_unit(nw);
   if (!(us_v3_dot(nw, n) > 0)) nw = n;
   o->fstart[o->nf] = o->nfv;
