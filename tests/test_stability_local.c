@@ -29,14 +29,6 @@ typedef struct Tally {
   long tests, stable, unstable, local, mech, plumb;
 } Tally;
 
-static us_StabilitySettings settings(int local) {
-  us_StabilitySettings set = us_stability_default_settings();
-  set.method = US_METHOD_LP;
-  set.local = local ? 1 : -1;
-  set.local_min_bodies = 1;
-  return set;
-}
-
 /* Test `node` with both workspaces: 0 if the verdicts agree and the
  * certificates hold, else -1 (reported). */
 static int compare(us_Stability *loc, us_Stability *glob, const us_Structure *s,
@@ -87,7 +79,7 @@ typedef struct Pair {
 } Pair;
 
 static int pair_open(const us_Structure *s, Pair *p) {
-  us_StabilitySettings sl = settings(1), sg = settings(0);
+  us_StabilitySettings sl = local_settings(1), sg = local_settings(0);
   us_Error err;
   p->loc = us_stability_new(s, &sl, &err);
   p->glob = us_stability_new(s, &sg, &err);
@@ -289,7 +281,7 @@ static void mechanism_check_rejects(void) {
   scene_box(s, "top", 0.6, 1, 2, 0.3, 1);
   s = scene_seal(s);
   CHECK(s);
-  us_StabilitySettings set = settings(1);
+  us_StabilitySettings set = local_settings(1);
   us_Error err;
   us_Stability *w = us_stability_new(s, &set, &err);
   CHECK(w);

@@ -44,6 +44,7 @@
  * the seeds, L3D_TRACE=1 prints every test, -DSCALE=n makes more walks. */
 #include "piles.h"
 #include "test.h"
+#include "walks.h"
 
 #ifndef SCALE /* random walks per structure (-DSCALE=n for a longer run) */
 #ifdef US_TEST_SANITIZED
@@ -256,17 +257,9 @@ typedef struct Pair {
   us_StabilityResult r2;
 } Pair;
 
-static us_StabilitySettings settings(int local) {
-  us_StabilitySettings set = us_stability_default_settings();
-  set.method = US_METHOD_LP;
-  set.local = local ? 1 : -1;
-  set.local_min_bodies = 1;
-  return set;
-}
-
 static int pair_open(Pair *p, const us_Structure *s, const us_Structure *s2, const char *name,
                      Tally *t) {
-  us_StabilitySettings sl = settings(1), sg = settings(0);
+  us_StabilitySettings sl = local_settings(1), sg = local_settings(0);
   us_Error err;
   p->s = s, p->s2 = s2, p->name = name, p->t = t, p->tl = p->tg = 0.0;
   p->loc = us_stability_new(s, &sl, &err);

@@ -7,6 +7,17 @@
 
 #include "test.h"
 
+/* The differential tests of the local tests (stability_local,
+ * stability_local3d): CLP with local tests on (local = 1) or off, local
+ * tests from the smallest sub-assembly on. */
+static inline us_StabilitySettings local_settings(int local) {
+  us_StabilitySettings set = us_stability_default_settings();
+  set.method = US_METHOD_LP;
+  set.local = local ? 1 : -1;
+  set.local_min_bodies = 1;
+  return set;
+}
+
 /* One step of a walk from a random body: in the first half remove one
  * while more than one is left (else add one), in the second add one back
  * (or remove one when all are present); a single-body structure stays. */
