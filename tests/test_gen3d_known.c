@@ -161,6 +161,42 @@ static void dome_one_at_a_time(void) {
   CHECK_INT(alone, ==, US_UNSTABLE);
 }
 
+/* The first `courses` complete courses and voussoir 0 of the next one. */
+static us_Verdict course_started(const us_Structure *s, int m, int courses) {
+  us_Bitset present = {0};
+  if (us_bitset_init(&present, s->nbody)) return US_UNDECIDED;
+  for (int i = 0; i <= courses * m; i++) us_bitset_set(&present, i);
+  us_Verdict v = verdict_of(s, &present);
+  us_bitset_free(&present);
+  return v;
+}
+
+/* Bevelled lower side edges (--chamfer) clear the valleys: no diagonal
+ * contacts, the dome still stands, and a course can be started one
+ * voussoir at a time exactly while its bed is flatter than the friction
+ * angle: with mu = 0.5 (26.6 degrees) and beds every 7.5 degrees, the
+ * voussoir on the bed at 22.5 degrees stands alone, the one at 30 does not
+ * (sharp edges: it stands, pinched). */
+static void dome_chamfer(void) {
+  us_GenSettings g = us_gen_default_settings();
+  us_Error err;
+  us_Structure *sharp = us_gen_dome(&g, &err);
+  g.chamfer = 0.02;
+  us_Structure *bev = us_gen_dome(&g, &err);
+  CHECK(sharp && bev);
+  if (!sharp || !bev) return;
+  int m = g.segments;
+  CHECK(bev->ncontact < sharp->ncontact);
+  CHECK_INT(verdict_of(bev, NULL), ==, US_STABLE);
+  CHECK_INT(course_started(bev, m, 3), ==, US_STABLE);   /* bed at 22.5 degrees */
+  CHECK_INT(course_started(bev, m, 4), ==, US_UNSTABLE); /* bed at 30 degrees */
+  CHECK_INT(course_started(sharp, m, 4), ==, US_STABLE); /* pinched in the valleys */
+  us_structure_free(sharp);
+  us_structure_free(bev);
+  g.chamfer = 0.5;
+  CHECK(us_gen_dome(&g, &err) == NULL && err.code == US_ERR_USAGE && strstr(err.msg, "chamfer"));
+}
+
 static void dome_bad_settings(void) {
   us_GenSettings g = us_gen_default_settings();
   us_Error err;
@@ -366,7 +402,7 @@ static void wall3d_corner_plans(void) {
   CHECK(rep.ok);
 }
 
-US_TEST_MAIN(T(dome_layout), T(dome_cap), T(dome_stands), T(dome_one_at_a_time), T(dome_bad_settings),
+US_TEST_MAIN(T(dome_layout), T(dome_cap), T(dome_stands), T(dome_one_at_a_time), T(dome_chamfer), T(dome_bad_settings),
              T(jenga_layout), T(jenga_removals), T(jenga_ids), T(jenga_bad_settings),
              T(random3d_stands), T(random3d_fewer), T(random3d_seeded), T(random3d_bad_settings),
              T(wall3d_corner_plans))

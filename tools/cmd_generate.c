@@ -44,12 +44,15 @@ static const char help[] =
     "                                         through in courses 1, 3, ..., the return's in\n"
     "                                         2, 4, ...; needs T < block width (0: straight)\n"
     "  dome      --courses N --segments M --radius R --thickness T --oculus DEG [--cap]\n"
+    "            [--chamfer F]\n"
     "                                         a hemispherical dome of N courses (10) of M\n"
     "                                         voussoirs (12) on the ground, inner radius R (3),\n"
     "                                         T thick (0.5), open at the top DEG degrees from\n"
     "                                         the vertical (15); --cap closes the opening with\n"
-    "                                         one keystone (docs/format.md: why it plans\n"
-    "                                         one voussoir at a time)\n"
+    "                                         one keystone; --chamfer bevels the voussoirs'\n"
+    "                                         lower side edges by F of their width and course\n"
+    "                                         height (0: sharp; docs/format.md: why sharp\n"
+    "                                         edges let it plan one voussoir at a time)\n"
     "  jenga     --levels N [--remove L:P,L:P...]\n"
     "                                         N levels (10) of 3 pieces 3 x 1 x 0.6 block\n"
     "                                         widths, alternating direction; --remove leaves\n"
@@ -109,6 +112,7 @@ static int real_option(const char *name, us_GenSettings *g, double **dst) {
          : !strcmp(name, "--block-depth") ? &g->depth
          : !strcmp(name, "--jitter") ? &g->jitter
          : !strcmp(name, "--oculus") ? &g->oculus
+         : !strcmp(name, "--chamfer") ? &g->chamfer
                                          : NULL;
   return *dst != NULL;
 }

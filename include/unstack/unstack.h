@@ -682,6 +682,10 @@ typedef struct us_GenSettings {
   int returns;       /* wall3d: a return wall of this many bricks' length
                         along +y at both ends, bonded at the corners
                         (src/gen/corner.c); 0 (default): a straight wall */
+  double chamfer;    /* dome: the voussoirs' lower side edges bevelled by
+                        this fraction of their width and of the course
+                        height, in [0, 0.5) (default 0: sharp edges; see
+                        docs/format.md on the dome) */
 } us_GenSettings;
 US_API us_GenSettings us_gen_default_settings(void);
 
