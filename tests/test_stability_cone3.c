@@ -10,6 +10,7 @@
  *   - the planner plans a 3D tower top-down; the LCP methods refuse 3D. */
 #include "stability/backend.h"
 #include "stability/lp_gen.h"
+#include "extrude.h"
 #include "test.h"
 
 #include <math.h>
@@ -36,12 +37,7 @@ static us_Structure *plank(double alpha, double phi, double mu, double h) {
     us_structure_add_contact(s, US_GROUND, b, p, n, mu, &err);
   }
   s->explicit_contacts = 1;
-  if (us_structure_finalize(s, &err) != US_OK) {
-    fprintf(stderr, "plank: %s\n", err.msg);
-    us_structure_free(s);
-    return NULL;
-  }
-  return s;
+  return test_finalized(s, "plank");
 }
 
 /* The full structure's verdict with a method and local tests on (1) or
@@ -276,40 +272,6 @@ static void tower_plans(void) {
   us_structure_free(s);
 }
 
-/* The 2D structure s extruded along y into prisms `depth` deep (2D y is
- * 3D z), then turned by `turn` about the vertical and shifted: the same
- * bodies in the same order, contacts found by the 3D detector. */
-static us_Structure *extrude(const us_Structure *s, double depth, double turn) {
-  us_Structure *e = us_structure_new(3);
-  us_Error err;
-  e->gravity[0] = e->gravity[1] = 0.0, e->gravity[2] = -9.81;
-  e->friction = s->friction;
-  double c = cos(turn), sn = sin(turn), shift[2] = {3.5, -1.25};
-  for (int i = 0; i < s->nbody; i++) {
-    const us_Body *b = &s->bodies[i];
-    double *xyz = us_malloc(6 * (size_t)b->nvert * sizeof(double));
-    for (int k = 0; k < 2 * b->nvert; k++) {
-      double x = b->verts[2 * (k % b->nvert)], y = k < b->nvert ? 0.0 : depth;
-      xyz[3 * k] = c * x - sn * y + shift[0];
-      xyz[3 * k + 1] = sn * x + c * y + shift[1];
-      xyz[3 * k + 2] = b->verts[2 * (k % b->nvert) + 1];
-    }
-    us_BodyDef d = us_default_body_def();
-    d.id = b->id, d.nvert = 2 * b->nvert, d.xyz = xyz, d.fixed = b->fixed;
-    d.friction = b->friction;
-    if (b->mass_given) d.mass = b->mass;
-    int ok = us_structure_add_body(e, &d, &err) >= 0;
-    us_free(xyz);
-    if (!ok) break;
-  }
-  if (us_structure_finalize(e, &err) != US_OK) {
-    fprintf(stderr, "extrude: %s\n", err.msg);
-    us_structure_free(e);
-    return NULL;
-  }
-  return e;
-}
-
 /* A 2D structure and its extrusion (turned and shifted) give the same
  * verdict on every sub-assembly tried: the full one and random subsets,
  * for mu = 0 and mu = 0.5, on columns, pyramids, walls, arches and the
@@ -332,7 +294,7 @@ static void extrusion_invariance(void) {
       if (kind == 4) g.rows = 6, g.width = 5, g.seed = 3, s = us_gen_stacker(&g, &err);
       CHECK(s);
       if (!s) continue;
-      us_Structure *e = extrude(s, 0.7, 2.0 * PI * test_rnd(&rng));
+      us_Structure *e = test_extrude(s, 0.7, 2.0 * PI * test_rnd(&rng), 3.5, -1.25);
       CHECK(e);
       us_StabilitySettings set = us_stability_default_settings();
       set.method = US_METHOD_LP;
@@ -415,12 +377,12 @@ static us_Structure *transformed(const us_Structure *s, const double M[9], const
     us_free(out);
     if (xyz != slab) us_free(xyz);
   }
-  if (!ok || us_structure_finalize(e, &err) != US_OK) {
+  if (!ok) {
     fprintf(stderr, "transformed: %s\n", err.msg);
     us_structure_free(e);
     return NULL;
   }
-  return e;
+  return test_finalized(e, "transformed");
 }
 
 /* A random rotation (Euler angles) into M. */

@@ -43,6 +43,7 @@
  * Every sequence is seeded from its structure's name; L3D_SEED=n changes
  * the seeds, L3D_TRACE=1 prints every test, -DSCALE=n makes more walks. */
 #include "piles.h"
+#include "extrude.h"
 #include "test.h"
 #include "walks.h"
 
@@ -702,34 +703,7 @@ static void tilted_agree(void) {
  * through the mid-plane and averaged projects to a 2D one; a 2D one split
  * over the two faces is a 3D one). */
 static us_Structure *extrude(const us_Structure *s, double depth, double turn) {
-  us_Structure *e = us_structure_new(3);
-  us_Error err;
-  e->friction = s->friction;
-  double c = cos(turn), sn = sin(turn), shift[2] = {1.75, -0.5};
-  int ok = 1;
-  for (int i = 0; i < s->nbody && ok; i++) {
-    const us_Body *b = &s->bodies[i];
-    double *xyz = malloc(6 * (size_t)b->nvert * sizeof(double));
-    if (!xyz) break;
-    for (int k = 0; k < 2 * b->nvert; k++) {
-      double x = b->verts[2 * (k % b->nvert)], y = k < b->nvert ? 0.0 : depth;
-      xyz[3 * k] = c * x - sn * y + shift[0];
-      xyz[3 * k + 1] = sn * x + c * y + shift[1];
-      xyz[3 * k + 2] = b->verts[2 * (k % b->nvert) + 1];
-    }
-    us_BodyDef d = us_default_body_def();
-    d.id = b->id, d.nvert = 2 * b->nvert, d.xyz = xyz, d.fixed = b->fixed;
-    d.friction = b->friction, d.density = b->density;
-    if (b->mass_given) d.mass = b->mass;
-    ok = us_structure_add_body(e, &d, &err) >= 0;
-    free(xyz);
-  }
-  if (!ok || us_structure_finalize(e, &err) != US_OK) {
-    fprintf(stderr, "extrude: %s\n", ok ? err.msg : "a body was refused");
-    us_structure_free(e);
-    return NULL;
-  }
-  return e;
+  return test_extrude(s, depth, turn, 1.75, -0.5);
 }
 
 /* The 2D differential test's random piles (tests/piles.h: counterweights
@@ -803,13 +777,7 @@ static us_Structure *lever(int k, double load_density, double turn) {
     box3(s, id, 0, 0.5, 0.25, 0.75, 1.2 + 0.25 * i, 1.45 + 0.25 * i, 2, turn);
   }
   box3(s, "load", 7.5, 8, 0.25, 0.75, 1.2, 1.7, load_density, turn);
-  us_Error err;
-  if (us_structure_finalize(s, &err) != US_OK) {
-    fprintf(stderr, "lever: %s\n", err.msg);
-    us_structure_free(s);
-    return NULL;
-  }
-  return s;
+  return test_finalized(s, "lever");
 }
 
 static void lever_agrees(void) {
