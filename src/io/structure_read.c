@@ -142,23 +142,22 @@ static us_Status add_point_body(Reader *r, const char *where, const char *id, js
   return US_OK;
 }
 
+/* A body definition with id and the material fields; geometry to add. */
+static us_BodyDef material_def(const char *id, const BodyFields *f) {
+  us_BodyDef d = us_default_body_def();
+  d.id = id, d.density = f->density, d.mass = f->mass, d.fixed = f->fixed, d.friction = f->friction;
+  return d;
+}
+
 static us_Status add_polygon_body(Reader *r, const char *where, const char *id, json_t *b,
                                   const BodyFields *f) {
   if (json_object_get(b, "center") || json_object_get(b, "inertia"))
     return us_io_bad(&r->c, where, "'center' and 'inertia' are only for bodies without a polygon");
+  us_BodyDef d = material_def(id, f);
   double *xy = NULL;
-  int n = 0;
-  us_Status st = read_polygon(r, where, json_object_get(b, "polygon"), &xy, &n);
-  if (!st && us_structure_add_body(r->s,
-                                   &(us_BodyDef){.id = id,
-                                                 .nvert = n,
-                                                 .xy = xy,
-                                                 .density = f->density,
-                                                 .mass = f->mass,
-                                                 .fixed = f->fixed,
-                                                 .friction = f->friction},
-                                   r->c.err) < 0)
-    st = r->c.err->code;
+  us_Status st = read_polygon(r, where, json_object_get(b, "polygon"), &xy, &d.nvert);
+  d.xy = xy;
+  if (!st && us_structure_add_body(r->s, &d, r->c.err) < 0) st = r->c.err->code;
   us_free(xy);
   return st;
 }
@@ -171,8 +170,7 @@ static us_Status add_solid_body(Reader *r, const char *where, const char *id, js
   us_PartDef *parts = NULL;
   int np = 0;
   us_Status st = us_io_read_solid(&r->c, where, b, &parts, &np);
-  us_BodyDef d = us_default_body_def();
-  d.id = id, d.density = f->density, d.mass = f->mass, d.fixed = f->fixed, d.friction = f->friction;
+  us_BodyDef d = material_def(id, f);
   if (np == 1)
     d.nvert = parts[0].nvert, d.xyz = parts[0].xyz;
   else
