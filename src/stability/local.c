@@ -43,7 +43,6 @@
 #include "lp_gen.h"
 #include "lp_small.h"
 #include "plumb.h"
-#include "geometry/geometry3.h"
 #include "model/massprops.h"
 
 #include <math.h>
@@ -113,49 +112,37 @@ static int build_incidence(us_Local *L) {
   return 0;
 }
 
-/* Unit vector "up" (against gravity; +y, or +z in 3D, without gravity)
- * and the horizontal axes perpendicular to it (one in 2D, two in 3D). */
-static void measure_axes(us_Local *L, double h[2][3]) {
+/* Unit vector "up": against gravity; +y, or +z in 3D, without gravity. */
+static void measure_up(us_Local *L) {
   const us_Structure *s = L->s;
   double g = us_gravity_norm(s->gravity);
   for (int j = 0; j < 3; j++) L->up[j] = g > 0 ? -s->gravity[j] / g : 0.0;
   if (!(g > 0)) L->up[s->dim == 3 ? 2 : 1] = 1.0;
-  if (s->dim == 2) {
-    L->up[2] = 0.0;
-    h[0][0] = L->up[1], h[0][1] = -L->up[0], h[0][2] = 0.0;
-    return;
-  }
-  us_Vec3 t1, t2;
-  us_v3_frame((us_Vec3){L->up[0], L->up[1], L->up[2]}, &t1, &t2);
-  h[0][0] = t1.x, h[0][1] = t1.y, h[0][2] = t1.z;
-  h[1][0] = t2.x, h[1][1] = t2.y, h[1][2] = t2.z;
+  if (s->dim == 2) L->up[2] = 0.0;
 }
 
-static void widen(double *lo, double *hi, const double h[2][3], int nax, const double *p) {
-  for (int a = 0; a < nax; a++) {
-    double x = h[a][0] * p[0] + h[a][1] * p[1] + h[a][2] * p[2];
-    lo[a] = US_MIN(lo[a], x), hi[a] = US_MAX(hi[a], x);
-  }
+static void widen(const us_Local *L, double *lo, double *hi, const double *p) {
+  double x[2];
+  us_plumb_horizontal(&L->plumb, p, x);
+  for (int a = 0; a < L->nax; a++) lo[a] = US_MIN(lo[a], x[a]), hi[a] = US_MAX(hi[a], x[a]);
 }
 
-/* Extent of every body along the horizontal axes (its vertices, all
- * parts in 3D, and its centre for point bodies). */
+/* Extent of every body along the horizontal axes of the plumb lines'
+ * frame (its vertices, all parts in 3D, and its centre for point bodies). */
 static void measure_extents(us_Local *L) {
   const us_Structure *s = L->s;
-  double h[2][3] = {{0, 0, 0}, {0, 0, 0}};
-  measure_axes(L, h);
-  L->nax = s->dim == 3 ? 2 : 1;
+  L->nax = L->plumb.nax;
   for (int i = 0; i < s->nbody; i++) {
     const us_Body *b = &s->bodies[i];
     double *lo = L->lo + 2 * (size_t)i, *hi = L->hi + 2 * (size_t)i;
     lo[0] = lo[1] = INFINITY, hi[0] = hi[1] = -INFINITY;
-    widen(lo, hi, h, L->nax, b->com);
+    widen(L, lo, hi, b->com);
     for (int k = 0; k < b->nvert && s->dim == 2; k++) {
       double p[3] = {b->verts[2 * k], b->verts[2 * k + 1], 0.0};
-      widen(lo, hi, h, L->nax, p);
+      widen(L, lo, hi, p);
     }
     for (int q = 0; q < b->npart && s->dim == 3; q++)
-      for (int k = 0; k < b->parts[q].nvert; k++) widen(lo, hi, h, L->nax, b->parts[q].verts + 3 * k);
+      for (int k = 0; k < b->parts[q].nvert; k++) widen(L, lo, hi, b->parts[q].verts + 3 * k);
   }
 }
 
@@ -211,12 +198,13 @@ us_Local *us_local_new(const us_Structure *s, const us_StabilitySettings *set,
   }
   L->cones = cones;
   L->eq.cones = cones;
-  measure_extents(L);
+  measure_up(L);
   L->mass = us_movable_mass(s);
   if (us_plumb_init(&L->plumb, s, L->inc_start, L->inc, L->up, L->eq.mass_total)) {
     us_local_free(L);
     return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)"), NULL;
   }
+  measure_extents(L);
   for (int k = 0; k < 2; k++) {
     L->bws[k] = be->create(s, set, err);
     if (!L->bws[k]) {

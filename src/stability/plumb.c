@@ -84,8 +84,7 @@ static int in_cone(const us_Plumb *p, const us_Contact *k, int u) {
   return isinf(k->mu) || hypot(d[1], d[2]) <= (k->mu + CONE_SLACK) * d[0];
 }
 
-/* The horizontal coordinates of point x. */
-static void horizontal(const us_Plumb *p, const double *x, double out[2]) {
+void us_plumb_horizontal(const us_Plumb *p, const double *x, double out[2]) {
   out[0] = dot3(x, p->hz[0]);
   out[1] = p->nax == 2 ? dot3(x, p->hz[1]) : 0.0;
 }
@@ -96,12 +95,12 @@ static double width_of(const us_Plumb *p, int u) {
   double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY}, h[2];
   for (int k = 0; k < b->nvert && p->s->dim == 2; k++) {
     double x[3] = {b->verts[2 * k], b->verts[2 * k + 1], 0.0};
-    horizontal(p, x, h);
+    us_plumb_horizontal(p, x, h);
     for (int a = 0; a < p->nax; a++) lo[a] = US_MIN(lo[a], h[a]), hi[a] = US_MAX(hi[a], h[a]);
   }
   for (int q = 0; q < b->npart && p->s->dim == 3; q++)
     for (int k = 0; k < b->parts[q].nvert; k++) {
-      horizontal(p, b->parts[q].verts + 3 * k, h);
+      us_plumb_horizontal(p, b->parts[q].verts + 3 * k, h);
       for (int a = 0; a < p->nax; a++) lo[a] = US_MIN(lo[a], h[a]), hi[a] = US_MAX(hi[a], h[a]);
     }
   double w = 0.0;
@@ -122,7 +121,7 @@ static void list_supports(us_Plumb *p) {
       const us_Contact *k = &s->contacts[p->inc[m]];
       if (!supports(p, k, u) || !in_cone(p, k, u)) continue;
       us_PlumbSupport q = {p->inc[m], other_side(k, u), {0.0, 0.0}};
-      horizontal(p, k->p, q.pos);
+      us_plumb_horizontal(p, k->p, q.pos);
       p->sup[n++] = q;
     }
   }
@@ -340,7 +339,7 @@ static int route_one(us_Plumb *p, const us_Bitset *cur, int a, double *f) {
   mark_body(p, a);
   p->nstack = 0;
   double c[2];
-  horizontal(p, b->com, c);
+  us_plumb_horizontal(p, b->com, c);
   if (push_line(p, a, c, b->mass / p->mass_total)) return -1;
   for (int hops = 0; p->nstack > 0; hops++) {
     if (hops >= PLUMB_HOPS) return 0;

@@ -67,6 +67,10 @@ int us_plumb_init(us_Plumb *p, const us_Structure *s, const int *inc_start, cons
                   const double up[3], double mass_total);
 void us_plumb_free(us_Plumb *p);
 
+/* The horizontal coordinates of point x in the frame of p (hz; the second
+ * is 0 in 2D). The local tests measure their footprints in it too. */
+void us_plumb_horizontal(const us_Plumb *p, const double *x, double out[2]);
+
 /* Route the weights of added[0..nadd) (present in cur) down their plumb
  * lines, adding to f. 1: routed, f changed, p->path lists every body
  * whose forces changed; 0: some line found no admissible support, f
