@@ -205,7 +205,7 @@ static int all_modes_agree(const us_Structure *s, us_PlanStatus want, int trial)
 
 static void assemble_agrees_with_exhaustive_reference(void) {
   unsigned long long rng = 20261123;
-  int counts[3] = {0, 0, 0}, tried = 0, rescued = 0;
+  int counts[3] = {0, 0, 0}, tried = 0, rescued = 0, by_cut = 0, by_search = 0;
   for (int trial = 0; tried < US_TEST_PILES && trial < 4 * US_TEST_PILES; trial++) {
     us_Structure *s = PILE(&rng, 4 + trial % 9);
     if (!s) continue;
@@ -218,6 +218,8 @@ static void assemble_agrees_with_exhaustive_reference(void) {
     us_Plan p;
     us_PlanStatus got = run_plan(s, &set, &p);
     if (got == US_PLAN_FOUND && p.stats.exhaustive > 0) rescued++;
+    if (got == US_PLAN_NONE && p.stats.exhaustive == 0) by_cut += p.stats.cuts > 0;
+    if (got == US_PLAN_NONE && p.stats.exhaustive > 0) by_search++;
     int ok = got == want && (got != US_PLAN_FOUND || plan_valid(s, &p));
     if (!ok) fprintf(stderr, "pile %d: assemble %d, reference %d\n", trial, got, want);
     us_plan_free(&p);
@@ -225,12 +227,13 @@ static void assemble_agrees_with_exhaustive_reference(void) {
     us_structure_free(s);
     CHECK(ok);
   }
-  printf("reference: %d piles: %d found (%d of them after the greedy was stuck), %d none, "
-         "%d unstable\n",
-         tried, counts[0], rescued, counts[1], counts[2]);
+  printf("reference: %d piles: %d found (%d of them after the greedy was stuck), %d none "
+         "(%d proven by the cut alone, %d by the exhaustive search), %d unstable\n",
+         tried, counts[0], rescued, counts[1], by_cut, by_search, counts[2]);
   CHECK(tried >= US_TEST_PILES);
   CHECK(counts[0] >= tried / 10 && counts[1] >= tried / 10 && counts[2] >= tried / 10);
   CHECK(counts[1] >= 50); /* none must occur many times */
+  CHECK(by_cut >= counts[1] / 2 && by_search >= 1); /* both proofs of none occur */
 }
 
 static void graph_searches_and_rules_agree(void) {

@@ -25,7 +25,8 @@ static const char help[] =
     "  --method M        auto (default), lp (CLP), lpsolve, lcp, lcp-reuse, lp-lcp\n"
     "  --local on|off      exact local tests for lp and auto (default on)\n"
     "  --max-tests N     test limit of the top-down DFS (default 20000; 0: none)\n"
-    "  --time-limit S    seconds for each search of top-down, sequence and group\n"
+    "  --time-limit S    seconds for the friction bisection and for each search of\n"
+    "                    top-down, sequence and group\n"
     "                    (default 60; 0: none); a class cut there is unknown\n"
     "  --contact-tol T   contact detection tolerance (default 1e-6 x size)\n"
     "\n"
@@ -105,7 +106,15 @@ static void text_stands(const us_Structure *s, const us_Classification *c, const
   printf(")\n");
 }
 
-static void text_friction(const us_Classification *c) {
+static void text_friction(const us_Classification *c, double time_limit) {
+  if (c->friction_timed_out) {
+    printf("friction: unknown (time limit of %g s, %d probes", time_limit, c->friction_probes);
+    if (c->stands_some_mu)
+      printf("; stands with mu = %.6f, mu* in (%.6f, %.6f]", c->mu_critical, c->mu_low,
+             c->mu_critical);
+    printf(")\n");
+    return;
+  }
   if (c->friction_undecided > 0 && !c->stands_frictionless) {
     printf("friction: undecided (%d of %d probes could not be decided", c->friction_undecided,
            c->friction_probes);
@@ -126,6 +135,8 @@ static void text_friction(const us_Classification *c) {
 static void text_strong_weak(const us_Classification *c) {
   if (c->strong_equals_weak)
     printf("strong-weak: frictionless: strong = weak (Gauss's principle)\n");
+  else if (c->friction_timed_out && !c->stands_some_mu)
+    printf("strong-weak: unknown (the friction class was cut by the time limit)\n");
   else
     printf("strong-weak: not frictionless: weak stability only (strong stability not decided)\n");
 }
@@ -233,7 +244,7 @@ static void text_count(const us_Classification *c) {
 static void print_text(const us_Structure *s, const us_Classification *c, const ClassifyArgs *a) {
   const char *method = us_method_name(us_method_resolve(a->set.stability.method, s));
   text_stands(s, c, method);
-  text_friction(c);
+  text_friction(c, a->set.time_limit);
   text_strong_weak(c);
   text_topdown(c);
   text_sequence(s, c, a);
@@ -256,8 +267,10 @@ static void json_friction(const us_Classification *c) {
          json_bool(c->stands_frictionless), json_bool(c->stands_some_mu));
   if (isfinite(c->mu_critical)) printf("%.6f", c->mu_critical);
   else printf("null");
-  printf(", \"friction_probes\": %d, \"friction_undecided\": %d, \"strong_equals_weak\": %s",
-         c->friction_probes, c->friction_undecided, json_bool(c->strong_equals_weak));
+  printf(", \"friction_probes\": %d, \"friction_undecided\": %d, \"friction_timed_out\": %s, "
+         "\"mu_low\": %.6f, \"strong_equals_weak\": %s",
+         c->friction_probes, c->friction_undecided, json_bool(c->friction_timed_out), c->mu_low,
+         json_bool(c->strong_equals_weak));
 }
 
 static void json_topdown(const us_Classification *c, long max_tests) {

@@ -53,8 +53,9 @@ static void print_stats(const us_PlanStats *st) {
          "greedy checks %ld, components %ld\n",
          st->backtracks, st->saved_ground, st->saved_union, st->exact_checks, st->greedy_checks,
          st->components);
-  printf("  assembly: retries skipped %ld, sets searched exhaustively %ld; restarts %ld\n",
-         st->retries_skipped, st->exhaustive, st->restarts);
+  printf("  assembly: retries skipped %ld, sets searched exhaustively %ld, proven unbuildable "
+         "by a cut %ld (%ld held tests); restarts %ld\n",
+         st->retries_skipped, st->exhaustive, st->cuts, st->held_tests, st->restarts);
   printf("  time: total %.6f s, setup %.6f s, search %.6f s, in solver %.6f s, "
          "certificate checks %.6f s\n",
          st->time_total, st->time_setup, st->time_search, st->time_solve, st->time_check);

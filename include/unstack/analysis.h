@@ -92,6 +92,10 @@ typedef struct us_FrictionResult {
                               stands there), standing at mu_high (INFINITY when !stands) */
   int probes;              /* stability tests run */
   int undecided;           /* probes whose verdict was undecided (taken as not standing) */
+  int timed_out;           /* the search stopped at the settings' time_limit (the
+                              whole search's, not each probe's): mu_critical = mu_high
+                              is then an upper bound when stands, and nothing else
+                              (not frictionless, no mu up to mu_max) is proven */
   us_Forces forces;        /* stands: contact forces at mu_high = mu_critical */
   us_CertCheck check;      /* stands: us_certificate_check of forces with every
                               contact's mu = mu_critical */
@@ -151,6 +155,9 @@ typedef struct us_Classification {
   int friction_undecided;  /* probes whose test was undecided (taken as not standing:
                               mu_critical is then an upper bound, and "stands for
                               no mu" or "not frictionless" is unproven) */
+  int friction_timed_out;  /* the bisection stopped at time_limit: mu_critical is an
+                              upper bound when stands_some_mu, nothing else is known */
+  double mu_low;           /* the bracket's lower end (mu* > mu_low unless undecided) */
   /* 3. */
   int topdown;             /* 1 yes, 0 no, -1 unknown (the DFS hit max_tests or
                               time_limit before any move failed, or one of its

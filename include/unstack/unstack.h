@@ -581,6 +581,9 @@ typedef struct us_PlanStats {
   long components;       /* independent parts planned apart (components rule) */
   long retries_skipped;  /* assemble: re-tests skipped because a body's part did not change */
   long exhaustive;       /* connected sets the greedy could not rebuild, searched exhaustively */
+  long cuts;             /* connected sets proven unbuildable by the cut: no body (or group)
+                            above the greedy's stuck set can stand even with it held still */
+  long held_tests;       /* the cut's small LPs ("stands with the rest held still?") */
   long restarts;         /* random search */
   double time_total;     /* seconds */
   double time_setup;
@@ -684,8 +687,8 @@ typedef struct us_GenSettings {
                         (src/gen/corner.c); 0 (default): a straight wall */
   double chamfer;    /* dome: the voussoirs' lower side edges bevelled by
                         this fraction of their width and of the course
-                        height, in [0, 0.5) (default 0: sharp edges; see
-                        docs/format.md on the dome) */
+                        height, in [0, 0.5) (default 0.02, as cut stone's
+                        arrised edges; 0: sharp, see docs/format.md) */
 } us_GenSettings;
 US_API us_GenSettings us_gen_default_settings(void);
 

@@ -27,6 +27,12 @@
  * copy with every mu = hi. Default settings (tol 1e-7, mu_max 1e3): 23 to
  * 30 probes for answers between 0.01 and 1 (plain halving: 36).
  *
+ * Time: the settings' time_limit bounds the whole search (each probe gets
+ * what is left). Past it the bisection stops with the bracket as it is
+ * (timed_out; a probe cut by it counts as not standing but is not an
+ * undecided test): hi, when some probe stood, is a certified upper bound,
+ * and no other conclusion holds.
+ *
  * Invariants: hi always stood with a certificate that passed (a stable
  * verdict of the stability front end), lo never did; an UNDECIDED verdict
  * counts as not standing (and is counted), so the answer never rests on an
@@ -59,6 +65,7 @@ typedef struct FrictionCtx {
   us_StabilityResult res;        /* reused by every probe */
   double *acc;                   /* certificate scratch: US_CERT_ACC * nbody */
   unsigned char *seen;           /* certificate scratch: ncontact */
+  double t_end;                  /* us_now() when set->time_limit runs out; 0: none */
 } FrictionCtx;
 
 /* --------------------------------------------------------------- result */
@@ -145,13 +152,18 @@ static us_Status probe(FrictionCtx *x, double mu, us_FrictionResult *out, int *s
                        us_Error *err) {
   set_mu(&x->view, mu);
   us_error_clear(err);
-  us_Stability *w = us_stability_new(&x->view, x->set, err);
+  us_StabilitySettings set = *x->set;
+  if (x->t_end > 0) set.time_limit = US_MAX(x->t_end - us_now(), 1e-9); /* what is left */
+  us_Stability *w = us_stability_new(&x->view, &set, err);
   if (!w) return err->code != US_OK ? err->code : US_ERR_SOLVER;
   us_Status st = us_stability_test(w, &x->present, &x->res, err);
   us_stability_free(w);
   if (st) return st;
   out->probes++;
-  out->undecided += x->res.verdict == US_UNDECIDED;
+  if (x->res.verdict == US_UNDECIDED && x->t_end > 0 && us_now() >= x->t_end)
+    out->timed_out = 1; /* cut by the time limit: not a solver's failure */
+  else
+    out->undecided += x->res.verdict == US_UNDECIDED;
   *stands = x->res.verdict == US_STABLE;
   if (*stands && forces_copy(&out->forces, &x->res.forces, x->view.dim))
     return us_error_set(err, US_ERR_NOMEM, "out of memory keeping contact forces");
@@ -168,6 +180,10 @@ static double midpoint(double lo, double hi, double tol) {
 /* Narrow out->mu_low (falls) < out->mu_high (stands) to tol. */
 static us_Status bisect(FrictionCtx *x, double tol, us_FrictionResult *out, us_Error *err) {
   while (out->mu_high - out->mu_low > tol) {
+    if (x->t_end > 0 && us_now() >= x->t_end) {
+      out->timed_out = 1;
+      break;
+    }
     double mid = midpoint(out->mu_low, out->mu_high, tol);
     if (!(mid > out->mu_low && mid < out->mu_high)) break; /* below rounding */
     int stands = 0;
@@ -193,13 +209,13 @@ static us_Status search(FrictionCtx *x, double tol, double mu_max, us_FrictionRe
                         us_Error *err) {
   int stands = 0;
   us_Status st = probe(x, 0.0, out, &stands, err);
-  if (st) return st;
+  if (st || out->timed_out) return st;
   out->mu_low = 0.0;
   if (stands) {
     out->stands_frictionless = out->stands = 1;
     out->mu_high = 0.0;
   } else {
-    if ((st = probe(x, mu_max, out, &stands, err))) return st;
+    if ((st = probe(x, mu_max, out, &stands, err)) || out->timed_out) return st;
     if (!stands) {
       out->mu_low = mu_max;
       return US_OK;
@@ -225,6 +241,7 @@ us_Status us_critical_friction(const us_Structure *s, const us_Bitset *present,
   FrictionCtx x;
   memset(&x, 0, sizeof x);
   x.set = set ? set : &def;
+  if (x.set->time_limit > 0 && isfinite(x.set->time_limit)) x.t_end = us_now() + x.set->time_limit;
   if (ctx_init(&x, s, present)) {
     ctx_free(&x);
     return us_error_set(err, US_ERR_NOMEM, "out of memory setting up the critical friction");

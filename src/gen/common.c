@@ -32,6 +32,7 @@ us_GenSettings us_gen_default_settings(void) {
   g.jitter = 0.0;
   g.segments = 12;
   g.oculus = 15.0;
+  g.chamfer = 0.02;
   return g;
 }
 

@@ -45,6 +45,8 @@ static void write_stats(us_JsonOut *o, const us_PlanStats *st) {
   write_field_num(o, in, "exact_checks", (double)st->exact_checks, 0);
   write_field_num(o, in, "greedy_checks", (double)st->greedy_checks, 0);
   write_field_num(o, in, "exhaustive", (double)st->exhaustive, 0);
+  write_field_num(o, in, "cuts", (double)st->cuts, 0);
+  write_field_num(o, in, "held_tests", (double)st->held_tests, 0);
   write_field_num(o, in, "components", (double)st->components, 0);
   write_field_num(o, in, "retries_skipped", (double)st->retries_skipped, 0);
   write_field_num(o, in, "restarts", (double)st->restarts, 0);

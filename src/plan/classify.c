@@ -120,13 +120,18 @@ static us_Status classify_stands(const us_Structure *s, const us_ClassifySetting
 static us_Status classify_friction(const us_Structure *s, const us_ClassifySettings *set,
                                    us_Classification *out, us_Error *err) {
   us_FrictionResult fr;
-  us_Status st = us_critical_friction(s, NULL, &set->stability, 0.0, 0.0, &fr, err);
+  us_StabilitySettings stab = set->stability;
+  if (set->time_limit > 0 && !(stab.time_limit > 0 && stab.time_limit < set->time_limit))
+    stab.time_limit = set->time_limit; /* the whole bisection's */
+  us_Status st = us_critical_friction(s, NULL, &stab, 0.0, 0.0, &fr, err);
   if (!st) {
     out->stands_frictionless = fr.stands_frictionless;
     out->stands_some_mu = fr.stands;
     out->mu_critical = fr.mu_critical;
     out->friction_probes = fr.probes;
     out->friction_undecided = fr.undecided;
+    out->friction_timed_out = fr.timed_out;
+    out->mu_low = fr.mu_low;
     out->strong_equals_weak = fr.stands_frictionless;
   }
   us_friction_result_free(&fr);

@@ -32,6 +32,7 @@
  * of its parts' orders, so a whole plan is read off the memo. */
 #include "assemble.h"
 #include "exact.h"
+#include "hook.h"
 #include "order.h"
 
 #include <string.h>
@@ -240,24 +241,177 @@ static int exhaust(Solver *sv, const us_Bitset *comp, int *list, int m) {
   return r;
 }
 
-/* Greedy fast path: 1 with comp's reversed build order appended, 0 stuck. */
-static int greedy(Solver *sv, const us_Bitset *comp) {
+/* ---------------------------------------------------------------- cut */
+
+/* The cut (docs/planning.md): a proof, from the greedy's stuck set B,
+ * that a connected set C cannot be built. Call a connected group H of at
+ * most K bodies of C outside a set R "startable on R" when H can stand
+ * with every body of R held still. Grow R from B by startable groups
+ * until none is left. Claim: no build of C ever places a body outside
+ * the final R. The first step that would places some G and finds in
+ * place only bodies X ⊆ R; the bodies of G outside R form parts (their
+ * components among themselves) that each stand with X held, hence with R
+ * held (holding more bodies only adds contacts with free forces): a
+ * startable group outside R, which the growth would have taken. So
+ * R ≠ C proves C unbuildable. "Cannot stand held" is a mechanism checked
+ * against the true cones; a group touching neither R nor a support has no
+ * force against its weight. A group is tried again only when a body it
+ * touches joined R (its seeds are re-queued), and one cut tries at most
+ * 16 n + 1024 groups, past which it proves nothing and the exhaustive
+ * search decides. */
+typedef struct {
+  Solver *sv;
+  const us_Bitset *comp;
+  us_Bitset reach;         /* R */
+  us_Bitset grp_bits;      /* the group under test */
+  us_BitsetSet seen;       /* groups met from the current seed */
+  int grp[64], ng;
+  int *queue, nq;          /* seeds: bodies of C \ R touching R or a support */
+  unsigned char *queued;
+  long left;               /* groups still allowed */
+} Cut;
+
+static int outside(const Cut *c, int b) {
+  return us_bitset_get(c->comp, b) && !us_bitset_get(&c->reach, b);
+}
+
+static int touches_reach(const Cut *c, int b) {
+  const us_Graph *g = &c->sv->ctx->g;
+  if (g->grounded[b]) return 1;
+  for (int k = g->start[b]; k < g->start[b + 1]; k++)
+    if (us_bitset_get(&c->reach, g->adj[k])) return 1;
+  return 0;
+}
+
+static void enqueue(Cut *c, int b) {
+  if (!outside(c, b) || c->queued[b] || !touches_reach(c, b)) return;
+  c->queued[b] = 1;
+  c->queue[c->nq++] = b;
+}
+
+/* The group grp[0..ng): 1 it cannot stand on R held (proven), 0 it may. */
+static int cut_group(Cut *c) {
+  int touching = 0;
+  for (int j = 0; j < c->ng && !touching; j++) touching = touches_reach(c, c->grp[j]);
+  if (!touching) return 1; /* only its own contacts: nothing holds its weight */
+  us_SearchCtx *ctx = c->sv->ctx;
+  if (us_plan_limit_reached(ctx)) return -2;
+  for (int j = 0; j < c->ng; j++) us_bitset_set(&c->reach, c->grp[j]);
+  us_Status st = us_plan_held_test(ctx->stab, &c->reach, c->grp, c->ng, &ctx->res, c->sv->err);
+  for (int j = 0; j < c->ng; j++) us_bitset_clear(&c->reach, c->grp[j]);
+  ctx->st->held_tests++;
+  return st ? -1 : ctx->res.verdict == US_UNSTABLE;
+}
+
+/* The groups of C \ R that extend grp[0..ng): 1 none can stand, 0 one
+ * may (left in grp), -3 out of budget, other < 0 stop. */
+static int cut_extend(Cut *c) {
+  if (c->left-- <= 0) return -3;
+  int r = cut_group(c);
+  if (r != 1 || c->ng >= c->sv->e->K) return r;
+  const us_Graph *g = &c->sv->ctx->g;
+  for (int j = 0; j < c->ng; j++) {
+    int u = c->grp[j];
+    for (int k = g->start[u]; k < g->start[u + 1]; k++) {
+      int v = g->adj[k];
+      if (!outside(c, v) || us_bitset_get(&c->grp_bits, v)) continue;
+      us_bitset_set(&c->grp_bits, v);
+      int fresh = us_bitset_set_add(&c->seen, &c->grp_bits);
+      if (fresh == 1) {
+        c->grp[c->ng++] = v;
+        r = cut_extend(c);
+        if (r != 1) return r;
+        c->ng--;
+      }
+      us_bitset_clear(&c->grp_bits, v);
+      if (fresh < 0) return -1;
+    }
+  }
+  return 1;
+}
+
+/* The groups containing `seed`: 1 none can stand, 0 one joined R. */
+static int cut_seed(Cut *c, int seed) {
+  c->grp[0] = seed;
+  c->ng = 1;
+  us_bitset_set(&c->grp_bits, seed);
+  int r = 0;
+  if (c->sv->e->K > 1) {
+    us_bitset_set_free(&c->seen);
+    r = us_bitset_set_init(&c->seen, c->sv->ctx->s->nbody) ||
+                us_bitset_set_add(&c->seen, &c->grp_bits) < 0
+            ? -1
+            : 0;
+  }
+  if (r == 0) r = cut_extend(c);
+  for (int j = 0; j < c->ng; j++) us_bitset_clear(&c->grp_bits, c->grp[j]);
+  if (r != 0) return r;
+  for (int j = 0; j < c->ng; j++) us_bitset_set(&c->reach, c->grp[j]);
+  const us_Graph *g = &c->sv->ctx->g;
+  for (int j = 0; j < c->ng; j++)
+    for (int k = g->start[c->grp[j]]; k < g->start[c->grp[j] + 1]; k++) enqueue(c, g->adj[k]);
+  return 0;
+}
+
+/* 1 C proven unbuildable by the cut from `built`, 0 not proven, < 0 stop. */
+static int cut(Solver *sv, const us_Bitset *comp, const us_Bitset *built) {
+  if (sv->e->K > 64) return 0;
+  int n = sv->ctx->s->nbody, r = 0;
+  Cut c;
+  memset(&c, 0, sizeof c);
+  c.sv = sv;
+  c.comp = comp;
+  c.left = 16L * n + 1024;
+  c.queue = us_malloc(((size_t)n + 1) * sizeof(int));
+  c.queued = us_calloc((size_t)n + 1, 1);
+  if (!c.queue || !c.queued || us_bitset_copy(&c.reach, built) ||
+      us_bitset_init(&c.grp_bits, n) || us_bitset_set_init(&c.seen, n))
+    r = -1;
+  for (int b = 0; b < n && r == 0; b++) enqueue(&c, b);
+  int spent = 0;
+  while (r == 0 && c.nq > 0) {
+    int b = c.queue[--c.nq];
+    c.queued[b] = 0;
+    int q = outside(&c, b) ? cut_seed(&c, b) : 1;
+    if (q == -3) spent = 1;
+    else if (q < 0) r = q;
+    if (spent) break;
+  }
+  if (r == 0 && !spent) r = us_bitset_count(&c.reach) < us_bitset_count(comp); /* R ⊆ C */
+  if (r == -1 && !sv->err->code) us_error_set(sv->err, US_ERR_NOMEM, "out of memory in the search");
+  us_free(c.queue);
+  us_free(c.queued);
+  us_bitset_free(&c.reach);
+  us_bitset_free(&c.grp_bits);
+  us_bitset_set_free(&c.seen);
+  if (r == 1) sv->ctx->st->cuts++;
+  return r;
+}
+
+/* Greedy fast path: 1 with comp's reversed build order appended, 0 stuck
+ * (then the cut may prove comp unbuildable: *proven = 1). */
+static int greedy(Solver *sv, const us_Bitset *comp, int *proven) {
   us_Assembly a;
   int r = us_assemble(sv->ctx, comp, sv->e->K, &a, sv->err);
+  *proven = 0;
   if (r == 1) {
     for (int k = a.ngroups - 1; r == 1 && k >= 0; k--)
       if (append_step(sv->e, a.seq + a.gstart[k], a.gstart[k + 1] - a.gstart[k])) r = -1;
+  } else if (r == 0) {
+    int c = cut(sv, comp, &a.built);
+    if (c < 0) r = c;
+    *proven = c == 1;
   }
   us_assembly_free(&a);
   return r;
 }
 
-/* A connected set: stands?, then greedy, then exhaustive. */
+/* A connected set: stands?, then greedy (and the cut), then exhaustive. */
 static int decide(Solver *sv, const us_Bitset *comp) {
-  int r = us_plan_test(sv->ctx, comp, sv->err);
-  if (r == 1) r = greedy(sv, comp);
+  int proven = 0, r = us_plan_test(sv->ctx, comp, sv->err);
+  if (r == 1) r = greedy(sv, comp, &proven);
   else return r; /* does not stand (0) or stop */
-  if (r != 0) return r;
+  if (r != 0 || proven) return r;
   sv->ctx->st->exhaustive++;
   int n = sv->ctx->s->nbody, m = 0, *list = us_malloc(((size_t)n + 1) * sizeof(int));
   if (!list) return -1;

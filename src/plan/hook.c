@@ -3,6 +3,8 @@
  * (stable -> unstable or undecided; unstable -> undecided). */
 #include "hook.h"
 
+#include "stability/backend.h"
+
 static us_PlanTestHook hook_fn;
 static void *hook_user;
 
@@ -20,6 +22,16 @@ us_Status us_plan_stability_test(us_Stability *w, const us_Bitset *node, us_Stab
   if (st || !hook_fn) return st;
   us_Verdict before = res->verdict;
   hook_fn(hook_user, node, res);
+  if (strength(res->verdict) > strength(before)) res->verdict = before;
+  return US_OK;
+}
+
+us_Status us_plan_held_test(us_Stability *w, const us_Bitset *present, const int *reg, int nreg,
+                            us_StabilityResult *res, us_Error *err) {
+  us_Status st = us_stability_held(w, present, reg, nreg, res, err);
+  if (st || !hook_fn) return st;
+  us_Verdict before = res->verdict;
+  hook_fn(hook_user, present, res);
   if (strength(res->verdict) > strength(before)) res->verdict = before;
   return US_OK;
 }

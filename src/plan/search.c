@@ -28,7 +28,7 @@ int us_plan_can_move(const us_SearchCtx *ctx, const us_Bitset *node, int b) {
   return !ctx->kin || us_kinematics_can_remove(ctx->kin, node, b);
 }
 
-static int limit_reached(const us_SearchCtx *ctx) {
+int us_plan_limit_reached(const us_SearchCtx *ctx) {
   const us_PlanSettings *set = ctx->set;
   if (set->max_tests > 0 && ctx->st->tests >= set->max_tests) return 1;
   return set->time_limit > 0 && us_now() - ctx->t_start >= set->time_limit;
@@ -48,7 +48,7 @@ static void count_verdict(us_SearchCtx *ctx) {
 }
 
 int us_plan_test(us_SearchCtx *ctx, const us_Bitset *node, us_Error *err) {
-  if (limit_reached(ctx)) return -2;
+  if (us_plan_limit_reached(ctx)) return -2;
   if (ctx->exact_end > 0 && ctx->st->tests >= ctx->exact_end) return -2;
   if (ctx->budget_end > 0 && ctx->st->tests >= ctx->budget_end) return -3;
   long timed_out = us_stability_info(ctx->stab)->timed_out;

@@ -9,7 +9,7 @@
  *   dfs.c, bfs.c -> rescue.h, rules.h, search.h
  *   rescue.c   -> rules.h, search.h
  *   rules.c    -> exact.h, assemble.h, search.h
- *   exact.c    -> assemble.h, order.h, search.h
+ *   exact.c    -> assemble.h, order.h, search.h, hook.h
  *   assemble.c, order.c -> search.h
  *   search.c, verify.c, classify.c -> hook.h
  *   search.h, graph.h and hook.h call nothing in src/plan. */
@@ -68,6 +68,8 @@ typedef struct us_SearchCtx {
  * ending in none knows its answer is no proof), -1 error, -2 limit, -3
  * restart budget reached (random search). */
 int us_plan_test(us_SearchCtx *ctx, const us_Bitset *node, us_Error *err);
+/* 1 when the planner's time limit or test budget is spent. */
+int us_plan_limit_reached(const us_SearchCtx *ctx);
 /* 1 when `node` is the goal of the search direction. */
 int us_plan_is_goal(const us_SearchCtx *ctx, const us_Bitset *node);
 /* 1 when moving body b is a legal move from `node` (direction, part and

@@ -58,4 +58,14 @@ us_Stability *us_stability_new_backend(const us_Structure *s, const us_Stability
  * them; us_StabilitySettings.skip_forces sets the initial value). */
 void us_stability_set_skip_forces(us_Stability *w, int skip);
 
+/* Can the bodies reg[0..nreg) of `present` stand while every other body
+ * of `present` is held still? res->verdict US_UNSTABLE: they cannot, and
+ * res->mechanism is their mechanism, checked against the true cones (a
+ * proof, whatever the rest does); US_UNDECIDED: not proven. Solved by CLP
+ * with the local tests' support LP (local.h) whatever the method, since
+ * the proof is the checked mechanism, not the solver's word. Does not
+ * count as a test and leaves the reuse state of us_stability_test alone. */
+us_Status us_stability_held(us_Stability *w, const us_Bitset *present, const int *reg, int nreg,
+                            us_StabilityResult *res, us_Error *err);
+
 #endif

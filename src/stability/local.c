@@ -563,6 +563,16 @@ static int try_support(us_Local *L, const us_Bitset *cur, us_StabilityResult *re
   return 1;
 }
 
+int us_local_held(us_Local *L, const us_Bitset *present, const int *reg, int nreg,
+                  us_StabilityResult *res, us_StabilityInfo *info, us_Error *err) {
+  region_clear(L);
+  for (int q = 0; q < nreg; q++)
+    if (!L->in_r[reg[q]]) region_add(L, reg[q]);
+  int r = try_support(L, present, res, info, err);
+  region_clear(L);
+  return r;
+}
+
 /* The fixed LP at the current region: 1 stable (certificate merged and
  * checked), 0 not proven, -1 error. */
 static int try_fixed(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,

@@ -58,6 +58,15 @@ int us_local_forces(const us_Local *L, const us_Bitset *cur, us_Forces *f);
  * (unchecked, oriented so that gravity drives it). 0 or -1 on OOM. */
 int us_mechanism_from_ray(us_Mechanism *m, const us_EqSystem *e, const double *y, int ny);
 
+/* Can the bodies reg[0..nreg) of `present` stand while every other body
+ * of `present` is held still (the support LP alone, outer cone polygons
+ * in 3D)? 1 they cannot: res->verdict is US_UNSTABLE and res->mechanism a
+ * mechanism of theirs, checked against the true cones (a proof: no
+ * motion of the rest can help them). 0 not proven, -1 error (err set).
+ * The base is untouched. */
+int us_local_held(us_Local *L, const us_Bitset *present, const int *reg, int nreg,
+                  us_StabilityResult *res, us_StabilityInfo *info, us_Error *err);
+
 /* The deadline of the small LPs (us_stability_set_deadline). */
 void us_local_set_deadline(us_Local *L, double deadline);
 

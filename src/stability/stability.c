@@ -47,6 +47,7 @@ struct us_Stability {
   us_StabilityInfo info;
   double deadline;         /* us_now() time; 0: none */
   us_Local *local;         /* exact local tests, or NULL */
+  int local_held_only;     /* local made for us_stability_held alone: not a test's path */
   void *small;             /* with local tests: the dense simplex for tiny systems */
   const us_Backend *used_be; /* the backend that decided the last full system */
   void *used_ws;
@@ -498,7 +499,7 @@ static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err)
     w->eq.ncontact = 0;
     return certify(w, res, err);
   }
-  if (w->local) {
+  if (w->local && !w->local_held_only) {
     int r = decide_local(w, res, err);
     if (r) return r < 0 ? (err->code ? err->code : US_ERR_NOMEM) : US_OK;
   }
@@ -515,7 +516,8 @@ static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err)
   if (st) return st;
   if (res->verdict == US_STABLE) {
     st = certify(w, res, err);
-    if (!st && w->local && res->verdict == US_STABLE) us_local_set_base(w->local, &w->cur, &w->eq, w->f);
+    if (!st && w->local && !w->local_held_only && res->verdict == US_STABLE)
+      us_local_set_base(w->local, &w->cur, &w->eq, w->f);
     return st;
   }
   if (res->verdict == US_UNSTABLE && w->used_be->unstable_body)
@@ -563,6 +565,29 @@ us_Status us_stability_test(us_Stability *w, const us_Bitset *present, us_Stabil
   if (w->set.verbose > 1)
     fprintf(stderr, "stability: %d bodies: %s (%s)\n", us_bitset_count(&w->cur),
             us_verdict_name(res->verdict), res->note);
+  return US_OK;
+}
+
+us_Status us_stability_held(us_Stability *w, const us_Bitset *present, const int *reg, int nreg,
+                            us_StabilityResult *res, us_Error *err) {
+  reset_result(res);
+  if (!w->local) { /* other methods: a CLP tester of their own, for these LPs only */
+    us_StabilitySettings set = w->set;
+    set.method = US_METHOD_LP;
+    w->local = us_local_new(w->s, &set, &us_backend_clp, w->s->dim == 3 ? &w->cones : NULL, err);
+    if (!w->local) return err->code ? err->code : US_ERR_NOMEM;
+    w->local_held_only = 1;
+    us_local_set_deadline(w->local, w->deadline);
+  }
+  for (int k = 0; k < w->cur.nwords; k++) w->cur.w[k] = present->w[k] & w->movable.w[k];
+  double t0 = us_now();
+  int r = past_deadline(w) ? 0 : us_local_held(w->local, &w->cur, reg, nreg, res, &w->info, err);
+  w->info.solve_time += us_now() - t0;
+  if (r < 0) return err->code ? err->code : US_ERR_NOMEM;
+  if (r == 0) {
+    res->verdict = US_UNDECIDED;
+    snprintf(res->note, sizeof res->note, "%s", past_deadline(w) ? "time limit" : "may stand held");
+  }
   return US_OK;
 }
 
