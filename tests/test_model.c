@@ -149,6 +149,8 @@ static void bad_materials(void) {
   s->friction = 0.5;
   s->gravity[1] = NAN;
   CHECK(scene_fails_with(s, "gravity", NULL));
+  s->gravity[1] = 0.0; /* zero: the planner's "a part touching nothing falls" would not hold */
+  CHECK(scene_fails_with(s, "gravity is zero", NULL));
   s->gravity[1] = -9.81;
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_NEAR(s->bodies[0].mass, 2.0, 0);

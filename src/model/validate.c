@@ -27,6 +27,9 @@ static us_Status check_globals(const us_Structure *s, us_Error *err) {
     return us_error_set(err, US_ERR_INPUT, "dimension %d is not supported (2 or 3)", s->dim);
   for (int k = 0; k < 3; k++)
     if (!isfinite(s->gravity[k])) return us_error_set(err, US_ERR_INPUT, "gravity is not finite");
+  if (s->gravity[0] == 0.0 && s->gravity[1] == 0.0 && s->gravity[2] == 0.0)
+    return us_error_set(err, US_ERR_INPUT, "gravity is zero: every part would stand, touching "
+                        "anything or not (give its direction and size, e.g. [0, -9.81])");
   if (isnan(s->friction) || s->friction < 0) /* INFINITY: no sliding */
     return us_error_set(err, US_ERR_INPUT, "default friction %g must be >= 0 or infinite",
                         s->friction);

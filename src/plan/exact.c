@@ -35,6 +35,8 @@
 #include "hook.h"
 #include "order.h"
 
+#include "model/massprops.h"
+
 #include <string.h>
 
 typedef struct {
@@ -293,7 +295,8 @@ static void enqueue(Cut *c, int b) {
 static int cut_group(Cut *c) {
   int touching = 0;
   for (int j = 0; j < c->ng && !touching; j++) touching = touches_reach(c, c->grp[j]);
-  if (!touching) return 1; /* only its own contacts: nothing holds its weight */
+  if (!touching) /* only its own contacts: nothing holds its weight, if it has one */
+    return us_gravity_norm(c->sv->ctx->s->gravity) > 0 ? 1 : 0;
   us_SearchCtx *ctx = c->sv->ctx;
   if (us_plan_limit_reached(ctx)) return -2;
   for (int j = 0; j < c->ng; j++) us_bitset_set(&c->reach, c->grp[j]);
