@@ -10,6 +10,7 @@
 #include "model/massprops.h"
 #include "scenes.h"
 #include "stability/certificate.h"
+#include "stability/equilibrium.h" /* us_contact_active */
 #include "stability/plumb.h"
 #include "test.h"
 
@@ -42,9 +43,69 @@ static void inc_free(Inc *in) {
   free(in->list);
 }
 
+/* The full certificate check of normalized forces f (every contact) on
+ * the sub-assembly cur. */
+static int full_check(const us_Structure *s, const us_Bitset *cur, const double *f, double mass) {
+  size_t dim = (size_t)s->dim, nf = (size_t)s->ncontact * dim;
+  us_Forces fo = {.ncontact = 0};
+  fo.contact = malloc((size_t)s->ncontact * sizeof(int) + 1);
+  fo.f = malloc(nf * sizeof(double) + 1);
+  double w = mass * us_gravity_norm(s->gravity);
+  int idle = 1; /* no force on a contact with an absent side */
+  for (int k = 0; k < s->ncontact; k++) {
+    if (!us_contact_active(s, cur, k)) {
+      for (size_t j = 0; j < dim; j++) idle &= f[(size_t)k * dim + j] == 0.0;
+      continue;
+    }
+    fo.contact[fo.ncontact] = k;
+    for (size_t j = 0; j < dim; j++) fo.f[(size_t)fo.ncontact * dim + j] = f[(size_t)k * dim + j] * w;
+    fo.ncontact++;
+  }
+  us_CertCheck full = us_certificate_check(s, cur, &fo, 1e-9);
+  if (!idle) fprintf(stderr, "a force on a contact with an absent side\n"), full.ok = 0;
+  if (!full.ok)
+    fprintf(stderr, "forces fail the full check (force %g torque %g cone %g sign %g)\n",
+            full.max_force_residual, full.max_torque_residual, full.max_cone_violation,
+            full.max_sign_violation);
+  free(fo.contact);
+  free(fo.f);
+  return full.ok;
+}
+
+/* Lazy routing (memoised lines): route every movable body at once, then
+ * materialize; same contract as route_all below. */
+static int route_all_lazy(const us_Structure *s) {
+  Inc in;
+  us_Bitset cur;
+  us_Plumb p;
+  double up[3] = {0, 1, 0};
+  size_t nf = (size_t)s->ncontact * 2;
+  double *f = calloc(nf + 1, sizeof(double));
+  int *added = malloc(((size_t)s->nbody + 1) * sizeof(int)), nadd = 0, out = -1;
+  if (!f || !added || inc_build(s, &in) || us_bitset_init(&cur, s->nbody)) return -1;
+  double mass = us_movable_mass(s);
+  if (us_plumb_init(&p, s, in.start, in.list, up, mass)) return -1;
+  for (int i = 0; i < s->nbody; i++)
+    if (!s->bodies[i].fixed) us_bitset_set(&cur, i), added[nadd++] = i;
+  int r = us_plumb_route_lazy(&p, &cur, added, nadd, 1e-9);
+  if (r == 1 && us_plumb_materialize(&p, f) == 0) out = full_check(s, &cur, f, mass) ? 1 : -1;
+  if (r == 0 && us_plumb_materialize(&p, f) == 0) { /* the loads were taken back */
+    out = 0;
+    for (size_t k = 0; k < nf; k++)
+      if (f[k] != 0.0) out = -1, fprintf(stderr, "refused lazy route left a load\n");
+  }
+  us_plumb_free(&p);
+  us_bitset_free(&cur);
+  inc_free(&in);
+  free(f);
+  free(added);
+  return out;
+}
+
 /* Route every movable body of s at once from zero forces: 1 routed (and
  * the forces pass the check on the path and the full check), 0 refused
- * (forces still all zero), -1 a failure (reported). npath: path size. */
+ * (forces still all zero), -1 a failure (reported). npath: path size.
+ * The lazy routing must give the same answer. */
 static int route_all(const us_Structure *s, int *npath) {
   Inc in;
   us_Bitset cur;
@@ -85,7 +146,9 @@ static int route_all(const us_Structure *s, int *npath) {
   inc_free(&in);
   free(f);
   free(added);
-  return out;
+  int lazy = route_all_lazy(s);
+  if (lazy != out) fprintf(stderr, "lazy routing %d, eager %d\n", lazy, out);
+  return lazy == out ? out : -1;
 }
 
 /* The full LP's verdict on all of s. */
@@ -199,5 +262,80 @@ static void plans_use_plumb_lines(void) {
   }
 }
 
+/* Lazy routing, one body at a time from the bottom (a plan's assembly):
+ * after every step the pending loads pushed down the memoised lines give
+ * forces that pass the full check (materialized on a copy), a refused
+ * body (a cantilever tip added on the way) changes nothing, and the lines
+ * routed over the whole walk stay within a few per body (each line is
+ * routed once: O(1) per body, not the path's height). */
+static void lazy_walk(us_Structure *s, int expect_lines_per_body) {
+  Inc in;
+  us_Bitset cur;
+  us_Plumb p;
+  double up[3] = {0, 1, 0};
+  size_t nf = (size_t)s->ncontact * 2;
+  double *f = calloc(nf + 1, sizeof(double));
+  CHECK(f && !inc_build(s, &in) && !us_bitset_init(&cur, s->nbody));
+  double mass = us_movable_mass(s);
+  CHECK(!us_plumb_init(&p, s, in.start, in.list, up, mass));
+  int n = s->nbody, *order = malloc((size_t)n * sizeof(int)), lines = 0, ok = 1, steps = 0;
+  for (int i = 0; i < n; i++) order[i] = i;
+  for (int i = 1; i < n; i++) /* by centre height, insertion sort */
+    for (int j = i; j > 0 && s->bodies[order[j]].com[1] < s->bodies[order[j - 1]].com[1]; j--) {
+      int t = order[j];
+      order[j] = order[j - 1];
+      order[j - 1] = t;
+    }
+  for (int q = 0; q < n && ok; q++) {
+    int b = order[q];
+    if (s->bodies[b].fixed) continue;
+    us_bitset_set(&cur, b);
+    int r = us_plumb_route_lazy(&p, &cur, &b, 1, 1e-9);
+    lines += p.nnew;
+    if (r != 1) { /* a body with no path down: it leaves, nothing pending changed */
+      us_bitset_clear(&cur, b);
+      continue;
+    }
+    if (++steps % 7 == 0 || q == n - 1) /* the certificate so far: pending pushed into f */
+      ok = us_plumb_materialize(&p, f) == 0 && full_check(s, &cur, f, mass);
+  }
+  CHECK(ok);
+  CHECK(steps > 0);
+  printf("lazy walk: %d bodies placed, %d lines routed (%d memoised)\n", steps, lines, p.nent);
+  CHECK_INT(lines, <=, expect_lines_per_body * steps);
+  us_plumb_free(&p);
+  us_bitset_free(&cur);
+  inc_free(&in);
+  free(f);
+  free(order);
+}
+
+static void lazy_walks(void) {
+  us_GenSettings g = us_gen_default_settings();
+  us_Error err;
+  g.rows = 30, g.cols = 30, g.n = 30;
+  us_Structure *s = us_gen_wall(&g, &err);
+  CHECK(s);
+  if (s) lazy_walk(s, 4);
+  us_structure_free(s);
+  s = us_gen_pyramid(&g, &err);
+  CHECK(s);
+  if (s) lazy_walk(s, 4);
+  us_structure_free(s);
+  /* two columns with a plank overhanging the right one on top: the plank
+     is refused, the rest routes */
+  s = us_structure_new(2);
+  char id[16];
+  for (int c = 0; c < 2; c++)
+    for (int r = 0; r < 5; r++) {
+      snprintf(id, sizeof id, "c%d_%d", c, r);
+      scene_box(s, id, 2.0 * c, 0.5 * r, 1, 0.5, 1);
+    }
+  scene_box(s, "tip", 2.5, 2.5, 3.0, 0.2, 1);
+  CHECK(scene_seal(s));
+  if (s) lazy_walk(s, 4);
+  us_structure_free(s);
+}
+
 US_TEST_MAIN(T(column_routes), T(bridge_splits), T(cantilever_refused), T(steep_contact),
-             T(plans_use_plumb_lines))
+             T(plans_use_plumb_lines), T(lazy_walks))

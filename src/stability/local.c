@@ -225,7 +225,10 @@ void us_local_set_deadline(us_Local *L, double deadline) {
     for (int k = 0; k < 2; k++) L->be->set_deadline(L->bws[k], deadline);
 }
 
-void us_local_forget(us_Local *L) { L->have_base = 0; }
+void us_local_forget(us_Local *L) {
+  L->have_base = 0;
+  us_plumb_flush(&L->plumb);
+}
 
 /* ---------------------------------------------------------------- base */
 
@@ -249,6 +252,10 @@ void us_local_set_base(us_Local *L, const us_Bitset *cur, const us_EqSystem *e,
                        const double *f) {
   size_t dim = (size_t)L->dim;
   int keep = 0; /* keep B \ S with its forces when it shares no contact with S */
+  if (us_plumb_materialize(&L->plumb, L->fbase)) { /* OOM: B \ S's forces are lost */
+    us_plumb_drop(&L->plumb);
+    L->have_base = 0;
+  }
   if (L->have_base) {
     diff_base(L, cur);
     keep = !removal_touches(L, cur);
@@ -260,8 +267,9 @@ void us_local_set_base(us_Local *L, const us_Bitset *cur, const us_EqSystem *e,
   L->have_base = 1;
 }
 
-int us_local_forces(const us_Local *L, const us_Bitset *cur, us_Forces *out) {
+int us_local_forces(us_Local *L, const us_Bitset *cur, us_Forces *out) {
   const us_Structure *s = L->s;
+  if (us_plumb_materialize(&L->plumb, L->fbase)) return -1;
   int n = 0;
   for (int c = 0; c < s->ncontact; c++) n += us_contact_active(s, cur, c);
   if (n > out->cap) {
@@ -585,28 +593,36 @@ static int try_fixed(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
   return 1;
 }
 
-/* The plumb lines of the added bodies (plumb.h), when no removed body
- * touches S (so B's forces still hold every body of S that was in B):
- * 1 stable (forces merged into fbase and re-checked on the path),
- * 0 not proven (fbase unchanged), -1 OOM. */
+/* The plumb lines of the added bodies, memoised (plumb.h, lazy routing),
+ * when no removed body touches S (so B's forces, with the pending loads,
+ * still hold every body of S that was in B) and the memo's bodies are all
+ * in S: 1 stable (the added weights wait as pending load on checked
+ * lines), 0 not proven (nothing changed), -1 OOM. The re-check is the
+ * check of every line routed now (plumb.c, check_line); the lines met
+ * again were checked when first routed and rest on bodies still present. */
 static int try_plumb(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
                      us_StabilityInfo *info, us_Error *err) {
-  if (L->touching || !L->nadd) return 0;
-  int r = us_plumb_route(&L->plumb, cur, L->added, L->nadd, L->fbase);
+  if (L->touching || !L->nadd || !us_plumb_lazy_valid(&L->plumb, cur)) return 0;
+  int r = us_plumb_route_lazy(&L->plumb, cur, L->added, L->nadd, L->set.cert_tol);
   if (r < 0) return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)"), -1;
   if (r == 0) return 0;
   const us_Plumb *p = &L->plumb;
-  us_certificate_check_bodies(L->s, cur, p->path, p->npath, L->inc_start, L->inc, L->fbase,
-                              L->mass, L->set.cert_tol, &res->check);
-  if (!res->check.ok) {
-    us_plumb_undo(&L->plumb, L->fbase);
-    return 0;
-  }
+  memset(&res->check, 0, sizeof res->check);
+  res->check.ok = 1;
+  res->check.worst_body = res->check.worst_contact = -1;
+  res->check.max_force_residual = res->check.max_torque_residual = p->worst_line;
   res->verdict = US_STABLE;
-  snprintf(res->note, sizeof res->note, "local: plumb lines through %d bodies, the rest unchanged",
-           p->npath);
+  snprintf(res->note, sizeof res->note, "local: plumb lines (%d routed now), the rest unchanged",
+           p->nnew);
   info->local_plumb++;
   return 1;
+}
+
+/* The pending plumb loads into fbase (B's certificate made explicit). */
+static int materialize(us_Local *L, us_Error *err) {
+  if (us_plumb_materialize(&L->plumb, L->fbase))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)"), -1;
+  return 0;
 }
 
 /* Level 0 pays when it finds proofs: it is skipped while fewer than one
@@ -656,16 +672,22 @@ static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityR
 
 int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
                   us_StabilityInfo *info, us_Error *err) {
-  int size = us_bitset_count(cur);
   int min = L->set.local_min_bodies > 0 ? L->set.local_min_bodies : LOCAL_MIN_BODIES;
-  if (size < min) return US_LOCAL_GLOBAL;
+  int size = min > 1 ? us_bitset_count(cur) : -1; /* counted when needed: O(n / 64) */
+  if (size >= 0 && size < min) return US_LOCAL_GLOBAL;
   if (!L->have_base) { /* from the empty set: every body is added (plumb lines can
                           prove a whole structure, as `check` asks, in O(n h)) */
     memset(L->base.w, 0, (size_t)L->base.nwords * sizeof(uint64_t));
     memset(L->fbase, 0, (size_t)L->s->ncontact * (size_t)L->dim * sizeof(double));
+    us_plumb_flush(&L->plumb);
     L->have_base = 1;
   }
   diff_base(L, cur);
+  /* removals change B's certificate on their contacts, and a memo line
+     resting on a body not in S is void: make B's forces explicit first */
+  int valid = us_plumb_lazy_valid(&L->plumb, cur);
+  if ((L->nrem > 0 || !valid) && materialize(L, err)) return -1;
+  if (!valid) us_plumb_flush(&L->plumb);
   seed_region(L, cur);
   int r;
   if (L->nreg == 0) { /* S inside B, apart from what left: B's forces hold */
@@ -678,8 +700,10 @@ int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
   } else if (seed_unheld(L, cur)) {
     r = US_LOCAL_GLOBAL;
   } else if ((r = try_plumb(L, cur, res, info, err)) != 0) {
-    if (r > 0) r = settle_n(US_LOCAL_STABLE, L->plumb.npath, info);
-  } else if (L->nreg > 16 + size / 8) {
+    if (r > 0) r = settle_n(US_LOCAL_STABLE, L->nadd, info);
+  } else if (materialize(L, err)) {
+    r = -1;
+  } else if (L->nreg > 16 + (size = size >= 0 ? size : us_bitset_count(cur)) / 8) {
     r = US_LOCAL_GLOBAL;
   } else {
     r = run_levels(L, cur, size, res, info, err);

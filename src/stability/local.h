@@ -52,7 +52,7 @@ void us_local_forget(us_Local *L);
 
 /* The base's forces on the active contacts of cur (newtons) into f. 0 or
  * -1 on OOM. */
-int us_local_forces(const us_Local *L, const us_Bitset *cur, us_Forces *f);
+int us_local_forces(us_Local *L, const us_Bitset *cur, us_Forces *f);
 
 /* A Farkas ray y (ny = e->nw * e->nbody values) of system e as a mechanism
  * (unchecked, oriented so that gravity drives it). 0 or -1 on OOM. */

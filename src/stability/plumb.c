@@ -32,6 +32,7 @@
  */
 #include "plumb.h"
 
+#include "certificate.h"
 #include "geometry/geometry3.h"
 
 #include <math.h>
@@ -158,6 +159,12 @@ int us_plumb_init(us_Plumb *p, const us_Structure *s, const int *inc_start, cons
 }
 
 void us_plumb_free(us_Plumb *p) {
+  us_free(p->ent);
+  us_free(p->tab);
+  us_bitset_free(&p->dep);
+  us_free(p->heap);
+  us_free(p->added_e);
+  us_free(p->added_l);
   us_free(p->log_c);
   us_free(p->log_f);
   us_free(p->path);
@@ -364,4 +371,251 @@ int us_plumb_route(us_Plumb *p, const us_Bitset *cur, const int *added, int nadd
     }
   }
   return 1;
+}
+
+/* ------------------------------------------------------ lazy routing */
+
+int us_plumb_lazy_valid(const us_Plumb *p, const us_Bitset *cur) {
+  for (int k = 0; k < p->dep.nwords; k++)
+    if (p->dep.w[k] & ~cur->w[k]) return 0;
+  return 1;
+}
+
+static uint64_t line_hash(int u, const double c[2]) {
+  uint64_t a, b;
+  memcpy(&a, &c[0], sizeof a);
+  memcpy(&b, &c[1], sizeof b);
+  uint64_t h = (uint64_t)(unsigned)u * 0x9E3779B97F4A7C15ULL;
+  h ^= a + 0x7F4A7C159E3779B9ULL + (h << 6) + (h >> 2);
+  h ^= b + 0x94D049BB133111EBULL + (h << 6) + (h >> 2);
+  return h ^ (h >> 31);
+}
+
+static int same_line(const us_PlumbEntry *e, int u, const double c[2]) {
+  return e->body == u && memcmp(e->pos, c, 2 * sizeof(double)) == 0;
+}
+
+/* The entry of line (u, c), or -1. */
+static int line_find(const us_Plumb *p, int u, const double c[2]) {
+  if (!p->tab_cap) return -1;
+  long i = (long)(line_hash(u, c) & (uint64_t)(p->tab_cap - 1));
+  for (; p->tab[i]; i = (i + 1) & (p->tab_cap - 1))
+    if (same_line(&p->ent[p->tab[i] - 1], u, c)) return (int)p->tab[i] - 1;
+  return -1;
+}
+
+static void tab_put(us_Plumb *p, int e) {
+  us_PlumbEntry *x = &p->ent[e];
+  long i = (long)(line_hash(x->body, x->pos) & (uint64_t)(p->tab_cap - 1));
+  while (p->tab[i]) i = (i + 1) & (p->tab_cap - 1);
+  p->tab[i] = e + 1;
+  x->slot = i;
+}
+
+/* Room for one more entry (the table at most half full). 0 or -1 OOM. */
+static int line_room(us_Plumb *p) {
+  if (US_GROW(p->ent, p->cap_ent, p->nent + 1)) return -1;
+  if (2 * (long)(p->nent + 1) <= p->tab_cap) return 0;
+  long ncap = p->tab_cap ? 2 * p->tab_cap : 1024;
+  long *t = us_calloc((size_t)ncap, sizeof(long));
+  if (!t) return -1;
+  us_free(p->tab);
+  p->tab = t;
+  p->tab_cap = ncap;
+  for (int e = 0; e < p->nent; e++) tab_put(p, e);
+  return 0;
+}
+
+/* Re-check a line's hop without the routing's own tests, on the forces
+ * the hop will add (as contact components, turned back into vectors):
+ * both sides of every point present, each force in its point's cone,
+ * weights >= 0, the forces on the body summing to the unit load up with
+ * no torque about the line, and each child's share at its own line.
+ * Returns the largest relative residual (rounding leaves ~1e-16). */
+static double check_line(const us_Plumb *p, const us_Bitset *cur, const us_PlumbEntry *e) {
+  double worst = 0.0, wd = p->width[e->body] > 0 ? p->width[e->body] : 1.0;
+  double F[3] = {0.0, 0.0, 0.0}, T[3] = {0.0, 0.0, 0.0}, P[3];
+  for (int j = 0; j < 3; j++) P[j] = e->pos[0] * p->hz[0][j] + e->pos[1] * p->hz[1][j];
+  for (int q = 0; q < e->n; q++) {
+    const us_Contact *k = &p->s->contacts[e->k[q]];
+    double d[3];
+    if (!present(p, cur, k->a) || !present(p, cur, k->b) || other_side(k, e->body) == e->body ||
+        (k->a != e->body && k->b != e->body) || !(e->w[q] >= 0.0))
+      return INFINITY;
+    components(p, k, e->body, e->w[q], d);
+    worst = US_MAX(worst, us_cone_distance(d[0], hypot(d[1], d[2]), k->mu));
+    double sg = k->b == e->body ? 1.0 : -1.0, f[3], r[3];
+    for (int j = 0; j < 3; j++) {
+      f[j] = sg * (d[0] * k->n[j] + d[1] * k->t[0][j] + d[2] * k->t[1][j]);
+      r[j] = (k->p[j] - P[j]) / wd;
+      F[j] += f[j];
+    }
+    T[0] += r[1] * f[2] - r[2] * f[1];
+    T[1] += r[2] * f[0] - r[0] * f[2];
+    T[2] += r[0] * f[1] - r[1] * f[0];
+  }
+  for (int j = 0; j < 3; j++) F[j] -= p->up[j];
+  worst = US_MAX(worst, hypot(hypot(F[0], F[1]), F[2]));
+  worst = US_MAX(worst, hypot(hypot(T[0], T[1]), T[2]));
+  for (int j = 0; j < e->nchild; j++) { /* the child's points, at its line */
+    const us_PlumbEntry *c = &p->ent[e->child[j]];
+    double cw = 0.0, ca[2] = {0.0, 0.0};
+    for (int q = 0; q < e->n; q++) {
+      const us_Contact *k = &p->s->contacts[e->k[q]];
+      if (other_side(k, e->body) != c->body) continue;
+      double x[2];
+      us_plumb_horizontal(p, k->p, x);
+      cw += e->w[q], ca[0] += e->w[q] * x[0], ca[1] += e->w[q] * x[1];
+    }
+    worst = US_MAX(worst, fabs(cw - e->cw[j]));
+    worst = US_MAX(worst, hypot(ca[0] - cw * c->pos[0], ca[1] - cw * c->pos[1]) / wd);
+  }
+  return isfinite(worst) ? worst : INFINITY;
+}
+
+/* The entry of line (u, c): memoised, or routed now (its children first)
+ * and checked. Returns it, -2 no route (or a check failed), -1 OOM. */
+static int line_entry(us_Plumb *p, const us_Bitset *cur, int u, const double c[2], int depth,
+                      double tol) {
+  int e = line_find(p, u, c);
+  if (e >= 0) return e;
+  Hop h;
+  memset(&h, 0, sizeof h);
+  if (depth >= PLUMB_HOPS || !find_hop(p, cur, u, c, &h)) return -2;
+  us_PlumbEntry x;
+  memset(&x, 0, sizeof x);
+  x.body = u, x.pos[0] = c[0], x.pos[1] = c[1], x.n = h.n;
+  for (int q = 0; q < h.n; q++) x.k[q] = h.k[q], x.w[q] = h.w[q];
+  for (int q = 0; q < h.n; q++) { /* one child line per movable body below (take_hop) */
+    int v = h.below[q], first = 1;
+    for (int r = 0; r < q; r++) first = first && h.below[r] != v;
+    if (!first || held(p, v)) continue;
+    double w = 0.0, at[2] = {0.0, 0.0};
+    for (int r = q; r < h.n; r++) {
+      if (h.below[r] != v) continue;
+      w += h.w[r];
+      at[0] += h.w[r] * h.pos[r][0], at[1] += h.w[r] * h.pos[r][1];
+    }
+    if (!(w > 0)) continue;
+    if (w >= 1.0 - 1e-15) at[0] = c[0], at[1] = c[1];
+    else at[0] /= w, at[1] /= w;
+    int ce = line_entry(p, cur, v, at, depth + 1, tol);
+    if (ce < 0) return ce;
+    x.child[x.nchild] = ce, x.cw[x.nchild++] = w;
+    x.level = US_MAX(x.level, p->ent[ce].level + 1);
+  }
+  if (line_room(p)) return -1;
+  e = p->nent;
+  p->ent[e] = x;
+  double r = check_line(p, cur, &p->ent[e]);
+  if (!(r <= tol)) return -2;
+  p->nent++;
+  tab_put(p, e);
+  p->worst_line = US_MAX(p->worst_line, r);
+  p->nnew++;
+  us_bitset_set(&p->dep, u);
+  for (int q = 0; q < h.n; q++)
+    if (!held(p, h.below[q])) us_bitset_set(&p->dep, h.below[q]);
+  return e;
+}
+
+static int heap_above(const us_Plumb *p, int i, int j) {
+  return p->ent[p->heap[i]].level > p->ent[p->heap[j]].level;
+}
+
+static void heap_swap(us_Plumb *p, int i, int j) {
+  int t = p->heap[i];
+  p->heap[i] = p->heap[j];
+  p->heap[j] = t;
+}
+
+static int heap_push(us_Plumb *p, int e) {
+  if (p->ent[e].in_heap) return 0;
+  if (US_GROW(p->heap, p->cap_heap, p->nheap + 1)) return -1;
+  p->ent[e].in_heap = 1;
+  int i = p->nheap++;
+  p->heap[i] = e;
+  while (i > 0 && heap_above(p, i, (i - 1) / 2)) heap_swap(p, i, (i - 1) / 2), i = (i - 1) / 2;
+  return 0;
+}
+
+static int heap_pop(us_Plumb *p) {
+  int top = p->heap[0], i = 0;
+  p->heap[0] = p->heap[--p->nheap];
+  for (;;) {
+    int l = 2 * i + 1, r = l + 1, m = i;
+    if (l < p->nheap && heap_above(p, l, m)) m = l;
+    if (r < p->nheap && heap_above(p, r, m)) m = r;
+    if (m == i) break;
+    heap_swap(p, i, m);
+    i = m;
+  }
+  p->ent[top].in_heap = 0;
+  return top;
+}
+
+/* Add load to entry e's pending load, logged for a take-back. */
+static int add_pending(us_Plumb *p, int e, double load) {
+  if (US_GROW(p->added_e, p->cap_added_e, p->nadded_e + 1) ||
+      US_GROW(p->added_l, p->cap_added_l, p->nadded_e + 1) || heap_push(p, e))
+    return -1;
+  p->added_e[p->nadded_e] = e;
+  p->added_l[p->nadded_e++] = load;
+  p->ent[e].pending += load;
+  return 0;
+}
+
+int us_plumb_route_lazy(us_Plumb *p, const us_Bitset *cur, const int *added, int nadd,
+                        double tol) {
+  if (!p->dep.w && us_bitset_init(&p->dep, p->s->nbody)) return -1;
+  p->nnew = 0;
+  p->worst_line = 0.0;
+  p->nadded_e = 0;
+  int r = 1;
+  for (int q = 0; q < nadd && r == 1; q++) {
+    const us_Body *b = &p->s->bodies[added[q]];
+    double c[2];
+    us_plumb_horizontal(p, b->com, c);
+    int e = line_entry(p, cur, added[q], c, 0, tol);
+    r = e >= 0 ? (add_pending(p, e, b->mass / p->mass_total) ? -1 : 1) : e == -1 ? -1 : 0;
+  }
+  if (r != 1) /* take the loads back; the lines checked stay memoised */
+    for (int q = p->nadded_e - 1; q >= 0; q--) p->ent[p->added_e[q]].pending -= p->added_l[q];
+  return r;
+}
+
+int us_plumb_materialize(us_Plumb *p, double *f) {
+  size_t dim = (size_t)p->s->dim;
+  while (p->nheap > 0) {
+    int e = heap_pop(p);
+    us_PlumbEntry *x = &p->ent[e];
+    double load = x->pending;
+    x->pending = 0.0;
+    if (!(load != 0.0)) continue;
+    for (int q = 0; q < x->n; q++) {
+      double d[3];
+      components(p, &p->s->contacts[x->k[q]], x->body, x->w[q] * load, d);
+      for (size_t j = 0; j < dim; j++) f[dim * (size_t)x->k[q] + j] += d[j];
+    }
+    for (int j = 0; j < x->nchild; j++) {
+      if (heap_push(p, x->child[j])) return -1;
+      p->ent[x->child[j]].pending += x->cw[j] * load;
+    }
+  }
+  return 0;
+}
+
+void us_plumb_drop(us_Plumb *p) {
+  for (int i = 0; i < p->nheap; i++) {
+    p->ent[p->heap[i]].pending = 0.0;
+    p->ent[p->heap[i]].in_heap = 0;
+  }
+  p->nheap = 0;
+}
+
+void us_plumb_flush(us_Plumb *p) {
+  us_plumb_drop(p);
+  for (int e = 0; e < p->nent; e++) p->tab[p->ent[e].slot] = 0;
+  p->nent = 0;
+  if (p->dep.w) memset(p->dep.w, 0, (size_t)p->dep.nwords * sizeof(uint64_t));
 }

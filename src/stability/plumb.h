@@ -38,6 +38,23 @@ typedef struct us_PlumbSupport {
   double pos[2];         /* its horizontal position */
 } us_PlumbSupport;
 
+/* A memoised line (lazy routing): a load on `body` at `pos` takes the
+ * hop (k, w) and goes on as the child lines (child, cw): the children's
+ * shares of the load). level: 1 + the children's largest (0: none), so a
+ * line is always above its children. pending: load not yet added to f. */
+typedef struct us_PlumbEntry {
+  int body;
+  double pos[2];
+  int n, k[3];
+  double w[3];
+  int nchild, child[3];
+  double cw[3];
+  int level;
+  long slot;             /* its slot in the hash table */
+  double pending;
+  int in_heap;
+} us_PlumbEntry;
+
 typedef struct us_Plumb {
   /* the structure, its incidence (body -> contacts) and frame */
   const us_Structure *s;
@@ -60,6 +77,18 @@ typedef struct us_Plumb {
   unsigned char *mark;   /* [nbody] */
   us_PlumbLine *stack;   /* lines still to route */
   int nstack, cap_stack;
+  /* lazy routing: the memo of checked lines, valid while every body of
+     dep is present; the lines with pending load in a max-heap by level */
+  us_PlumbEntry *ent;
+  int nent, cap_ent;
+  long *tab, tab_cap;    /* hash (body, pos) -> entry + 1, 0 empty */
+  us_Bitset dep;
+  int *heap, nheap, cap_heap;
+  int *added_e, nadded_e, cap_added_e; /* this route's loads, to take back */
+  double *added_l;
+  int cap_added_l;
+  int nnew;              /* lines the last lazy route checked (new entries) */
+  double worst_line;     /* their largest hop residual (relative) */
 } us_Plumb;
 
 /* 0, or -1 on OOM. up: unit vector against gravity. */
@@ -79,5 +108,28 @@ int us_plumb_route(us_Plumb *p, const us_Bitset *cur, const int *added, int nadd
 
 /* Undo the last successful route (f back to its values before it). */
 void us_plumb_undo(us_Plumb *p, double *f);
+
+/* Lazy routing (docs/local.md, "Plumb lines, memoised"): the same lines,
+ * but each (body, position) is routed and checked once and memoised, and
+ * the added loads wait on the first line as pending load. A line's hop
+ * holds any positive load (its forces scale, the cones are cones) and
+ * stays valid while the bodies it rests on are present (more bodies only
+ * add contacts with zero force), so f plus the pending loads pushed down
+ * the memoised lines is a certificate. Cost per added body: its new lines
+ * only (amortised O(1) on walls, whose lines repeat), not its path.
+ * us_plumb_lazy_valid: cur holds every body the memo rests on. Route: 1
+ * routed (p->nnew new lines, each checked: present sides, unit force in
+ * its cone, weights >= 0 summing to 1, resultant on the line; worst
+ * relative residual in p->worst_line), 0 no route (no pending load
+ * changed), -1 OOM. Materialize pushes every pending load into f in
+ * level order, each line once (0 or -1 OOM); drop forgets them (f was
+ * replaced by a full certificate); flush empties the memo (nothing may be
+ * pending). */
+int us_plumb_lazy_valid(const us_Plumb *p, const us_Bitset *cur);
+int us_plumb_route_lazy(us_Plumb *p, const us_Bitset *cur, const int *added, int nadd,
+                        double tol);
+int us_plumb_materialize(us_Plumb *p, double *f);
+void us_plumb_drop(us_Plumb *p);
+void us_plumb_flush(us_Plumb *p);
 
 #endif

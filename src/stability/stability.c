@@ -493,7 +493,9 @@ static us_Status global_mechanism(us_Stability *w, us_StabilityResult *res, us_E
 }
 
 static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err) {
-  if (us_bitset_count(&w->cur) == 0) { /* nothing can fall */
+  int empty = 1;
+  for (int k = 0; k < w->cur.nwords && empty; k++) empty = w->cur.w[k] == 0;
+  if (empty) { /* nothing can fall */
     res->verdict = US_STABLE;
     snprintf(res->note, sizeof res->note, "no movable body present");
     w->eq.ncontact = 0;

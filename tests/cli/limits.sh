@@ -7,7 +7,11 @@
 expect 3 "check with a time limit that runs out" -- "$CLI" check "$T/wall.json" --local off --time-limit 0.001
 contains "$T/out" "undecided" "check: undecided"
 contains "$T/out" "time limit" "check: says why"
-expect 3 "verify with a time limit that runs out" -- "$CLI" verify "$T/wall.json" "$T/plan.json" --time-limit 0.001
+# (verify walks a plan in microseconds per step since the plumb lines are
+# memoised: a 10,000-block wall, so that the 1 ms floor of a limit runs out)
+"$CLI" generate wall --rows 100 --cols 100 -o "$T/big.json" >/dev/null
+"$CLI" plan "$T/big.json" -o "$T/big-plan.json" >/dev/null
+expect 3 "verify with a time limit that runs out" -- "$CLI" verify "$T/big.json" "$T/big-plan.json" --time-limit 0.001
 contains "$T/out" "time limit" "verify: says why"
 expect 1 "plan with a time limit that runs out" -- "$CLI" plan "$T/wall.json" --search dfs --time-limit 0.001 -o "$T/p2.json"
 contains "$T/out" "limit" "plan: status limit"
