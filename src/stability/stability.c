@@ -475,8 +475,24 @@ static int decide_local(us_Stability *w, us_StabilityResult *res, us_Error *err)
     return -1;
   }
   if (r == US_LOCAL_GLOBAL) return 0;
-  if (r == US_LOCAL_STABLE && !w->set.skip_forces && us_local_forces(w->local, &w->cur, &res->forces))
-    return us_error_set(err, US_ERR_NOMEM, "out of memory storing contact forces"), -1;
+  if (r == US_LOCAL_STABLE && !w->set.skip_forces) {
+    if (us_local_forces(w->local, &w->cur, &res->forces))
+      return us_error_set(err, US_ERR_NOMEM, "out of memory storing contact forces"), -1;
+    /* forces handed out: the full check over them, as for a full solve
+       (the local tests checked only what changed) */
+    t0 = us_now();
+    us_certificate_check_buf(w->s, &w->cur, &res->forces, w->set.cert_tol, w->acc, w->seen,
+                             &res->check);
+    w->info.check_time += us_now() - t0;
+    if (!res->check.ok) {
+      res->verdict = US_UNDECIDED;
+      snprintf(res->note, sizeof res->note, "local tests claimed stable, certificate failed "
+               "(force %.2g torque %.2g cone %.2g sign %.2g)", res->check.max_force_residual,
+               res->check.max_torque_residual, res->check.max_cone_violation,
+               res->check.max_sign_violation);
+      us_local_forget(w->local);
+    }
+  }
   return 1;
 }
 
