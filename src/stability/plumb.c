@@ -159,6 +159,7 @@ int us_plumb_init(us_Plumb *p, const us_Structure *s, const int *inc_start, cons
 }
 
 void us_plumb_free(us_Plumb *p) {
+  us_free(p->frames);
   us_free(p->ent);
   us_free(p->tab);
   us_bitset_free(&p->dep);
@@ -473,19 +474,25 @@ static double check_line(const us_Plumb *p, const us_Bitset *cur, const us_Plumb
   return isfinite(worst) ? worst : INFINITY;
 }
 
-/* The entry of line (u, c): memoised, or routed now (its children first)
- * and checked. Returns it, -2 no route (or a check failed), -1 OOM. */
-static int line_entry(us_Plumb *p, const us_Bitset *cur, int u, const double c[2], int depth,
-                      double tol) {
-  int e = line_find(p, u, c);
-  if (e >= 0) return e;
+/* A line being built by line_entry: its entry so far, and its child
+ * lines (one per movable body below) still to resolve. */
+typedef struct us_PlumbFrame {
+  us_PlumbEntry x;
+  int below[3];          /* the hop's bodies below (for dep) */
+  int nkid, next;        /* child lines, the next one to resolve */
+  int kid[3];
+  double kid_pos[3][2], kid_w[3];
+} us_PlumbFrame;
+
+/* Open a frame for line (u, c): its hop and child lines. 0 no hop. */
+static int open_frame(const us_Plumb *p, const us_Bitset *cur, int u, const double c[2],
+                      us_PlumbFrame *F) {
   Hop h;
   memset(&h, 0, sizeof h);
-  if (depth >= PLUMB_HOPS || !find_hop(p, cur, u, c, &h)) return -2;
-  us_PlumbEntry x;
-  memset(&x, 0, sizeof x);
-  x.body = u, x.pos[0] = c[0], x.pos[1] = c[1], x.n = h.n;
-  for (int q = 0; q < h.n; q++) x.k[q] = h.k[q], x.w[q] = h.w[q];
+  memset(F, 0, sizeof *F);
+  if (!find_hop(p, cur, u, c, &h)) return 0;
+  F->x.body = u, F->x.pos[0] = c[0], F->x.pos[1] = c[1], F->x.n = h.n;
+  for (int q = 0; q < h.n; q++) F->x.k[q] = h.k[q], F->x.w[q] = h.w[q], F->below[q] = h.below[q];
   for (int q = 0; q < h.n; q++) { /* one child line per movable body below (take_hop) */
     int v = h.below[q], first = 1;
     for (int r = 0; r < q; r++) first = first && h.below[r] != v;
@@ -499,23 +506,62 @@ static int line_entry(us_Plumb *p, const us_Bitset *cur, int u, const double c[2
     if (!(w > 0)) continue;
     if (w >= 1.0 - 1e-15) at[0] = c[0], at[1] = c[1];
     else at[0] /= w, at[1] /= w;
-    int ce = line_entry(p, cur, v, at, depth + 1, tol);
-    if (ce < 0) return ce;
-    x.child[x.nchild] = ce, x.cw[x.nchild++] = w;
-    x.level = US_MAX(x.level, p->ent[ce].level + 1);
+    F->kid[F->nkid] = v, F->kid_w[F->nkid] = w;
+    F->kid_pos[F->nkid][0] = at[0], F->kid_pos[F->nkid][1] = at[1];
+    F->nkid++;
   }
+  return 1;
+}
+
+static void attach(const us_Plumb *p, us_PlumbFrame *F, int ce) {
+  F->x.child[F->x.nchild] = ce, F->x.cw[F->x.nchild++] = F->kid_w[F->next++];
+  F->x.level = US_MAX(F->x.level, p->ent[ce].level + 1);
+}
+
+/* Memoise a frame whose children are all resolved, after its check: the
+ * entry, -2 the check failed, -1 OOM. */
+static int close_frame(us_Plumb *p, const us_Bitset *cur, const us_PlumbFrame *F, double tol) {
   if (line_room(p)) return -1;
-  e = p->nent;
-  p->ent[e] = x;
+  int e = p->nent;
+  p->ent[e] = F->x;
   double r = check_line(p, cur, &p->ent[e]);
   if (!(r <= tol)) return -2;
   p->nent++;
   tab_put(p, e);
   p->worst_line = US_MAX(p->worst_line, r);
   p->nnew++;
-  us_bitset_set(&p->dep, u);
-  for (int q = 0; q < h.n; q++)
-    if (!held(p, h.below[q])) us_bitset_set(&p->dep, h.below[q]);
+  us_bitset_set(&p->dep, F->x.body);
+  for (int q = 0; q < F->x.n; q++)
+    if (!held(p, F->below[q])) us_bitset_set(&p->dep, F->below[q]);
+  return e;
+}
+
+/* The entry of line (u, c): memoised, or routed now, its child lines
+ * first (an explicit stack, at most PLUMB_HOPS deep), each checked.
+ * Returns it, -2 no route (or a check failed), -1 OOM. */
+static int line_entry(us_Plumb *p, const us_Bitset *cur, int u, const double c[2], double tol) {
+  int e = line_find(p, u, c), nf = 0;
+  if (e >= 0) return e;
+  if (US_GROW(p->frames, p->cap_frames, 1)) return -1;
+  if (!open_frame(p, cur, u, c, &p->frames[nf++])) return -2;
+  while (nf > 0) {
+    us_PlumbFrame *F = &p->frames[nf - 1];
+    if (F->next < F->nkid) {
+      int v = F->kid[F->next], ce = line_find(p, v, F->kid_pos[F->next]);
+      if (ce >= 0) {
+        attach(p, F, ce);
+        continue;
+      }
+      if (nf >= PLUMB_HOPS) return -2;
+      double at[2] = {F->kid_pos[F->next][0], F->kid_pos[F->next][1]};
+      if (US_GROW(p->frames, p->cap_frames, nf + 1)) return -1;
+      if (!open_frame(p, cur, v, at, &p->frames[nf++])) return -2;
+      continue;
+    }
+    e = close_frame(p, cur, F, tol);
+    if (e < 0) return e;
+    if (--nf > 0) attach(p, &p->frames[nf - 1], e);
+  }
   return e;
 }
 
@@ -576,7 +622,7 @@ int us_plumb_route_lazy(us_Plumb *p, const us_Bitset *cur, const int *added, int
     const us_Body *b = &p->s->bodies[added[q]];
     double c[2];
     us_plumb_horizontal(p, b->com, c);
-    int e = line_entry(p, cur, added[q], c, 0, tol);
+    int e = line_entry(p, cur, added[q], c, tol);
     r = e >= 0 ? (add_pending(p, e, b->mass / p->mass_total) ? -1 : 1) : e == -1 ? -1 : 0;
   }
   if (r != 1) /* take the loads back; the lines checked stay memoised */

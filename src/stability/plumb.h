@@ -87,6 +87,8 @@ typedef struct us_Plumb {
   int *added_e, nadded_e, cap_added_e; /* this route's loads, to take back */
   double *added_l;
   int cap_added_l;
+  struct us_PlumbFrame *frames; /* the lazy route's stack of lines being built */
+  int cap_frames;
   int nnew;              /* lines the last lazy route checked (new entries) */
   double worst_line;     /* their largest hop residual (relative) */
 } us_Plumb;
