@@ -1,11 +1,15 @@
 /* Exact local stability tests: a test costs what the change costs.
  *
  * State: the base B, the last sub-assembly proven stable, with forces
- * fbase (normalized, dim per structure contact). Invariant: fbase is zero
- * on every contact that is not active in B, and fbase holds every body of B
- * in equilibrium inside the cones (each body's residual passed the check
- * when its forces last changed; a body's residual depends only on the
- * forces of its own contacts).
+ * fbase (normalized, dim per structure contact) and the plumb memo's
+ * pending loads (plumb.h, lazy routing). Invariant: fbase plus the pending
+ * loads pushed down their memoised lines is zero on every contact that is
+ * not active in B and holds every body of B in equilibrium inside the
+ * cones (each body's residual passed the check when its forces last
+ * changed, each line when it was memoised; a body's residual depends only
+ * on the forces of its own contacts); every line a pending load reaches
+ * rests on bodies of B. Whatever reads fbase (region LPs, removals, full
+ * solves, forces handed out) first pushes the pending loads down.
  *
  * A test of S (movable bits): added = S \ B, removed = B \ S. The bodies
  * whose equilibrium changes are the seeds D: the added bodies and the
@@ -676,7 +680,8 @@ int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
   int size = min > 1 ? us_bitset_count(cur) : -1; /* counted when needed: O(n / 64) */
   if (size >= 0 && size < min) return US_LOCAL_GLOBAL;
   if (!L->have_base) { /* from the empty set: every body is added (plumb lines can
-                          prove a whole structure, as `check` asks, in O(n h)) */
+                          prove a whole structure, as `check` asks, one visit
+                          per distinct line) */
     memset(L->base.w, 0, (size_t)L->base.nwords * sizeof(uint64_t));
     memset(L->fbase, 0, (size_t)L->s->ncontact * (size_t)L->dim * sizeof(double));
     us_plumb_flush(&L->plumb);
