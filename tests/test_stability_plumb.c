@@ -72,33 +72,56 @@ static int full_check(const us_Structure *s, const us_Bitset *cur, const double 
   return full.ok;
 }
 
-/* Lazy routing (memoised lines): route every movable body at once, then
- * materialize; same contract as route_all below. */
-static int route_all_lazy(const us_Structure *s) {
+/* A router on s from zero forces: the incidence, an empty sub-assembly,
+ * the forces and the movable bodies (all = 1: all present). */
+typedef struct Rig {
   Inc in;
   us_Bitset cur;
   us_Plumb p;
+  double *f, mass;
+  size_t nf;
+  int *added, nadd;
+} Rig;
+
+static int rig_open(Rig *r, const us_Structure *s, int all) {
   double up[3] = {0, 1, 0};
-  size_t nf = (size_t)s->ncontact * 2;
-  double *f = calloc(nf + 1, sizeof(double));
-  int *added = malloc(((size_t)s->nbody + 1) * sizeof(int)), nadd = 0, out = -1;
-  if (!f || !added || inc_build(s, &in) || us_bitset_init(&cur, s->nbody)) return -1;
-  double mass = us_movable_mass(s);
-  if (us_plumb_init(&p, s, in.start, in.list, up, mass)) return -1;
-  for (int i = 0; i < s->nbody; i++)
-    if (!s->bodies[i].fixed) us_bitset_set(&cur, i), added[nadd++] = i;
-  int r = us_plumb_route_lazy(&p, &cur, added, nadd, 1e-9);
-  if (r == 1 && us_plumb_materialize(&p, f) == 0) out = full_check(s, &cur, f, mass) ? 1 : -1;
-  if (r == 0 && us_plumb_materialize(&p, f) == 0) { /* the loads were taken back */
-    out = 0;
-    for (size_t k = 0; k < nf; k++)
-      if (f[k] != 0.0) out = -1, fprintf(stderr, "refused lazy route left a load\n");
-  }
-  us_plumb_free(&p);
-  us_bitset_free(&cur);
-  inc_free(&in);
-  free(f);
-  free(added);
+  memset(r, 0, sizeof *r);
+  r->nf = (size_t)s->ncontact * 2;
+  r->f = calloc(r->nf + 1, sizeof(double));
+  r->added = malloc(((size_t)s->nbody + 1) * sizeof(int));
+  if (!r->f || !r->added || inc_build(s, &r->in) || us_bitset_init(&r->cur, s->nbody)) return -1;
+  r->mass = us_movable_mass(s);
+  if (us_plumb_init(&r->p, s, r->in.start, r->in.list, up, r->mass)) return -1;
+  for (int i = 0; all && i < s->nbody; i++)
+    if (!s->bodies[i].fixed) us_bitset_set(&r->cur, i), r->added[r->nadd++] = i;
+  return 0;
+}
+
+static void rig_close(Rig *r) {
+  us_plumb_free(&r->p);
+  us_bitset_free(&r->cur);
+  inc_free(&r->in);
+  free(r->f);
+  free(r->added);
+}
+
+/* 0 when every force is still zero (a refused route left nothing). */
+static int all_zero(const Rig *r, const char *what) {
+  for (size_t k = 0; k < r->nf; k++)
+    if (r->f[k] != 0.0) return fprintf(stderr, "refused %s route left a force\n", what), -1;
+  return 0;
+}
+
+/* Lazy routing (memoised lines): route every movable body at once, then
+ * materialize; same contract as route_all below. */
+static int route_all_lazy(const us_Structure *s) {
+  Rig g;
+  int out = -1;
+  if (rig_open(&g, s, 1)) return rig_close(&g), -1;
+  int r = us_plumb_route_lazy(&g.p, &g.cur, g.added, g.nadd, 1e-9);
+  if (r >= 0 && us_plumb_materialize(&g.p, g.f) == 0) /* refused: the loads were taken back */
+    out = r == 1 ? (full_check(s, &g.cur, g.f, g.mass) ? 1 : -1) : all_zero(&g, "lazy");
+  rig_close(&g);
   return out;
 }
 
@@ -107,45 +130,22 @@ static int route_all_lazy(const us_Structure *s) {
  * (forces still all zero), -1 a failure (reported). npath: path size.
  * The lazy routing must give the same answer. */
 static int route_all(const us_Structure *s, int *npath) {
-  Inc in;
-  us_Bitset cur;
-  us_Plumb p;
-  double up[3] = {0, 1, 0};
-  size_t nf = (size_t)s->ncontact * 2;
-  double *f = calloc(nf + 1, sizeof(double));
-  int *added = malloc(((size_t)s->nbody + 1) * sizeof(int)), nadd = 0, out = -1;
-  if (!f || !added || inc_build(s, &in) || us_bitset_init(&cur, s->nbody)) return -1;
-  double mass = us_movable_mass(s);
-  if (us_plumb_init(&p, s, in.start, in.list, up, mass)) return -1;
-  for (int i = 0; i < s->nbody; i++)
-    if (!s->bodies[i].fixed) us_bitset_set(&cur, i), added[nadd++] = i;
-  int r = us_plumb_route(&p, &cur, added, nadd, f);
-  *npath = p.npath;
+  Rig g;
+  int out = -1;
+  if (rig_open(&g, s, 1)) return rig_close(&g), -1;
+  int r = us_plumb_route(&g.p, &g.cur, g.added, g.nadd, g.f);
+  *npath = g.p.npath;
   if (r == 0) {
-    out = 0;
-    for (size_t k = 0; k < nf; k++)
-      if (f[k] != 0.0) out = -1, fprintf(stderr, "refused route changed a force\n");
+    out = all_zero(&g, "eager");
   } else if (r == 1) {
     us_CertCheck c;
-    us_certificate_check_bodies(s, &cur, p.path, p.npath, in.start, in.list, f, mass, 1e-9, &c);
-    us_Forces fo = {.ncontact = s->ncontact};
-    fo.contact = malloc((size_t)s->ncontact * sizeof(int));
-    fo.f = malloc(nf * sizeof(double));
-    double w = mass * 9.81;
-    for (int k = 0; k < s->ncontact; k++) fo.contact[k] = k;
-    for (size_t k = 0; k < nf; k++) fo.f[k] = f[k] * w;
-    us_CertCheck full = us_certificate_check(s, &cur, &fo, 1e-9);
-    free(fo.contact);
-    free(fo.f);
-    out = c.ok && full.ok ? 1 : -1;
-    if (out < 0) fprintf(stderr, "routed forces fail the check (force %g torque %g cone %g)\n",
-                         c.max_force_residual, c.max_torque_residual, c.max_cone_violation);
+    us_certificate_check_bodies(s, &g.cur, g.p.path, g.p.npath, g.in.start, g.in.list, g.f,
+                                g.mass, 1e-9, &c);
+    out = c.ok && full_check(s, &g.cur, g.f, g.mass) ? 1 : -1;
+    if (!c.ok) fprintf(stderr, "routed forces fail the path check (force %g torque %g cone %g)\n",
+                       c.max_force_residual, c.max_torque_residual, c.max_cone_violation);
   }
-  us_plumb_free(&p);
-  us_bitset_free(&cur);
-  inc_free(&in);
-  free(f);
-  free(added);
+  rig_close(&g);
   int lazy = route_all_lazy(s);
   if (lazy != out) fprintf(stderr, "lazy routing %d, eager %d\n", lazy, out);
   return lazy == out ? out : -1;
@@ -269,15 +269,8 @@ static void plans_use_plumb_lines(void) {
  * routed over the whole walk stay within a few per body (each line is
  * routed once: O(1) per body, not the path's height). */
 static void lazy_walk(us_Structure *s, int expect_lines_per_body) {
-  Inc in;
-  us_Bitset cur;
-  us_Plumb p;
-  double up[3] = {0, 1, 0};
-  size_t nf = (size_t)s->ncontact * 2;
-  double *f = calloc(nf + 1, sizeof(double));
-  CHECK(f && !inc_build(s, &in) && !us_bitset_init(&cur, s->nbody));
-  double mass = us_movable_mass(s);
-  CHECK(!us_plumb_init(&p, s, in.start, in.list, up, mass));
+  Rig g;
+  CHECK(rig_open(&g, s, 0) == 0);
   int n = s->nbody, *order = malloc((size_t)n * sizeof(int)), lines = 0, ok = 1, steps = 0;
   for (int i = 0; i < n; i++) order[i] = i;
   for (int i = 1; i < n; i++) /* by centre height, insertion sort */
@@ -289,24 +282,21 @@ static void lazy_walk(us_Structure *s, int expect_lines_per_body) {
   for (int q = 0; q < n && ok; q++) {
     int b = order[q];
     if (s->bodies[b].fixed) continue;
-    us_bitset_set(&cur, b);
-    int r = us_plumb_route_lazy(&p, &cur, &b, 1, 1e-9);
-    lines += p.nnew;
+    us_bitset_set(&g.cur, b);
+    int r = us_plumb_route_lazy(&g.p, &g.cur, &b, 1, 1e-9);
+    lines += g.p.nnew;
     if (r != 1) { /* a body with no path down: it leaves, nothing pending changed */
-      us_bitset_clear(&cur, b);
+      us_bitset_clear(&g.cur, b);
       continue;
     }
     if (++steps % 7 == 0 || q == n - 1) /* the certificate so far: pending pushed into f */
-      ok = us_plumb_materialize(&p, f) == 0 && full_check(s, &cur, f, mass);
+      ok = us_plumb_materialize(&g.p, g.f) == 0 && full_check(s, &g.cur, g.f, g.mass);
   }
   CHECK(ok);
   CHECK(steps > 0);
-  printf("lazy walk: %d bodies placed, %d lines routed (%d memoised)\n", steps, lines, p.nent);
+  printf("lazy walk: %d bodies placed, %d lines routed (%d memoised)\n", steps, lines, g.p.nent);
   CHECK_INT(lines, <=, expect_lines_per_body * steps);
-  us_plumb_free(&p);
-  us_bitset_free(&cur);
-  inc_free(&in);
-  free(f);
+  rig_close(&g);
   free(order);
 }
 
