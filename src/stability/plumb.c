@@ -600,13 +600,14 @@ static int heap_pop(us_Plumb *p) {
   return top;
 }
 
-/* Add load to entry e's pending load, logged for a take-back. */
+/* Add load to entry e's pending load, its old value logged for a
+ * take-back (restored, not subtracted: bit for bit). */
 static int add_pending(us_Plumb *p, int e, double load) {
   if (US_GROW(p->added_e, p->cap_added_e, p->nadded_e + 1) ||
       US_GROW(p->added_l, p->cap_added_l, p->nadded_e + 1) || heap_push(p, e))
     return -1;
   p->added_e[p->nadded_e] = e;
-  p->added_l[p->nadded_e++] = load;
+  p->added_l[p->nadded_e++] = p->ent[e].pending;
   p->ent[e].pending += load;
   return 0;
 }
@@ -626,7 +627,7 @@ int us_plumb_route_lazy(us_Plumb *p, const us_Bitset *cur, const int *added, int
     r = e >= 0 ? (add_pending(p, e, b->mass / p->mass_total) ? -1 : 1) : e == -1 ? -1 : 0;
   }
   if (r != 1) /* take the loads back; the lines checked stay memoised */
-    for (int q = p->nadded_e - 1; q >= 0; q--) p->ent[p->added_e[q]].pending -= p->added_l[q];
+    for (int q = p->nadded_e - 1; q >= 0; q--) p->ent[p->added_e[q]].pending = p->added_l[q];
   return r;
 }
 

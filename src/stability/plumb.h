@@ -84,8 +84,8 @@ typedef struct us_Plumb {
   long *tab, tab_cap;    /* hash (body, pos) -> entry + 1, 0 empty */
   us_Bitset dep;
   int *heap, nheap, cap_heap;
-  int *added_e, nadded_e, cap_added_e; /* this route's loads, to take back */
-  double *added_l;
+  int *added_e, nadded_e, cap_added_e; /* this route's entries, to take back */
+  double *added_l;       /* their pending loads before it */
   int cap_added_l;
   struct us_PlumbFrame *frames; /* the lazy route's stack of lines being built */
   int cap_frames;
