@@ -16,9 +16,8 @@ void us_plan_set_test_hook(us_PlanTestHook fn, void *user) {
 /* Verdicts ordered by strength: stable, then unstable, then undecided. */
 static int strength(us_Verdict v) { return v == US_STABLE ? 2 : v == US_UNSTABLE ? 1 : 0; }
 
-us_Status us_plan_stability_test(us_Stability *w, const us_Bitset *node, us_StabilityResult *res,
-                                 us_Error *err) {
-  us_Status st = us_stability_test(w, node, res, err);
+/* The hook on a result of status st, which it may only weaken. */
+static us_Status hooked(us_Status st, const us_Bitset *node, us_StabilityResult *res) {
   if (st || !hook_fn) return st;
   us_Verdict before = res->verdict;
   hook_fn(hook_user, node, res);
@@ -26,12 +25,12 @@ us_Status us_plan_stability_test(us_Stability *w, const us_Bitset *node, us_Stab
   return US_OK;
 }
 
+us_Status us_plan_stability_test(us_Stability *w, const us_Bitset *node, us_StabilityResult *res,
+                                 us_Error *err) {
+  return hooked(us_stability_test(w, node, res, err), node, res);
+}
+
 us_Status us_plan_held_test(us_Stability *w, const us_Bitset *present, const int *reg, int nreg,
                             us_StabilityResult *res, us_Error *err) {
-  us_Status st = us_stability_held(w, present, reg, nreg, res, err);
-  if (st || !hook_fn) return st;
-  us_Verdict before = res->verdict;
-  hook_fn(hook_user, present, res);
-  if (strength(res->verdict) > strength(before)) res->verdict = before;
-  return US_OK;
+  return hooked(us_stability_held(w, present, reg, nreg, res, err), present, res);
 }

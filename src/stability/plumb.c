@@ -318,23 +318,39 @@ static int push_line(us_Plumb *p, int u, const double c[2], double load) {
 /* After hop h of a line (position c, load) on u: the forces, and one line
  * on in each movable body below, at the weighted mean of its points (c
  * itself when one body takes the whole hop). 0 or -1 (OOM). */
-static int take_hop(us_Plumb *p, const Hop *h, int u, const double c[2], double load, double *f) {
-  for (int q = 0; q < h->n; q++)
-    if (add_force(p, h->k[q], u, h->w[q] * load, f)) return -1;
+/* The lines hop h (of a line at c) goes on as: one per movable body
+ * below, its share w[j] of the load at the share-weighted mean of its
+ * points (c itself when one body takes the whole hop). Returns their
+ * number (at most 3). */
+static int hop_children(const us_Plumb *p, const Hop *h, const double c[2], int body[3],
+                        double w[3], double at[3][2]) {
+  int n = 0;
   for (int q = 0; q < h->n; q++) {
     int v = h->below[q], first = 1;
     for (int r = 0; r < q; r++) first = first && h->below[r] != v;
     if (!first || held(p, v)) continue;
-    double w = 0.0, at[2] = {0.0, 0.0};
+    double s = 0.0, x[2] = {0.0, 0.0};
     for (int r = q; r < h->n; r++) {
       if (h->below[r] != v) continue;
-      w += h->w[r];
-      at[0] += h->w[r] * h->pos[r][0], at[1] += h->w[r] * h->pos[r][1];
+      s += h->w[r];
+      x[0] += h->w[r] * h->pos[r][0], x[1] += h->w[r] * h->pos[r][1];
     }
-    if (w >= 1.0 - 1e-15) at[0] = c[0], at[1] = c[1]; /* one body: on the line */
-    else if (w > 0) at[0] /= w, at[1] /= w;
-    mark_body(p, v);
-    if (push_line(p, v, at, w * load)) return -1;
+    if (s >= 1.0 - 1e-15) x[0] = c[0], x[1] = c[1]; /* one body: on the line */
+    else if (s > 0) x[0] /= s, x[1] /= s;
+    body[n] = v, w[n] = s, at[n][0] = x[0], at[n][1] = x[1];
+    n++;
+  }
+  return n;
+}
+
+static int take_hop(us_Plumb *p, const Hop *h, int u, const double c[2], double load, double *f) {
+  for (int q = 0; q < h->n; q++)
+    if (add_force(p, h->k[q], u, h->w[q] * load, f)) return -1;
+  int body[3];
+  double w[3], at[3][2];
+  for (int j = 0, n = hop_children(p, h, c, body, w, at); j < n; j++) {
+    mark_body(p, body[j]);
+    if (push_line(p, body[j], at[j], w[j] * load)) return -1;
   }
   return 0;
 }
@@ -493,21 +509,12 @@ static int open_frame(const us_Plumb *p, const us_Bitset *cur, int u, const doub
   if (!find_hop(p, cur, u, c, &h)) return 0;
   F->x.body = u, F->x.pos[0] = c[0], F->x.pos[1] = c[1], F->x.n = h.n;
   for (int q = 0; q < h.n; q++) F->x.k[q] = h.k[q], F->x.w[q] = h.w[q], F->below[q] = h.below[q];
-  for (int q = 0; q < h.n; q++) { /* one child line per movable body below (take_hop) */
-    int v = h.below[q], first = 1;
-    for (int r = 0; r < q; r++) first = first && h.below[r] != v;
-    if (!first || held(p, v)) continue;
-    double w = 0.0, at[2] = {0.0, 0.0};
-    for (int r = q; r < h.n; r++) {
-      if (h.below[r] != v) continue;
-      w += h.w[r];
-      at[0] += h.w[r] * h.pos[r][0], at[1] += h.w[r] * h.pos[r][1];
-    }
-    if (!(w > 0)) continue;
-    if (w >= 1.0 - 1e-15) at[0] = c[0], at[1] = c[1];
-    else at[0] /= w, at[1] /= w;
-    F->kid[F->nkid] = v, F->kid_w[F->nkid] = w;
-    F->kid_pos[F->nkid][0] = at[0], F->kid_pos[F->nkid][1] = at[1];
+  int body[3];
+  double w[3], at[3][2];
+  for (int j = 0, n = hop_children(p, &h, c, body, w, at); j < n; j++) {
+    if (!(w[j] > 0)) continue; /* no load goes that way */
+    F->kid[F->nkid] = body[j], F->kid_w[F->nkid] = w[j];
+    F->kid_pos[F->nkid][0] = at[j][0], F->kid_pos[F->nkid][1] = at[j][1];
     F->nkid++;
   }
   return 1;

@@ -102,7 +102,9 @@ void us_plumb_free(us_Plumb *p);
  * is 0 in 2D). The local tests measure their footprints in it too. */
 void us_plumb_horizontal(const us_Plumb *p, const double *x, double out[2]);
 
-/* Route the weights of added[0..nadd) (present in cur) down their plumb
+/* The eager routing, each path written out at once: the local tests use
+ * the lazy routing below; this one is its reference in the tests.
+ * Route the weights of added[0..nadd) (present in cur) down their plumb
  * lines, adding to f. 1: routed, f changed, p->path lists every body
  * whose forces changed; 0: some line found no admissible support, f
  * unchanged; -1: OOM, f unchanged. */

@@ -426,6 +426,15 @@ static us_Status run_cones(us_Stability *w, us_StabilityResult *res, us_Error *e
 }
 
 /* Forces of a stable claim into res (newtons), then the certificate. */
+/* A stable claim whose certificate failed the check: undecided, saying so. */
+static void certificate_failed(us_StabilityResult *res, const char *who) {
+  res->verdict = US_UNDECIDED;
+  snprintf(res->note, sizeof res->note,
+           "%s claimed stable, certificate failed (force %.2g torque %.2g cone %.2g sign %.2g)",
+           who, res->check.max_force_residual, res->check.max_torque_residual,
+           res->check.max_cone_violation, res->check.max_sign_violation);
+}
+
 static us_Status certify(us_Stability *w, us_StabilityResult *res, us_Error *err) {
   const us_EqSystem *e = &w->eq;
   int dim = w->s->dim;
@@ -438,13 +447,7 @@ static us_Status certify(us_Stability *w, us_StabilityResult *res, us_Error *err
   us_certificate_check_buf(w->s, &w->cur, &res->forces, w->set.cert_tol, w->acc, w->seen,
                            &res->check);
   w->info.check_time += us_now() - t0;
-  if (!res->check.ok) {
-    res->verdict = US_UNDECIDED;
-    snprintf(res->note, sizeof res->note,
-             "%s claimed stable, certificate failed (force %.2g torque %.2g cone %.2g sign %.2g)",
-             us_method_name(w->be->method), res->check.max_force_residual, res->check.max_torque_residual,
-             res->check.max_cone_violation, res->check.max_sign_violation);
-  }
+  if (!res->check.ok) certificate_failed(res, us_method_name(w->be->method));
   return US_OK;
 }
 
@@ -485,11 +488,7 @@ static int decide_local(us_Stability *w, us_StabilityResult *res, us_Error *err)
                              &res->check);
     w->info.check_time += us_now() - t0;
     if (!res->check.ok) {
-      res->verdict = US_UNDECIDED;
-      snprintf(res->note, sizeof res->note, "local tests claimed stable, certificate failed "
-               "(force %.2g torque %.2g cone %.2g sign %.2g)", res->check.max_force_residual,
-               res->check.max_torque_residual, res->check.max_cone_violation,
-               res->check.max_sign_violation);
+      certificate_failed(res, "local tests");
       us_local_forget(w->local);
     }
   }
