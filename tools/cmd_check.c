@@ -4,23 +4,38 @@
 #include <stdio.h>
 #include <string.h>
 
-static const char help[] =
+static const char head[] =
     "usage: unstack check FILE [options]\n"
     "\n"
     "Test whether the structure in FILE stands (weak stability: contact forces\n"
     "exist that balance gravity on every body, with non-negative normal forces\n"
-    "and friction inside the Coulomb cone). The answer carries a certificate\n"
-    "(the forces) that is re-checked without the solver.\n"
-    "\n"
-    "options:\n"
-    "  --method M        auto (default), lp (CLP), lpsolve, lcp, lcp-reuse, lp-lcp\n"
-    "  --local on|off      exact local tests for lp and auto (default on)\n"
-    "  --contact-tol T   contact detection tolerance (default 1e-6 x size)\n"
-    "  --forces          print the certificate forces\n"
-    "  --time-limit S    stop after S seconds, inside the solver too (undecided)\n"
-    "\n"
+    "and friction in the Coulomb cone). The answer carries a certificate\n"
+    "(the forces) that is re-checked without the solver.\n";
+static const char tail[] =
     "exit: 0 stable, 1 unstable, 2 usage or input error, 3 undecided (a solver\n"
     "limit was hit and no fallback decided, or the certificate failed)\n";
+
+typedef struct CheckArgs {
+  const char *file;
+  int forces, stats;
+} CheckArgs;
+
+/* The command line, by check's option table (optable.h). */
+static int parse(int argc, char **argv, CliCommon *c, CheckArgs *a) {
+  const CliOpt opts[] = {
+      CLI_OPT_METHOD(c),
+      CLI_OPT_LOCAL(c),
+      CLI_OPT_CONTACT_TOL(c),
+      CLI_FLAG("--forces", &a->forces, "print the certificate forces"),
+      CLI_OPT_TIME_LIMIT(&c->stab.time_limit, "stop after S seconds, inside the solver too "
+                         "(undecided)"),
+      CLI_OPT_STATS(&a->stats, "print the test's statistics: time, solver, local tests"),
+      CLI_END};
+  const CliSpec spec = {"check", head, tail, opts, &a->file, 1, "more than one FILE given"};
+  int r = cli_parse(&spec, argc, argv);
+  if (!r && !a->file) return cli_fail("check", "no FILE given (see 'unstack check --help')");
+  return r;
+}
 
 static void print_forces(const us_Structure *s, const us_Forces *f) {
   int dim = s->dim;
@@ -58,36 +73,37 @@ static int report(const us_Structure *s, const us_StabilityResult *res, int forc
   return res->verdict == US_UNDECIDED ? CLI_EXIT_UNDECIDED : CLI_EXIT_NO;
 }
 
+/* --stats: what the test cost and how it was decided. */
+static void print_stats(const us_StabilityInfo *in, double t_setup, double t_test) {
+  printf("statistics:\n  tests %ld; time: command %.6f s (reading included), setup %.6f s, "
+         "test %.6f s, in solver %.6f s, certificate checks %.6f s\n",
+         in->tests, cli_elapsed(), t_setup, t_test, in->solve_time, in->check_time);
+  cli_print_solver_stats(in);
+  cli_print_local_stats(in);
+}
+
 int cmd_check(int argc, char **argv) {
   CliCommon c;
   cli_common_init(&c);
-  const char *file = NULL;
-  int forces = 0;
-  for (int i = 1; i < argc; i++) {
-    int r = cli_common_option("check", argc, argv, &i, &c);
-    if (r < 0) return CLI_EXIT_ERR;
-    if (r) continue;
-    if (cli_is_help(argv[i])) return fputs(help, stdout), CLI_EXIT_OK;
-    if (!strcmp(argv[i], "--forces")) forces = 1;
-    else if (!strcmp(argv[i], "--time-limit")) {
-      const char *v = cli_value("check", argc, argv, &i);
-      if (!v || cli_time_limit("check", v, &c)) return CLI_EXIT_ERR;
-    }
-    else if (argv[i][0] == '-' && argv[i][1]) return cli_fail("check", "unknown option '%s'", argv[i]);
-    else if (file) return cli_fail("check", "more than one FILE given");
-    else file = argv[i];
-  }
-  if (!file) return cli_fail("check", "no FILE given (see 'unstack check --help')");
-  us_Structure *s = cli_load("check", file, &c);
+  CheckArgs a = {NULL, 0, 0};
+  int r = parse(argc, argv, &c, &a);
+  if (r) return r < 0 ? CLI_EXIT_OK : r;
+  us_Structure *s = cli_load("check", a.file, &c);
   if (!s) return CLI_EXIT_ERR;
   us_Error err;
   us_error_clear(&err);
   us_StabilityResult res;
   memset(&res, 0, sizeof res);
   c.stab.time_limit = cli_time_left(c.stab.time_limit);
+  double t0 = us_now();
   us_Stability *w = us_stability_new(s, &c.stab, &err);
+  double t1 = us_now();
   int code = CLI_EXIT_ERR;
-  if (w && us_stability_test_full(w, &res, &err) == US_OK) code = report(s, &res, forces);
+  if (w && us_stability_test_full(w, &res, &err) == US_OK) {
+    double t2 = us_now();
+    code = report(s, &res, a.forces);
+    if (a.stats) print_stats(us_stability_info(w), t1 - t0, t2 - t1);
+  }
   if (code == CLI_EXIT_ERR) cli_error("check", &err);
   us_stability_result_free(&res);
   us_stability_free(w);

@@ -7,7 +7,7 @@
 #include <stdio.h>
 #include <string.h>
 
-static const char help[] =
+static const char head[] =
     "usage: unstack classify FILE [options]\n"
     "\n"
     "Classify the structure in FILE, one line per class with its evidence\n"
@@ -18,18 +18,8 @@ static const char help[] =
     "  top-down     does 'remove the highest body' work? (the source's plain DFS)\n"
     "  sequence     does a one-at-a-time removal order exist? (if not: the blocked bodies)\n"
     "  group        the smallest K such that steps of at most K bodies suffice\n"
-    "  count        connected sub-assemblies containing the ground (bound on tests)\n"
-    "\n"
-    "options:\n"
-    "  --json            print one JSON object instead\n"
-    "  --method M        auto (default), lp (CLP), lpsolve, lcp, lcp-reuse, lp-lcp\n"
-    "  --local on|off      exact local tests for lp and auto (default on)\n"
-    "  --max-tests N     test limit of the top-down DFS (default 20000; 0: none)\n"
-    "  --time-limit S    seconds for the friction bisection and for each search of\n"
-    "                    top-down, sequence and group\n"
-    "                    (default 60; 0: none); a class cut there is unknown\n"
-    "  --contact-tol T   contact detection tolerance (default 1e-6 x size)\n"
-    "\n"
+    "  count        connected sub-assemblies containing the ground (bound on tests)\n";
+static const char tail[] =
     "exit: 0 classified, 2 usage or input error, 3 some class is undecided (a\n"
     "stability test it rests on could not be decided)\n";
 
@@ -42,33 +32,26 @@ typedef struct ClassifyArgs {
   int json;
 } ClassifyArgs;
 
-/* -1: help printed (exit 0); else 0 or CLI_EXIT_ERR. */
+/* -1: help printed (exit 0); else 0 or CLI_EXIT_ERR. By classify's option
+ * table (optable.h). */
 static int parse_args(int argc, char **argv, ClassifyArgs *a) {
-  for (int i = 1; i < argc; i++) {
-    const char *s = argv[i], *v;
-    long n;
-    if (cli_is_help(s)) return fputs(help, stdout), -1;
-    if (!strcmp(s, "--json")) {
-      a->json = 1;
-    } else if (!strcmp(s, "--max-tests")) {
-      if (!(v = cli_value("classify", argc, argv, &i))) return CLI_EXIT_ERR;
-      if (cli_parse_long(v, &n) || n < 0)
-        return cli_fail("classify", "--max-tests needs an integer >= 0, got '%s'", v);
-      a->set.max_tests = n;
-    } else if (!strcmp(s, "--time-limit")) {
-      if (!(v = cli_value("classify", argc, argv, &i))) return CLI_EXIT_ERR;
-      if (cli_parse_double(v, &a->set.time_limit) || a->set.time_limit < 0)
-        return cli_fail("classify", "--time-limit needs a number >= 0, got '%s'", v);
-    } else if (!strcmp(s, "--method") || !strcmp(s, "--contact-tol")) {
-      if (cli_common_option("classify", argc, argv, &i, &a->common) < 0) return CLI_EXIT_ERR;
-    } else if (s[0] == '-' && s[1]) {
-      return cli_fail("classify", "unknown option '%s'", s);
-    } else if (a->file) {
-      return cli_fail("classify", "more than one FILE given");
-    } else {
-      a->file = s;
-    }
-  }
+  CliCommon *c = &a->common;
+  const CliOpt opts[] = {
+      CLI_FLAG("--json", &a->json, "print one JSON object instead"),
+      CLI_OPT_METHOD(c),
+      CLI_OPT_LOCAL(c),
+      CLI_LONG("--max-tests", "N", &a->set.max_tests,
+               "test limit of the top-down DFS (default 20000; 0: none)", CLI_ATLEAST(0),
+               .need = "an integer >= 0"),
+      CLI_REAL("--time-limit", "S", &a->set.time_limit,
+               "seconds for the friction bisection and for each search of top-down, sequence "
+               "and group (default 60; 0: none); a class cut there is unknown",
+               CLI_ATLEAST(0), .need = "a number >= 0"),
+      CLI_OPT_CONTACT_TOL(c),
+      CLI_END};
+  const CliSpec spec = {"classify", head, tail, opts, &a->file, 1, "more than one FILE given"};
+  int r = cli_parse(&spec, argc, argv);
+  if (r) return r;
   if (!a->file) return cli_fail("classify", "no FILE given (see 'unstack classify --help')");
   a->set.stability = a->common.stab;
   return 0;

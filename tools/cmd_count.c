@@ -5,24 +5,15 @@
 #include <stdio.h>
 #include <string.h>
 
-static const char help[] =
+static const char head[] =
     "usage: unstack count FILE [options]\n"
     "\n"
     "Count the subsets S of the movable bodies such that S and the ground form a\n"
     "connected part of the contact graph (fixed bodies count as ground; the empty\n"
     "S counts). A search that skips sub-assemblies not connected to the ground and\n"
     "remembers its verdicts tests no other sub-assembly, none twice: the count\n"
-    "bounds its number of stability tests. Exact, in decimal (docs/count.md).\n"
-    "\n"
-    "options:\n"
-    "  --json            print a JSON object (the count as a string)\n"
-    "  --time-limit S    give up after S seconds (default 10; 0: no limit)\n"
-    "  --max-bodies N    refuse the general algorithm past N bodies connected to\n"
-    "                    the ground (default 10000; trees: up to 1000000)\n"
-    "  --method M        auto (default: tree formula for a tree, else frontier),\n"
-    "                    tree, frontier, contract (deletion-contraction)\n"
-    "  --contact-tol T   contact detection tolerance (default 1e-6 x size)\n"
-    "\n"
+    "bounds its number of stability tests. Exact, in decimal (docs/count.md).\n";
+static const char tail[] =
     "exit: 0 counted, 1 refused (a limit was reached), 2 usage or input error\n";
 
 typedef struct CountArgs {
@@ -32,49 +23,27 @@ typedef struct CountArgs {
   int json;
 } CountArgs;
 
-/* One option of count's own; 0 done, CLI_EXIT_ERR on a bad value. */
-static int own_option(int argc, char **argv, int *i, CountArgs *a) {
-  const char *name = argv[*i], *v;
-  long n;
-  if (!strcmp(name, "--json")) return a->json = 1, 0;
-  if (!(v = cli_value("count", argc, argv, i))) return CLI_EXIT_ERR;
-  if (!strcmp(name, "--time-limit")) {
-    if (cli_parse_double(v, &a->set.time_limit) || a->set.time_limit < 0)
-      return cli_fail("count", "--time-limit needs a number >= 0, got '%s'", v);
-  } else if (!strcmp(name, "--max-bodies")) {
-    if (cli_parse_long(v, &n) || n < 1 || n > 100000000)
-      return cli_fail("count", "--max-bodies needs a positive integer, got '%s'", v);
-    a->set.max_bodies = (int)n;
-  } else if (us_count_method_parse(v, &a->set.method)) { /* --method */
-    return cli_unknown("count", "method", v, cli_count_method_word);
-  }
-  return 0;
-}
-
-static int is_own(const char *a) {
-  return !strcmp(a, "--json") || !strcmp(a, "--time-limit") || !strcmp(a, "--max-bodies") ||
-         !strcmp(a, "--method");
-}
-
-/* -1: help printed (exit 0); else 0 or CLI_EXIT_ERR. */
+/* -1: help printed (exit 0); else 0 or CLI_EXIT_ERR. By count's option
+ * table (optable.h). */
 static int parse_args(int argc, char **argv, CountArgs *a) {
-  for (int i = 1; i < argc; i++) {
-    const char *s = argv[i];
-    if (cli_is_help(s)) return fputs(help, stdout), -1;
-    if (is_own(s)) {
-      if (own_option(argc, argv, &i, a)) return CLI_EXIT_ERR;
-    } else if (!strcmp(s, "--contact-tol")) {
-      if (cli_common_option("count", argc, argv, &i, &a->common) < 0) return CLI_EXIT_ERR;
-    } else if (s[0] == '-' && s[1]) {
-      return cli_fail("count", "unknown option '%s'", s);
-    } else if (a->file) {
-      return cli_fail("count", "more than one FILE given");
-    } else {
-      a->file = s;
-    }
-  }
-  if (!a->file) return cli_fail("count", "no FILE given (see 'unstack count --help')");
-  return 0;
+  const CliOpt opts[] = {
+      CLI_FLAG("--json", &a->json, "print a JSON object (the count as a string)"),
+      CLI_REAL("--time-limit", "S", &a->set.time_limit,
+               "give up after S seconds (default 10; 0: no limit)", CLI_ATLEAST(0),
+               .need = "a number >= 0"),
+      CLI_INT("--max-bodies", "N", &a->set.max_bodies,
+              "refuse the general algorithm past N bodies connected to the ground (default "
+              "10000; trees: up to 1000000)", CLI_RANGE(1, 100000000)),
+      CLI_ENUM("--method", "M", &a->set.method,
+               "auto (default: tree formula for a tree, else frontier), tree, frontier, contract "
+               "(deletion-contraction)",
+               .parse = cli_parse_count_method, .word = cli_count_method_word, .what = "method"),
+      CLI_OPT_CONTACT_TOL(&a->common),
+      CLI_END};
+  const CliSpec spec = {"count", head, tail, opts, &a->file, 1, "more than one FILE given"};
+  int r = cli_parse(&spec, argc, argv);
+  if (!r && !a->file) return cli_fail("count", "no FILE given (see 'unstack count --help')");
+  return r;
 }
 
 static void print_text(const us_Count *c) {

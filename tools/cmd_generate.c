@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char help[] =
+static const char head[] =
     "usage: unstack generate KIND [options] -o FILE\n"
     "\n"
     "kinds and their options:\n"
@@ -63,20 +63,8 @@ static const char help[] =
     "                                         a W x W area (default 4), each resting on the\n"
     "                                         highest boxes under it, kept only if all still\n"
     "                                         stands; stops at N boxes (10) or after\n"
-    "                                         --max-tries discarded drops in a row (fewer)\n"
-    "\n"
-    "common options:\n"
-    "  -o, --output FILE     structure file to write (required)\n"
-    "  --block-width X       block width (default 1; not for random, stacker, random3d)\n"
-    "  --block-height Y      block height (default 0.5; jenga 0.6)\n"
-    "  --block-depth D       3D block depth along y (tower, pyramid3d; default 1)\n"
-    "  --friction MU         Coulomb coefficient written to the file (default 0.5;\n"
-    "                        'infinite': no sliding)\n"
-    "  --density D           density of every block (default 1)\n"
-    "  --max-tries N         random, stacker: attempts before giving up (default 10000);\n"
-    "                        random3d: discarded drops in a row before stopping (200)\n"
-    "\n"
-    "exit: 0 written, 2 usage error (nothing written)\n";
+    "                                         --max-tries discarded drops in a row (fewer)\n";
+static const char tail[] = "exit: 0 written, 2 usage error (nothing written)\n";
 
 typedef us_Structure *(*GenFn)(const us_GenSettings *, us_Error *);
 
@@ -87,35 +75,7 @@ static const struct {
              {"arch", us_gen_arch}, {"random", us_gen_random}, {"stacker", us_gen_stacker},
              {"tower", us_gen_tower}, {"pyramid3d", us_gen_pyramid3d}, {"wall3d", us_gen_wall3d},
              {"dome", us_gen_dome}, {"jenga", us_gen_jenga}, {"random3d", us_gen_random3d}};
-
-/* Integer options and where they go. */
-static int int_option(const char *name, us_GenSettings *g, int **dst) {
-  *dst = !strcmp(name, "--blocks") || !strcmp(name, "--voussoirs") || !strcmp(name, "--courses") ||
-                 !strcmp(name, "--levels")
-             ? &g->n
-         : !strcmp(name, "--segments") ? &g->segments
-         : !strcmp(name, "--rows") ? &g->rows
-         : !strcmp(name, "--cols") ? &g->cols
-         : !strcmp(name, "--max-tries") ? &g->max_tries
-         : !strcmp(name, "--loose") ? &g->loose
-                                          : NULL;
-  return *dst != NULL;
-}
-
-static int real_option(const char *name, us_GenSettings *g, double **dst) {
-  *dst = !strcmp(name, "--block-width") ? &g->width
-         : !strcmp(name, "--block-height") ? &g->height
-         : !strcmp(name, "--radius") ? &g->radius
-         : !strcmp(name, "--thickness") ? &g->thickness
-         : !strcmp(name, "--friction") ? &g->friction
-         : !strcmp(name, "--density") ? &g->density
-         : !strcmp(name, "--block-depth") ? &g->depth
-         : !strcmp(name, "--jitter") ? &g->jitter
-         : !strcmp(name, "--oculus") ? &g->oculus
-         : !strcmp(name, "--chamfer") ? &g->chamfer
-                                         : NULL;
-  return *dst != NULL;
-}
+#define NKINDS ((int)(sizeof kinds / sizeof kinds[0]))
 
 /* Options that are not plain settings, and which defaults were overridden. */
 typedef struct Extra {
@@ -125,49 +85,54 @@ typedef struct Extra {
   int returns_given; /* --returns, for wall3d only */
 } Extra;
 
-static int parse_option(int argc, char **argv, int *i, us_GenSettings *g, Extra *x) {
-  int *ip;
-  double *dp;
-  long n;
-  const char *name = argv[*i], *v;
-  x->height_given |= !strcmp(name, "--block-height");
-  x->tries_given |= !strcmp(name, "--max-tries");
-  if (!strcmp(name, "--cap")) {
-    g->cap = 1;
-  } else if (!strcmp(name, "--remove")) {
-    if (!(x->remove = cli_value("generate", argc, argv, i))) return CLI_EXIT_ERR;
-  } else if (!strcmp(name, "--width")) {
-    if (!(v = cli_value("generate", argc, argv, i))) return CLI_EXIT_ERR;
-    if (cli_parse_double(v, &x->rand_width) || x->rand_width <= 0)
-      return cli_fail("generate", "--width needs a positive number, got '%s'", v);
-  } else if (!strcmp(name, "--returns")) {
-    if (!(v = cli_value("generate", argc, argv, i))) return CLI_EXIT_ERR;
-    if (cli_parse_long(v, &n) || n < 0)
-      return cli_fail("generate", "--returns needs a non-negative integer (bricks), got '%s'", v);
-    if (n > INT_MAX) return cli_fail("generate", "--returns: %s is too large (at most %d)", v, INT_MAX);
-    g->returns = (int)n, x->returns_given = 1;
-  } else if (!strcmp(name, "--seed")) {
-    if (!(v = cli_value("generate", argc, argv, i))) return CLI_EXIT_ERR;
-    if (cli_parse_long(v, &n) || n < 0)
-      return cli_fail("generate", "--seed needs a non-negative integer, got '%s'", v);
-    g->seed = (unsigned long)n;
-  } else if (int_option(name, g, &ip)) {
-    if (!(v = cli_value("generate", argc, argv, i))) return CLI_EXIT_ERR;
-    if (cli_parse_long(v, &n) || n < 1)
-      return cli_fail("generate", "%s needs a positive integer, got '%s'", name, v);
-    if (n > INT_MAX) /* the generator names its own, smaller, limits */
-      return cli_fail("generate", "%s: %s is too large (at most %d)", name, v, INT_MAX);
-    *ip = (int)n;
-  } else if (real_option(name, g, &dp)) {
-    if (!(v = cli_value("generate", argc, argv, i))) return CLI_EXIT_ERR;
-    if (dp == &g->friction && !strcmp(v, "infinite"))
-      *dp = INFINITY; /* no sliding */
-    else if (cli_parse_double(v, dp))
-      return cli_fail("generate", "%s needs a number, got '%s'", name, v);
-  } else {
-    return cli_fail("generate", "unknown option '%s'", name);
-  }
-  return 0;
+/* A positive int setting: "--blocks N" ... */
+#define GEN_INT(n, v, d, h, ...) CLI_INT(n, v, d, h, CLI_ATLEAST(1), __VA_ARGS__)
+
+/* The command line after KIND, by generate's option table (optable.h);
+ * argc 0: print the help on stderr (no KIND given) and return CLI_EXIT_ERR. */
+static int parse(int argc, char **argv, us_GenSettings *g, Extra *x, const char **out) {
+  const CliOpt opts[] = {
+      CLI_TEXT("--output", "FILE", out, "structure file to write (required)", .alias = "-o"),
+      GEN_INT("--blocks", "N", &g->n, "column, tower: blocks; random3d: boxes (10)"),
+      GEN_INT("--rows", "N", &g->rows, "pyramid, pyramid3d, wall, wall3d, random, stacker: rows"),
+      GEN_INT("--cols", "C", &g->cols, "wall, wall3d: bricks per course"),
+      GEN_INT("--voussoirs", "N", &g->n, "arch: voussoirs"),
+      GEN_INT("--courses", "N", &g->n, "dome: courses (10)"),
+      GEN_INT("--segments", "M", &g->segments, "dome: voussoirs per course (12)"),
+      GEN_INT("--levels", "N", &g->n, "jenga: levels (10)"),
+      GEN_INT("--loose", "K", &g->loose, "arch: K unit blocks on the ground beside it"),
+      CLI_REAL("--radius", "R", &g->radius, "arch, dome: (inner) radius"),
+      CLI_REAL("--thickness", "T", &g->thickness, "arch, dome: thickness; wall3d: brick depth "
+               "(0.5)"),
+      CLI_REAL("--oculus", "DEG", &g->oculus, "dome: opening at the top, degrees from the "
+               "vertical (15)"),
+      CLI_FLAG("--cap", &g->cap, "dome: close the opening with one keystone"),
+      CLI_REAL("--chamfer", "F", &g->chamfer, "dome: bevel of the voussoirs' lower side edges"),
+      CLI_INT("--returns", "L", &g->returns, "wall3d: return walls of L bricks at both ends",
+              CLI_ATLEAST(0), .need = "a non-negative integer (bricks)",
+              .given = &x->returns_given),
+      CLI_TEXT("--remove", "L:P,...", &x->remove, "jenga: pieces left out"),
+      CLI_REAL("--jitter", "DEG", &g->jitter, "tower: largest turn of a box about the vertical"),
+      CLI_REAL("--width", "W", &x->rand_width, "random, stacker, random3d: structure width in "
+               "blocks", CLI_POSITIVE, .need = "a positive number"),
+      CLI_ULONG("--seed", "S", &g->seed, "random, stacker, tower, random3d: seed",
+                CLI_ATLEAST(0)),
+      CLI_REAL("--block-width", "X", &g->width, "block width (default 1; not for random, "
+               "stacker, random3d)"),
+      CLI_REAL("--block-height", "Y", &g->height, "block height (default 0.5; jenga 0.6)",
+               .given = &x->height_given),
+      CLI_REAL("--block-depth", "D", &g->depth, "3D block depth along y (tower, pyramid3d; "
+               "default 1)"),
+      CLI_REAL("--friction", "MU", &g->friction, "Coulomb coefficient written to the file "
+               "(default 0.5; 'infinite': no sliding)", .inf_ok = 1),
+      CLI_REAL("--density", "D", &g->density, "density of every block (default 1)"),
+      GEN_INT("--max-tries", "N", &g->max_tries, "random, stacker: attempts before giving up "
+              "(default 10000);\nrandom3d: discarded drops in a row before stopping (200)",
+              .given = &x->tries_given),
+      CLI_END};
+  const CliSpec spec = {"generate", head, tail, opts, NULL, 0, NULL};
+  if (argc == 0) return cli_print_help(&spec, stderr), CLI_EXIT_ERR;
+  return cli_parse(&spec, argc, argv);
 }
 
 /* Parse "L:P,L:P,..." into pairs (*out, 2 ints a piece; freed by the
@@ -219,33 +184,36 @@ static int settle(GenFn fn, us_GenSettings *g, const Extra *x, double block_widt
   return 0;
 }
 
+const char *cli_generator_kind(int i) {
+  return i >= 0 && i < NKINDS ? kinds[i].kind : "unknown";
+}
+
+/* "unknown kind 'castle' (column, pyramid, ...)", with the nearest kind. */
+static int unknown_kind(const char *kind) {
+  char list[256] = "";
+  size_t len = 0;
+  for (int k = 0; k < NKINDS && len < sizeof list; k++)
+    len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", k ? ", " : "", kinds[k].kind);
+  const char *near = cli_nearest_word(kind, cli_generator_kind);
+  if (near) return cli_fail("generate", "unknown kind '%s' (%s); did you mean '%s'?", kind, list, near);
+  return cli_fail("generate", "unknown kind '%s' (%s)", kind, list);
+}
+
 int cmd_generate(int argc, char **argv) {
-  if (argc < 2 || cli_is_help(argv[1])) {
-    fputs(help, argc < 2 ? stderr : stdout);
-    return argc < 2 ? CLI_EXIT_ERR : CLI_EXIT_OK;
-  }
-  GenFn fn = NULL;
-  for (size_t k = 0; k < sizeof kinds / sizeof kinds[0]; k++)
-    if (!strcmp(argv[1], kinds[k].kind)) fn = kinds[k].fn;
-  if (!fn)
-    return cli_fail("generate",
-                    "unknown kind '%s' (column, pyramid, wall, arch, random, stacker, tower, "
-                    "pyramid3d, wall3d, dome, jenga, random3d)",
-                    argv[1]);
   us_GenSettings g = us_gen_default_settings();
   int default_rows = g.rows;
   g.rows = -1; /* to see whether --rows was given */
   double block_width = g.width;
   Extra x = {0, NULL, 0, 0, 0};
   const char *out = NULL;
-  for (int i = 2; i < argc; i++) {
-    if (cli_is_help(argv[i])) return fputs(help, stdout), CLI_EXIT_OK;
-    if (!strcmp(argv[i], "-o") || !strcmp(argv[i], "--output")) {
-      if (!(out = cli_value("generate", argc, argv, &i))) return CLI_EXIT_ERR;
-    } else if (parse_option(argc, argv, &i, &g, &x)) {
-      return CLI_EXIT_ERR;
-    }
-  }
+  if (argc < 2) return parse(0, NULL, &g, &x, &out); /* the help on stderr, exit 2 */
+  if (cli_is_help(argv[1])) return parse(argc, argv, &g, &x, &out) < 0 ? CLI_EXIT_OK : CLI_EXIT_ERR;
+  GenFn fn = NULL;
+  for (size_t k = 0; k < NKINDS; k++)
+    if (!strcmp(argv[1], kinds[k].kind)) fn = kinds[k].fn;
+  if (!fn) return unknown_kind(argv[1]);
+  int r = parse(argc - 1, argv + 1, &g, &x, &out);
+  if (r) return r < 0 ? CLI_EXIT_OK : r;
   if (!out) return cli_fail("generate", "no output given: use -o FILE");
   if (cli_check_output("generate", out, NULL, 0)) return CLI_EXIT_ERR;
   if ((fn == us_gen_pyramid || fn == us_gen_pyramid3d) && g.rows > 0) g.n = g.rows;

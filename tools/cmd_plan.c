@@ -4,42 +4,13 @@
 #include <stdio.h>
 #include <string.h>
 
-static const char help[] =
+static const char head[] =
     "usage: unstack plan FILE [-o PLAN.json] [options]\n"
     "\n"
     "Search the disassembly graph of the structure in FILE for an order that\n"
     "removes one body at a time so that every intermediate structure stands.\n"
-    "Prints a one-line summary; writes the plan (docs/format.md) with -o.\n"
-    "\n"
-    "options:\n"
-    "  -o, --output PLAN   write the plan file (also when no order exists)\n"
-    "  --method M          auto (default), lp (CLP), lpsolve, lcp, lcp-reuse, lp-lcp\n"
-    "  --local on|off        exact local tests for lp and auto (default on)\n"
-    "  --search S          assemble (default): greedy assembly from the ground,\n"
-    "                      complete by the union theorem (at most n(n+1)/2 tests;\n"
-    "                      'none' is a proof); dfs, bfs: the source's searches of\n"
-    "                      the disassembly graph; random: DFS with random order\n"
-    "                      and restarts (--seed)\n"
-    "  --max-group K       steps of up to K bodies at once (assemble); 'auto': the\n"
-    "                      smallest K that gives an order (default 1)\n"
-    "  --removal R         any (default), up (lifted straight up without hitting\n"
-    "                      a body that stays), free (some translation frees it);\n"
-    "                      up and free need a graph search\n"
-    "  --order O           graph searches: highest (default), lowest, input\n"
-    "  --direction D       graph searches: down (disassembly, default) or up\n"
-    "                      (assembly; the plan is its reverse)\n"
-    "  --rules LIST        culling rules of the graph searches: all (default),\n"
-    "                      none, or a comma list of memo, ground, union,\n"
-    "                      components, greedy\n"
-    "  --seed S            random search seed (default 1)\n"
-    "  --max-tests N       stop after N stability tests (status \"limit\")\n"
-    "  --exact-tests N     tests one exact decision may use where the greedy is\n"
-    "                      stuck (default 100000, 0: no limit; status \"limit\")\n"
-    "  --time-limit SEC    stop after SEC seconds (status \"limit\")\n"
-    "  --certificates      store the contact forces of every step in the plan\n"
-    "  --stats             print the search statistics\n"
-    "  --contact-tol T     contact detection tolerance (default 1e-6 x size)\n"
-    "\n"
+    "Prints a one-line summary; writes the plan (docs/format.md) with -o.\n";
+static const char tail[] =
     "exit: 0 order found, 1 no order (none, unstable, limit), 2 usage or input\n"
     "error, 3 undecided (no order found, and none or unstable would rest on\n"
     "stability tests that could not be decided)\n";
@@ -59,11 +30,8 @@ static void print_stats(const us_PlanStats *st) {
   printf("  time: total %.6f s, setup %.6f s, search %.6f s, in solver %.6f s, "
          "certificate checks %.6f s\n",
          st->time_total, st->time_setup, st->time_search, st->time_solve, st->time_check);
-  printf("  memo %zu bytes; LCP pivots %ld, LP fallbacks %ld (re-seeded %ld, LCP skipped %ld), "
-         "reused %ld; cone Lemke settled %ld, failed %ld\n",
-         st->memo_bytes, st->stability.pivots, st->stability.lp_fallbacks,
-         st->stability.lcp_seeds, st->stability.lcp_skips, st->stability.reused,
-         st->stability.cone_lemke, st->stability.cone_lemke_failed);
+  printf("  memo %zu bytes\n", st->memo_bytes);
+  cli_print_solver_stats(&st->stability);
   cli_print_local_stats(&st->stability);
 }
 
@@ -125,64 +93,67 @@ typedef struct {
   int stats;
 } PlanArgs;
 
-static int parse(int argc, char **argv, CliCommon *c, PlanArgs *a) {
-  for (int i = 1; i < argc; i++) {
-    int r = cli_common_option("plan", argc, argv, &i, c);
-    const char *v;
-    long n;
-    if (r < 0) return CLI_EXIT_ERR;
-    if (r) continue;
-    if (cli_is_help(argv[i])) return fputs(help, stdout), -1;
-    if (!strcmp(argv[i], "-o") || !strcmp(argv[i], "--output")) {
-      if (!(a->out = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
-    } else if (!strcmp(argv[i], "--max-tests")) {
-      if (!(v = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
-      if (cli_parse_long(v, &n) || n <= 0)
-        return cli_fail("plan", "--max-tests needs a positive integer, got '%s'", v);
-      c->plan.max_tests = n;
-    } else if (!strcmp(argv[i], "--time-limit")) {
-      if (!(v = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
-      if (cli_parse_double(v, &c->plan.time_limit) || c->plan.time_limit <= 0)
-        return cli_fail("plan", "--time-limit needs a positive number of seconds, got '%s'", v);
-    } else if (!strcmp(argv[i], "--max-group")) {
-      if (!(v = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
-      if (!strcmp(v, "auto")) c->plan.max_group = 0;
-      else if (cli_parse_long(v, &n) || n < 1 || n > 64)
-        return cli_fail("plan", "--max-group needs 'auto' or an integer from 1 to 64, got '%s'", v);
-      else c->plan.max_group = (int)n;
-    } else if (!strcmp(argv[i], "--removal")) {
-      if (!(v = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
-      if (us_removal_parse(v, &c->plan.removal))
-        return cli_unknown("plan", "removal", v, cli_removal_word);
-    } else if (!strcmp(argv[i], "--rules")) {
-      if (!(v = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
-      if (us_rules_parse(v, &c->plan.rules))
-        return cli_fail("plan", "unknown rules '%s' (all, none, or a comma list of memo, "
-                        "ground, union, components, greedy)", v);
-    } else if (!strcmp(argv[i], "--seed")) {
-      if (!(v = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
-      if (cli_parse_long(v, &n) || n < 0)
-        return cli_fail("plan", "--seed needs a non-negative integer, got '%s'", v);
-      c->plan.seed = (unsigned long)n;
-    } else if (!strcmp(argv[i], "--exact-tests")) {
-      if (!(v = cli_value("plan", argc, argv, &i))) return CLI_EXIT_ERR;
-      if (cli_parse_long(v, &n) || n < 0)
-        return cli_fail("plan", "--exact-tests needs a non-negative integer (0: no limit), got '%s'", v);
-      c->plan.max_exact_tests = n;
-    } else if (!strcmp(argv[i], "--certificates")) {
-      c->plan.certificates = 1;
-    } else if (!strcmp(argv[i], "--stats")) {
-      a->stats = 1;
-    } else if (argv[i][0] == '-' && argv[i][1]) {
-      return cli_fail("plan", "unknown option '%s'", argv[i]);
-    } else if (a->file) {
-      return cli_fail("plan", "more than one FILE given");
-    } else {
-      a->file = argv[i];
-    }
-  }
-  if (!a->file) return cli_fail("plan", "no FILE given (see 'unstack plan --help')");
+/* --max-group K: 'auto' (0) or 1..64. */
+static int set_max_group(const char *v, void *dst, const char *cmd) {
+  long n;
+  if (!strcmp(v, "auto")) return *(int *)dst = 0, 0;
+  if (cli_parse_long(v, &n) || n < 1 || n > 64)
+    return cli_fail(cmd, "--max-group needs 'auto' or an integer from 1 to 64, got '%s'", v);
+  return *(int *)dst = (int)n, 0;
+}
+
+static int set_rules(const char *v, void *dst, const char *cmd) {
+  if (us_rules_parse(v, dst))
+    return cli_fail(cmd, "unknown rules '%s' (all, none, or a comma list of memo, ground, union, "
+                    "components, greedy)", v);
   return 0;
+}
+
+/* The command line, by plan's option table (optable.h). */
+static int parse(int argc, char **argv, CliCommon *c, PlanArgs *a) {
+  us_PlanSettings *p = &c->plan;
+  const CliOpt opts[] = {
+      CLI_TEXT("--output", "PLAN", &a->out, "write the plan file (also when no order exists)",
+               .alias = "-o"),
+      CLI_OPT_METHOD(c),
+      CLI_OPT_LOCAL(c),
+      CLI_OPT_SEARCH(c),
+      CLI_CALL("--max-group", "K", &p->max_group, set_max_group,
+               "steps of up to K bodies at once (assemble); 'auto': the smallest K that gives an "
+               "order (default 1)"),
+      CLI_ENUM("--removal", "R", &p->removal,
+               "any (default), up (lifted straight up without hitting a body that stays), free "
+               "(some translation frees it); up and free need a graph search",
+               .parse = cli_parse_removal, .word = cli_removal_word, .what = "removal"),
+      CLI_OPT_ORDER(c),
+      CLI_OPT_DIRECTION(c),
+      CLI_CALL("--rules", "LIST", &p->rules, set_rules,
+               "culling rules of the graph searches: all (default), none, or a comma list of "
+               "memo, ground, union, components, greedy"),
+      CLI_ULONG("--seed", "S", &p->seed, "random search seed (default 1)", CLI_ATLEAST(0)),
+      CLI_LONG("--max-tests", "N", &p->max_tests, "stop after N stability tests (status "
+               "\"limit\")", CLI_ATLEAST(1)),
+      CLI_LONG("--exact-tests", "N", &p->max_exact_tests,
+               "tests one exact decision may use where the greedy is stuck (default 100000, 0: "
+               "no limit; status \"limit\")", CLI_ATLEAST(0),
+               .need = "a non-negative integer (0: no limit)"),
+      CLI_OPT_TIME_LIMIT(&p->time_limit, "stop after S seconds (status \"limit\")"),
+      CLI_FLAG("--certificates", &p->certificates, "store the contact forces of every step in "
+               "the plan"),
+      CLI_OPT_STATS(&a->stats, "print the search statistics"),
+      CLI_OPT_CONTACT_TOL(c),
+      CLI_END};
+  const CliSpec spec = {"plan", head, tail, opts, &a->file, 1, "more than one FILE given"};
+  int r = cli_parse(&spec, argc, argv);
+  if (!r && !a->file) return cli_fail("plan", "no FILE given (see 'unstack plan --help')");
+  return r;
+}
+
+/* Which way the search goes, for the progress line. */
+static CliProgressMode progress_mode(const us_PlanSettings *p) {
+  return p->search != US_SEARCH_ASSEMBLE && p->direction == US_DIR_DOWN
+             ? CLI_PROGRESS_REMOVE
+             : CLI_PROGRESS_BUILD;
 }
 
 int cmd_plan(int argc, char **argv) {
@@ -191,11 +162,11 @@ int cmd_plan(int argc, char **argv) {
   PlanArgs a = {NULL, NULL, 0};
   int r = parse(argc, argv, &c, &a);
   if (r) return r < 0 ? CLI_EXIT_OK : r;
-  cli_progress_on("plan", &c);
-  c.plan.stability = c.stab;
   if (a.out && cli_check_output("plan", a.out, &a.file, 1)) return CLI_EXIT_ERR;
   us_Structure *s = cli_load("plan", a.file, &c);
   if (!s) return CLI_EXIT_ERR;
+  cli_progress_on("plan", &c, progress_mode(&c.plan), us_structure_movable_count(s));
+  c.plan.stability = c.stab;
   us_Error err;
   us_error_clear(&err);
   us_Plan p;

@@ -15,7 +15,7 @@
 #include <stdio.h>
 #include <string.h>
 
-static const char help[] =
+static const char head[] =
     "usage: unstack render FILE [--plan PLAN.json] [--forces] -o OUT.svg|OUT.png\n"
     "       unstack render FILE [--plan PLAN.json] --html -o OUT.html\n"
     "\n"
@@ -24,27 +24,8 @@ static const char help[] =
     "structure stands), bodies coloured and numbered by their removal step when a\n"
     "plan is given (with a legend), bodies that cannot be removed (a plan with\n"
     "status none) hatched red, contact points, and with --forces the certificate\n"
-    "forces of the full structure as arrows scaled to the largest.\n"
-    "\n"
-    "options:\n"
-    "  -o, --output OUT      output file (required); .svg or .png picks the format\n"
-    "  --format svg|png|html the format, whatever the output's name\n"
-    "  --html                the interactive viewer, one self-contained page (also\n"
-    "                        chosen by an output name ending in .html; docs/viewer.md)\n"
-    "  --plan PLAN.json      colour and number bodies by removal order\n"
-    "  --forces              draw the contact forces that hold the structure\n"
-    "  --method M            backend for the stability test (default auto)\n"
-    "  --time-limit S        limit of the stability test (default 10 s)\n"
-    "  --title TEXT          the title line (default: file, bodies, status)\n"
-    "  --no-contacts         do not mark contact points\n"
-    "  --no-labels           do not write body ids\n"
-    "  --width PX            picture width in pixels (default 800; PNG at most 16384)\n"
-    "  --height PX           picture height (default: as the drawing needs; a PNG\n"
-    "                        stays within 16384 px a side and 64 million pixels)\n"
-    "  --view AZ,EL          3D: azimuth and elevation of the view in degrees\n"
-    "                        (default 35,25; EL in [-90, 90]; docs/render.md)\n"
-    "  --contact-tol T       contact detection tolerance\n"
-    "\n"
+    "forces of the full structure as arrows scaled to the largest.\n";
+static const char tail[] =
     "exit: 0 written, 1 --forces given but the structure does not stand, or --html\n"
     "and verify finds the order invalid (page written, the failing step in red),\n"
     "3 --forces given but the test is undecided (1 and 3: written without forces),\n"
@@ -65,18 +46,13 @@ static const struct {
 typedef struct {
   const char *file, *out, *plan, *title;
   int forces, time_limit_given;
-  Format format;
+  int format; /* a Format */
   us_RenderSettings r;
 } RenderArgs;
 
-static int size_option(const char *opt, const char *v, double *out) {
-  if (cli_parse_double(v, out) || *out < 16 || *out > 100000)
-    return cli_fail("render", "%s needs a number of pixels in [16, 100000], got '%s'", opt, v);
-  return 0;
-}
-
 /* --view AZ,EL: two numbers, the elevation in [-90, 90]. */
-static int view_option(const char *v, us_RenderSettings *r) {
+static int set_view(const char *v, void *dst, const char *cmd) {
+  us_RenderSettings *r = dst;
   char buf[64];
   const char *comma = strchr(v, ',');
   size_t n = comma ? (size_t)(comma - v) : 0;
@@ -84,61 +60,51 @@ static int view_option(const char *v, us_RenderSettings *r) {
   if (!comma || n >= sizeof buf || cli_parse_double(buf, &r->view_az) ||
       cli_parse_double(comma + 1, &r->view_el) || !(fabs(r->view_az) <= 3600.0) ||
       !(fabs(r->view_el) <= 90.0))
-    return cli_fail("render", "--view needs AZ,EL in degrees (azimuth in [-3600, 3600], "
+    return cli_fail(cmd, "--view needs AZ,EL in degrees (azimuth in [-3600, 3600], "
                     "elevation in [-90, 90]), got '%s'", v);
   return 0;
 }
 
-static int format_option(const char *v, Format *f) {
+static int set_format(const char *v, void *dst, const char *cmd) {
   for (int i = 0; i < NFORMATS; i++)
-    if (!strcmp(v, kFormats[i].name)) return *f = kFormats[i].f, 0;
-  return cli_fail("render", "unknown --format '%s' (svg, png, html)", v);
+    if (!strcmp(v, kFormats[i].name)) return *(int *)dst = (int)kFormats[i].f, 0;
+  return cli_fail(cmd, "unknown --format '%s' (svg, png, html)", v);
 }
 
-/* Options with a value; 1 when argv[*i] is not one of them. */
-static int value_option(int argc, char **argv, int *i, CliCommon *c, RenderArgs *a) {
-  const char *o = argv[*i], *v;
-  if (strcmp(o, "-o") && strcmp(o, "--output") && strcmp(o, "--plan") && strcmp(o, "--width") &&
-      strcmp(o, "--height") && strcmp(o, "--format") && strcmp(o, "--title") &&
-      strcmp(o, "--time-limit") && strcmp(o, "--view"))
-    return 1;
-  if (!(v = cli_value("render", argc, argv, i))) return CLI_EXIT_ERR;
-  if (!strcmp(o, "-o") || !strcmp(o, "--output")) a->out = v;
-  else if (!strcmp(o, "--plan")) a->plan = v;
-  else if (!strcmp(o, "--title")) a->title = v;
-  else if (!strcmp(o, "--width")) return size_option(o, v, &a->r.width_px);
-  else if (!strcmp(o, "--height")) return size_option(o, v, &a->r.height_px);
-  else if (!strcmp(o, "--format")) return format_option(v, &a->format);
-  else if (!strcmp(o, "--view")) return view_option(v, &a->r);
-  else if (cli_time_limit("render", v, c)) return CLI_EXIT_ERR;
-  else a->time_limit_given = 1;
-  return 0;
-}
-
+/* The command line, by render's option table (optable.h). */
 static int parse(int argc, char **argv, CliCommon *c, RenderArgs *a) {
-  for (int i = 1; i < argc; i++) {
-    int r = cli_common_option("render", argc, argv, &i, c);
-    if (r < 0) return CLI_EXIT_ERR;
-    if (r) continue;
-    if (cli_is_help(argv[i])) return fputs(help, stdout), -1;
-    if ((r = value_option(argc, argv, &i, c, a)) != 1) {
-      if (r) return r;
-    } else if (!strcmp(argv[i], "--html")) {
-      a->format = FMT_HTML;
-    } else if (!strcmp(argv[i], "--forces")) {
-      a->forces = 1;
-    } else if (!strcmp(argv[i], "--no-contacts")) {
-      a->r.show_contacts = 0;
-    } else if (!strcmp(argv[i], "--no-labels")) {
-      a->r.show_labels = 0;
-    } else if (argv[i][0] == '-' && argv[i][1]) {
-      return cli_fail("render", "unknown option '%s'", argv[i]);
-    } else if (a->file) {
-      return cli_fail("render", "more than one FILE given");
-    } else {
-      a->file = argv[i];
-    }
-  }
+  const CliOpt opts[] = {
+      CLI_TEXT("--output", "OUT", &a->out, "output file (required); .svg or .png picks the format",
+               .alias = "-o"),
+      CLI_CALL("--format", "svg|png|html", &a->format, set_format,
+               "the format, whatever the output's name"),
+      CLI_FLAG_VAL("--html", &a->format, FMT_HTML,
+                   "the interactive viewer, one self-contained page (also chosen by an output "
+                   "name ending in .html; docs/viewer.md)"),
+      CLI_TEXT("--plan", "PLAN.json", &a->plan, "colour and number bodies by removal order"),
+      CLI_FLAG("--forces", &a->forces, "draw the contact forces that hold the structure"),
+      CLI_OPT_METHOD(c),
+      CLI_OPT_LOCAL(c),
+      CLI_OPT_TIME_LIMIT(&c->stab.time_limit, "limit of the stability test (default 10 s)",
+                         .given = &a->time_limit_given),
+      CLI_TEXT("--title", "TEXT", &a->title, "the title line (default: file, bodies, status)"),
+      CLI_FLAG_VAL("--no-contacts", &a->r.show_contacts, 0, "do not mark contact points"),
+      CLI_FLAG_VAL("--no-labels", &a->r.show_labels, 0, "do not write body ids"),
+      CLI_REAL("--width", "PX", &a->r.width_px,
+               "picture width in pixels (default 800; PNG at most 16384)", CLI_RANGE(16, 100000),
+               .need = "a number of pixels in [16, 100000]"),
+      CLI_REAL("--height", "PX", &a->r.height_px,
+               "picture height (default: as the drawing needs; a PNG stays within 16384 px a "
+               "side and 64 million pixels)", CLI_RANGE(16, 100000),
+               .need = "a number of pixels in [16, 100000]"),
+      CLI_CALL("--view", "AZ,EL", &a->r, set_view,
+               "3D: azimuth and elevation of the view in degrees (default 35,25; EL in [-90, "
+               "90]; docs/render.md)"),
+      CLI_OPT_CONTACT_TOL(c),
+      CLI_END};
+  const CliSpec spec = {"render", head, tail, opts, &a->file, 1, "more than one FILE given"};
+  int r = cli_parse(&spec, argc, argv);
+  if (r) return r;
   if (!a->file) return cli_fail("render", "no FILE given (see 'unstack render --help')");
   if (!a->out) return cli_fail("render", "no output given: use -o OUT.svg or -o OUT.png");
   return 0;
@@ -157,7 +123,7 @@ static int pick_format(RenderArgs *a) {
   const char *base = strrchr(a->out, '/'), *dot = strrchr(base ? base : a->out, '.');
   if (!dot) return a->format = FMT_SVG, 0;
   for (int i = 0; i < NFORMATS; i++)
-    if (same_ext(dot, kFormats[i].ext)) return a->format = kFormats[i].f, 0;
+    if (same_ext(dot, kFormats[i].ext)) return a->format = (int)kFormats[i].f, 0;
   return cli_fail("render", "cannot tell the picture format from '%s': name it .svg, .png or "
                   ".html, or give --format svg|png|html", a->out);
 }

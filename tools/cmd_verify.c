@@ -4,22 +4,32 @@
 #include <stdio.h>
 #include <string.h>
 
-static const char help[] =
+static const char head[] =
     "usage: unstack verify FILE PLAN.json [options]\n"
     "\n"
     "Re-test the structure in FILE and the remainder after every removal of the\n"
     "plan, each with a fresh stability test whose forces are re-checked without\n"
-    "the solver. Names the first step after which the remainder does not stand.\n"
-    "\n"
-    "options:\n"
-    "  --method M        auto (default), lp (CLP), lpsolve, lcp, lcp-reuse, lp-lcp\n"
-    "  --local on|off      exact local tests for lp and auto (default on)\n"
-    "  --time-limit S    stop after S seconds, inside the solver too (undecided)\n"
-    "  --contact-tol T   contact detection tolerance (default 1e-6 x size)\n"
-    "\n"
+    "the solver. Names the first step after which the remainder does not stand.\n";
+static const char tail[] =
     "exit: 0 every step stands and all bodies are removed, 1 not, 2 usage or input\n"
     "error, 3 undecided (a step's test could not be decided and no later step\n"
     "falls)\n";
+
+/* The command line, by verify's option table (optable.h): files[0] the
+ * structure, files[1] the plan. */
+static int parse(int argc, char **argv, CliCommon *c, const char **files) {
+  const CliOpt opts[] = {
+      CLI_OPT_METHOD(c),
+      CLI_OPT_LOCAL(c),
+      CLI_OPT_TIME_LIMIT(&c->stab.time_limit, "stop after S seconds, inside the solver too "
+                         "(undecided)"),
+      CLI_OPT_CONTACT_TOL(c),
+      CLI_END};
+  const CliSpec spec = {"verify", head, tail, opts, files, 2, "too many arguments"};
+  int r = cli_parse(&spec, argc, argv);
+  if (!r && !files[1]) return cli_fail("verify", "need FILE and PLAN.json (see 'unstack verify --help')");
+  return r;
+}
 
 /* A test that could not be decided: "step k: undecided (reason)". */
 static int report_undecided(const us_Structure *s, const us_PlanFile *pf,
@@ -89,7 +99,7 @@ static int check_removals(const us_Structure *s, const us_PlanFile *pf, us_Error
 /* us_verify_steps with the progress line (on a terminal). */
 static us_Status verify_with_progress(const us_Structure *s, CliCommon *c, const us_PlanFile *pf,
                                       us_VerifyReport *rep, us_Error *err) {
-  cli_progress_on("verify", c);
+  cli_progress_on("verify", c, CLI_PROGRESS_STEPS, pf->ngroups);
   c->stab.time_limit = cli_time_left(c->stab.time_limit);
   us_Status st = us_verify_steps(s, &c->stab, pf->order, pf->n, pf->group_start, pf->ngroups,
                                  rep, err);
@@ -101,22 +111,8 @@ int cmd_verify(int argc, char **argv) {
   CliCommon c;
   cli_common_init(&c);
   const char *files[2] = {NULL, NULL};
-  int nfiles = 0;
-  for (int i = 1; i < argc; i++) {
-    int r = cli_common_option("verify", argc, argv, &i, &c);
-    if (r < 0) return CLI_EXIT_ERR;
-    if (r) continue;
-    if (cli_is_help(argv[i])) return fputs(help, stdout), CLI_EXIT_OK;
-    if (!strcmp(argv[i], "--time-limit")) {
-      const char *v = cli_value("verify", argc, argv, &i);
-      if (!v || cli_time_limit("verify", v, &c)) return CLI_EXIT_ERR;
-      continue;
-    }
-    if (argv[i][0] == '-' && argv[i][1]) return cli_fail("verify", "unknown option '%s'", argv[i]);
-    if (nfiles == 2) return cli_fail("verify", "too many arguments");
-    files[nfiles++] = argv[i];
-  }
-  if (nfiles < 2) return cli_fail("verify", "need FILE and PLAN.json (see 'unstack verify --help')");
+  int r = parse(argc, argv, &c, files);
+  if (r) return r < 0 ? CLI_EXIT_OK : r;
   us_Structure *s = cli_load("verify", files[0], &c);
   if (!s) return CLI_EXIT_ERR;
   us_Error err;

@@ -9,22 +9,32 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char usage[] =
-    "usage: unstack COMMAND [options]\n"
-    "\n"
-    "Plan how to take a structure of rigid blocks apart so that it never collapses.\n"
-    "\n"
-    "commands:\n"
-    "  check FILE      does the structure stand? (exit 0 stable, 1 unstable)\n"
-    "  plan FILE       find a stable unstacking order (exit 0 found, 1 not)\n"
-    "  verify FILE PLAN  re-check every step of a plan (exit 0 valid, 1 not)\n"
-    "  render FILE     draw the structure (and a plan) as SVG\n"
-    "  generate KIND   write a generated structure (column, pyramid, wall, arch, random)\n"
-    "  count FILE      count the sub-assemblies connected to the ground (exit 0 exact, 1 refused)\n"
-    "  classify FILE   stands, friction, top-down, one at a time, smallest group K (exit 0)\n"
-    "  import-svg SVG  turn a drawing (Inkscape, Illustrator) into a structure file\n"
-    "\n"
-    "Run 'unstack COMMAND --help' for a command's options. Exit code 2: usage or input error.\n";
+/* The top-level help; generate's kinds come from its table. */
+static void usage(FILE *f) {
+  fputs("usage: unstack COMMAND [options]\n"
+        "\n"
+        "Plan how to take a structure of rigid blocks apart so that it never collapses.\n"
+        "\n"
+        "commands:\n"
+        "  check FILE      does the structure stand? (exit 0 stable, 1 unstable)\n"
+        "  plan FILE       find a stable unstacking order (exit 0 found, 1 not)\n"
+        "  verify FILE PLAN  re-check every step of a plan (exit 0 valid, 1 not)\n"
+        "  render FILE     draw the structure (and a plan) as SVG, PNG or an HTML viewer\n"
+        "  generate KIND   write a generated structure; KIND:\n                 ", f);
+  for (int k = 0, x = 17; strcmp(cli_generator_kind(k), "unknown"); k++) {
+    const char *w = cli_generator_kind(k);
+    if (k && x + 2 + (int)strlen(w) > 79) fputs(",\n                 ", f), x = 17;
+    else if (k) fputs(", ", f), x += 2;
+    x += fprintf(f, "%s", w);
+  }
+  fputs("\n"
+        "  count FILE      count the sub-assemblies connected to the ground (exit 0 exact, 1 refused)\n"
+        "  classify FILE   stands, friction, top-down, one at a time, smallest group K (exit 0)\n"
+        "  import-svg SVG  turn a drawing (Inkscape, Illustrator) into a structure file\n"
+        "\n"
+        "Run 'unstack COMMAND --help' for a command's options. Exit code 2: usage or input error.\n",
+        f);
+}
 
 int cli_fail(const char *cmd, const char *fmt, ...) {
   fprintf(stderr, "unstack %s: ", cmd);
@@ -85,19 +95,27 @@ int main(int argc, char **argv) {
               {"count", cmd_count}, {"classify", cmd_classify},
               {"import-svg", cmd_import_svg}};
   if (argc < 2) {
-    fputs(usage, stderr);
+    usage(stderr);
     return CLI_EXIT_ERR;
   }
   if (cli_is_help(argv[1])) {
-    fputs(usage, stdout);
+    usage(stdout);
     return CLI_EXIT_OK;
   }
   if (!strcmp(argv[1], "--version")) {
     printf("unstack %s\n", US_VERSION);
     return CLI_EXIT_OK;
   }
-  for (size_t i = 0; i < sizeof cmds / sizeof cmds[0]; i++)
+  enum { NCMDS = sizeof cmds / sizeof cmds[0] };
+  const char *names[NCMDS];
+  for (size_t i = 0; i < NCMDS; i++) {
     if (!strcmp(argv[1], cmds[i].name)) return cmds[i].fn(argc - 1, argv + 1);
-  fprintf(stderr, "unstack: unknown command '%s'\n\n%s", argv[1], usage);
+    names[i] = cmds[i].name;
+  }
+  const char *near = cli_nearest(argv[1], names, NCMDS);
+  fprintf(stderr, "unstack: unknown command '%s'", argv[1]);
+  if (near) fprintf(stderr, " (did you mean '%s'?)", near);
+  fputs("\n\n", stderr);
+  usage(stderr);
   return CLI_EXIT_ERR;
 }

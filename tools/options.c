@@ -1,5 +1,6 @@
-/* Option values shared by several subcommands: enum names and the
- * structure-loading options. */
+/* What several subcommands share: enum words and parsers for the option
+ * tables, structure loading, the statistics lines of --stats, the progress
+ * line and the command's clock. */
 #include "options.h"
 
 #include <math.h>
@@ -17,57 +18,18 @@ const char *cli_direction_word(int i) { return us_direction_name((us_Direction)i
 const char *cli_removal_word(int i) { return us_removal_name((us_Removal)i); }
 const char *cli_count_method_word(int i) { return us_count_method_name((us_CountMethod)i); }
 
-int cli_unknown(const char *cmd, const char *what, const char *value, CliWord word) {
-  char list[200] = "";
-  size_t len = 0;
-  for (int i = 0; i < 32 && strcmp(word(i), "unknown") && len < sizeof list; i++)
-    len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", i ? ", " : "", word(i));
-  return cli_fail(cmd, "unknown %s '%s' (%s)", what, value, list);
-}
+/* Enum values for the option tables: the library's parsers, typed. */
+int cli_parse_method(const char *v, void *dst) { return us_method_parse(v, dst); }
+int cli_parse_search(const char *v, void *dst) { return us_search_parse(v, dst); }
+int cli_parse_order(const char *v, void *dst) { return us_order_parse(v, dst); }
+int cli_parse_direction(const char *v, void *dst) { return us_direction_parse(v, dst); }
+int cli_parse_removal(const char *v, void *dst) { return us_removal_parse(v, dst); }
+int cli_parse_count_method(const char *v, void *dst) { return us_count_method_parse(v, dst); }
 
-/* Returns 1 if argv[*i] was a common option (consumed), 0 if not, -1 on a
- * bad value (message printed). */
-int cli_common_option(const char *cmd, int argc, char **argv, int *i, CliCommon *c) {
-  const char *a = argv[*i], *v;
-  if (!strcmp(a, "--method")) {
-    if (!(v = cli_value(cmd, argc, argv, i))) return -1;
-    us_Method m;
-    if (us_method_parse(v, &m))
-      return cli_unknown(cmd, "method", v, cli_method_word), -1;
-    c->stab.method = m;
-    return 1;
-  }
-  if (!strcmp(a, "--local")) {
-    if (!(v = cli_value(cmd, argc, argv, i))) return -1;
-    if (strcmp(v, "on") && strcmp(v, "off"))
-      return cli_fail(cmd, "--local takes on or off (got '%s')", v), -1;
-    c->stab.local = strcmp(v, "on") ? -1 : 1;
-    return 1;
-  }
-  if (!strcmp(a, "--contact-tol")) {
-    if (!(v = cli_value(cmd, argc, argv, i))) return -1;
-    if (cli_parse_double(v, &c->contact_tol) || c->contact_tol <= 0)
-      return cli_fail(cmd, "--contact-tol needs a positive number, got '%s'", v), -1;
-    return 1;
-  }
-  if (!strcmp(a, "--search")) {
-    if (!(v = cli_value(cmd, argc, argv, i))) return -1;
-    if (us_search_parse(v, &c->plan.search))
-      return cli_unknown(cmd, "search", v, cli_search_word), -1;
-    return 1;
-  }
-  if (!strcmp(a, "--order")) {
-    if (!(v = cli_value(cmd, argc, argv, i))) return -1;
-    if (us_order_parse(v, &c->plan.order))
-      return cli_unknown(cmd, "order", v, cli_order_word), -1;
-    return 1;
-  }
-  if (!strcmp(a, "--direction")) {
-    if (!(v = cli_value(cmd, argc, argv, i))) return -1;
-    if (us_direction_parse(v, &c->plan.direction))
-      return cli_unknown(cmd, "direction", v, cli_direction_word), -1;
-    return 1;
-  }
+int cli_set_local(const char *v, void *dst, const char *cmd) {
+  if (strcmp(v, "on") && strcmp(v, "off"))
+    return cli_fail(cmd, "--local takes on or off (got '%s')", v);
+  *(int *)dst = strcmp(v, "on") ? -1 : 1;
   return 0;
 }
 
@@ -83,6 +45,13 @@ us_Structure *cli_load(const char *cmd, const char *path, const CliCommon *c) {
   us_Structure *s = us_structure_read(path, c->contact_tol, &err);
   if (!s) cli_error(cmd, &err);
   return s;
+}
+
+void cli_print_solver_stats(const us_StabilityInfo *in) {
+  printf("  LCP pivots %ld, LP fallbacks %ld (re-seeded %ld, LCP skipped %ld), reused %ld; "
+         "cone Lemke settled %ld, failed %ld\n",
+         in->pivots, in->lp_fallbacks, in->lcp_seeds, in->lcp_skips, in->reused, in->cone_lemke,
+         in->cone_lemke_failed);
 }
 
 void cli_print_local_stats(const us_StabilityInfo *in) {
@@ -104,20 +73,49 @@ void cli_print_local_stats(const us_StabilityInfo *in) {
 
 /* ------------------------------------------------------------ progress */
 
-static void print_progress(const us_Progress *p, void *user) {
-  const char *cmd = user;
+/* "plan: 45/91 bodies reached (49%), 1234 tests, 120 tests/s, 3 s, 7 s left".
+ * The bodies of the sub-assembly just tested go up and down as a search
+ * backtracks (and the assembly tests only the component a body joins); the
+ * line shows the furthest reached so far, which only grows: the largest
+ * sub-assembly tested while building up, the most bodies gone while taking
+ * apart, the steps checked by verify. */
+void cli_progress_line(char *buf, size_t n, const CliProgress *pr, const us_Progress *p) {
+  size_t len = 0;
+  int total = pr->total > 0 ? pr->total : 1;
+  const char *what = pr->mode == CLI_PROGRESS_STEPS    ? "steps checked"
+                     : pr->mode == CLI_PROGRESS_REMOVE ? "bodies removed"
+                                                       : "bodies reached";
   double rate = p->elapsed > 0 ? (double)p->tests / p->elapsed : 0.0;
-  fprintf(stderr, "\r%s: %ld tests, %d bodies, %.0f tests/s, %.0f s", cmd, p->tests, p->bodies,
-          rate, p->elapsed);
-  if (p->time_left >= 0) fprintf(stderr, ", %.0f s left", p->time_left);
-  fprintf(stderr, "\033[K");
+  len += (size_t)snprintf(buf, n, "%s: %d/%d %s (%.0f%%), %ld tests, %.0f tests/s, %.0f s", pr->cmd,
+                          pr->reached, pr->total, what, 100.0 * pr->reached / total, p->tests,
+                          rate, p->elapsed);
+  if (p->time_left >= 0 && len < n) snprintf(buf + len, n - len, ", %.0f s left", p->time_left);
+}
+
+/* How far the job got, from one report: monotone whatever the search does. */
+static int reached(const CliProgress *pr, const us_Progress *p) {
+  int r = pr->mode == CLI_PROGRESS_STEPS    ? (int)(p->tests - 1) /* the first test: no step */
+          : pr->mode == CLI_PROGRESS_REMOVE ? pr->total - p->bodies
+          : p->tests > 1                    ? p->bodies
+                                            : 0; /* the first test is the full structure's */
+  if (r > pr->total) r = pr->total;
+  return r > pr->reached ? r : pr->reached;
+}
+
+static void print_progress(const us_Progress *p, void *user) {
+  CliProgress *pr = user;
+  char line[256];
+  pr->reached = reached(pr, p);
+  cli_progress_line(line, sizeof line, pr, p);
+  fprintf(stderr, "\r%s\033[K", line);
   fflush(stderr);
 }
 
-void cli_progress_on(const char *cmd, CliCommon *c) {
+void cli_progress_on(const char *cmd, CliCommon *c, CliProgressMode mode, int total) {
   if (!isatty(STDERR_FILENO)) return; /* silent unless a person watches */
+  c->progress = (CliProgress){cmd, mode, total, 0};
   c->stab.progress = print_progress;
-  c->stab.progress_user = (void *)cmd;
+  c->stab.progress_user = &c->progress;
 }
 
 void cli_progress_off(const CliCommon *c) {
@@ -128,13 +126,9 @@ static double clock_start = -1.0;
 
 void cli_clock_start(void) { clock_start = us_now(); }
 
+double cli_elapsed(void) { return clock_start < 0 ? 0.0 : us_now() - clock_start; }
+
 double cli_time_left(double limit) {
   if (!(limit > 0) || clock_start < 0) return limit;
   return fmax(limit - (us_now() - clock_start), 1e-3);
-}
-
-int cli_time_limit(const char *cmd, const char *v, CliCommon *c) {
-  if (cli_parse_double(v, &c->stab.time_limit) || c->stab.time_limit <= 0)
-    return cli_fail(cmd, "--time-limit needs a positive number of seconds, got '%s'", v), -1;
-  return 0;
 }
