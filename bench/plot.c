@@ -21,12 +21,12 @@
 
 #define MAX_SERIES 16
 #define PI 3.14159265358979323846
-#define W 760.0
-#define H 500.0
+#define PLOT_W 480.0 /* the plotting area; the picture grows around it */
+#define PLOT_H 400.0
 #define ML 80.0
-#define MR 200.0
 #define MT 40.0
 #define MB 60.0
+#define LEGEND_ROW 18.0
 
 typedef struct Series {
   char name[64];
@@ -34,6 +34,7 @@ typedef struct Series {
   int n, cap;
   double slope;
   int nfit;
+  char label[96]; /* the legend's line */
 } Series;
 
 typedef struct Plot {
@@ -42,6 +43,7 @@ typedef struct Plot {
   double lx0, lx1, ly0, ly1; /* decades spanned (log10) */
   int lines;
   double fit_from, fit_to;
+  double w, h, mr; /* picture size and right margin (the legend), from layout */
 } Plot;
 
 static const double palette[MAX_SERIES][3] = {
@@ -117,10 +119,10 @@ static void ranges(Plot *p) {
 }
 
 static double px(const Plot *p, double x) {
-  return ML + (log10(x) - p->lx0) / (p->lx1 - p->lx0) * (W - ML - MR);
+  return ML + (log10(x) - p->lx0) / (p->lx1 - p->lx0) * (p->w - ML - p->mr);
 }
 static double py(const Plot *p, double y) {
-  return H - MB - (log10(y) - p->ly0) / (p->ly1 - p->ly0) * (H - MT - MB);
+  return p->h - MB - (log10(y) - p->ly0) / (p->ly1 - p->ly0) * (p->h - MT - MB);
 }
 
 static void text_at(cairo_t *cr, double x, double y, const char *t, double align) {
@@ -136,26 +138,26 @@ static void axes(cairo_t *cr, const Plot *p, const char *xl, const char *yl, con
   for (double d = p->lx0; d <= p->lx1; d++) {
     double x = px(p, pow(10, d));
     cairo_set_source_rgb(cr, 0.85, 0.85, 0.85);
-    cairo_move_to(cr, x, MT), cairo_line_to(cr, x, H - MB), cairo_stroke(cr);
+    cairo_move_to(cr, x, MT), cairo_line_to(cr, x, p->h - MB), cairo_stroke(cr);
     cairo_set_source_rgb(cr, 0, 0, 0);
     snprintf(buf, sizeof buf, "1e%g", d);
-    text_at(cr, x, H - MB + 16, buf, 0.5);
+    text_at(cr, x, p->h - MB + 16, buf, 0.5);
   }
   for (double d = p->ly0; d <= p->ly1; d++) {
     double y = py(p, pow(10, d));
     cairo_set_source_rgb(cr, 0.85, 0.85, 0.85);
-    cairo_move_to(cr, ML, y), cairo_line_to(cr, W - MR, y), cairo_stroke(cr);
+    cairo_move_to(cr, ML, y), cairo_line_to(cr, p->w - p->mr, y), cairo_stroke(cr);
     cairo_set_source_rgb(cr, 0, 0, 0);
     snprintf(buf, sizeof buf, "1e%g", d);
     text_at(cr, ML - 6, y + 4, buf, 1.0);
   }
   cairo_set_line_width(cr, 1.0);
-  cairo_rectangle(cr, ML, MT, W - ML - MR, H - MT - MB);
+  cairo_rectangle(cr, ML, MT, p->w - ML - p->mr, p->h - MT - MB);
   cairo_stroke(cr);
-  text_at(cr, (ML + W - MR) / 2, H - 18, xl, 0.5);
-  text_at(cr, (ML + W - MR) / 2, 24, title, 0.5);
+  text_at(cr, (ML + p->w - p->mr) / 2, p->h - 18, xl, 0.5);
+  text_at(cr, p->w / 2, 24, title, 0.5); /* the layout made room for it */
   cairo_save(cr);
-  cairo_translate(cr, 20, (MT + H - MB) / 2);
+  cairo_translate(cr, 20, (MT + p->h - MB) / 2);
   cairo_rotate(cr, -PI / 2);
   text_at(cr, 0, 0, yl, 0.5);
   cairo_restore(cr);
@@ -187,14 +189,37 @@ static void draw_series(cairo_t *cr, const Plot *p, const Series *s, int k) {
     cairo_arc(cr, px(p, s->x[i]), py(p, s->y[i]), r, 0, 2 * PI);
     cairo_fill(cr);
   }
-  char buf[96];
-  if (isfinite(s->slope)) snprintf(buf, sizeof buf, "%s: slope %.2f", s->name, s->slope);
-  else snprintf(buf, sizeof buf, "%s", s->name);
-  double ly = MT + 14 + 18 * k;
-  cairo_rectangle(cr, W - MR + 12, ly - 8, 10, 10);
+  double ly = MT + 14 + LEGEND_ROW * k;
+  cairo_rectangle(cr, p->w - p->mr + 12, ly - 8, 10, 10);
   cairo_fill(cr);
   cairo_set_source_rgb(cr, 0, 0, 0);
-  text_at(cr, W - MR + 28, ly + 1, buf, 0.0);
+  text_at(cr, p->w - p->mr + 28, ly + 1, s->label, 0.0);
+}
+
+/* The picture's size from what it must hold: the legend's widest line
+ * right of the plot, all its lines within the height, the title across
+ * the top (measured with the font the picture uses). */
+static void layout(Plot *p, const char *title) {
+  cairo_surface_t *sf = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
+  cairo_t *cr = cairo_create(sf);
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, 12);
+  double widest = 0;
+  cairo_text_extents_t e;
+  for (int k = 0; k < p->ns; k++) {
+    Series *s = &p->s[k];
+    if (isfinite(s->slope)) snprintf(s->label, sizeof s->label, "%s: slope %.2f", s->name, s->slope);
+    else snprintf(s->label, sizeof s->label, "%s", s->name);
+    cairo_text_extents(cr, s->label, &e);
+    widest = fmax(widest, e.x_advance);
+  }
+  p->mr = 28 + widest + 16;
+  p->w = ML + PLOT_W + p->mr;
+  cairo_text_extents(cr, title, &e);
+  p->w = fmax(p->w, e.x_advance + 40);
+  p->h = fmax(MT + PLOT_H + MB, MT + 14 + LEGEND_ROW * p->ns + MB);
+  cairo_destroy(cr);
+  cairo_surface_destroy(sf);
 }
 
 int main(int argc, char **argv) {
@@ -214,10 +239,12 @@ int main(int argc, char **argv) {
   if (read_points(&p)) return fprintf(stderr, "plot: out of memory\n"), 1;
   if (p.ns == 0) return fprintf(stderr, "plot: no points\n"), 1;
   ranges(&p);
+  for (int k = 0; k < p.ns; k++) fit(&p, &p.s[k]);
+  layout(&p, argv[2]);
   size_t len = strlen(argv[1]);
   int png = len > 4 && !strcmp(argv[1] + len - 4, ".png");
-  cairo_surface_t *sf = png ? cairo_image_surface_create(CAIRO_FORMAT_RGB24, (int)W, (int)H)
-                            : cairo_svg_surface_create(argv[1], W, H);
+  cairo_surface_t *sf = png ? cairo_image_surface_create(CAIRO_FORMAT_RGB24, (int)p.w, (int)p.h)
+                            : cairo_svg_surface_create(argv[1], p.w, p.h);
   cairo_t *cr = cairo_create(sf);
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
@@ -225,7 +252,6 @@ int main(int argc, char **argv) {
   cairo_set_font_size(cr, 12);
   axes(cr, &p, argv[3], argv[4], argv[2]);
   for (int k = 0; k < p.ns; k++) {
-    fit(&p, &p.s[k]);
     draw_series(cr, &p, &p.s[k], k);
     printf("%s %.3f %d\n", p.s[k].name, p.s[k].slope, p.s[k].nfit);
   }

@@ -5,11 +5,14 @@
 # and a markdown summary with the machine's CPU and core count):
 #   table2.csv    the source's Table 2 workloads (random 10, column 50,
 #                 column 80, random 84 from the stacker, pyramid 91), every
-#                 method and search direction, the source's own figures
-#                 where we have them, and the ratio to lpsolve;
+#                 method and search direction, the source's own figures,
+#                 and the ratio to lpsolve;
+#   table2-source.csv  the same workloads in the source's set-up:
+#                 frictionless, its DFS down from the top, no culling;
 #   fig4-*.csv    the source's Figure 4: seconds per stability test against
 #                 the bodies in the tested sub-assembly, per method, on the
-#                 91-block pyramid and a 1,000-block wall (bench_fig4);
+#                 91-block pyramid and a 1,000-block wall (bench_fig4),
+#                 and on the frictionless pyramid taken apart (the source's);
 #   scaling.csv   walls and pyramids from 100 to 100,000 blocks, the
 #                 stacker's random stacks from 100 to about 9,000: plan and verify time, tests, peak memory,
 #                 and the fitted exponent from 1,000 blocks up.
@@ -63,17 +66,37 @@ gen() { "$CLI" generate "$@" >/dev/null; }
 cat "$MD"
 
 # ------------------------------------------------------------------ Table 2
-gen random --rows 6 --width 4 --seed 2 -o "$W/random10.json"
-gen column --blocks 50 -o "$W/column50.json"
-gen column --blocks 80 -o "$W/column80.json"
-gen stacker --rows 15 --width 12 --seed 3 -o "$W/random84.json"
-gen pyramid --rows 13 -o "$W/pyramid91.json"
+# the workloads, with friction 0.5 and frictionless (-f0: the source's set-up)
+table2_gen() { # SUFFIX [generate options]
+  local x=$1
+  shift
+  gen random --rows 6 --width 4 --seed 2 "$@" -o "$W/random10$x.json"
+  gen column --blocks 50 "$@" -o "$W/column50$x.json"
+  gen column --blocks 80 "$@" -o "$W/column80$x.json"
+  gen stacker --rows 16 --width 12 --seed 15 "$@" -o "$W/random84$x.json" # 84 blocks
+  gen pyramid --rows 13 "$@" -o "$W/pyramid91$x.json"
+}
+table2_gen ""
+table2_gen -f0 --friction 0
 # bodies of a generated file (one "id" per body; no solve, so 100,000 is cheap)
 bodies() { grep -o '"id"' "$1" | wc -l; }
-# the source's Table 2 (seconds, whole plan, its DFS taking the structure
-# down): only its pyramid row is in our copy of the source
+# the source's Table 2 (seconds, whole plan, frictionless, its DFS taking
+# the structure down from the top; averages of 100 runs on a 1.5 GHz
+# PowerBook G4, Java)
 source_s() {
   case "$1/$2" in
+  random10/lpsolve) echo 0.017 ;;
+  random10/lcp) echo 0.024 ;;
+  random10/lcp-reuse) echo 0.010 ;;
+  column50/lpsolve) echo 0.483 ;;
+  column50/lcp) echo 2.987 ;;
+  column50/lcp-reuse) echo 0.469 ;;
+  column80/lpsolve) echo 2.880 ;;
+  column80/lcp) echo 20.997 ;;
+  column80/lcp-reuse) echo 2.005 ;;
+  random84/lpsolve) echo 9.396 ;;
+  random84/lcp) echo 72.099 ;;
+  random84/lcp-reuse) echo 5.532 ;;
   pyramid91/lpsolve) echo 5.260 ;;
   pyramid91/lcp) echo 38.825 ;;
   pyramid91/lcp-reuse) echo 3.074 ;;
@@ -109,11 +132,36 @@ for wl in $workloads; do
     done
     sp=$(awk -v a="${tot[lpsolve]}" -v b="${tot[auto]}" 'BEGIN{ if (b > 0 && a != "nan") printf "%.0fx", a / b; else print "-" }')
     srcs="$(source_s "$wl" lpsolve) / $(source_s "$wl" lcp) / $(source_s "$wl" lcp-reuse)"
-    [ "$srcs" = " /  / " ] && srcs="not in our copy"
     [ "$search" = "dfs down" ] || srcs=""
     say "$line $sp | $srcs |"
     unset tot
   done
+done
+say ""
+
+# The source's own set-up: frictionless copies, its depth-first search down
+# from the top (highest first), no culling rules; the source's seconds
+# beside ours (its machine: a 1.5 GHz PowerBook G4, Java).
+T2S=$OUT/table2-source-$tag.csv
+echo "workload,bodies,method,status,tests,unstable,total_s,source_s" >"$T2S"
+say "## Table 2 in the source's set-up"
+say ""
+say "Frictionless, \`--search dfs --direction down --order highest --rules none\`: seconds (tests), and the source's seconds."
+say ""
+say "| workload | bodies | lpsolve | lcp | lcp-reuse | lp | auto | source lpsolve / lcp / lcp-reuse |"
+say "|---|---|---|---|---|---|---|---|"
+for wl in $workloads; do
+  f=$W/$wl-f0.json
+  n=$(bodies "$f")
+  line="| $wl | $n |"
+  for m in lpsolve lcp lcp-reuse lp auto; do
+    read -r status tests total rss < <(plan_row "$f" --method "$m" --search dfs --direction down \
+      --order highest --rules none)
+    unst=$(sed -n 's/^  tests [0-9]* (stable [0-9]*, unstable \([0-9]*\).*/\1/p' "$W/plan.log")
+    echo "$wl,$n,$m,$status,$tests,${unst:-},$total,$(source_s "$wl" "$m")" >>"$T2S"
+    line="$line $(awk -v t="$total" 'BEGIN{ if (t == "nan") print "-"; else printf "%.3g", t }') ($tests)$([ "$status" = found ] || echo " $status") |"
+  done
+  say "$line $(source_s "$wl" lpsolve) / $(source_s "$wl" lcp) / $(source_s "$wl" lcp-reuse) |"
 done
 say ""
 
@@ -144,6 +192,28 @@ for wl in pyramid91 wall1000; do
   done
   say ""
 done
+# The source's Figure 4: frictionless pyramid, taken apart along its DFS
+# from the top (bench_fig4 ... down), sizes from 91 down.
+wl=pyramid91-f0
+f4=$OUT/fig4-$wl-$tag.csv
+echo "structure,method,bodies,seconds" >"$f4"
+for m in lpsolve lcp lcp-reuse lp auto; do
+  "$B/bench_fig4" "$W/$wl.json" "$wl" "$m" "$budget" down >>"$f4" 2>>"$W/fig4.err"
+done
+fits=$(tail -n +2 "$f4" | awk -F, '{print $2, $3, $4}' |
+  "$B/bench_plot" "$OUT/fig4-$wl-$tag.svg" "Figure 4 (source set-up): frictionless pyramid, taken apart" \
+    "bodies in the sub-assembly" "seconds per test")
+say "$wl, the source's set-up (frictionless, taken apart along its DFS from the top; [plot](fig4-$wl-$tag.svg), [data](fig4-$wl-$tag.csv)):"
+say ""
+say "| method | tests timed | median ms | largest size timed | slope |"
+say "|---|---|---|---|---|"
+for m in lpsolve lcp lcp-reuse lp auto; do
+  stats=$(awk -F, -v m="$m" '$2 == m {print $4 * 1000, $3}' "$f4" | sort -n |
+    awk '{v[NR] = $1; if ($2 > mx) mx = $2} END { if (NR) printf "%d | %.4f | %d", NR, v[int((NR + 1) / 2)], mx }')
+  [ -n "$stats" ] || continue
+  say "| $m | $stats | $(echo "$fits" | awk -v m="$m" '$1 == m {print $2}') |"
+done
+say ""
 
 # ------------------------------------------------------------------ scaling
 say "## Scaling: whole plan (and verify) time against the number of blocks"

@@ -353,7 +353,7 @@ typedef struct us_StabilitySettings {
   int local;          /* exact local tests (docs/local.md) for lp and auto:
                          0 (default) or 1 on, -1 off */
   int local_min_bodies; /* smaller sub-assemblies go to the full system
-                           (<= 0: default 16) */
+                           (<= 0: default 1, every size tested locally) */
   int skip_forces;    /* 1: a stable result carries its check but no forces
                          (res->forces empty; the planner's searches) */
   double time_limit;  /* > 0: tests that start or run past this many seconds
@@ -488,7 +488,8 @@ US_API int us_active_contacts(const us_Structure *s, const us_Bitset *present, i
 /* ----------------------------------------------------------------- planner */
 
 typedef enum us_Search {
-  US_SEARCH_ASSEMBLE = 0, /* greedy assembly from the ground (union theorem; default) */
+  US_SEARCH_ASSEMBLE = 0, /* greedy assembly from the ground, exact decision where it is
+                             stuck (docs/planning.md; default) */
   US_SEARCH_DFS,          /* depth-first search of the disassembly graph */
   US_SEARCH_BFS,          /* breadth-first search */
   US_SEARCH_RANDOM        /* randomized depth-first search with restarts */
