@@ -54,8 +54,8 @@ static int parse(int argc, char **argv, us_SvgSettings *s, SvgArgs *a) {
                "(default 1e-3)"),
       CLI_REAL("--friction", "MU", &s->friction, "default Coulomb coefficient (default: the "
                "root's data-friction, else 0.5; 'infinite': no sliding)", .inf_ok = 1),
-      CLI_REAL("--contact-tol", "T", &s->contact_tol, "contact detection tolerance (default "
-               "1e-6 x size)"),
+      CLI_REAL("--contact-tol", "T", &s->contact_tol, "one contact detection tolerance for every "
+               "pair (default: per pair, 1e-6 x the smaller body's size)"),
       CLI_FLAG("--quiet", &a->quiet, "no warnings about skipped elements", .alias = "-q"),
       CLI_END};
   const CliSpec spec = {"import-svg", head, tail, opts, &a->file, 1, "more than one DRAWING given"};

@@ -52,6 +52,10 @@ void cli_print_solver_stats(const us_StabilityInfo *in) {
          "cone Lemke settled %ld, failed %ld\n",
          in->pivots, in->lp_fallbacks, in->lcp_seeds, in->lcp_skips, in->reused, in->cone_lemke,
          in->cone_lemke_failed);
+  if (in->cone3_outer || in->cone3_refined || in->cone3_open)
+    printf("  3D cones: outer-polygon LPs %ld, directions added %ld, claims left to the "
+           "certificate %ld\n", in->cone3_outer, in->cone3_refined, in->cone3_open);
+  if (in->timed_out) printf("  tests stopped by the time limit: %ld\n", in->timed_out);
 }
 
 void cli_print_local_stats(const us_StabilityInfo *in) {
@@ -94,7 +98,7 @@ void cli_progress_line(char *buf, size_t n, const CliProgress *pr, const us_Prog
 
 /* How far the job got, from one report: monotone whatever the search does. */
 static int reached(const CliProgress *pr, const us_Progress *p) {
-  int r = pr->mode == CLI_PROGRESS_STEPS    ? (int)(p->tests - 1) /* the first test: no step */
+  int r = pr->mode == CLI_PROGRESS_STEPS    ? (int)p->tests /* one test per step's state */
           : pr->mode == CLI_PROGRESS_REMOVE ? pr->total - p->bodies
           : p->tests > 1                    ? p->bodies
                                             : 0; /* the first test is the full structure's */

@@ -13,7 +13,7 @@
 typedef enum CliProgressMode {
   CLI_PROGRESS_BUILD,  /* bodies reached by a search that builds up (the most tested) */
   CLI_PROGRESS_REMOVE, /* bodies removed by a search that takes apart (fewest left) */
-  CLI_PROGRESS_STEPS   /* tests of a fixed list of steps (verify) */
+  CLI_PROGRESS_STEPS   /* tests of a fixed list of steps (verify: one per step) */
 } CliProgressMode;
 
 typedef struct CliProgress {
@@ -75,7 +75,8 @@ int cli_set_local(const char *v, void *dst, const char *cmd); /* on|off -> 1 or 
            "exact local tests for lp and auto (default on)")
 #define CLI_OPT_CONTACT_TOL(c)                                                                 \
   CLI_REAL("--contact-tol", "T", &(c)->contact_tol,                                            \
-           "contact detection tolerance (default 1e-6 x size)", CLI_POSITIVE,                  \
+           "one contact detection tolerance for every pair (default: per pair, 1e-6 x the "    \
+           "smaller body's size)", CLI_POSITIVE,                                               \
            .need = "a positive number")
 #define CLI_OPT_SEARCH(c)                                                                      \
   CLI_ENUM("--search", "S", &(c)->plan.search,                                                 \
