@@ -22,6 +22,7 @@ typedef struct CheckArgs {
 
 /* The command line, by check's option table (optable.h). */
 static int parse(int argc, char **argv, CliCommon *c, CheckArgs *a) {
+  /* One entry per option, in --help's order; optable.h says how to add one. */
   const CliOpt opts[] = {
       CLI_OPT_METHOD(c),
       CLI_OPT_LOCAL(c),

@@ -36,6 +36,7 @@ typedef struct ClassifyArgs {
  * table (optable.h). */
 static int parse_args(int argc, char **argv, ClassifyArgs *a) {
   CliCommon *c = &a->common;
+  /* One entry per option, in --help's order; optable.h says how to add one. */
   const CliOpt opts[] = {
       CLI_FLAG("--json", &a->json, "print one JSON object instead"),
       CLI_OPT_METHOD(c),

@@ -26,6 +26,7 @@ typedef struct CountArgs {
 /* -1: help printed (exit 0); else 0 or CLI_EXIT_ERR. By count's option
  * table (optable.h). */
 static int parse_args(int argc, char **argv, CountArgs *a) {
+  /* One entry per option, in --help's order; optable.h says how to add one. */
   const CliOpt opts[] = {
       CLI_FLAG("--json", &a->json, "print a JSON object (the count as a string)"),
       CLI_REAL("--time-limit", "S", &a->set.time_limit,

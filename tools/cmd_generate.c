@@ -91,6 +91,7 @@ typedef struct Extra {
 /* The command line after KIND, by generate's option table (optable.h);
  * argc 0: print the help on stderr (no KIND given) and return CLI_EXIT_ERR. */
 static int parse(int argc, char **argv, us_GenSettings *g, Extra *x, const char **out) {
+  /* One entry per option, in --help's order; optable.h says how to add one. */
   const CliOpt opts[] = {
       CLI_TEXT("--output", "FILE", out, "structure file to write (required)", .alias = "-o"),
       GEN_INT("--blocks", "N", &g->n, "column, tower: blocks; random3d: boxes (10)"),
@@ -127,7 +128,7 @@ static int parse(int argc, char **argv, us_GenSettings *g, Extra *x, const char 
                "(default 0.5; 'infinite': no sliding)", .inf_ok = 1),
       CLI_REAL("--density", "D", &g->density, "density of every block (default 1)"),
       GEN_INT("--max-tries", "N", &g->max_tries, "random, stacker: attempts before giving up "
-              "(default 10000);\nrandom3d: discarded drops in a row before stopping (200)",
+              "(default 10000); random3d: discarded drops in a row before stopping (200)",
               .given = &x->tries_given),
       CLI_END};
   const CliSpec spec = {"generate", head, tail, opts, NULL, 0, NULL};

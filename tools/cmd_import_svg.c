@@ -36,6 +36,7 @@ typedef struct SvgArgs {
 
 /* The command line, by import-svg's option table (optable.h). */
 static int parse(int argc, char **argv, us_SvgSettings *s, SvgArgs *a) {
+  /* One entry per option, in --help's order; optable.h says how to add one. */
   const CliOpt opts[] = {
       CLI_TEXT("--output", "FILE", &a->out, "structure file to write (required)", .alias = "-o"),
       CLI_TEXT("--unit", "U", &s->unit, "output length unit: m (default), cm, mm, in, pt, pc, "

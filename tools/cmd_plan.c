@@ -112,6 +112,7 @@ static int set_rules(const char *v, void *dst, const char *cmd) {
 /* The command line, by plan's option table (optable.h). */
 static int parse(int argc, char **argv, CliCommon *c, PlanArgs *a) {
   us_PlanSettings *p = &c->plan;
+  /* One entry per option, in --help's order; optable.h says how to add one. */
   const CliOpt opts[] = {
       CLI_TEXT("--output", "PLAN", &a->out, "write the plan file (also when no order exists)",
                .alias = "-o"),

@@ -73,6 +73,7 @@ static int set_format(const char *v, void *dst, const char *cmd) {
 
 /* The command line, by render's option table (optable.h). */
 static int parse(int argc, char **argv, CliCommon *c, RenderArgs *a) {
+  /* One entry per option, in --help's order; optable.h says how to add one. */
   const CliOpt opts[] = {
       CLI_TEXT("--output", "OUT", &a->out, "output file (required); .svg or .png picks the format",
                .alias = "-o"),

@@ -18,6 +18,7 @@ static const char tail[] =
 /* The command line, by verify's option table (optable.h): files[0] the
  * structure, files[1] the plan. */
 static int parse(int argc, char **argv, CliCommon *c, const char **files) {
+  /* One entry per option, in --help's order; optable.h says how to add one. */
   const CliOpt opts[] = {
       CLI_OPT_METHOD(c),
       CLI_OPT_LOCAL(c),
