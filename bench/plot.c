@@ -208,8 +208,10 @@ static void layout(Plot *p, const char *title) {
   cairo_text_extents_t e;
   for (int k = 0; k < p->ns; k++) {
     Series *s = &p->s[k];
-    if (isfinite(s->slope)) snprintf(s->label, sizeof s->label, "%s: slope %.2f", s->name, s->slope);
-    else snprintf(s->label, sizeof s->label, "%s", s->name);
+    char buf[sizeof s->label]; /* then copied: gcc sees name and label in one object */
+    if (isfinite(s->slope)) snprintf(buf, sizeof buf, "%s: slope %.2f", s->name, s->slope);
+    else snprintf(buf, sizeof buf, "%s", s->name);
+    memcpy(s->label, buf, sizeof buf);
     cairo_text_extents(cr, s->label, &e);
     widest = fmax(widest, e.x_advance);
   }
