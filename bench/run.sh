@@ -205,11 +205,12 @@ fits=$(tail -n +2 "$f4" | awk -F, '{print $2, $3, $4}' |
     "bodies in the sub-assembly" "seconds per test")
 say "$wl, the source's set-up (frictionless, taken apart along its DFS from the top; [plot](fig4-$wl-$tag.svg), [data](fig4-$wl-$tag.csv)):"
 say ""
-say "| method | tests timed | median ms | largest size timed | slope |"
+say "| method | tests timed | median ms | sizes timed | slope |"
 say "|---|---|---|---|---|"
 for m in lpsolve lcp lcp-reuse lp auto; do
   stats=$(awk -F, -v m="$m" '$2 == m {print $4 * 1000, $3}' "$f4" | sort -n |
-    awk '{v[NR] = $1; if ($2 > mx) mx = $2} END { if (NR) printf "%d | %.4f | %d", NR, v[int((NR + 1) / 2)], mx }')
+    awk 'NR == 1 {mn = $2} {v[NR] = $1; if ($2 > mx) mx = $2; if ($2 < mn) mn = $2}
+      END { if (NR) printf "%d | %.4f | %d-%d", NR, v[int((NR + 1) / 2)], mn, mx }')
   [ -n "$stats" ] || continue
   say "| $m | $stats | $(echo "$fits" | awk -v m="$m" '$1 == m {print $2}') |"
 done
