@@ -65,13 +65,16 @@ static const CliOpt *find(const CliOpt *o, const char *arg) {
 }
 
 static int unknown_option(const CliSpec *sp, const char *arg) {
+  char name[64];
+  size_t len = strcspn(arg, "=");
+  snprintf(name, sizeof name, "%.*s", (int)(len < sizeof name ? len : sizeof name - 1), arg);
   const char *cands[128];
   int n = 0;
   for (const CliOpt *o = sp->opts; o->name && n < 126; o++) {
     cands[n++] = o->name;
     if (o->alias) cands[n++] = o->alias;
   }
-  const char *near = cli_nearest(arg, cands, n);
+  const char *near = cli_nearest(name, cands, n);
   if (near) return cli_fail(sp->cmd, "unknown option '%s' (did you mean %s?)", arg, near);
   return cli_fail(sp->cmd, "unknown option '%s'", arg);
 }
@@ -115,14 +118,18 @@ static int real(const char *cmd, const CliOpt *o, const char *v, double *out) {
   return 0;
 }
 
-/* Apply option o found at argv[*i]; 0, or CLI_EXIT_ERR (message printed). */
-static int apply(const char *cmd, const CliOpt *o, int argc, char **argv, int *i) {
-  const char *v = NULL;
+/* Apply option o found at argv[*i], with its value after '=' in `eq` (NULL:
+ * none, the value is the next argument); 0, or CLI_EXIT_ERR (message
+ * printed). */
+static int apply(const char *cmd, const CliOpt *o, const char *eq, int argc, char **argv, int *i) {
+  const char *v = eq;
   long n;
+  int no_value = o->kind == CLI_K_FLAG || (o->kind == CLI_K_CALL && !o->takes_value);
+  if (eq && no_value && !o->optional) return cli_fail(cmd, "option %s takes no value", o->name);
   if (o->given) *o->given = 1;
   if (o->kind == CLI_K_FLAG) return *(int *)o->dst = o->flag, 0;
-  if (o->kind == CLI_K_CALL && !o->takes_value) return o->set(NULL, o->dst, cmd);
-  if (!(v = cli_value(cmd, argc, argv, i))) return CLI_EXIT_ERR;
+  if (no_value) return o->set(eq, o->dst, cmd) ? CLI_EXIT_ERR : 0;
+  if (!v && !(v = cli_value(cmd, argc, argv, i))) return CLI_EXIT_ERR;
   switch (o->kind) {
   case CLI_K_INT:
     if (integer(cmd, o, v, INT_MAX, &n)) return CLI_EXIT_ERR;
@@ -139,14 +146,27 @@ static int apply(const char *cmd, const CliOpt *o, int argc, char **argv, int *i
   }
 }
 
+/* "--name=value": the option named before '=' and the value after it. */
+static const CliOpt *find_with_value(const CliOpt *opts, const char *a, const char **eq) {
+  char name[64];
+  const char *e = a[0] == '-' && a[1] == '-' ? strchr(a, '=') : NULL;
+  *eq = NULL;
+  if (!e || (size_t)(e - a) >= sizeof name) return find(opts, a);
+  memcpy(name, a, (size_t)(e - a));
+  name[e - a] = 0;
+  const CliOpt *o = find(opts, name);
+  if (o) *eq = e + 1;
+  return o;
+}
+
 int cli_parse(const CliSpec *sp, int argc, char **argv) {
   int npos = 0;
   for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
+    const char *a = argv[i], *eq;
     const CliOpt *o;
     if (cli_is_help(a)) return cli_print_help(sp, stdout), -1;
-    if ((o = find(sp->opts, a))) {
-      if (apply(sp->cmd, o, argc, argv, &i)) return CLI_EXIT_ERR;
+    if ((o = find_with_value(sp->opts, a, &eq))) {
+      if (apply(sp->cmd, o, eq, argc, argv, &i)) return CLI_EXIT_ERR;
     } else if (a[0] == '-' && a[1]) {
       return unknown_option(sp, a);
     } else if (npos == sp->maxpos) {

@@ -16,6 +16,10 @@
  *   CLI_REAL("--contact-tol", "T", &tol, "contact tolerance", CLI_POSITIVE,
  *            .need = "a positive number"),
  *
+ * Any option with a value may also be written "--name=value". A flag
+ * that may take a value ("--forces" or "--forces=resultants") is a
+ * CLI_CALL with value name NULL and .optional = 1.
+ *
  * Options every command shares (--method, --local, --contact-tol, --search,
  * --order, --direction, --time-limit) are the CLI_OPT_* entries of
  * options.h. Help texts are wrapped at 80 columns; a '\n' in one starts a
@@ -35,7 +39,8 @@ typedef enum CliKind {
   CLI_K_REAL,  /* finite number into a double, >= lo (> lo with open), <= hi */
   CLI_K_TEXT,  /* the value itself into a const char * */
   CLI_K_ENUM,  /* a word of a name table, through parse (message lists words) */
-  CLI_K_CALL   /* set(value, dst, cmd): anything else; 0 ok, else message printed */
+  CLI_K_CALL   /* set(value, dst, cmd): anything else; 0 ok, else message printed
+                  (value NULL: a flag, or an optional value not given) */
 } CliKind;
 
 typedef const char *(*CliWordFn)(int i); /* enum word i, "unknown" past the end */
@@ -59,6 +64,8 @@ typedef struct CliOpt {
   const char *what;                                    /* CLI_K_ENUM: "method" */
   int (*set)(const char *v, void *dst, const char *cmd); /* CLI_K_CALL */
   int takes_value;   /* CLI_K_CALL: 1 when it takes a value (else a flag) */
+  int optional;      /* CLI_K_CALL without a value: "--name=value" may still give
+                        one (set gets it, else NULL): --forces[=resultants] */
 } CliOpt;
 
 #define CLI_FLAG(n, d, h, ...) {.name = n, .kind = CLI_K_FLAG, .help = h, .dst = d, .flag = 1, __VA_ARGS__}

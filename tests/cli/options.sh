@@ -40,6 +40,16 @@ contains "$T/err" "--max-group needs 'auto' or an integer from 1 to 64, got '65'
 expect 2 "generate: too large" -- "$CLI" generate column --blocks 99999999999 -o "$T/z.json"
 contains "$T/err" "--blocks: 99999999999 is too large" "too-large message"
 
+# --name=value is the same as --name value; a flag takes no value.
+expect 0 "--method=lpsolve" -- "$CLI" check "$T/c.json" --method=lpsolve
+contains "$T/out" "stable" "the value after = is used"
+expect 2 "--method=bad" -- "$CLI" check "$T/c.json" --method=simplex
+contains "$T/err" "unknown method 'simplex'" "the value after = is checked"
+expect 2 "a flag with a value" -- "$CLI" check "$T/c.json" --forces=yes
+contains "$T/err" "option --forces takes no value" "flag value refused"
+expect 2 "typo with =" -- "$CLI" check "$T/c.json" --metod=lp
+contains "$T/err" "did you mean --method?" "suggests --method for --metod=lp"
+
 # check --stats: tests, time, solver, local tests.
 expect 0 "check --stats" -- "$CLI" check "$T/c.json" --stats
 contains "$T/out" "statistics:" "check prints statistics"
