@@ -75,10 +75,11 @@ static int report(const us_Structure *s, const us_StabilityResult *res, int forc
 }
 
 /* --stats: what the test cost and how it was decided. */
-static void print_stats(const us_StabilityInfo *in, double t_setup, double t_test) {
-  printf("statistics:\n  tests %ld; time: command %.6f s (reading included), setup %.6f s, "
-         "test %.6f s, in solver %.6f s, certificate checks %.6f s\n",
-         in->tests, cli_elapsed(), t_setup, t_test, in->solve_time, in->check_time);
+static void print_stats(const us_StabilityInfo *in, const char *method, double t_setup,
+                        double t_test) {
+  printf("statistics:\n  tests %ld, method %s; time: command %.6f s (reading included), setup "
+         "%.6f s, test %.6f s, in solver %.6f s, certificate checks %.6f s\n",
+         in->tests, method, cli_elapsed(), t_setup, t_test, in->solve_time, in->check_time);
   cli_print_solver_stats(in);
   cli_print_local_stats(in);
 }
@@ -103,7 +104,9 @@ int cmd_check(int argc, char **argv) {
   if (w && us_stability_test_full(w, &res, &err) == US_OK) {
     double t2 = us_now();
     code = report(s, &res, a.forces);
-    if (a.stats) print_stats(us_stability_info(w), t1 - t0, t2 - t1);
+    if (a.stats)
+      print_stats(us_stability_info(w), us_method_name(us_method_resolve(c.stab.method, s)),
+                  t1 - t0, t2 - t1);
   }
   if (code == CLI_EXIT_ERR) cli_error("check", &err);
   us_stability_result_free(&res);

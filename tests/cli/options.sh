@@ -53,7 +53,7 @@ contains "$T/err" "did you mean --method?" "suggests --method for --metod=lp"
 # check --stats: tests, time, solver, local tests.
 expect 0 "check --stats" -- "$CLI" check "$T/c.json" --stats
 contains "$T/out" "statistics:" "check prints statistics"
-contains "$T/out" "tests 1;" "one test"
+contains "$T/out" "tests 1, method " "one test, and the method used"
 contains "$T/out" "in solver" "solver time"
 contains "$T/out" "LCP pivots" "solver counters"
 contains "$T/out" "local tests:" "local-test statistics"
