@@ -19,6 +19,16 @@ for c in check plan verify render count classify import-svg generate; do
   [ $n -ge 1 ] && ok "$c: the $n options of --help are accepted" || bad "$c: no option in --help"
 done
 
+# The top-level help lists every kind generate takes, and render's formats.
+"$CLI" --help >"$T/top"
+"$CLI" generate castle -o "$T/x.json" 2>"$T/kinds"
+kinds=$(sed -n "s/.*unknown kind 'castle' (\([^)]*\)).*/\1/p" "$T/kinds" | tr -d ,)
+missing=""
+for k in $kinds; do grep -qw -- "$k" "$T/top" || missing="$missing $k"; done
+[ -n "$kinds" ] && [ -z "$missing" ] && ok "top-level help lists the $(echo $kinds | wc -w) kinds" ||
+  bad "top-level help misses kinds:$missing"
+contains "$T/top" "SVG, PNG or an HTML viewer" "top-level help: render's formats"
+
 # Did you mean: commands, options, enum words, generate kinds.
 expect 2 "typo in a command" -- "$CLI" chekc "$T/c.json"
 contains "$T/err" "did you mean 'check'" "suggests check"
