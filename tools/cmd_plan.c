@@ -7,9 +7,10 @@
 static const char head[] =
     "usage: unstack plan FILE [-o PLAN.json] [options]\n"
     "\n"
-    "Search the disassembly graph of the structure in FILE for an order that\n"
-    "removes one body at a time so that every intermediate structure stands.\n"
-    "Prints a one-line summary; writes the plan (docs/format.md) with -o.\n";
+    "Find an order that takes the structure in FILE apart one body at a time\n"
+    "(or a few, --max-group) so that every intermediate structure stands, or\n"
+    "prove there is none (docs/planning.md). Prints a one-line summary; writes\n"
+    "the plan (docs/format.md) with -o.\n";
 static const char tail[] =
     "exit: 0 order found, 1 no order (none, unstable, limit), 2 usage or input\n"
     "error, 3 undecided (no order found, and none or unstable would rest on\n"
