@@ -320,7 +320,8 @@ static void *liar_create(const us_Structure *s, const us_StabilitySettings *set,
 
 static void liar_destroy(void *ws) { us_backend_clp.destroy(ws); }
 
-static const us_Backend liar_backend = {US_METHOD_LP, liar_create, liar_destroy, liar_solve, NULL, NULL, NULL};
+static const us_Backend liar_backend = {
+    .method = US_METHOD_LP, .create = liar_create, .destroy = liar_destroy, .solve = liar_solve};
 
 static void never_stable_without_certificate(void) {
   us_Structure *s = two_blocks(0.0);
@@ -383,7 +384,8 @@ static us_Status spy_solve(void *ws, const us_EqSystem *sys, const int *added, i
                               info, note, note_sz, err);
 }
 
-static const us_Backend spy_backend = {US_METHOD_LP, spy_create, spy_destroy, spy_solve, NULL, NULL, NULL};
+static const us_Backend spy_backend = {
+    .method = US_METHOD_LP, .create = spy_create, .destroy = spy_destroy, .solve = spy_solve};
 
 static unsigned long rng_state = 12345;
 static double rnd(void) {

@@ -83,8 +83,10 @@ US_API void *us_calloc(size_t count, size_t size);
 US_API void *us_realloc(void *p, size_t n);
 US_API void us_free(void *p);
 US_API char *us_strdup(const char *s);
-/* After `n` more successful allocations, every allocation fails; n < 0 turns
- * the hook off. Returns the number of live allocations (for leak checks). */
+/* After `n` more successful allocations, every allocation of the calling
+ * thread fails; n < 0 turns the hook off. Returns the number of live
+ * allocations of the process (for leak checks). Both are thread-safe: the
+ * hook is per thread, the count atomic. */
 US_API long us_alloc_fail_after(long n);
 US_API long us_alloc_live(void);
 

@@ -232,12 +232,6 @@ int us_structure_add_contact(us_Structure *s, int a, int b, const double *p, con
   return s->ncontact++;
 }
 
-int us_structure_movable_count(const us_Structure *s) {
-  int n = 0;
-  for (int i = 0; i < s->nbody; i++) n += !s->bodies[i].fixed;
-  return n;
-}
-
 int us_structure_movable_set(const us_Structure *s, us_Bitset *out) {
   if (us_bitset_init(out, s->nbody)) return -1;
   for (int i = 0; i < s->nbody; i++)

@@ -21,7 +21,7 @@
 #include "assemble.h"
 #include "exact.h"
 #include "hook.h"
-#include "stability/backend.h"
+#include "stability/stability.h"
 #include "order.h"
 #include "rules.h"
 #include "searches.h"

@@ -399,6 +399,7 @@ static int clp_farkas_ray(void *ws, const double **y) {
 
 const us_Backend us_backend_clp = {
     .method = US_METHOD_LP,
+    .local_tests = 1,
     .create = clp_create,
     .destroy = clp_destroy,
     .solve = clp_solve,

@@ -90,30 +90,7 @@ const char *us_verdict_name(us_Verdict v) {
   return "unknown";
 }
 
-/* Default tolerances of the LP backends (us_LpSettings documents them). */
-#define LP_PRIMAL_TOL 1e-9
-#define LP_WARM_ACCEPT 1e-9
-#define LP_FARKAS_SLACK 1e-9
-#define LP_N_COLUMN_MU 1.0
 #define CERT_TOL 1e-6
-
-us_LpSettings us_lp_default_settings(void) {
-  us_LpSettings l;
-  l.primal_tol = LP_PRIMAL_TOL;
-  l.warm_accept = LP_WARM_ACCEPT;
-  l.farkas_slack = LP_FARKAS_SLACK;
-  l.n_column_mu = LP_N_COLUMN_MU;
-  return l;
-}
-
-us_LpSettings us_lp_settings_resolve(const us_LpSettings *in) {
-  us_LpSettings d = us_lp_default_settings(), r = *in;
-  if (!(r.primal_tol > 0)) r.primal_tol = d.primal_tol;
-  if (!(r.warm_accept > 0)) r.warm_accept = d.warm_accept;
-  if (!(r.farkas_slack > 0)) r.farkas_slack = d.farkas_slack;
-  if (!(r.n_column_mu > 0)) r.n_column_mu = d.n_column_mu;
-  return r;
-}
 
 us_StabilitySettings us_stability_default_settings(void) {
   us_StabilitySettings s;
@@ -260,7 +237,7 @@ us_Stability *us_stability_new_backend(const us_Structure *s, const us_Stability
   w->t_created = us_now();
   w->t_progress = 0.0; /* the first test reports at once */
   /* local tests: the CLP backend itself (never a test's stand-in) */
-  if (be == &us_backend_clp && set->local >= 0) {
+  if (be->local_tests && set->local >= 0) {
     w->local = us_local_new(s, set, be, s->dim == 3 ? &w->cones : NULL, err);
     w->small = w->local ? us_backend_small.create(s, set, err) : NULL;
     if (!w->local || !w->small) {
