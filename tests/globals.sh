@@ -12,6 +12,7 @@ alloc.c:live        atomic count of live blocks (leak checks)
 alloc.c:fail_after  thread-local failure hook (out-of-memory tests)
 hook.c:hook_fn      thread-local verdict hook of the planner's tests
 hook.c:hook_user    its argument, thread-local too
+lcp_factor.c:klu_once  call_once flag: SuiteSparse's global allocator set once
 "
 found=$(for a in "$build"/libus_*.a; do objdump -t "$a"; done | awk '
   /^[^ ]+\.o:[ \t]+file format/ { f = $1; sub(/\.o:$/, "", f); next }
