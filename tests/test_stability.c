@@ -302,14 +302,11 @@ static void unstable_evidence(void) {
 
 /* A backend that claims stable with made-up forces: the front end must
  * not pass that on as stable. */
-static us_Status liar_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
-                            const int *removed, int nremoved, int restart, us_Verdict *verdict,
-                            double *f, us_StabilityInfo *info, char *note, size_t note_sz,
+static us_Status liar_solve(void *ws, const us_BackendProblem *pb, us_BackendOut *out,
                             us_Error *err) {
-  US_UNUSED(ws), US_UNUSED(added), US_UNUSED(nadded), US_UNUSED(removed), US_UNUSED(nremoved);
-  US_UNUSED(restart), US_UNUSED(info), US_UNUSED(note), US_UNUSED(note_sz), US_UNUSED(err);
-  for (int j = 0; j < sys->ncontact * sys->dim; j++) f[j] = j % 2 ? 0.0 : 0.01;
-  *verdict = US_STABLE;
+  US_UNUSED(ws), US_UNUSED(err);
+  for (int j = 0; j < pb->sys->ncontact * pb->sys->dim; j++) out->f[j] = j % 2 ? 0.0 : 0.01;
+  out->verdict = US_STABLE;
   return US_OK;
 }
 
@@ -360,10 +357,11 @@ static void spy_destroy(void *ws) {
   us_backend_clp.destroy(ws);
 }
 
-static us_Status spy_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
-                           const int *removed, int nremoved, int restart, us_Verdict *verdict,
-                           double *f, us_StabilityInfo *info, char *note, size_t note_sz,
+static us_Status spy_solve(void *ws, const us_BackendProblem *pb, us_BackendOut *out,
                            us_Error *err) {
+  const us_EqSystem *sys = pb->sys;
+  const int *added = pb->added, *removed = pb->removed;
+  int nadded = pb->nadded, nremoved = pb->nremoved, restart = pb->restart;
   spy.calls++;
   if (restart) memset(spy.mirror.w, 0, (size_t)spy.mirror.nwords * 8);
   for (int i = 0; i < nremoved; i++) {
@@ -380,8 +378,7 @@ static us_Status spy_solve(void *ws, const us_EqSystem *sys, const int *added, i
   if (us_bitset_count(&spy.mirror) != sys->nbody) spy.errors++;
   for (int r = 0; r < sys->nbody; r++)
     if (!us_bitset_get(&spy.mirror, sys->body[r])) spy.errors++;
-  return us_backend_clp.solve(ws, sys, added, nadded, removed, nremoved, restart, verdict, f,
-                              info, note, note_sz, err);
+  return us_backend_clp.solve(ws, pb, out, err);
 }
 
 static const us_Backend spy_backend = {

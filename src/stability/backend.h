@@ -14,22 +14,41 @@
 #include "equilibrium.h"
 #include "stability.h"
 
+/* What a backend decides: the sub-assembly `sys`. added / removed: bodies
+ * that changed since this backend's previous solve (restart = 1: no
+ * previous state to reuse, e.g. first call). added = removed = NULL with
+ * restart = 0: `sys` is a region system of the local tests (local.h), not
+ * a sub-assembly; a backend may start from whatever it last knew of its
+ * contacts. */
+typedef struct us_BackendProblem {
+  const us_EqSystem *sys;
+  const int *added;
+  int nadded;
+  const int *removed;
+  int nremoved;
+  int restart;
+} us_BackendProblem;
+
+/* What a backend answers: the verdict; on stable, dim * ncontact
+ * normalized forces in the caller's f; its counters added to info; why,
+ * in words, in note. */
+typedef struct us_BackendOut {
+  us_Verdict verdict;
+  double *f;
+  us_StabilityInfo *info;
+  char *note;
+  size_t note_sz;
+} us_BackendOut;
+
 /* A stability backend. The workspace is the backend's own state and may
  * keep the last sub-assembly's solution for reuse. */
 typedef struct us_Backend {
   us_Method method; /* its name is us_method_name(method) */
   void *(*create)(const us_Structure *s, const us_StabilitySettings *set, us_Error *err);
   void (*destroy)(void *ws);
-  /* Decide the sub-assembly `sys`. added / removed: bodies that changed
-   * since this backend's previous solve (restart = 1: no previous state to
-   * reuse, e.g. first call). added = removed = NULL with restart = 0: `sys`
-   * is a region system of the local tests (local.h), not a sub-assembly;
-   * a backend may start from whatever it last knew of its contacts. On stable, write dim * ncontact normalized
-   * forces to f. */
-  us_Status (*solve)(void *ws, const us_EqSystem *sys, const int *added, int nadded,
-                     const int *removed, int nremoved, int restart, us_Verdict *verdict,
-                     double *f, us_StabilityInfo *info, char *note, size_t note_sz,
-                     us_Error *err);
+  /* Decide the problem (us_BackendProblem) into out (us_BackendOut);
+   * errors in err, outcomes in out->verdict. */
+  us_Status (*solve)(void *ws, const us_BackendProblem *pb, us_BackendOut *out, us_Error *err);
   /* Optional (NULL: unknown). After an unstable verdict: the body the
    * backend's evidence points at (e.g. largest virtual motion in a Farkas
    * ray), else -1. */

@@ -326,8 +326,10 @@ static us_Status run_backend(us_Stability *w, us_StabilityResult *res, us_Error 
   w->used_be = w->be;
   w->used_ws = w->bws;
   if (w->small && us_small_fits(&w->eq)) { /* tiny: the dense simplex first */
-    us_Status st = us_backend_small.solve(w->small, &w->eq, NULL, 0, NULL, 0, 1, &res->verdict,
-                                          w->f, &w->info, res->note, sizeof res->note, err);
+    us_BackendOut out = {US_UNDECIDED, w->f, &w->info, res->note, sizeof res->note};
+    us_Status st = us_backend_small.solve(w->small, &(us_BackendProblem){.sys = &w->eq, .restart = 1},
+                                          &out, err);
+    res->verdict = out.verdict;
     if (st || res->verdict != US_UNDECIDED) {
       w->info.solve_time += us_now() - t0;
       w->used_be = &us_backend_small;
@@ -336,8 +338,10 @@ static us_Status run_backend(us_Stability *w, us_StabilityResult *res, us_Error 
     }
   }
   w->have_last = 0; /* until the backend succeeds, its state is unknown */
-  us_Status st = w->be->solve(w->bws, &w->eq, w->added, nadd, w->removed, nrem, restart,
-                              &res->verdict, w->f, &w->info, res->note, sizeof res->note, err);
+  us_BackendProblem pb = {&w->eq, w->added, nadd, w->removed, nrem, restart};
+  us_BackendOut out = {US_UNDECIDED, w->f, &w->info, res->note, sizeof res->note};
+  us_Status st = w->be->solve(w->bws, &pb, &out, err);
+  res->verdict = out.verdict;
   w->info.solve_time += us_now() - t0;
   if (st) return st;
   memcpy(w->last.w, w->cur.w, (size_t)w->cur.nwords * sizeof(uint64_t));
