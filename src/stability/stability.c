@@ -179,7 +179,7 @@ void us_stability_free(us_Stability *w) {
 
 static us_Status check_settings(const us_Structure *s, const us_StabilitySettings *set,
                                 us_Error *err) {
-  if (!s || !s->finalized)
+  if (!s || !us_structure_is_finalized(s))
     return us_error_set(err, US_ERR_USAGE, "stability: the structure is not finalized");
   if (!(set->cert_tol > 0) || !isfinite(set->cert_tol))
     return us_error_set(err, US_ERR_USAGE, "stability: cert_tol must be positive (got %g)",
@@ -258,7 +258,7 @@ us_Stability *us_stability_new(const us_Structure *s, const us_StabilitySettings
     us_error_set(err, US_ERR_USAGE, "stability: unknown method %d", (int)set->method);
     return NULL;
   }
-  if (!s || !s->finalized) {
+  if (!s || !us_structure_is_finalized(s)) {
     us_error_set(err, US_ERR_USAGE, "stability: the structure is not finalized");
     return NULL;
   }
