@@ -14,39 +14,11 @@ static const us_Method lp_methods[] = {US_METHOD_LP, US_METHOD_LPSOLVE};
 
 /* ---------------------------------------------------------------- helpers */
 
-/* Verdict of `present` (NULL: everything) with method m; -1 on error. A
- * STABLE verdict must carry an ok certificate (else -2). */
-static int verdict_of(const us_Structure *s, us_Method m, const us_Bitset *present) {
-  us_StabilitySettings set = us_stability_default_settings();
-  set.method = m;
-  us_Error err;
-  us_Stability *w = us_stability_new(s, &set, &err);
-  if (!w) {
-    fprintf(stderr, "new: %s\n", err.msg);
-    return -1;
-  }
-  us_Bitset all = {0};
-  if (!present) {
-    if (us_bitset_init(&all, s->nbody)) return -1;
-    us_bitset_fill(&all);
-    present = &all;
-  }
-  us_StabilityResult res = {0};
-  int v = -1;
-  if (us_stability_test(w, present, &res, &err) == US_OK) v = (int)res.verdict;
-  else fprintf(stderr, "test: %s\n", err.msg);
-  if (v == US_STABLE && !res.check.ok) v = -2;
-  us_stability_result_free(&res);
-  us_bitset_free(&all);
-  us_stability_free(w);
-  return v;
-}
-
 /* Both LP methods must give `want`. */
 #define CHECK_VERDICT(s, present, want)                               \
   do {                                                                \
     for (int mi_ = 0; mi_ < 2; mi_++)                                 \
-      CHECK_INT(verdict_of((s), lp_methods[mi_], (present)), ==, (want)); \
+      CHECK_INT(scene_verdict((s), lp_methods[mi_], (present)), ==, (want)); \
   } while (0)
 
 /* A point body of mass 1 at (cx, cy) on two ground contacts at x = xl, xr. */
@@ -428,7 +400,7 @@ static void order_independence(void) {
     random_subset(&p);
     if (t % 7 == 3) us_bitset_fill(&p);
     CHECK_OK(us_stability_test(w, &p, &res, &err), &err);
-    int fresh = verdict_of(s, t % 2 ? US_METHOD_LP : US_METHOD_LPSOLVE, &p);
+    int fresh = scene_verdict(s, t % 2 ? US_METHOD_LP : US_METHOD_LPSOLVE, &p);
     CHECK_INT(res.verdict, ==, fresh);
     if (res.verdict == US_STABLE) CHECK(res.check.ok);
     nstable += res.verdict == US_STABLE;
