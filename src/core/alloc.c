@@ -6,8 +6,8 @@
  * may be freed by another thread than the one that allocated it; relaxed
  * order is enough, since it is read only for leak checks after the
  * threads are joined). The failure hook is per thread: a test that makes
- * its own N-th allocation fail never fails another thread's. These two
- * are the library's only writable globals (tests/globals.sh). */
+ * its own N-th allocation fail never fails another thread's. Both are on
+ * the short list of the library's writable globals (tests/globals.sh). */
 #include "core.h"
 
 #include <stdatomic.h>
