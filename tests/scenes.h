@@ -1,5 +1,7 @@
-/* Small scenes shared by the test programs: an axis-aligned box and
- * sealing a structure. Header-only (static inline) because each test
+/* Small scenes and helpers shared by the test programs, written once:
+ * axis-aligned boxes (by size, by corners, auto-named), random rows of
+ * boxes, sealing a structure, a verdict with its certificate checked, and
+ * a few named structures. Header-only (static inline) because each test
  * program links only its own concept library. */
 #ifndef US_TEST_SCENES_H
 #define US_TEST_SCENES_H
