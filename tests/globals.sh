@@ -2,7 +2,9 @@
 # The library keeps no mutable global state (a library called from
 # threads): no object of its concept archives defines a writable variable
 # (.data, .bss, common, thread-local) outside the justified list below.
-# Constant tables live in .rodata / .data.rel.ro and are fine.
+# Constant tables live in .rodata / .data.rel.ro and are fine (a table of
+# pointers needs both consts, `const char *const t[]`: an optimized build
+# may place it read-only anyway, a debug build does not).
 # Usage: globals.sh <build dir>
 set -u
 build=$1
@@ -20,6 +22,7 @@ found=$(for a in "$build"/libus_*.a; do objdump -t "$a"; done | awk '
     sec = ""; name = $NF
     for (i = 2; i <= NF; i++) if ($i ~ /^(\.|\*COM\*)/) { sec = $i; break }
     if (name == sec || name ~ /^\./) next # section symbols
+    if (name ~ /^__/) next                 # the compiler'"'"'s own (sanitizers: __odr_asan.*)
     if (sec ~ /^(\.data|\.bss|\.tdata|\.tbss|\*COM\*)(\.|$)/ && sec !~ /^\.data\.rel\.ro/)
       print f ":" name
   }' | sort -u)
