@@ -101,7 +101,7 @@ static void read_examples(void) {
     us_Structure *s = read_data(good_files[i], &err);
     if (!s) fprintf(stderr, "%s: %s\n", good_files[i], err.msg);
     CHECK(s != NULL);
-    CHECK(s->finalized);
+    CHECK(us_structure_is_finalized(s));
     CHECK_INT(s->ncontact, >, 0);
     us_structure_free(s);
   }

@@ -83,8 +83,10 @@ US_API void *us_calloc(size_t count, size_t size);
 US_API void *us_realloc(void *p, size_t n);
 US_API void us_free(void *p);
 US_API char *us_strdup(const char *s);
-/* After `n` more successful allocations, every allocation fails; n < 0 turns
- * the hook off. Returns the number of live allocations (for leak checks). */
+/* After `n` more successful allocations, every allocation of the calling
+ * thread fails; n < 0 turns the hook off. Returns the number of live
+ * allocations of the process (for leak checks). Both are thread-safe: the
+ * hook is per thread, the count atomic. */
 US_API long us_alloc_fail_after(long n);
 US_API long us_alloc_live(void);
 
@@ -179,9 +181,9 @@ typedef struct us_Structure {
   double bbox[4];       /* xmin, ymin, xmax, ymax of all geometry and centres */
   double scale;         /* characteristic length: bbox diagonal (>0) */
   double weight;        /* total weight of movable bodies, |g| * sum m */
-  int finalized;
-  int cap_body, cap_contact;
-  void *id_index;       /* private: id -> body index hash map */
+  /* the library's own bookkeeping (finalize state, array capacities, the
+   * id index): opaque, never read or written by users */
+  struct us_StructureInternal *internal;
   double bbox3[6];      /* 3D: xmin, ymin, zmin, xmax, ymax, zmax (scale is its
                            diagonal); 2D: the x, y range of bbox, z = 0 */
 } us_Structure;
@@ -245,6 +247,8 @@ US_API int us_structure_find_body(const us_Structure *s, const char *id); /* ind
  * properties (3D: mass, com and the inertia tensor, exactly), and detect
  * contacts unless explicit contacts were given. Messages name the body ids. */
 US_API us_Status us_structure_finalize(us_Structure *s, us_Error *err);
+/* 1 after a successful us_structure_finalize until the next body is added. */
+US_API int us_structure_is_finalized(const us_Structure *s);
 
 /* The friction coefficient of a contact between two bodies (a may be
  * US_GROUND): the smaller of the two sides' coefficients, each side

@@ -293,7 +293,7 @@ static int run_singles(Asm *a, us_Error *err) {
     if (a->stamp[b] && a->stamp[b] == would_be_size(a, &b, 1)) {
       a->ctx->st->retries_skipped++; /* unchanged since it failed */
       if (park(a, b))
-        return us_error_set(err, US_ERR_NOMEM, "out of memory in the assembly search"), -1;
+        return us_error_set(err, US_ERR_NOMEM, "out of memory in the assembly search"), US_STEP_ERROR;
       continue;
     }
     int r = test_step(a, &b, 1, err);
@@ -302,7 +302,7 @@ static int run_singles(Asm *a, us_Error *err) {
       place_step(a, &b, 1);
       placed = 1;
     } else if (park(a, b)) {
-      return us_error_set(err, US_ERR_NOMEM, "out of memory in the assembly search"), -1;
+      return us_error_set(err, US_ERR_NOMEM, "out of memory in the assembly search"), US_STEP_ERROR;
     }
   }
   return placed;
@@ -350,7 +350,7 @@ static int try_group(Asm *a, GroupEnum *e, us_Error *err) {
   group_key(a, e, 1);
   int fresh = us_bitset_set_add(&e->seen, &a->w);
   group_key(a, e, 0);
-  if (fresh <= 0) return fresh < 0 ? -1 : 0;
+  if (fresh <= 0) return fresh < 0 ? US_STEP_ERROR : 0;
   mark_w(a, e->grp, e->ng, 1);
   int known = us_bitset_set_contains(&a->failed, &a->w);
   mark_w(a, e->grp, e->ng, 0);
@@ -360,7 +360,7 @@ static int try_group(Asm *a, GroupEnum *e, us_Error *err) {
     mark_w(a, e->grp, e->ng, 1);
     int add = us_bitset_set_add(&a->failed, &a->w);
     mark_w(a, e->grp, e->ng, 0);
-    if (add < 0) return -1;
+    if (add < 0) return US_STEP_ERROR;
   }
   return r;
 }
@@ -369,7 +369,7 @@ static int try_group(Asm *a, GroupEnum *e, us_Error *err) {
 static int extend_group(Asm *a, GroupEnum *e, us_Error *err) {
   if (e->ng == e->k) return try_group(a, e, err);
   int *cand = us_malloc(((size_t)a->ctx->s->nbody + 1) * sizeof(int));
-  if (!cand) return -1;
+  if (!cand) return US_STEP_ERROR;
   int nc = group_frontier(a, e->grp, e->ng, cand), r = 0;
   for (int q = 0; q < nc && r == 0; q++) {
     int dup = 0;
@@ -389,7 +389,7 @@ static int run_groups(Asm *a, int k, us_Error *err) {
   GroupEnum e;
   memset(&e, 0, sizeof e);
   e.k = k;
-  if (us_bitset_set_init(&e.seen, a->ctx->s->nbody)) return -1;
+  if (us_bitset_set_init(&e.seen, a->ctx->s->nbody)) return US_STEP_ERROR;
   int r = 0;
   for (int b = 0; b < a->ctx->s->nbody && r == 0; b++) {
     int st = a->state[b];
@@ -400,7 +400,7 @@ static int run_groups(Asm *a, int k, us_Error *err) {
   }
   us_bitset_set_free(&e.seen);
   if (r == 1) place_step(a, e.grp, e.ng);
-  if (r == -1 && err && !err->code)
+  if (r == US_STEP_ERROR && err && !err->code)
     us_error_set(err, US_ERR_NOMEM, "out of memory in the assembly search");
   return r;
 }
@@ -455,11 +455,11 @@ int us_assemble_from(us_SearchCtx *ctx, const us_Bitset *within, const us_Bitset
   out->gstart = us_calloc(m + 1, sizeof(int));
   int r = !out->seq || !out->gstart || us_bitset_init(&out->built, ctx->s->nbody) ||
                   asm_init(&a, ctx, within, out)
-              ? -1
+              ? US_STEP_ERROR
               : 0;
   if (r == 0 && start) place_start(&a, start);
   if (r == 0) r = run(&a, max_group, err);
-  if (r == -1 && err && !err->code)
+  if (r == US_STEP_ERROR && err && !err->code)
     us_error_set(err, US_ERR_NOMEM, "out of memory in the assembly search");
   if (a.ctx == ctx) asm_free(&a);
   return r;

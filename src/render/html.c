@@ -125,7 +125,7 @@ static us_Status check_all(const us_Structure *s, const us_RenderSettings *r,
   if (s->dim != 2)
     return us_error_set(err, US_ERR_INPUT, "render --html: only 2D structures can be shown "
                         "(this one is %dD; the 3D viewer is not written yet)", s->dim);
-  if (!s->finalized)
+  if (!us_structure_is_finalized(s))
     return us_error_set(err, US_ERR_USAGE, "render --html: the structure is not finalized");
   char *seen = us_calloc((size_t)s->nbody + 1, 1);
   if (!seen) return us_error_set(err, US_ERR_NOMEM, "render --html: out of memory");

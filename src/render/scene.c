@@ -278,7 +278,7 @@ static us_Paint body_paint(const us_Structure *s, const us_RenderSettings *r, co
  * mean of its vertices. */
 static void label_point(const us_Structure *s, int i, double *x, double *y) {
   const us_Body *b = &s->bodies[i];
-  if (s->finalized || b->nvert == 0) {
+  if (us_structure_is_finalized(s) || b->nvert == 0) {
     *x = b->com[0];
     *y = b->com[1];
     return;

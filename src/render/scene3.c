@@ -222,13 +222,13 @@ static void body_box(const us_SceneView *v, const us_Structure *s, const us_Body
   double bb[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
   int n = 0;
   memcpy(c, b->com, 3 * sizeof *c);
-  if (!s->finalized) c[0] = c[1] = c[2] = 0.0;
+  if (!us_structure_is_finalized(s)) c[0] = c[1] = c[2] = 0.0;
   for (int p = 0; p < b->npart; p++)
     for (int k = 0; k < b->parts[p].nvert; k++, n++) {
       grow(bb, v, b->parts[p].verts + 3 * k);
-      for (int d = 0; !s->finalized && d < 3; d++) c[d] += b->parts[p].verts[3 * k + d];
+      for (int d = 0; !us_structure_is_finalized(s) && d < 3; d++) c[d] += b->parts[p].verts[3 * k + d];
     }
-  for (int d = 0; !s->finalized && n && d < 3; d++) c[d] /= n;
+  for (int d = 0; !us_structure_is_finalized(s) && n && d < 3; d++) c[d] /= n;
   *w = n ? (bb[2] - bb[0]) * v->k : 0.0;
   *h = n ? (bb[3] - bb[1]) * v->k : 0.0;
 }

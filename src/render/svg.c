@@ -58,7 +58,7 @@ static void put_fill(FILE *fp, us_Paint p) {
 }
 
 static void put_text(FILE *fp, const us_SceneText *t) {
-  static const char *anchor[3] = {"start", "middle", "end"};
+  static const char *const anchor[3] = {"start", "middle", "end"};
   fprintf(fp, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"%.1f\"", t->x, t->y, t->size);
   if (t->anchor) fprintf(fp, " text-anchor=\"%s\"", anchor[t->anchor + 1]);
   if (t->centred) fputs(" dominant-baseline=\"central\"", fp);

@@ -90,30 +90,7 @@ const char *us_verdict_name(us_Verdict v) {
   return "unknown";
 }
 
-/* Default tolerances of the LP backends (us_LpSettings documents them). */
-#define LP_PRIMAL_TOL 1e-9
-#define LP_WARM_ACCEPT 1e-9
-#define LP_FARKAS_SLACK 1e-9
-#define LP_N_COLUMN_MU 1.0
 #define CERT_TOL 1e-6
-
-us_LpSettings us_lp_default_settings(void) {
-  us_LpSettings l;
-  l.primal_tol = LP_PRIMAL_TOL;
-  l.warm_accept = LP_WARM_ACCEPT;
-  l.farkas_slack = LP_FARKAS_SLACK;
-  l.n_column_mu = LP_N_COLUMN_MU;
-  return l;
-}
-
-us_LpSettings us_lp_settings_resolve(const us_LpSettings *in) {
-  us_LpSettings d = us_lp_default_settings(), r = *in;
-  if (!(r.primal_tol > 0)) r.primal_tol = d.primal_tol;
-  if (!(r.warm_accept > 0)) r.warm_accept = d.warm_accept;
-  if (!(r.farkas_slack > 0)) r.farkas_slack = d.farkas_slack;
-  if (!(r.n_column_mu > 0)) r.n_column_mu = d.n_column_mu;
-  return r;
-}
 
 us_StabilitySettings us_stability_default_settings(void) {
   us_StabilitySettings s;
@@ -202,7 +179,7 @@ void us_stability_free(us_Stability *w) {
 
 static us_Status check_settings(const us_Structure *s, const us_StabilitySettings *set,
                                 us_Error *err) {
-  if (!s || !s->finalized)
+  if (!s || !us_structure_is_finalized(s))
     return us_error_set(err, US_ERR_USAGE, "stability: the structure is not finalized");
   if (!(set->cert_tol > 0) || !isfinite(set->cert_tol))
     return us_error_set(err, US_ERR_USAGE, "stability: cert_tol must be positive (got %g)",
@@ -260,7 +237,7 @@ us_Stability *us_stability_new_backend(const us_Structure *s, const us_Stability
   w->t_created = us_now();
   w->t_progress = 0.0; /* the first test reports at once */
   /* local tests: the CLP backend itself (never a test's stand-in) */
-  if (be == &us_backend_clp && set->local >= 0) {
+  if (be->local_tests && set->local >= 0) {
     w->local = us_local_new(s, set, be, s->dim == 3 ? &w->cones : NULL, err);
     w->small = w->local ? us_backend_small.create(s, set, err) : NULL;
     if (!w->local || !w->small) {
@@ -281,7 +258,7 @@ us_Stability *us_stability_new(const us_Structure *s, const us_StabilitySettings
     us_error_set(err, US_ERR_USAGE, "stability: unknown method %d", (int)set->method);
     return NULL;
   }
-  if (!s || !s->finalized) {
+  if (!s || !us_structure_is_finalized(s)) {
     us_error_set(err, US_ERR_USAGE, "stability: the structure is not finalized");
     return NULL;
   }
@@ -349,8 +326,10 @@ static us_Status run_backend(us_Stability *w, us_StabilityResult *res, us_Error 
   w->used_be = w->be;
   w->used_ws = w->bws;
   if (w->small && us_small_fits(&w->eq)) { /* tiny: the dense simplex first */
-    us_Status st = us_backend_small.solve(w->small, &w->eq, NULL, 0, NULL, 0, 1, &res->verdict,
-                                          w->f, &w->info, res->note, sizeof res->note, err);
+    us_BackendOut out = {US_UNDECIDED, w->f, &w->info, res->note, sizeof res->note};
+    us_Status st = us_backend_small.solve(w->small, &(us_BackendProblem){.sys = &w->eq, .restart = 1},
+                                          &out, err);
+    res->verdict = out.verdict;
     if (st || res->verdict != US_UNDECIDED) {
       w->info.solve_time += us_now() - t0;
       w->used_be = &us_backend_small;
@@ -359,8 +338,10 @@ static us_Status run_backend(us_Stability *w, us_StabilityResult *res, us_Error 
     }
   }
   w->have_last = 0; /* until the backend succeeds, its state is unknown */
-  us_Status st = w->be->solve(w->bws, &w->eq, w->added, nadd, w->removed, nrem, restart,
-                              &res->verdict, w->f, &w->info, res->note, sizeof res->note, err);
+  us_BackendProblem pb = {&w->eq, w->added, nadd, w->removed, nrem, restart};
+  us_BackendOut out = {US_UNDECIDED, w->f, &w->info, res->note, sizeof res->note};
+  us_Status st = w->be->solve(w->bws, &pb, &out, err);
+  res->verdict = out.verdict;
   w->info.solve_time += us_now() - t0;
   if (st) return st;
   memcpy(w->last.w, w->cur.w, (size_t)w->cur.nwords * sizeof(uint64_t));
