@@ -69,6 +69,22 @@ typedef struct {
   us_RenderSettings r;
 } RenderArgs;
 
+/* What verification of a found plan says, and the failure to mark. */
+typedef struct {
+  int verified, invalid;
+  us_VerifyReport rep;
+  us_StabilityResult rest; /* the remainder after the failing step */
+  us_RenderFailure fail;
+} PlanCheck;
+
+/* --labels ids|steps|none. */
+static int labels_option(const char *v, us_Labels *out) {
+  static const char *const words[] = {"auto", "ids", "steps", "none"};
+  for (int i = 1; i < 4; i++)
+    if (!strcmp(v, words[i])) return *out = (us_Labels)i, 0;
+  return cli_fail("render", "unknown --labels '%s' (ids, steps, none)", v);
+}
+
 static int size_option(const char *opt, const char *v, double *out) {
   if (cli_parse_double(v, out) || *out < 16 || *out > 100000)
     return cli_fail("render", "%s needs a number of pixels in [16, 100000], got '%s'", opt, v);
@@ -100,7 +116,7 @@ static int value_option(int argc, char **argv, int *i, CliCommon *c, RenderArgs 
   const char *o = argv[*i], *v;
   if (strcmp(o, "-o") && strcmp(o, "--output") && strcmp(o, "--plan") && strcmp(o, "--width") &&
       strcmp(o, "--height") && strcmp(o, "--format") && strcmp(o, "--title") &&
-      strcmp(o, "--time-limit") && strcmp(o, "--view"))
+      strcmp(o, "--time-limit") && strcmp(o, "--view") && strcmp(o, "--labels"))
     return 1;
   if (!(v = cli_value("render", argc, argv, i))) return CLI_EXIT_ERR;
   if (!strcmp(o, "-o") || !strcmp(o, "--output")) a->out = v;
@@ -110,6 +126,7 @@ static int value_option(int argc, char **argv, int *i, CliCommon *c, RenderArgs 
   else if (!strcmp(o, "--height")) return size_option(o, v, &a->r.height_px);
   else if (!strcmp(o, "--format")) return format_option(v, &a->format);
   else if (!strcmp(o, "--view")) return view_option(v, &a->r);
+  else if (!strcmp(o, "--labels")) return labels_option(v, &a->r.labels);
   else if (cli_time_limit("render", v, c)) return CLI_EXIT_ERR;
   else a->time_limit_given = 1;
   return 0;
@@ -141,6 +158,8 @@ static int parse(int argc, char **argv, CliCommon *c, RenderArgs *a) {
   }
   if (!a->file) return cli_fail("render", "no FILE given (see 'unstack render --help')");
   if (!a->out) return cli_fail("render", "no output given: use -o OUT.svg or -o OUT.png");
+  if (a->r.labels == US_LABELS_STEPS && !a->plan)
+    return cli_fail("render", "--labels steps needs --plan (steps come from a plan)");
   return 0;
 }
 
@@ -176,11 +195,22 @@ static int full_test(const us_Structure *s, const RenderArgs *a, const CliCommon
 
 /* "pyramid.json — 91 bodies, plan found, 91 steps" */
 static void make_title(char *buf, size_t n, const RenderArgs *a, const us_Structure *s,
-                       const us_PlanFile *pf, const us_StabilityResult *res) {
+                       const us_PlanFile *pf, const us_StabilityResult *res, const PlanCheck *pc) {
   const char *base = strrchr(a->file, '/');
-  char what[96];
-  if (a->plan && pf->status == US_PLAN_FOUND)
-    snprintf(what, sizeof what, "plan found, %d steps", pf->ngroups);
+  char what[128];
+  if (pc->invalid && pc->rep.failed_step >= 0)
+    snprintf(what, sizeof what, "the plan fails at step %d of %d", pc->rep.failed_step + 1,
+             pf->ngroups);
+  else if (pc->invalid && pc->rep.full_unstable)
+    snprintf(what, sizeof what, "plan invalid: the structure does not stand");
+  else if (pc->invalid)
+    snprintf(what, sizeof what, "plan incomplete: %d bodies are never removed", pc->rep.remaining);
+  else if (a->plan && pf->status == US_PLAN_FOUND)
+    snprintf(what, sizeof what, "plan found, %d steps%s", pf->ngroups,
+             pc->rep.undecided ? " (verify: undecided)" : "");
+  else if (a->plan && pf->status == US_PLAN_NONE && pf->nbuildable > 0)
+    snprintf(what, sizeof what, "plan status none, %d bodies cannot be removed, %d buildable "
+             "(numbered as placed)", pf->nblocked, pf->nbuildable);
   else if (a->plan && pf->status == US_PLAN_NONE)
     snprintf(what, sizeof what, "plan status none, %d bodies cannot be removed", pf->nblocked);
   else if (a->plan)
@@ -204,15 +234,76 @@ static int write_output(const RenderArgs *a, const us_Structure *s, const us_Pla
   return st ? CLI_EXIT_ERR : CLI_EXIT_OK;
 }
 
+/* What the picture marks: an invalid plan's failure, or the full
+ * structure's when it does not stand (no plan, or --forces). */
+static const us_RenderFailure *failure_of(const RenderArgs *a, const us_StabilityResult *res,
+                                          PlanCheck *pc) {
+  if (pc->invalid && (pc->rep.failed_step >= 0 || pc->rep.full_unstable)) return &pc->fail;
+  if (pc->invalid || res->verdict != US_UNSTABLE || (a->plan && !a->forces)) return NULL;
+  pc->fail = (us_RenderFailure){0, res->unstable_body, &res->mechanism};
+  return &pc->fail;
+}
+
+/* The remainder after step k (0-based) of pf, tested for its mechanism. */
+static int test_rest(const us_Structure *s, const us_PlanFile *pf, int k, const CliCommon *c,
+                     us_StabilityResult *res, us_Error *err) {
+  us_Bitset present;
+  if (us_bitset_init(&present, s->nbody > 0 ? s->nbody : 1))
+    return us_error_set(err, US_ERR_NOMEM, "render: out of memory"), -1;
+  for (int i = 0; i < s->nbody; i++) us_bitset_set(&present, i);
+  for (int q = 0; q < pf->group_start[k + 1]; q++) us_bitset_clear(&present, pf->order[q]);
+  us_Stability *w = us_stability_new(s, &c->stab, err);
+  int r = w && us_stability_test(w, &present, res, err) == US_OK ? 0 : -1;
+  us_stability_free(w);
+  us_bitset_free(&present);
+  return r;
+}
+
+/* A found plan is verified as `unstack verify` does; an invalid one gets
+ * its failing step, the body that falls and the remainder's mechanism. */
+static int check_plan(const us_Structure *s, const us_PlanFile *pf, CliCommon *c, PlanCheck *pc,
+                      us_Error *err) {
+  if (pf->status != US_PLAN_FOUND) return 0;
+  int r = cli_verify_plan(s, pf, c, &pc->rep, err);
+  if (r < 0) return -1;
+  pc->verified = 1;
+  pc->invalid = r;
+  int k = pc->rep.failed_step;
+  pc->fail = (us_RenderFailure){k + 1, pc->rep.unstable_body, NULL};
+  if (!r || (k < 0 && !pc->rep.full_unstable)) return 0;
+  if (test_rest(s, pf, k, c, &pc->rest, err)) return -1;
+  if (pc->rest.verdict == US_UNSTABLE) pc->fail.mechanism = &pc->rest.mechanism;
+  if (pc->fail.body < 0 && pc->rest.verdict == US_UNSTABLE) pc->fail.body = pc->rest.unstable_body;
+  return 0;
+}
+
+int cli_verify_plan(const us_Structure *s, const us_PlanFile *pf, CliCommon *c,
+                    us_VerifyReport *rep, us_Error *err) {
+  cli_progress_on("render", c);
+  us_Status st = us_verify_steps(s, &c->stab, pf->order, pf->n, pf->group_start, pf->ngroups,
+                                 rep, err);
+  cli_progress_off(c);
+  if (st) return -1;
+  return !rep->ok && !rep->undecided;
+}
+
+/* The order to number: the plan's, or a none plan's build order. */
+static void set_order(us_RenderSettings *r, const us_PlanFile *pf, int html) {
+  int build = !html && pf->status == US_PLAN_NONE && pf->nbuildable > 0;
+  r->order = build ? pf->buildable : pf->order;
+  r->norder = build ? pf->nbuildable : pf->n;
+  r->ngroups = build ? pf->nbuild : pf->ngroups;
+  r->group_start = r->ngroups != r->norder ? (build ? pf->build_start : pf->group_start) : NULL;
+  r->order_builds = build;
+}
+
 /* Settings from the plan, forces and title; then the output. */
 static int draw(RenderArgs *a, const us_Structure *s, const us_PlanFile *pf,
-                const us_StabilityResult *res, CliCommon *c, us_Error *err) {
+                const us_StabilityResult *res, PlanCheck *pc, CliCommon *c, us_Error *err) {
   char title[512];
-  make_title(title, sizeof title, a, s, pf, res);
-  a->r.order = pf->order;
-  a->r.norder = pf->n;
-  a->r.group_start = pf->ngroups != pf->n ? pf->group_start : NULL;
-  a->r.ngroups = pf->ngroups;
+  make_title(title, sizeof title, a, s, pf, res, pc);
+  set_order(&a->r, pf, a->format == FMT_HTML);
+  if (a->format != FMT_HTML) a->r.failure = failure_of(a, res, pc);
   a->r.blocked = pf->blocked;
   a->r.nblocked = pf->nblocked;
   a->r.forces = a->forces && res->verdict == US_STABLE ? &res->forces : NULL;
@@ -220,8 +311,18 @@ static int draw(RenderArgs *a, const us_Structure *s, const us_PlanFile *pf,
   return write_output(a, s, pf, c, err);
 }
 
-/* Exit code once the picture is written: --forces that could not be drawn. */
-static int forces_outcome(const RenderArgs *a, const us_StabilityResult *res) {
+/* Exit code once the picture is written: an invalid order, --forces that
+ * could not be drawn. */
+static int outcome(const RenderArgs *a, const us_StabilityResult *res, const PlanCheck *pc) {
+  if (pc->invalid) {
+    fprintf(stderr, "unstack render: verify: the order is invalid (%s; marked in the picture)\n",
+            pc->rep.failed_step >= 0 ? "a failing step" : pc->rep.full_unstable
+                                                             ? "the structure does not stand"
+                                                             : "incomplete");
+    return CLI_EXIT_NO;
+  }
+  if (pc->verified && pc->rep.undecided)
+    fprintf(stderr, "unstack render: verify: undecided (%s)\n", pc->rep.note);
   if (!a->forces || res->verdict == US_STABLE) return CLI_EXIT_OK;
   if (res->verdict == US_UNSTABLE) {
     fprintf(stderr, "unstack render: the structure does not stand: no forces drawn\n");
@@ -251,13 +352,19 @@ int cmd_render(int argc, char **argv) {
   us_StabilityResult res;
   us_stability_result_init(&res);
   res.verdict = US_UNDECIDED;
+  PlanCheck pc;
+  memset(&pc, 0, sizeof pc);
+  us_stability_result_init(&pc.rest);
   int code = CLI_EXIT_OK;
-  if (a.plan && us_plan_read(s, a.plan, &pf, &err)) code = CLI_EXIT_ERR;
+  if (a.plan && cli_read_plan("render", s, a.file, a.plan, &pf, &err)) code = CLI_EXIT_ERR;
   int verdict_needed = a.forces || (!a.plan && a.format != FMT_HTML);
   if (!code && verdict_needed && full_test(s, &a, &c, &res, &err)) code = CLI_EXIT_ERR;
-  if (!code) code = draw(&a, s, &pf, &res, &c, &err);
+  if (!code && a.plan && a.format != FMT_HTML && check_plan(s, &pf, &c, &pc, &err))
+    code = CLI_EXIT_ERR;
+  if (!code) code = draw(&a, s, &pf, &res, &pc, &c, &err);
   if (code == CLI_EXIT_ERR) cli_error("render", &err);
-  else if (code == CLI_EXIT_OK) code = forces_outcome(&a, &res);
+  else if (code == CLI_EXIT_OK) code = outcome(&a, &res, &pc);
+  us_stability_result_free(&pc.rest);
   us_stability_result_free(&res);
   us_plan_file_free(&pf);
   us_structure_free(s);
