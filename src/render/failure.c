@@ -45,10 +45,25 @@ us_Status us_scene_check_failure(const us_Structure *s, const us_RenderSettings 
   return US_OK;
 }
 
-int us_scene_mark(const us_RenderSettings *r, const int *step, int i) {
+/* The body to mark as falling: the one named, else the mechanism's
+ * fastest (|v| + |omega|, omega per unit of scale), else none. */
+int us_scene_falling(const us_Structure *s, const us_RenderFailure *f) {
+  const us_Mechanism *m = mechanism_of(f);
+  if (!f || f->body >= 0 || !m) return f ? f->body : -1;
+  int k = mech_stride(s), best = -1;
+  double top = 0.0;
+  for (int q = 0; q < m->nbody; q++) {
+    double sum = 0.0;
+    for (int d = 0; d < k; d++) sum += fabs(m->v[(size_t)k * (size_t)q + (size_t)d]);
+    if (sum > top) top = sum, best = m->body[q];
+  }
+  return best;
+}
+
+int us_scene_mark(const us_RenderSettings *r, const int *step, int i, int falls) {
   const us_RenderFailure *f = r->failure;
   if (!f) return US_MARK_NONE;
-  if (i == f->body) return US_MARK_FALLS;
+  if (i == falls) return US_MARK_FALLS;
   return f->step > 0 && step[i] == f->step && !r->order_builds ? US_MARK_STEP : US_MARK_NONE;
 }
 
@@ -62,9 +77,10 @@ void us_scene_failure_line(char *buf, size_t n, const us_Structure *s,
                            const us_RenderSettings *r) {
   const us_RenderFailure *f = r->failure;
   char who[120] = "";
-  if (f->body >= 0)
+  int falls = us_scene_falling(s, f);
+  if (falls >= 0)
     snprintf(who, sizeof who, "; red outline: '%s' cannot be held",
-             us_id_text(s->bodies[f->body].id).s);
+             us_id_text(s->bodies[falls].id).s);
   const char *mech = mechanism_of(f) ? "; red arrows: how it starts to fall" : "";
   if (f->step > 0)
     snprintf(buf, n, "fails at step %d (dashed; white: removed)%s%s", f->step, who, mech);

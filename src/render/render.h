@@ -151,12 +151,14 @@ void us_scene3_bodies(us_Scene *sc, const us_SceneView *v, const us_Structure *s
                       us_SceneBody *proto);
 
 /* Failure marks (src/render/failure.c): r->failure checked against s
- * (US_ERR_USAGE); the mark of body i (step[i]: its 1-based step); the
+ * (US_ERR_USAGE); the body that falls (named, else the mechanism's
+ * fastest, else -1); the mark of body i (step[i]: its 1-based step); the
  * legend's line; the mechanism's arrays (1 on out of memory); its arrows
  * and 2D ghosts. */
 us_Status us_scene_check_failure(const us_Structure *s, const us_RenderSettings *r,
                                  us_Error *err);
-int us_scene_mark(const us_RenderSettings *r, const int *step, int i);
+int us_scene_falling(const us_Structure *s, const us_RenderFailure *f);
+int us_scene_mark(const us_RenderSettings *r, const int *step, int i, int falls);
 int us_scene_removed(const us_RenderSettings *r, const int *step, int i); /* by the failure */
 void us_scene_failure_line(char *buf, size_t n, const us_Structure *s,
                            const us_RenderSettings *r);

@@ -72,6 +72,7 @@ typedef struct Info {
   double fmax;       /* largest force drawn (0: none) */
   us_SceneBody *proto; /* 3D: each body's paint and label text */
   us_Labels labels;    /* resolved: IDS, STEPS or NONE */
+  int falls;           /* the body marked as falling, or -1 */
   double title_h;
   Legend legend;
 } Info;
@@ -146,6 +147,7 @@ static us_Status check_settings(const us_Structure *s, const us_RenderSettings *
   in->nsteps = r->group_start ? r->ngroups : r->norder;
   if ((unsigned)r->labels > US_LABELS_NONE)
     return us_error_set(err, US_ERR_USAGE, "render: bad labels setting %d", (int)r->labels);
+  in->falls = us_scene_falling(s, r->failure);
   in->labels = !r->show_labels ? US_LABELS_NONE
                : r->labels == US_LABELS_AUTO ? (r->norder > 0 ? US_LABELS_STEPS : US_LABELS_IDS)
                                              : r->labels;
@@ -322,7 +324,7 @@ static void put_bodies3(us_Scene *sc, const View *v, const us_Structure *s,
   for (int i = 0; i < s->nbody; i++) {
     in->proto[i].body = i;
     in->proto[i].paint = body_paint(s, r, in, i);
-    in->proto[i].mark = us_scene_mark(r, in->step, i);
+    in->proto[i].mark = us_scene_mark(r, in->step, i, in->falls);
     body_label(&in->proto[i], v, s, in);
   }
   us_scene3_bodies(sc, v, s, in->proto);
@@ -344,7 +346,7 @@ static void put_bodies(us_Scene *sc, const View *v, const us_Structure *s,
       sc->pts[2 * first + 1] = px_y(v, b->verts[2 * k + 1]);
     }
     sb->paint = body_paint(s, r, in, i);
-    sb->mark = us_scene_mark(r, in->step, i);
+    sb->mark = us_scene_mark(r, in->step, i, in->falls);
     body_label(sb, v, s, in);
   }
   sc->nbody = s->nbody;
