@@ -5,9 +5,12 @@
  *
  * The flow: parse, check the output can be written, pick the format
  * (--format or --html, else the output's extension), load the structure
- * and the plan, test the full structure when a picture's title needs its
- * verdict (no plan) or --forces needs its forces, compose the title, write
- * with the format's writer (write_output: one branch per format). */
+ * and the plan (refused when its fingerprint names another structure),
+ * test the full structure when a picture's title needs its verdict (no
+ * plan) or --forces needs its forces, verify a found plan's order (as
+ * `unstack verify`; an invalid one is drawn with its failing step, the
+ * falling body and the remainder's mechanism, exit 1), compose the title,
+ * write with the format's writer (write_output: one branch per format). */
 #include "options.h"
 
 #include <ctype.h>

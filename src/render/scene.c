@@ -427,9 +427,11 @@ static void legend_lines(Legend *lg, const us_Structure *s, const us_RenderSetti
   snprintf(lg->line[n++], sizeof lg->line[0], "%d bodies (%d fixed), %d contacts", s->nbody,
            in->nfixed, s->ncontact);
   if (r->norder > 0 && in->nsteps != r->norder) snprintf(steps, sizeof steps, " (%d steps)", in->nsteps);
-  if (r->norder > 0)
-    snprintf(lg->line[n++], sizeof lg->line[0], "%d in the %s order, %d not%s", r->norder,
-             r->order_builds ? "build" : "removal", s->nbody - in->nfixed - r->norder, steps);
+  if (r->norder > 0 && r->order_builds)
+    snprintf(lg->line[n++], sizeof lg->line[0], "%d in the build order%s", r->norder, steps);
+  else if (r->norder > 0)
+    snprintf(lg->line[n++], sizeof lg->line[0], "%d in the removal order, %d not%s", r->norder,
+             s->nbody - in->nfixed - r->norder, steps);
   if (r->failure) us_scene_failure_line(lg->line[n++], sizeof lg->line[0], s, r);
   if (r->nblocked > 0)
     snprintf(lg->line[n++], sizeof lg->line[0], "%d cannot be removed", r->nblocked);
