@@ -54,13 +54,13 @@ static void put_str(uint64_t *h, const char *s) {
   put_bytes(h, (const unsigned char *)s, n);
 }
 
-static int less3(const double *a, const double *b) {
+/* qsort order of points: by x, then y, then z. */
+static int cmp3(const void *pa, const void *pb) {
+  const double *a = pa, *b = pb;
   for (int d = 0; d < 3; d++)
     if (a[d] != b[d]) return a[d] < b[d] ? -1 : 1;
   return 0;
 }
-
-static int cmp3(const void *a, const void *b) { return less3(a, b); }
 
 /* A polygon from its least vertex, in its (counter-clockwise) order. */
 static void put_polygon(uint64_t *h, const us_Body *b) {
