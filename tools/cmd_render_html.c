@@ -28,13 +28,9 @@ static const char *base_name(const char *path) {
 static int verify_plan(const us_Structure *s, const us_PlanFile *pf, CliCommon *c,
                        us_HtmlSettings *h, us_Error *err) {
   if (pf->status != US_PLAN_FOUND) return 0;
-  cli_progress_on("render", c, CLI_PROGRESS_STEPS, pf->ngroups);
-  us_Status st = us_verify_steps(s, &c->stab, pf->order, pf->n, pf->group_start, pf->ngroups,
-                                 &h->verify, err);
-  cli_progress_off(c);
-  if (st) return -1;
-  h->verified = 1;
-  return !h->verify.ok && !h->verify.undecided;
+  int r = cli_verify_plan(s, pf, c, &h->verify, err);
+  h->verified = r >= 0;
+  return r;
 }
 
 int cli_render_html(const us_Structure *s, const char *plan, const us_PlanFile *pf, CliCommon *c,

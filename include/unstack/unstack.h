@@ -617,6 +617,9 @@ typedef struct us_Plan {
   int nblocked, *blocked;
   char note[128];        /* stats.undecided > 0: the first undecided test's reason */
   us_PlanStats stats;
+  /* with buildable: buildable is the greedy's placement order, in nbuild
+     steps, build_start[nbuild + 1] offsets into it */
+  int nbuild, *build_start;
 } us_Plan;
 US_API void us_plan_free(us_Plan *p);
 
@@ -795,6 +798,21 @@ US_API us_Structure *us_structure_parse_svg(const char *text, size_t len, const 
 /* Plan files. Reading maps ids to body indices of s. */
 US_API us_Status us_plan_write(const us_Structure *s, const us_Plan *p, const us_PlanSettings *set,
                         const char *path, us_Error *err);
+/* The same into an open stream fp (a FILE*, e.g. a temporary file for
+ * `plan -o -`); `name` is the output's name for messages. On an error part
+ * of the plan may have been written: write to a scratch stream. */
+US_API us_Status us_plan_write_stream(const us_Structure *s, const us_Plan *p,
+                                      const us_PlanSettings *set, void *fp, const char *name,
+                                      us_Error *err);
+/* The fingerprint of a finalized structure (src/io/fingerprint.c,
+ * docs/format.md): a 64-bit FNV-1a hash of a canonical serialisation of
+ * what determines its verdicts (dimension, gravity, friction, ground, each
+ * body's id, fixed flag, mass or density, friction and geometry, explicit
+ * contacts), written into plan files so that a plan read against another
+ * structure is refused. Text form: "fnv1a64:" and 16 lowercase hex digits. */
+#define US_FINGERPRINT_CHARS 25
+US_API us_Status us_structure_fingerprint(const us_Structure *s, uint64_t *out, us_Error *err);
+US_API void us_fingerprint_text(uint64_t fp, char out[US_FINGERPRINT_CHARS]);
 typedef struct us_PlanFile {
   us_PlanStatus status;
   int n;
@@ -804,6 +822,15 @@ typedef struct us_PlanFile {
   int nblocked;       /* "blocked": bodies a plan with status none names */
   int *blocked;
   us_Removal removal; /* "removal" (default any): verify checks the kinematics */
+  int has_fingerprint; /* the file names its structure ("fingerprint"); it
+                          matched (us_plan_read refuses another's) */
+  int other_structure; /* set on the refusal: the file's fingerprint is not
+                          the structure's (fingerprint holds the file's) */
+  char fingerprint[US_FINGERPRINT_CHARS];
+  int nbuildable;      /* status none: "build" (placement order, steps as in
+                          "order"), else 0 */
+  int *buildable, *build_start; /* [nbuildable], [nbuild + 1] offsets */
+  int nbuild;          /* steps of the build */
 } us_PlanFile;
 US_API us_Status us_plan_read(const us_Structure *s, const char *path, us_PlanFile *out, us_Error *err);
 US_API void us_plan_file_free(us_PlanFile *pf);
@@ -822,6 +849,20 @@ US_API void us_certs_free(us_Forces *certs, int n);
 
 /* ------------------------------------------------------------------ render */
 
+/* Body labels: AUTO the step number with an order, else the id; IDS the
+ * id; STEPS the step number (bodies without a step: none); NONE. */
+typedef enum us_Labels { US_LABELS_AUTO = 0, US_LABELS_IDS, US_LABELS_STEPS, US_LABELS_NONE } us_Labels;
+/* What a picture marks when the structure (or a plan's remainder) does not
+ * stand: the failing step (1-based step of the order after which the rest
+ * falls; 0: the full structure), the body that cannot be held (-1: not
+ * known) and the mechanism (the unstable verdict's motion; NULL or nbody 0:
+ * none), drawn as velocity arrows and, in 2D, ghosts of the moving bodies
+ * displaced along it (docs/render.md). */
+typedef struct us_RenderFailure {
+  int step;
+  int body;
+  const us_Mechanism *mechanism;
+} us_RenderFailure;
 typedef struct us_RenderSettings {
   const int *order;       /* removal order (may be NULL) */
   int norder;
@@ -840,6 +881,12 @@ typedef struct us_RenderSettings {
   double view_az, view_el;/* 3D: the axonometric view's azimuth and
                              elevation in degrees (default 35, 25; el in
                              [-90, 90]; docs/render.md) */
+  us_Labels labels;       /* what bodies are labelled with (default
+                             US_LABELS_AUTO; show_labels 0 is NONE) */
+  int order_builds;       /* 1: order is a build (placement) order, the
+                             buildable part of a none plan, numbered 1 =
+                             placed first */
+  const us_RenderFailure *failure; /* why it does not stand (NULL: no mark) */
 } us_RenderSettings;
 US_API us_RenderSettings us_render_default_settings(void);
 /* Draw s (docs/render.md) as SVG or PNG, written atomically: on any error

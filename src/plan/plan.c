@@ -53,9 +53,10 @@ void us_plan_free(us_Plan *p) {
   us_free(p->group_start);
   us_free(p->buildable);
   us_free(p->blocked);
+  us_free(p->build_start);
   p->certs = NULL;
-  p->order = p->group_start = p->buildable = p->blocked = NULL;
-  p->nsteps = p->ngroups = p->nbuildable = p->nblocked = 0;
+  p->order = p->group_start = p->buildable = p->blocked = p->build_start = NULL;
+  p->nsteps = p->ngroups = p->nbuildable = p->nblocked = p->nbuild = 0;
 }
 
 /* ------------------------------------------------------------ set-up */
@@ -168,20 +169,30 @@ static us_Status order_from_exact(const int *order, const unsigned char *end, in
   return US_OK;
 }
 
-/* A maximal buildable sub-assembly (the greedy's) and the bodies outside it. */
-static us_Status report_stuck(const us_SearchCtx *ctx, const us_Bitset *built, us_Plan *out,
+/* The greedy's placements as the plan's build order, in its steps. */
+static void report_build(const us_Assembly *a, us_Plan *out) {
+  for (int q = 0; q < a->nseq; q++) out->buildable[out->nbuildable++] = a->seq[q];
+  for (int g = 0; g <= a->ngroups; g++) out->build_start[g] = a->gstart[g];
+  out->nbuild = a->ngroups;
+}
+
+/* A maximal buildable sub-assembly (the greedy's, in placement order) and
+ * the bodies outside it. */
+static us_Status report_stuck(const us_SearchCtx *ctx, const us_Assembly *a, us_Plan *out,
                               us_Error *err) {
   us_free(out->buildable);
   us_free(out->blocked);
-  out->nbuildable = out->nblocked = 0;
+  us_free(out->build_start);
+  out->nbuildable = out->nblocked = out->nbuild = 0;
   out->buildable = us_malloc(((size_t)ctx->nmov + 1) * sizeof(int));
   out->blocked = us_malloc(((size_t)ctx->nmov + 1) * sizeof(int));
-  if (!out->buildable || !out->blocked) return us_error_set(err, US_ERR_NOMEM, "out of memory");
-  for (int i = 0; i < ctx->s->nbody; i++) {
-    if (ctx->s->bodies[i].fixed) continue;
-    if (us_bitset_get(built, i)) out->buildable[out->nbuildable++] = i;
-    else out->blocked[out->nblocked++] = i;
-  }
+  out->build_start = us_malloc(((size_t)a->ngroups + 2) * sizeof(int));
+  if (!out->buildable || !out->blocked || !out->build_start)
+    return us_error_set(err, US_ERR_NOMEM, "out of memory");
+  report_build(a, out);
+  for (int i = 0; i < ctx->s->nbody; i++)
+    if (!ctx->s->bodies[i].fixed && !us_bitset_get(&a->built, i))
+      out->blocked[out->nblocked++] = i;
   return US_OK;
 }
 
@@ -219,7 +230,7 @@ static int assemble_with(us_SearchCtx *ctx, int K, us_Plan *out, us_Error *err) 
   int r = us_assemble(ctx, &ctx->full, K, &a, err);
   us_Status st = US_OK;
   if (r == 1) st = order_from_assembly(&a, out, err);
-  if (r == 0) st = report_stuck(ctx, &a.built, out, err);
+  if (r == 0) st = report_stuck(ctx, &a, out, err);
   us_assembly_free(&a);
   if (st) return US_STEP_ERROR;
   if (r == 0) {
@@ -250,8 +261,9 @@ static int run_assemble(us_SearchCtx *ctx, us_Plan *out, us_Error *err) {
   if ((r == 1 || r == US_STEP_FALLS) && out->buildable) {
     us_free(out->buildable);
     us_free(out->blocked);
-    out->buildable = out->blocked = NULL;
-    out->nbuildable = out->nblocked = 0;
+    us_free(out->build_start);
+    out->buildable = out->blocked = out->build_start = NULL;
+    out->nbuildable = out->nblocked = out->nbuild = 0;
   }
   return r == 1 ? US_PLAN_FOUND : r == 0 ? US_PLAN_NONE : r == US_STEP_FALLS ? US_PLAN_UNSTABLE : r;
 }
@@ -315,7 +327,7 @@ static us_Status name_stuck(us_SearchCtx *ctx, us_Plan *out, us_Error *err) {
   if (ctx->kin) return US_OK;
   us_Assembly a;
   int r = us_assemble(ctx, &ctx->full, 1, &a, err);
-  us_Status st = r == 0 ? report_stuck(ctx, &a.built, out, err) : US_OK;
+  us_Status st = r == 0 ? report_stuck(ctx, &a, out, err) : US_OK;
   us_assembly_free(&a);
   return r == US_STEP_ERROR ? (err && err->code ? err->code : US_ERR_NOMEM) : st;
 }

@@ -59,7 +59,7 @@ typedef us_SceneView View; /* render.h */
 
 /* The legend's text and layout (legend_layout). */
 typedef struct Legend {
-  char line[4][160];
+  char line[5][160];
   int nline, ramp, swatches;
   double text_x, text_y, swatch_y, height;
 } Legend;
@@ -71,6 +71,8 @@ typedef struct Info {
   int nfixed, nleft; /* fixed bodies; movable ones neither ordered nor blocked */
   double fmax;       /* largest force drawn (0: none) */
   us_SceneBody *proto; /* 3D: each body's paint and label text */
+  us_Labels labels;    /* resolved: IDS, STEPS or NONE */
+  int falls;           /* the body marked as falling, or -1 */
   double title_h;
   Legend legend;
 } Info;
@@ -119,6 +121,8 @@ static us_Status check_rest(const us_Structure *s, const us_RenderSettings *r, i
                           "the order", k);
     step[i] = -1;
   }
+  us_Status st = us_scene_check_failure(s, r, err);
+  if (st) return st;
   const us_Forces *f = r->forces;
   if (f && (f->ncontact < 0 || (f->ncontact > 0 && (!f->contact || !f->f))))
     return us_error_set(err, US_ERR_USAGE, "render: bad forces (%d contacts)", f->ncontact);
@@ -141,6 +145,12 @@ static us_Status check_settings(const us_Structure *s, const us_RenderSettings *
   if (!st) st = check_rest(s, r, in->step, err);
   if (st) return st;
   in->nsteps = r->group_start ? r->ngroups : r->norder;
+  if ((unsigned)r->labels > US_LABELS_NONE)
+    return us_error_set(err, US_ERR_USAGE, "render: bad labels setting %d", (int)r->labels);
+  in->falls = us_scene_falling(s, r->failure);
+  in->labels = !r->show_labels ? US_LABELS_NONE
+               : r->labels == US_LABELS_AUTO ? (r->norder > 0 ? US_LABELS_STEPS : US_LABELS_IDS)
+                                             : r->labels;
   for (int i = 0; i < s->nbody; i++) {
     in->nfixed += s->bodies[i].fixed != 0;
     in->nleft += !s->bodies[i].fixed && in->step[i] == 0;
@@ -270,6 +280,7 @@ static us_Paint body_paint(const us_Structure *s, const us_RenderSettings *r, co
                            int i) {
   if (s->bodies[i].fixed) return hatched(US_HATCH_FIXED);
   if (in->step[i] < 0) return hatched(US_HATCH_BLOCKED);
+  if (us_scene_removed(r, in->step, i)) return solid(kWhite); /* gone when it falls */
   if (r->norder > 0 && in->step[i]) return solid(us_ramp(step_t(in->step[i], in->nsteps)));
   return solid(r->norder > 0 ? kLeftOut : kSandstone);
 }
@@ -289,12 +300,11 @@ static void label_point(const us_Structure *s, int i, double *x, double *y) {
   *y /= (double)b->nvert;
 }
 
-/* Step number (with an order) or id (labels, no order), when it fits. */
-static void body_label(us_SceneBody *sb, const View *v, const us_Structure *s,
-                       const us_RenderSettings *r, const Info *in) {
+/* Step number or id (in->labels), when it fits. */
+static void body_label(us_SceneBody *sb, const View *v, const us_Structure *s, const Info *in) {
   const us_Body *b = &s->bodies[sb->body];
-  int step = in->step[sb->body], numbered = r->norder > 0 && step > 0;
-  if (!numbered && !(r->norder == 0 && r->show_labels)) return;
+  int step = in->step[sb->body], numbered = in->labels == US_LABELS_STEPS && step > 0;
+  if (!numbered && in->labels != US_LABELS_IDS) return;
   snprintf(sb->num, sizeof sb->num, "%d", step);
   const char *text = numbered ? sb->num : b->id;
   int light = us_rgb_lightness(sb->paint.fill) < 0.6 && sb->paint.hatch < 0;
@@ -314,7 +324,8 @@ static void put_bodies3(us_Scene *sc, const View *v, const us_Structure *s,
   for (int i = 0; i < s->nbody; i++) {
     in->proto[i].body = i;
     in->proto[i].paint = body_paint(s, r, in, i);
-    body_label(&in->proto[i], v, s, r, in);
+    in->proto[i].mark = us_scene_mark(r, in->step, i, in->falls);
+    body_label(&in->proto[i], v, s, in);
   }
   us_scene3_bodies(sc, v, s, in->proto);
 }
@@ -335,7 +346,8 @@ static void put_bodies(us_Scene *sc, const View *v, const us_Structure *s,
       sc->pts[2 * first + 1] = px_y(v, b->verts[2 * k + 1]);
     }
     sb->paint = body_paint(s, r, in, i);
-    body_label(sb, v, s, r, in);
+    sb->mark = us_scene_mark(r, in->step, i, in->falls);
+    body_label(sb, v, s, in);
   }
   sc->nbody = s->nbody;
 }
@@ -415,9 +427,12 @@ static void legend_lines(Legend *lg, const us_Structure *s, const us_RenderSetti
   snprintf(lg->line[n++], sizeof lg->line[0], "%d bodies (%d fixed), %d contacts", s->nbody,
            in->nfixed, s->ncontact);
   if (r->norder > 0 && in->nsteps != r->norder) snprintf(steps, sizeof steps, " (%d steps)", in->nsteps);
-  if (r->norder > 0)
+  if (r->norder > 0 && r->order_builds)
+    snprintf(lg->line[n++], sizeof lg->line[0], "%d in the build order%s", r->norder, steps);
+  else if (r->norder > 0)
     snprintf(lg->line[n++], sizeof lg->line[0], "%d in the removal order, %d not%s", r->norder,
              s->nbody - in->nfixed - r->norder, steps);
+  if (r->failure) us_scene_failure_line(lg->line[n++], sizeof lg->line[0], s, r);
   if (r->nblocked > 0)
     snprintf(lg->line[n++], sizeof lg->line[0], "%d cannot be removed", r->nblocked);
   if (in->fmax > 0)
@@ -462,8 +477,8 @@ static void put_legend(us_Scene *sc, const us_RenderSettings *r, const Info *in)
     sc->has_ramp = 1;
     sc->ramp_box = (us_SceneBox){10.0, y0, 160.0, 12.0, solid(kWhite)};
     for (int i = 0; i < US_RAMP_STOPS; i++) sc->ramp[i] = us_ramp(i / (US_RAMP_STOPS - 1.0));
-    add_text(sc, 10.0, y0 + 26.0, 11.0, -1, 0, "removed first");
-    add_text(sc, 170.0, y0 + 26.0, 11.0, 1, 0, "removed last");
+    add_text(sc, 10.0, y0 + 26.0, 11.0, -1, 0, r->order_builds ? "placed first" : "removed first");
+    add_text(sc, 170.0, y0 + 26.0, 11.0, 1, 0, r->order_builds ? "placed last" : "removed last");
   }
   for (int i = 0; i < lg->nline; i++)
     add_text(sc, lg->text_x, y0 + lg->text_y + LINE_PX * i, 11.0, -1, 0, lg->line[i]);
@@ -485,7 +500,8 @@ static us_Status alloc_parts(us_Scene *sc, const us_Structure *s, const us_Rende
   sc->pts = us_malloc((2 * nv + 1) * sizeof *sc->pts);
   sc->dots = us_malloc((2 * (size_t)s->ncontact + 1) * sizeof *sc->dots);
   sc->arrows = us_malloc((4 * nf + 1) * sizeof *sc->arrows);
-  if (in->step && in->proto && sc->bodies && sc->lines && sc->pts && sc->dots && sc->arrows)
+  if (in->step && in->proto && sc->bodies && sc->lines && sc->pts && sc->dots && sc->arrows &&
+      !us_scene_alloc_failure(sc, s, r))
     return US_OK;
   return us_error_set(err, US_ERR_NOMEM, "render: out of memory");
 }
@@ -503,6 +519,7 @@ static void fill_scene(us_Scene *sc, const View *v, const us_Structure *s,
   else put_bodies(sc, v, s, r, in);
   if (r->show_contacts) put_dots(sc, v, s);
   if (in->fmax > 0) put_arrows(sc, v, s, r->forces, in->fmax);
+  if (r->failure) us_scene_mechanism(sc, v, s, r->failure);
   put_legend(sc, r, in);
 }
 
@@ -537,5 +554,8 @@ void us_scene_free(us_Scene *sc) {
   us_free(sc->dots);
   us_free(sc->arrows);
   us_free(sc->lines);
+  us_free(sc->mech);
+  us_free(sc->ghost_start);
+  us_free(sc->ghost_pts);
   memset(sc, 0, sizeof *sc);
 }

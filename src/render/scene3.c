@@ -194,12 +194,14 @@ static void collect(us_Scene *sc, const us_SceneView *v, const us_Structure *s,
         const double *n = b->parts[p].planes + 4 * f;
         if (!(dot3(n, v->e) > 1e-9)) continue;
         us_SceneBody *sb = &sc->bodies[sc->nbody++];
-        *sb = (us_SceneBody){.body = i, .paint = shade(proto[i].paint, n, v)};
+        *sb = (us_SceneBody){.body = i, .paint = shade(proto[i].paint, n, v),
+                             .mark = proto[i].mark};
         put_face(sc, sb, v, &b->parts[p], f, &first);
       }
     if (b->npart == 0) {
       us_SceneBody *sb = &sc->bodies[sc->nbody++];
-      *sb = (us_SceneBody){.body = i, .paint = proto[i].paint, .depth = dot3(b->com, v->e)};
+      *sb = (us_SceneBody){.body = i, .paint = proto[i].paint, .depth = dot3(b->com, v->e),
+                           .mark = proto[i].mark};
       us_scene_px(v, b->com, &sb->cx, &sb->cy);
     }
   }
