@@ -10,6 +10,10 @@
 #   fig4-*.csv    the source's Figure 4: seconds per stability test against
 #                 the bodies in the tested sub-assembly, per method, on the
 #                 91-block pyramid and a 1,000-block wall (bench_fig4);
+#   startup.csv   whole commands timed from fork to exit: /bin/true, check
+#                 on a 5-block column, plan on the pyramid with lp and
+#                 lpsolve (bench/startup.c); startup-ratios.csv the two
+#                 ratios of issue 24;
 #   scaling.csv   walls and pyramids from 100 to 100,000 blocks, the
 #                 stacker's random stacks from 100 to about 9,000: plan and verify time, tests, peak memory,
 #                 and the fitted exponent from 1,000 blocks up.
@@ -144,6 +148,43 @@ for wl in pyramid91 wall1000; do
   done
   say ""
 done
+
+# ------------------------------------------------------------------ start-up
+# Whole commands as a user runs them (bench_startup: fork to exit, median
+# of many runs): the price of loading the executable and its libraries
+# (docs/modules.md). Targets (issue 24): check on a 5-block column at most
+# 4x /bin/true; plan on the pyramid at least 20x faster than with lpsolve.
+say "## Start-up: whole commands"
+say ""
+ST=$OUT/startup-$tag.csv
+RUNS=$([ "$QUICK" = 1 ] && echo 31 || echo 101)
+SLOW=$([ "$QUICK" = 1 ] && echo 11 || echo 31)
+gen column --blocks 5 -o "$W/column5.json"
+echo "command,runs,median_ms,min_ms,objects" >"$ST"
+startup_row() { # label runs command...: one CSV row, "median" on stdout
+  local label=$1 runs=$2 med min objs
+  shift 2
+  read -r med min < <("$B/bench_startup" "$runs" "$@")
+  objs=$(LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -c 'generating link map')
+  echo "$label,$runs,${med:-nan},${min:-nan},$objs" >>"$ST"
+  echo "${med:-nan}"
+}
+t_true=$(startup_row "true" "$RUNS" /bin/true)
+t_check=$(startup_row "check column5" "$RUNS" "$CLI" check "$W/column5.json")
+t_plan=$(startup_row "plan pyramid91" "$RUNS" "$CLI" plan "$W/pyramid91.json" -o "$W/sp.json")
+t_lps=$(startup_row "plan pyramid91 --method lpsolve" "$SLOW" "$CLI" plan "$W/pyramid91.json" \
+  --method lpsolve -o "$W/sp.json")
+say "| command | runs | median ms | min ms | shared objects loaded |"
+say "|---|---|---|---|---|"
+tail -n +2 "$ST" | awk -F, '{printf "| %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5}' | tee -a "$MD"
+say ""
+say "$(awk -v c="$t_check" -v t="$t_true" -v p="$t_plan" -v l="$t_lps" 'BEGIN {
+  printf "check column5 / true: %.2f (target at most 4); plan pyramid91 lpsolve / lp: %.1f (target at least 20)", c / t, l / p }')"
+awk -v c="$t_check" -v t="$t_true" -v p="$t_plan" -v l="$t_lps" 'BEGIN {
+  print "ratio,value,target"
+  printf "check column5 / true,%.3f,at most 4\n", c / t
+  printf "plan pyramid91 lpsolve / lp,%.3f,at least 20\n", l / p }' >"$OUT/startup-ratios-$tag.csv"
+say ""
 
 # ------------------------------------------------------------------ scaling
 say "## Scaling: whole plan (and verify) time against the number of blocks"

@@ -18,6 +18,9 @@
 #ifndef US_MODULE_FROM_BINDIR
 #define US_MODULE_FROM_BINDIR "../lib/unstack"
 #endif
+#ifndef US_MODULE_FROM_BINDIR_ARCH
+#define US_MODULE_FROM_BINDIR_ARCH US_MODULE_FROM_BINDIR
+#endif
 #ifndef US_MODULE_FROM_LIBDIR
 #define US_MODULE_FROM_LIBDIR "unstack"
 #endif
@@ -28,8 +31,11 @@ static const us_ModuleHost host_table = {
 };
 
 int us_module_dir(const char *self_dir, int k, char *buf, size_t cap) {
-  static const char *const below[] = {"modules", US_MODULE_FROM_LIBDIR, US_MODULE_FROM_BINDIR};
-  if (k < 0 || k >= (int)(sizeof below / sizeof below[0])) return 0;
+  static const char *const below[] = {"modules", US_MODULE_FROM_LIBDIR, US_MODULE_FROM_BINDIR,
+                                       US_MODULE_FROM_BINDIR_ARCH};
+  int n_below = (int)(sizeof below / sizeof below[0]);
+  if (strcmp(below[n_below - 1], below[n_below - 2]) == 0) n_below--; /* the same directory */
+  if (k < 0 || k >= n_below) return 0;
   int n = snprintf(buf, cap, "%s/%s", self_dir, below[k]);
   return n > 0 && (size_t)n < cap;
 }

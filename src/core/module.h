@@ -54,9 +54,10 @@ const void *us_module_api(us_Module *m, us_Error *err);
 /* The directories searched, in order, for a module, from `self_dir` (the
  * directory of the executable or library that holds the host): <dir>/modules
  * (the build tree), <dir>/unstack (an installed libunstack.so in
- * PREFIX/LIBDIR) and the private library directory seen from an installed
- * executable in PREFIX/bin. Writes the k-th candidate into buf; 0 when
- * there is no k-th. */
+ * PREFIX/LIBDIR), and PREFIX/LIBDIR/unstack and PREFIX/lib/<multiarch>/unstack
+ * seen from an installed executable in PREFIX/BINDIR (CMake's
+ * GNUInstallDirs). Writes the k-th candidate into buf: 1, or 0 when there
+ * is no k-th. */
 int us_module_dir(const char *self_dir, int k, char *buf, size_t cap);
 
 #endif

@@ -5,7 +5,9 @@
  * planner whose tests the local tests and plumb lines decide
  * (docs/local.md) never solves an LP. So create keeps what the module's
  * create needs, and the first solve loads the module and makes the real
- * workspace; a deadline set before then is handed on. */
+ * workspace. A deadline makes it at once: CLP turns the wall-clock time
+ * left into CPU seconds by the CPU share measured since its workspace was
+ * made, which must span the work before the first LP as it always did. */
 #include "backend.h"
 
 #include "core/module.h"
@@ -67,6 +69,7 @@ static int lazy_unstable_body(void *ws) {
 static void lazy_set_deadline(void *ws, double deadline) {
   LazyWs *w = ws;
   w->deadline = deadline;
+  if (deadline > 0) ensure(w, NULL); /* a failure is reported by the next solve */
   if (w->ws) w->be->set_deadline(w->ws, deadline);
 }
 
