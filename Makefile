@@ -7,7 +7,7 @@ CLI    = $(BUILD)/unstack
 OUT   ?= demo-out
 QUICK ?= 0
 
-.PHONY: all deps build asan demo test test-release test-asan bench clean fuzz fuzz-build
+.PHONY: all deps build cli asan demo test test-release test-asan bench clean fuzz fuzz-build
 
 all: build
 
@@ -22,8 +22,15 @@ asan: deps
 	@cmake -S . -B $(ASAN) -DCMAKE_BUILD_TYPE=Debug -DUS_SANITIZE=ON >/dev/null
 	@cmake --build $(ASAN) -j$(JOBS)
 
+# What the demo runs: the tool and its modules (docs/modules.md), none of
+# the test programs; `make build` and `make test` build everything.
+cli:
+	@bash scripts/deps.sh demo
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
+	@cmake --build $(BUILD) -j$(JOBS) --target unstack_cli
+
 # The main job on a built-in default: the source's 91-block pyramid.
-demo: build
+demo: cli
 	@mkdir -p $(OUT)
 	$(CLI) generate pyramid --rows 13 -o $(OUT)/pyramid.json
 	$(CLI) check $(OUT)/pyramid.json
