@@ -476,6 +476,23 @@ US_API void us_stability_set_deadline(us_Stability *w, double deadline);
 /* Test the whole structure (every movable body present). */
 US_API us_Status us_stability_test_full(us_Stability *w, us_StabilityResult *res, us_Error *err);
 
+/* Which of the many admissible force sets to show (forces are not unique;
+ * src/stability/represent.c, docs/render.md "Forces"): the solver's own
+ * (a vertex), the one that maximises the smallest normal force with the
+ * total at most twice the least (then the least total keeping that
+ * margin), or the least total force. */
+typedef enum us_ForceSet { US_FORCESET_SOLVER = 0, US_FORCESET_MARGIN, US_FORCESET_MIN_SUM } us_ForceSet;
+US_API const char *us_force_set_name(us_ForceSet kind);
+/* The representative forces of sub-assembly `present` by rule `kind`
+ * (margin or min-sum), solved with CLP (3D: inside the inner friction
+ * polygons). res->verdict US_STABLE: res->forces passed the certificate
+ * check (res->check) at set->cert_tol (set NULL: defaults); US_UNDECIDED:
+ * no such set found (res->note says why; it does not mean unstable).
+ * res must be initialized (us_stability_result_init). */
+US_API us_Status us_stability_forces_representative(const us_Structure *s, const us_Bitset *present,
+                                                    us_ForceSet kind, const us_StabilitySettings *set,
+                                                    us_StabilityResult *res, us_Error *err);
+
 /* Independent re-check of forces for a sub-assembly, without any solver. */
 US_API us_CertCheck us_certificate_check(const us_Structure *s, const us_Bitset *present,
                                   const us_Forces *f, double tol);
