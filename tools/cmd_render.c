@@ -16,7 +16,8 @@
 #include <string.h>
 
 static const char help[] =
-    "usage: unstack render FILE [--plan PLAN.json] [--forces] -o OUT.svg|OUT.png\n"
+    "usage: unstack render FILE [--plan PLAN.json] [--forces [contacts|resultants]]\n"
+    "                           [--force-set solver|margin|min-sum] -o OUT.svg|OUT.png\n"
     "       unstack render FILE [--plan PLAN.json] --html -o OUT.html\n"
     "\n"
     "Draw the structure in FILE as SVG or PNG (a 3D one in an axonometric view,\n"
@@ -24,7 +25,10 @@ static const char help[] =
     "structure stands), bodies coloured and numbered by their removal step when a\n"
     "plan is given (with a legend), bodies that cannot be removed (a plan with\n"
     "status none) hatched red, contact points, and with --forces the certificate\n"
-    "forces of the full structure as arrows scaled to the largest.\n"
+    "forces of the full structure as arrows scaled to the largest: at each contact\n"
+    "the force the lower body exerts on the upper one (upper: the side the contact\n"
+    "normal enters when it points up), normal part blue, friction part orange.\n"
+    "Forces are not unique: the arrows are one admissible set (docs/render.md).\n"
     "\n"
     "options:\n"
     "  -o, --output OUT      output file (required); .svg or .png picks the format\n"
@@ -32,7 +36,12 @@ static const char help[] =
     "  --html                the interactive viewer, one self-contained page (also\n"
     "                        chosen by an output name ending in .html; docs/viewer.md)\n"
     "  --plan PLAN.json      colour and number bodies by removal order\n"
-    "  --forces              draw the contact forces that hold the structure\n"
+    "  --forces [contacts|resultants]  draw the contact forces that hold the\n"
+    "                        structure: one arrow per contact (default), or one per\n"
+    "                        pair of touching bodies at the resultant's point\n"
+    "  --force-set S         which admissible set: solver (its own, default), margin\n"
+    "                        (the largest smallest normal force), min-sum (the least\n"
+    "                        total force); each is certified before it is drawn\n"
     "  --method M            backend for the stability test (default auto)\n"
     "  --time-limit S        limit of the stability test (default 10 s)\n"
     "  --title TEXT          the title line (default: file, bodies, status)\n"
@@ -65,6 +74,7 @@ static const struct {
 typedef struct {
   const char *file, *out, *plan, *title;
   int forces, time_limit_given;
+  us_ForceSet force_set;
   Format format;
   us_RenderSettings r;
 } RenderArgs;
@@ -89,6 +99,13 @@ static int view_option(const char *v, us_RenderSettings *r) {
   return 0;
 }
 
+/* --force-set NAME. */
+static int force_set_option(const char *v, us_ForceSet *out) {
+  for (int k = US_FORCESET_SOLVER; k <= US_FORCESET_MIN_SUM; k++)
+    if (!strcmp(v, us_force_set_name((us_ForceSet)k))) return *out = (us_ForceSet)k, 0;
+  return cli_fail("render", "unknown --force-set '%s' (solver, margin, min-sum)", v);
+}
+
 static int format_option(const char *v, Format *f) {
   for (int i = 0; i < NFORMATS; i++)
     if (!strcmp(v, kFormats[i].name)) return *f = kFormats[i].f, 0;
@@ -100,7 +117,7 @@ static int value_option(int argc, char **argv, int *i, CliCommon *c, RenderArgs 
   const char *o = argv[*i], *v;
   if (strcmp(o, "-o") && strcmp(o, "--output") && strcmp(o, "--plan") && strcmp(o, "--width") &&
       strcmp(o, "--height") && strcmp(o, "--format") && strcmp(o, "--title") &&
-      strcmp(o, "--time-limit") && strcmp(o, "--view"))
+      strcmp(o, "--time-limit") && strcmp(o, "--view") && strcmp(o, "--force-set"))
     return 1;
   if (!(v = cli_value("render", argc, argv, i))) return CLI_EXIT_ERR;
   if (!strcmp(o, "-o") || !strcmp(o, "--output")) a->out = v;
@@ -110,6 +127,7 @@ static int value_option(int argc, char **argv, int *i, CliCommon *c, RenderArgs 
   else if (!strcmp(o, "--height")) return size_option(o, v, &a->r.height_px);
   else if (!strcmp(o, "--format")) return format_option(v, &a->format);
   else if (!strcmp(o, "--view")) return view_option(v, &a->r);
+  else if (!strcmp(o, "--force-set")) return force_set_option(v, &a->force_set);
   else if (cli_time_limit("render", v, c)) return CLI_EXIT_ERR;
   else a->time_limit_given = 1;
   return 0;
@@ -126,7 +144,9 @@ static int parse(int argc, char **argv, CliCommon *c, RenderArgs *a) {
     } else if (!strcmp(argv[i], "--html")) {
       a->format = FMT_HTML;
     } else if (!strcmp(argv[i], "--forces")) {
-      a->forces = 1;
+      a->forces = 1; /* an optional style word follows */
+      if (i + 1 < argc && (!strcmp(argv[i + 1], "contacts") || !strcmp(argv[i + 1], "resultants")))
+        a->r.force_resultants = !strcmp(argv[++i], "resultants");
     } else if (!strcmp(argv[i], "--no-contacts")) {
       a->r.show_contacts = 0;
     } else if (!strcmp(argv[i], "--no-labels")) {
@@ -174,6 +194,31 @@ static int full_test(const us_Structure *s, const RenderArgs *a, const CliCommon
   return r;
 }
 
+/* --force-set margin|min-sum on a stable full structure: its
+ * representative forces replace the solver's in res when certified; else
+ * a note, and the solver's are drawn (the legend says which). */
+static int representative(const us_Structure *s, RenderArgs *a, const CliCommon *c,
+                          us_StabilityResult *res, us_Error *err) {
+  if (!a->forces || a->force_set == US_FORCESET_SOLVER || res->verdict != US_STABLE) return 0;
+  us_Bitset all;
+  if (us_bitset_init(&all, s->nbody > 0 ? s->nbody : 1))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory"), -1;
+  us_bitset_fill(&all);
+  us_StabilityResult rep;
+  us_stability_result_init(&rep);
+  us_Status st = us_stability_forces_representative(s, &all, a->force_set, &c->stab, &rep, err);
+  us_bitset_free(&all);
+  if (!st && rep.verdict == US_STABLE) {
+    us_Forces keep = res->forces;
+    res->forces = rep.forces, rep.forces = keep; /* rep frees the solver's */
+  } else if (!st) {
+    fprintf(stderr, "unstack render: %s; drawing the solver's forces\n", rep.note);
+    a->force_set = US_FORCESET_SOLVER;
+  }
+  us_stability_result_free(&rep);
+  return st ? -1 : 0;
+}
+
 /* "pyramid.json — 91 bodies, plan found, 91 steps" */
 static void make_title(char *buf, size_t n, const RenderArgs *a, const us_Structure *s,
                        const us_PlanFile *pf, const us_StabilityResult *res) {
@@ -216,6 +261,7 @@ static int draw(RenderArgs *a, const us_Structure *s, const us_PlanFile *pf,
   a->r.blocked = pf->blocked;
   a->r.nblocked = pf->nblocked;
   a->r.forces = a->forces && res->verdict == US_STABLE ? &res->forces : NULL;
+  a->r.force_set = a->force_set;
   a->r.title = a->title ? a->title : title;
   return write_output(a, s, pf, c, err);
 }
@@ -255,6 +301,7 @@ int cmd_render(int argc, char **argv) {
   if (a.plan && us_plan_read(s, a.plan, &pf, &err)) code = CLI_EXIT_ERR;
   int verdict_needed = a.forces || (!a.plan && a.format != FMT_HTML);
   if (!code && verdict_needed && full_test(s, &a, &c, &res, &err)) code = CLI_EXIT_ERR;
+  if (!code && representative(s, &a, &c, &res, &err)) code = CLI_EXIT_ERR;
   if (!code) code = draw(&a, s, &pf, &res, &c, &err);
   if (code == CLI_EXIT_ERR) cli_error("render", &err);
   else if (code == CLI_EXIT_OK) code = forces_outcome(&a, &res);

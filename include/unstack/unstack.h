@@ -841,7 +841,13 @@ typedef struct us_RenderSettings {
   int ngroups;
   const int *blocked;     /* bodies that cannot be removed (plan status none) */
   int nblocked;
-  const us_Forces *forces;/* draw as arrows (may be NULL) */
+  const us_Forces *forces;/* draw as arrows (may be NULL): at each contact the
+                             force of the lower body on the upper one, normal
+                             and friction parts apart (docs/render.md) */
+  int force_resultants;   /* 1: one arrow per pair of touching bodies, their
+                             contacts' resultant at its centre of pressure */
+  us_ForceSet force_set;  /* which admissible set `forces` is (the legend
+                             names it; default US_FORCESET_SOLVER) */
   int show_contacts;      /* default 1 */
   int show_labels;        /* default 1 */
   double width_px;        /* default 800 */
@@ -873,6 +879,8 @@ typedef struct us_HtmlSettings {
                                certs[k] = forces of the structure before step
                                k of r's order (nsteps = r's steps, 0 without
                                an order) */
+  us_ForceSet force_set;    /* which admissible set certs are (the page
+                               names it) */
   int verified;             /* 1: `verify` holds us_verify_steps' report on
                                r's order, shown in the page (a failing step in
                                red) */
