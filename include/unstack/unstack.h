@@ -869,7 +869,7 @@ US_API us_Status us_render_png(const us_Structure *s, const us_RenderSettings *r
                         us_Error *err);
 
 /* The interactive plan viewer (docs/viewer.md): one self-contained HTML
- * page (inline SVG, script and style; no network) with a step slider,
+ * page (a canvas, script and style; no network) with a step slider,
  * play/pause, the forces of each step, zoom, pan and hover. 2D only. */
 typedef struct us_HtmlSettings {
   const char *title;        /* shown in the page (NULL: "unstack") */
