@@ -12,6 +12,7 @@ page_has() { contains "$1" "$2" "$3"; }
 "$CLI" generate pyramid --rows 4 -o "$T/p.json" >/dev/null
 "$CLI" plan "$T/p.json" --certificates -o "$T/plan.json" >/dev/null
 "$CLI" plan "$T/p.json" -o "$T/plain.json" >/dev/null
+"$CLI" generate tower --blocks 3 -o "$T/p3.json" >/dev/null
 expect 0 "render --html with certificates" -- "$CLI" render "$T/p.json" --plan "$T/plan.json" --html -o "$T/a.html"
 page_has "$T/a.html" '"forces":[' "the page holds the plan's forces"
 page_has "$T/a.html" '"verify":{"ok":true' "the page holds verify's report"
@@ -55,6 +56,10 @@ expect 0 "--force-set margin with a plan" -- "$CLI" render "$T/p.json" --plan "$
 page_has "$T/m.html" '"force_set":"margin"' "the page names the force set"
 if grep -q '{"ok":false' "$T/m.html"; then bad "the margin forces pass the re-check"
 else ok "the margin forces pass the re-check"; fi
+expect 0 "an SVG of margin resultants" -- "$CLI" render "$T/p.json" --forces resultants --force-set margin -o "$T/m.svg"
+contains "$T/m.svg" "the largest smallest normal force" "the legend names the margin set"
+contains "$T/m.svg" "per touching pair" "the legend says resultants"
+expect 0 "a 3D PNG of margin forces" -- "$CLI" render "$T/p3.json" --forces --force-set margin -o "$T/m3.png"
 expect 2 "an unknown --force-set" -- "$CLI" render "$T/p.json" --forces --force-set best -o "$T/x.svg"
 contains "$T/err" "margin" "the message lists the sets"
 
@@ -72,7 +77,6 @@ sed 's/"point": \[/"point": [7/' "$T/plan.json" >"$T/tampered.json"
 expect 2 "a certificate at a point the structure has no contact" -- "$CLI" render "$T/p.json" --plan "$T/tampered.json" -o "$T/e.html"
 contains "$T/err" "steps[0].certificate.contacts[0]" "the message names the JSON path"
 absent "$T/e.html" "tampered certificates"
-"$CLI" generate tower --blocks 3 -o "$T/p3.json" >/dev/null
 expect 2 "a 3D file" -- "$CLI" render "$T/p3.json" --html -o "$T/f.html"
 contains "$T/err" "3D viewer is not written yet" "the message says why"
 absent "$T/f.html" "3D"
