@@ -124,11 +124,12 @@ static int representative_steps(const us_Structure *s, const us_PlanFile *pf, Cl
       us_Forces t = (*certs)[k];
       (*certs)[k] = rep.forces, rep.forces = t;
     } else kept++;
-    for (int q = k < pf->ngroups ? pf->group_start[k] : 0; k < pf->ngroups && q < pf->group_start[k + 1]; q++)
-      us_bitset_clear(&present, pf->order[q]);
+    for (int q = pf->group_start[k]; k < pf->ngroups && q < pf->group_start[k + 1]; q++)
+      us_bitset_clear(&present, pf->order[q]); /* the structure before step k + 1 */
   }
-  if (kept) fprintf(stderr, "unstack render: %d of %d steps have no certified %s forces: the "
-                    "plan file's are shown there\n", kept, pf->ngroups + 1, us_force_set_name(h->force_set));
+  if (kept)
+    fprintf(stderr, "unstack render: %d of %d steps have no certified %s forces: the plan "
+            "file's are shown there\n", kept, pf->ngroups + 1, us_force_set_name(h->force_set));
   us_stability_result_free(&rep);
   us_bitset_free(&present);
   return r;

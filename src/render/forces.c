@@ -68,11 +68,14 @@ typedef struct PairKey {
   int lower, upper, k;
 } PairKey;
 
+static int pair_cmp_bodies(const PairKey *a, const PairKey *b) {
+  if (a->lower != b->lower) return a->lower < b->lower ? -1 : 1;
+  return (a->upper > b->upper) - (a->upper < b->upper);
+}
 static int pair_cmp(const void *x, const void *y) {
   const PairKey *a = x, *b = y;
-  if (a->lower != b->lower) return a->lower < b->lower ? -1 : 1;
-  if (a->upper != b->upper) return a->upper < b->upper ? -1 : 1;
-  return (a->k > b->k) - (a->k < b->k);
+  int c = pair_cmp_bodies(a, b);
+  return c ? c : (a->k > b->k) - (a->k < b->k);
 }
 
 /* The resultant of the contacts key[from .. to) of one pair. */
@@ -107,8 +110,7 @@ int us_drawn_resultants(const us_Structure *s, const us_Forces *f, us_DrawnForce
   qsort(key, (size_t)f->ncontact, sizeof *key, pair_cmp);
   int n = 0;
   for (int a = 0, b; a < f->ncontact; a = b) {
-    for (b = a + 1; b < f->ncontact && key[b].lower == key[a].lower && key[b].upper == key[a].upper;)
-      b++;
+    for (b = a + 1; b < f->ncontact && !pair_cmp_bodies(&key[a], &key[b]);) b++;
     pair_resultant(s, f, key, a, b, &out[n++]);
   }
   us_free(key);

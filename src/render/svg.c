@@ -191,7 +191,8 @@ static void put_arrows(FILE *fp, const us_Scene *sc) {
       const double *a = &sc->arrows[4 * k];
       if (sc->arrow_kind[k] == kind)
         fprintf(fp, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" "
-                "marker-end=\"url(#arrow%s)\"/>\n", a[0], a[1], a[2], a[3], kind ? "-friction" : "");
+                "marker-end=\"url(#arrow%s)\"/>\n",
+                a[0], a[1], a[2], a[3], kind ? "-friction" : "");
     }
     fputs("</g>\n", fp);
   }

@@ -78,7 +78,8 @@ static void rep_columns(RepLp *p, const us_EqSystem *e) {
   int q = 0, margin0 = g->nrow, budget = g->nrow + e->ncontact;
   for (int j = 0; j < g->ncol; j++) {
     p->start[j] = q;
-    for (int k = g->start[j]; k < g->start[j + 1]; k++) p->row[q] = g->row[k], p->val[q++] = g->val[k];
+    for (int k = g->start[j]; k < g->start[j + 1]; k++)
+      p->row[q] = g->row[k], p->val[q++] = g->val[k];
     p->row[q] = margin0 + g->col_contact[j], p->val[q++] = g->col_coef[3 * j];
     p->row[q] = budget, p->val[q++] = 1.0;
     p->clo[j] = 0.0, p->cup[j] = DBL_MAX;
