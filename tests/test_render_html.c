@@ -291,21 +291,31 @@ static void bad_input_refused(void) {
 static void out_of_memory_leaves_nothing(void) {
   us_Structure *s = scene_column(3);
   CHECK(s);
+  us_Plan p;
+  memset(&p, 0, sizeof p);
+  us_Error err;
+  CHECK_OK(plan_with_certs(s, &p), &err);
   char path[128];
   test_tmp_path("oom.html", path, sizeof path);
-  us_Status st = US_ERR_NOMEM;
-  int n = 0, bad = 0;
-  for (; st == US_ERR_NOMEM && n < 1000; n++) {
-    us_alloc_fail_after(n);
-    st = us_render_html(s, NULL, NULL, path, NULL);
-    us_alloc_fail_after(-1);
-    if (st == US_ERR_NOMEM && access(path, F_OK) == 0) bad = 1;
+  for (int with_plan = 0; with_plan <= 1; with_plan++) {
+    us_RenderSettings r = order_of(&p);
+    us_HtmlSettings h = us_html_default_settings();
+    h.certs = p.certs; /* the per-step re-check allocates too */
+    us_Status st = US_ERR_NOMEM;
+    int n = 0, bad = 0;
+    for (; st == US_ERR_NOMEM && n < 1000; n++) {
+      us_alloc_fail_after(n);
+      st = with_plan ? us_render_html(s, &r, &h, path, NULL) : us_render_html(s, NULL, NULL, path, NULL);
+      us_alloc_fail_after(-1);
+      if (st == US_ERR_NOMEM && access(path, F_OK) == 0) bad = 1;
+    }
+    int written = st == US_OK && access(path, F_OK) == 0;
+    unlink(path);
+    CHECK(!bad);
+    CHECK(written);
   }
-  int written = st == US_OK && access(path, F_OK) == 0;
-  unlink(path);
+  us_plan_free(&p);
   us_structure_free(s);
-  CHECK(!bad);
-  CHECK(written);
 }
 
 /* ------------------------------------------------ plan certificates */

@@ -128,5 +128,33 @@ static void falling_gets_no_set(void) {
   us_structure_free(s);
 }
 
+/* Every allocation failing in turn: an error (US_ERR_NOMEM) or the set,
+ * never a crash or a leak (the harness checks leaks after each case). */
+static void out_of_memory_is_clean(void) {
+  us_Structure *s = bridge(2);
+  CHECK(s);
+  us_Bitset p;
+  CHECK(us_bitset_init(&p, s->nbody) == 0);
+  us_bitset_fill(&p);
+  us_Status st = US_ERR_NOMEM;
+  int n = 0, other = 0;
+  for (; st == US_ERR_NOMEM && n < 1000; n++) {
+    us_StabilityResult res;
+    us_stability_result_init(&res);
+    us_Error err;
+    us_alloc_fail_after(n);
+    st = us_stability_forces_representative(s, &p, US_FORCESET_MARGIN, NULL, &res, &err);
+    us_alloc_fail_after(-1);
+    other += st != US_OK && st != US_ERR_NOMEM;
+    if (st == US_OK) CHECK_INT(res.verdict, ==, US_STABLE);
+    us_stability_result_free(&res);
+  }
+  CHECK_INT(other, ==, 0);
+  CHECK_INT(st, ==, US_OK);
+  CHECK(n > 1);
+  us_bitset_free(&p);
+  us_structure_free(s);
+}
+
 US_TEST_MAIN(T(bridge_certified), T(margin_loads_both_supports), T(stack_agrees_with_test),
-             T(falling_gets_no_set))
+             T(falling_gets_no_set), T(out_of_memory_is_clean))

@@ -27,6 +27,7 @@
  * solver's forces stay the caller's to show). This never decides
  * stability: an infeasible LP here is "no representative set", not
  * "unstable" (the inner 3D cones are smaller than the true ones). */
+#include "certificate.h"
 #include "equilibrium.h"
 #include "lp_gen.h"
 
@@ -158,7 +159,14 @@ static us_Status rep_certify(const us_EqSystem *e, const RepLp *p, const double 
   for (int c = 0; c < e->ncontact; c++) res->forces.contact[c] = e->contact[c];
   us_eq_gen_forces(e, &p->gen, l, res->forces.f);
   for (int j = 0; j < e->ncontact * e->dim; j++) res->forces.f[j] *= e->force_scale;
-  res->check = us_certificate_check(e->s, present, &res->forces, tol);
+  /* the check's scratch here, so that no memory failure passes for a failed check */
+  double *acc = us_malloc(((size_t)US_CERT_ACC * (size_t)e->s->nbody + 1) * sizeof *acc);
+  unsigned char *seen = us_malloc((size_t)e->s->ncontact + 1);
+  int have = acc && seen;
+  if (have) us_certificate_check_buf(e->s, present, &res->forces, tol, acc, seen, &res->check);
+  us_free(acc);
+  us_free(seen);
+  if (!have) return us_error_set(err, US_ERR_NOMEM, "out of memory checking forces");
   res->verdict = res->check.ok ? US_STABLE : US_UNDECIDED;
   if (!res->check.ok)
     snprintf(res->note, sizeof res->note, "representative forces failed the certificate check "
