@@ -42,6 +42,7 @@
 #include "core/core.h"
 #include "render/render.h"
 #include "render/viewer.h"
+#include "stability/certificate.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -334,26 +335,30 @@ static void put_data(FILE *fp, const us_Structure *s, const us_RenderSettings *r
 
 /* Every position's forces through the library's certificate check (no
  * solver): position k is the structure before step k. *out gets nsteps + 1
- * entries. */
+ * entries. The check's scratch is allocated here once, so that a memory
+ * failure is an error, never a step flagged as failing. */
 static us_Status recheck_certs(const us_Structure *s, const us_RenderSettings *r,
                                const us_Forces *certs, us_CertCheck **out, us_Error *err) {
   int n = nsteps_of(r);
   double tol = us_stability_default_settings().cert_tol;
-  us_Bitset present;
+  us_Bitset present = {0};
+  double *acc = us_malloc(((size_t)US_CERT_ACC * (size_t)s->nbody + 1) * sizeof *acc);
+  unsigned char *seen = us_malloc((size_t)s->ncontact + 1);
   *out = us_calloc((size_t)n + 1, sizeof **out);
-  if (!*out || us_bitset_init(&present, s->nbody > 0 ? s->nbody : 1)) {
-    us_free(*out);
-    *out = NULL;
-    return us_error_set(err, US_ERR_NOMEM, "render --html: out of memory");
-  }
-  us_bitset_fill(&present);
-  for (int k = 0; k <= n; k++) {
-    (*out)[k] = us_certificate_check(s, &present, &certs[k], tol);
+  int ok = acc && seen && *out && !us_bitset_init(&present, s->nbody > 0 ? s->nbody : 1);
+  if (ok) us_bitset_fill(&present);
+  for (int k = 0; ok && k <= n; k++) {
+    us_certificate_check_buf(s, &present, &certs[k], tol, acc, seen, &(*out)[k]);
     for (int q = k < n ? step_first(r, k) : 0; k < n && q < step_first(r, k + 1); q++)
       us_bitset_clear(&present, r->order[q]);
   }
   us_bitset_free(&present);
-  return US_OK;
+  us_free(acc);
+  us_free(seen);
+  if (ok) return US_OK;
+  us_free(*out);
+  *out = NULL;
+  return us_error_set(err, US_ERR_NOMEM, "render --html: out of memory");
 }
 
 /* ------------------------------------------------------------ driver */
