@@ -1,7 +1,7 @@
 /* Tests of the representative force sets (src/stability/represent.c):
  * every set returned as stable passes the independent certificate check
  * and agrees with the stability test's verdict; on a block resting on two
- * supports the margin set loads both supports, whatever the solver's
+ * supports the margin and min-norm sets load both supports, whatever the solver's
  * vertex does; a structure that falls gets no set. No force value is
  * asserted beyond such provable properties. */
 #include "extrude.h"
@@ -53,13 +53,14 @@ static void bridge_certified(void) {
     us_stability_result_init(&res);
     CHECK(certified_set(s, US_FORCESET_MARGIN, &res));
     CHECK(certified_set(s, US_FORCESET_MIN_SUM, &res));
+    CHECK(certified_set(s, US_FORCESET_MIN_NORM, &res));
     us_stability_result_free(&res);
     us_structure_free(s);
   }
 }
 
 /* Symmetric load: the margin set puts a positive normal force on every
- * contact, so on both piers (a vertex of the LP may load one pier's outer
+ * contact (and min-norm on both piers), so on both piers (a vertex of the LP may load one pier's outer
  * corner and the other's inner one, but never needs both piers evenly). */
 static void margin_loads_both_supports(void) {
   for (int dim = 2; dim <= 3; dim++) {
@@ -71,6 +72,11 @@ static void margin_loads_both_supports(void) {
     CHECK(normal_between(s, &res.forces, 0, 2) > 0.0);
     CHECK(normal_between(s, &res.forces, 1, 2) > 0.0);
     for (int j = 0; j < res.forces.ncontact; j++) CHECK(res.forces.f[s->dim * j] > 0.0);
+    /* min-norm: the unique minimiser of a strictly convex function keeps
+       the mirror symmetry, so the piers share the beam */
+    CHECK(certified_set(s, US_FORCESET_MIN_NORM, &res));
+    CHECK(normal_between(s, &res.forces, 0, 2) > 0.0);
+    CHECK(normal_between(s, &res.forces, 1, 2) > 0.0);
     us_stability_result_free(&res);
     us_structure_free(s);
   }
@@ -98,6 +104,7 @@ static void stack_agrees_with_test(void) {
   CHECK_INT(test.verdict, ==, US_STABLE);
   CHECK(certified_set(s, US_FORCESET_MARGIN, &res));
   CHECK(certified_set(s, US_FORCESET_MIN_SUM, &res));
+  CHECK(certified_set(s, US_FORCESET_MIN_NORM, &res));
   us_stability_free(w);
   us_stability_result_free(&res);
   us_stability_result_free(&test);
@@ -136,22 +143,24 @@ static void out_of_memory_is_clean(void) {
   us_Bitset p;
   CHECK(us_bitset_init(&p, s->nbody) == 0);
   us_bitset_fill(&p);
-  us_Status st = US_ERR_NOMEM;
-  int n = 0, other = 0;
-  for (; st == US_ERR_NOMEM && n < 1000; n++) {
-    us_StabilityResult res;
-    us_stability_result_init(&res);
-    us_Error err;
-    us_alloc_fail_after(n);
-    st = us_stability_forces_representative(s, &p, US_FORCESET_MARGIN, NULL, &res, &err);
-    us_alloc_fail_after(-1);
-    other += st != US_OK && st != US_ERR_NOMEM;
-    if (st == US_OK) CHECK_INT(res.verdict, ==, US_STABLE);
-    us_stability_result_free(&res);
+  for (int kind = US_FORCESET_MARGIN; kind <= US_FORCESET_MIN_NORM; kind++) {
+    us_Status st = US_ERR_NOMEM;
+    int n = 0, other = 0;
+    for (; st == US_ERR_NOMEM && n < 1000; n++) {
+      us_StabilityResult res;
+      us_stability_result_init(&res);
+      us_Error err;
+      us_alloc_fail_after(n);
+      st = us_stability_forces_representative(s, &p, (us_ForceSet)kind, NULL, &res, &err);
+      us_alloc_fail_after(-1);
+      other += st != US_OK && st != US_ERR_NOMEM;
+      if (st == US_OK) CHECK_INT(res.verdict, ==, US_STABLE);
+      us_stability_result_free(&res);
+    }
+    CHECK_INT(other, ==, 0);
+    CHECK_INT(st, ==, US_OK);
+    CHECK(n > 1);
   }
-  CHECK_INT(other, ==, 0);
-  CHECK_INT(st, ==, US_OK);
-  CHECK(n > 1);
   us_bitset_free(&p);
   us_structure_free(s);
 }

@@ -17,7 +17,7 @@
 
 static const char help[] =
     "usage: unstack render FILE [--plan PLAN.json] [--forces [contacts|resultants]]\n"
-    "                           [--force-set solver|margin|min-sum] -o OUT.svg|OUT.png\n"
+    "                           [--force-set solver|margin|min-sum|min-norm] -o OUT.svg|OUT.png\n"
     "       unstack render FILE [--plan PLAN.json] --html -o OUT.html\n"
     "\n"
     "Draw the structure in FILE as SVG or PNG (a 3D one in an axonometric view,\n"
@@ -41,7 +41,8 @@ static const char help[] =
     "                        pair of touching bodies at the resultant's point\n"
     "  --force-set S         which admissible set: solver (its own, default), margin\n"
     "                        (the largest smallest normal force), min-sum (the least\n"
-    "                        total force); each is certified before it is drawn\n"
+    "                        total force), min-norm (the least sum of squares: the\n"
+    "                        load spread evenly); each is certified before it is drawn\n"
     "  --method M            backend for the stability test (default auto)\n"
     "  --time-limit S        limit of the stability test (default 10 s)\n"
     "  --title TEXT          the title line (default: file, bodies, status)\n"
@@ -101,9 +102,9 @@ static int view_option(const char *v, us_RenderSettings *r) {
 
 /* --force-set NAME. */
 static int force_set_option(const char *v, us_ForceSet *out) {
-  for (int k = US_FORCESET_SOLVER; k <= US_FORCESET_MIN_SUM; k++)
+  for (int k = US_FORCESET_SOLVER; k <= US_FORCESET_MIN_NORM; k++)
     if (!strcmp(v, us_force_set_name((us_ForceSet)k))) return *out = (us_ForceSet)k, 0;
-  return cli_fail("render", "unknown --force-set '%s' (solver, margin, min-sum)", v);
+  return cli_fail("render", "unknown --force-set '%s' (solver, margin, min-sum, min-norm)", v);
 }
 
 static int format_option(const char *v, Format *f) {

@@ -480,11 +480,14 @@ US_API us_Status us_stability_test_full(us_Stability *w, us_StabilityResult *res
  * src/stability/represent.c, docs/render.md "Forces"): the solver's own
  * (a vertex), the one that maximises the smallest normal force with the
  * total at most twice the least (then the least total keeping that
- * margin), or the least total force. */
-typedef enum us_ForceSet { US_FORCESET_SOLVER = 0, US_FORCESET_MARGIN, US_FORCESET_MIN_SUM } us_ForceSet;
+ * margin), the least total force (friction counted twice), or the least
+ * sum of squares (a QP: the load spread evenly). */
+typedef enum us_ForceSet {
+  US_FORCESET_SOLVER = 0, US_FORCESET_MARGIN, US_FORCESET_MIN_SUM, US_FORCESET_MIN_NORM
+} us_ForceSet;
 US_API const char *us_force_set_name(us_ForceSet kind);
 /* The representative forces of sub-assembly `present` by rule `kind`
- * (margin or min-sum), solved with CLP (3D: inside the inner friction
+ * (margin, min-sum or min-norm), solved with CLP (3D: inside the inner friction
  * polygons). res->verdict US_STABLE: res->forces passed the certificate
  * check (res->check) at set->cert_tol (set NULL: defaults); US_UNDECIDED:
  * no such set found (res->note says why; it does not mean unstable).

@@ -433,9 +433,10 @@ static void legend_lines(Legend *lg, const us_Structure *s, const us_RenderSetti
     snprintf(lg->line[n++], sizeof lg->line[0], "arrows: force of the lower body on the upper "
              "one %s: blue normal, orange friction; longest %.4g N",
              r->force_resultants ? "per touching pair" : "at each contact", in->fmax);
-    const char *set = r->force_set == US_FORCESET_MARGIN    ? "the largest smallest normal force"
-                      : r->force_set == US_FORCESET_MIN_SUM ? "the least total force"
-                                                            : "the solver's";
+    const char *set = r->force_set == US_FORCESET_MARGIN     ? "the largest smallest normal force"
+                      : r->force_set == US_FORCESET_MIN_SUM  ? "the least total force"
+                      : r->force_set == US_FORCESET_MIN_NORM ? "the least sum of squares"
+                                                             : "the solver's";
     snprintf(lg->line[n++], sizeof lg->line[0], "one admissible set of forces (%s; forces are "
              "not unique)", set);
   }

@@ -8,14 +8,22 @@
  * on the statics system in cone-generator form (lp_gen.h: G l = rhs,
  * l >= 0, unit-length generators, forces in units of the total weight),
  * solved with CLP:
- *   min-sum  A: minimise s = sum_j l_j, the total of the generator weights
- *               (the smallest total contact force, up to the cones' shape).
+ *   min-sum  A: minimise s = sum_j w_j l_j, the total of the generator
+ *               weights, w_j = 1 for a contact's pure normal generator and
+ *               FRICTION_COST (2) for the friction edges: the least total
+ *               force, friction counted twice, so a lone block is not
+ *               squeezed sideways when it need not be.
  *   margin   A, then B: maximise t subject to f_n(c) = sum_{j of c} cn_j l_j
- *               >= t for every active contact and sum_j l_j <= 2 s*
+ *               >= t for every active contact and sum_j w_j l_j <= 2 s*
  *               (MARGIN_BUDGET: without a budget a self-stress, such as a
  *               block wedged between two others, would raise t without
- *               end), then C: minimise sum_j l_j with every f_n(c) >= t*
- *               (the least total force that keeps the margin).
+ *               end), then C: minimise sum_j w_j l_j with every f_n(c) >=
+ *               t* (the least total force that keeps the margin).
+ *   min-norm minimise sum_j w_j l_j^2 / 2 (a strictly convex QP in l, so
+ *               its solution is unique and keeps any symmetry of the
+ *               structure: the load spread evenly), by CLP's barrier
+ *               without crossover; its point is only as precise as the
+ *               barrier's tolerance, and the certificate check decides.
  * In 3D the cones are the inner polygons (lp_gen.h, 8 directions), inside
  * the circular cone, so any solution is admissible for the true cone; a
  * structure that stands only on the circle's rim gets no representative
@@ -41,13 +49,18 @@
 #define MARGIN_BUDGET 2.0
 /* Stage C keeps this share of the margin found (room for CLP's tolerance). */
 #define MARGIN_KEEP (1.0 - 1e-7)
-/* Generators with mu above this also get the pure normal (as the LP backends). */
-#define N_COLUMN_MU 1.0
+/* Every contact with friction also gets the pure normal generator (the LP
+ * backends add it for wide cones only), so that the objective below can
+ * tell pure pressure from friction. */
+#define N_COLUMN_MU 0.0
+/* The objective's weight of a generator that carries friction (the pure
+ * normal weighs 1): friction is used only where equilibrium needs it. */
+#define FRICTION_COST 2.0
 /* CLP's primal tolerance: well inside the certificate check's 1e-6. */
 #define PRIMAL_TOL 1e-10
 
 /* The LP of stages A-C: columns l (ngen) then t; rows G (nrow), one margin
- * row per active contact (f_n - t >= 0), one budget row (sum l). */
+ * row per active contact (f_n - t >= 0), one budget row (sum w l). */
 typedef struct RepLp {
   us_EqGen gen;
   int nrow, ncol;   /* of the whole LP */
@@ -72,8 +85,13 @@ static int rep_alloc(RepLp *p, size_t nnz) {
   return p->start && p->row && p->val && p->rlo && p->rup && p->clo && p->cup && p->obj ? 0 : -1;
 }
 
+/* A generator's weight in the objective and the budget row. */
+static double gen_weight(const us_EqGen *g, int j) {
+  return us_eq_gen_slot(g, j) == 0 ? 1.0 : FRICTION_COST;
+}
+
 /* The columns: each generator's G entries, its cn in its contact's margin
- * row, 1 in the budget row; then t, -1 in every margin row. */
+ * row, its weight in the budget row; then t, -1 in every margin row. */
 static void rep_columns(RepLp *p, const us_EqSystem *e) {
   const us_EqGen *g = &p->gen;
   int q = 0, margin0 = g->nrow, budget = g->nrow + e->ncontact;
@@ -82,7 +100,7 @@ static void rep_columns(RepLp *p, const us_EqSystem *e) {
     for (int k = g->start[j]; k < g->start[j + 1]; k++)
       p->row[q] = g->row[k], p->val[q++] = g->val[k];
     p->row[q] = margin0 + g->col_contact[j], p->val[q++] = g->col_coef[3 * j];
-    p->row[q] = budget, p->val[q++] = 1.0;
+    p->row[q] = budget, p->val[q++] = gen_weight(g, j);
     p->clo[j] = 0.0, p->cup[j] = DBL_MAX;
   }
   p->start[g->ncol] = q;
@@ -109,11 +127,12 @@ static int rep_build(RepLp *p, const us_EqSystem *e) {
   return 0;
 }
 
-/* One stage: objective sum l (minimise) or -t; CLP's primal simplex from
+/* One stage: objective sum w l (minimise) or -t; CLP's primal simplex from
  * the last stage's basis. 1 optimal, 0 not. */
 static int rep_stage(Clp_Simplex *m, RepLp *p, int maximise_t) {
   int nl = p->gen.ncol;
-  for (int j = 0; j < nl; j++) p->obj[j] = maximise_t ? 0.0 : 1.0;
+  for (int j = 0; j < nl; j++)
+    p->obj[j] = maximise_t ? 0.0 : gen_weight(&p->gen, j);
   p->obj[nl] = maximise_t ? -1.0 : 0.0;
   Clp_chgObjCoefficients(m, p->obj);
   Clp_chgRowUpper(m, p->rup);
@@ -123,9 +142,32 @@ static int rep_stage(Clp_Simplex *m, RepLp *p, int maximise_t) {
   return Clp_status(m) == 0;
 }
 
-/* Stages A (and B, C for margin) on the loaded model; 1 solved. */
+/* min-norm: minimise sum_j w_j l_j^2 / 2 (CLP's quadratic objective,
+ * diagonal; the barrier: CLP's primal QP took 3.5 s on the 91-block
+ * pyramid, the barrier 0.15 s), no linear part. 1 optimal, 0 not, -1 OOM. */
+static int rep_min_norm(Clp_Simplex *m, RepLp *p) {
+  int nl = p->gen.ncol, ok = -1;
+  int *start = us_malloc(((size_t)p->ncol + 1) * sizeof *start);
+  int *col = us_malloc(((size_t)p->ncol + 1) * sizeof *col);
+  double *val = us_malloc(((size_t)p->ncol + 1) * sizeof *val);
+  if (start && col && val) {
+    for (int j = 0; j <= p->ncol; j++) start[j] = j < nl ? j : nl;
+    for (int j = 0; j < nl; j++) col[j] = j, val[j] = gen_weight(&p->gen, j), p->obj[j] = 0.0;
+    p->obj[nl] = 0.0;
+    Clp_chgObjCoefficients(m, p->obj);
+    Clp_loadQuadraticObjective(m, p->ncol, start, col, val);
+    Clp_initialBarrierNoCrossSolve(m);
+    ok = Clp_status(m) == 0;
+  }
+  us_free(start), us_free(col), us_free(val);
+  return ok;
+}
+
+/* Stages A (and B, C for margin) or the QP on the loaded model; 1 solved,
+ * 0 not, -1 out of memory. */
 static int rep_solve(Clp_Simplex *m, RepLp *p, us_ForceSet kind) {
   int nl = p->gen.ncol, budget = p->nrow - 1;
+  if (kind == US_FORCESET_MIN_NORM) return rep_min_norm(m, p);
   if (!rep_stage(m, p, 0)) return 0;
   if (kind != US_FORCESET_MARGIN) return 1;
   p->rup[budget] = MARGIN_BUDGET * Clp_objectiveValue(m);
@@ -189,8 +231,11 @@ static us_Status rep_run(const us_EqSystem *e, const us_Bitset *present, us_Forc
     Clp_setLogLevel(m, 0);
     Clp_loadProblem(m, p.ncol, p.nrow, p.start, p.row, p.val, p.clo, p.cup, p.obj, p.rlo, p.rup);
     Clp_setPrimalTolerance(m, PRIMAL_TOL);
-    if (rep_solve(m, &p, kind))
+    int solved = rep_solve(m, &p, kind);
+    if (solved > 0)
       st = rep_certify(e, &p, Clp_getColSolution(m), present, tol, res, err);
+    else if (solved < 0)
+      st = us_error_set(err, US_ERR_NOMEM, "out of memory building the force QP");
     else
       snprintf(res->note, sizeof res->note, "no representative forces: the %s LP was not "
                "solved (CLP status %d)%s", us_force_set_name(kind), Clp_status(m),
@@ -205,6 +250,7 @@ const char *us_force_set_name(us_ForceSet kind) {
   switch (kind) {
   case US_FORCESET_MARGIN: return "margin";
   case US_FORCESET_MIN_SUM: return "min-sum";
+  case US_FORCESET_MIN_NORM: return "min-norm";
   default: return "solver";
   }
 }
@@ -212,7 +258,7 @@ const char *us_force_set_name(us_ForceSet kind) {
 us_Status us_stability_forces_representative(const us_Structure *s, const us_Bitset *present,
                                              us_ForceSet kind, const us_StabilitySettings *set,
                                              us_StabilityResult *res, us_Error *err) {
-  if (!s || !present || !res || (kind != US_FORCESET_MARGIN && kind != US_FORCESET_MIN_SUM))
+  if (!s || !present || !res || kind <= US_FORCESET_SOLVER || kind > US_FORCESET_MIN_NORM)
     return us_error_set(err, US_ERR_USAGE, "representative forces: no structure, sub-assembly "
                         "or result, or a rule other than margin and min-sum");
   us_StabilitySettings def = us_stability_default_settings();
