@@ -260,7 +260,7 @@ us_Status us_stability_forces_representative(const us_Structure *s, const us_Bit
                                              us_StabilityResult *res, us_Error *err) {
   if (!s || !present || !res || kind <= US_FORCESET_SOLVER || kind > US_FORCESET_MIN_NORM)
     return us_error_set(err, US_ERR_USAGE, "representative forces: no structure, sub-assembly "
-                        "or result, or a rule other than margin and min-sum");
+                        "or result, or a rule other than margin, min-sum and min-norm");
   us_StabilitySettings def = us_stability_default_settings();
   double tol = set && set->cert_tol > 0 ? set->cert_tol : def.cert_tol;
   res->verdict = US_UNDECIDED;
