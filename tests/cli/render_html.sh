@@ -59,6 +59,8 @@ else ok "the margin forces pass the re-check"; fi
 expect 0 "an SVG of margin resultants" -- "$CLI" render "$T/p.json" --forces resultants --force-set margin -o "$T/m.svg"
 contains "$T/m.svg" "the largest smallest normal force" "the legend names the margin set"
 contains "$T/m.svg" "per touching pair" "the legend says resultants"
+expect 0 "min-norm forces in SVG" -- "$CLI" render "$T/p.json" --forces --force-set min-norm -o "$T/n.svg"
+contains "$T/n.svg" "the least sum of squares" "the legend names the min-norm set"
 expect 0 "a 3D PNG of margin forces" -- "$CLI" render "$T/p3.json" --forces --force-set margin -o "$T/m3.png"
 expect 2 "an unknown --force-set" -- "$CLI" render "$T/p.json" --forces --force-set best -o "$T/x.svg"
 contains "$T/err" "margin" "the message lists the sets"
