@@ -3,7 +3,7 @@
  * and where it was looked for; a module of the build tree loads through
  * its entry point, once. */
 #include "core/module.h"
-#include "stability/backend.h"
+#include "stability/clp_module.h"
 #include "test.h"
 
 #include <string.h>
@@ -42,11 +42,12 @@ static void build_tree_module_loads_once(void) {
   us_Module m = {"clp", "the CLP LP solver", NULL};
   us_Error err;
   us_error_clear(&err);
-  const us_Backend *be = us_module_api(&m, &err);
-  CHECK(be != NULL);
-  if (!be) return;
-  CHECK_INT(be->method, ==, US_METHOD_LP);
-  CHECK(us_module_api(&m, &err) == be);
+  const us_ClpModule *api = us_module_api(&m, &err);
+  CHECK(api != NULL);
+  if (!api) return;
+  CHECK_INT(api->lp->method, ==, US_METHOD_LP);
+  CHECK(api->represent != NULL);
+  CHECK(us_module_api(&m, &err) == api);
 }
 
 US_TEST_MAIN(T(module_dirs), T(missing_module_is_named), T(build_tree_module_loads_once))

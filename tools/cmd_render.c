@@ -19,7 +19,8 @@
 #include <string.h>
 
 static const char head[] =
-    "usage: unstack render FILE [--plan PLAN.json] [--forces] -o OUT.svg|OUT.png\n"
+    "usage: unstack render FILE [--plan PLAN.json] [--forces [contacts|resultants]]\n"
+    "                           [--force-set solver|margin|min-sum|min-norm] -o OUT.svg|OUT.png\n"
     "       unstack render FILE [--plan PLAN.json] --html -o OUT.html\n"
     "\n"
     "Draw the structure in FILE as SVG or PNG (a 3D one in an axonometric view,\n"
@@ -28,11 +29,14 @@ static const char head[] =
     "plan is given (with a legend), bodies that cannot be removed (a plan with\n"
     "status none) hatched red and the buildable rest numbered as it is placed,\n"
     "contact points, and with --forces the certificate forces of the full\n"
-    "structure as arrows scaled to the largest. A structure that does not stand\n"
-    "has the body that falls outlined red and its mechanism drawn (arrows, and\n"
-    "in 2D a dashed ghost of the moving bodies). A found plan is verified: an\n"
-    "invalid order is drawn with its failing step marked. A plan of another\n"
-    "structure (its fingerprint) is refused.\n";
+    "structure as arrows scaled to the largest: at each contact the force the\n"
+    "lower body exerts on the upper one (upper: the side the contact normal\n"
+    "enters when it points up), normal part blue, friction part orange. Forces\n"
+    "are not unique: the arrows are one admissible set (docs/render.md). A\n"
+    "structure that does not stand has the body that falls outlined red and its\n"
+    "mechanism drawn (arrows, and in 2D a dashed ghost of the moving bodies). A\n"
+    "found plan is verified: an invalid order is drawn with its failing step\n"
+    "marked. A plan of another structure (its fingerprint) is refused.\n";
 static const char tail[] =
     "exit: 0 written, 1 --forces given but the structure does not stand, or verify\n"
     "finds the plan's order invalid (written, the failing step marked),\n"
@@ -54,6 +58,7 @@ static const struct {
 typedef struct {
   const char *file, *out, *plan, *title;
   int forces, time_limit_given;
+  us_ForceSet force_set;
   int format; /* a Format */
   us_RenderSettings r;
 } RenderArgs;
@@ -95,6 +100,23 @@ static int set_format(const char *v, void *dst, const char *cmd) {
   return cli_fail(cmd, "unknown --format '%s' (svg, png, html)", v);
 }
 
+/* --forces [contacts|resultants]: draw forces, per contact or per pair. */
+static int set_forces(const char *v, void *dst, const char *cmd) {
+  RenderArgs *a = dst;
+  a->forces = 1;
+  if (!v || !strcmp(v, "contacts")) return a->r.force_resultants = 0, 0;
+  if (!strcmp(v, "resultants")) return a->r.force_resultants = 1, 0;
+  return cli_fail(cmd, "unknown --forces '%s' (contacts, resultants)", v);
+}
+
+/* --force-set NAME. */
+static int set_force_set(const char *v, void *dst, const char *cmd) {
+  for (int k = US_FORCESET_SOLVER; k <= US_FORCESET_MIN_NORM; k++)
+    if (!strcmp(v, us_force_set_name((us_ForceSet)k)))
+      return *(us_ForceSet *)dst = (us_ForceSet)k, 0;
+  return cli_fail(cmd, "unknown --force-set '%s' (solver, margin, min-sum, min-norm)", v);
+}
+
 /* The command line, by render's option table (optable.h). */
 static int parse(int argc, char **argv, CliCommon *c, RenderArgs *a) {
   /* One entry per option, in --help's order; optable.h says how to add one. */
@@ -107,7 +129,14 @@ static int parse(int argc, char **argv, CliCommon *c, RenderArgs *a) {
                    "the interactive viewer, one self-contained page (also chosen by an output "
                    "name ending in .html; docs/viewer.md)"),
       CLI_TEXT("--plan", "PLAN.json", &a->plan, "colour and number bodies by removal order"),
-      CLI_FLAG("--forces", &a->forces, "draw the contact forces that hold the structure"),
+      CLI_CALL("--forces", NULL, a, set_forces,
+               "draw the contact forces that hold the structure: one arrow per contact "
+               "(contacts, the default), or one per pair of touching bodies at the resultant's "
+               "point (resultants)", .optional = 1, .next_words = "contacts|resultants"),
+      CLI_CALL("--force-set", "S", &a->force_set, set_force_set,
+               "which admissible set: solver (its own, default), margin (the largest smallest "
+               "normal force), min-sum (the least total force), min-norm (the least sum of "
+               "squares: the load spread evenly); each is certified before it is drawn"),
       CLI_OPT_METHOD(c),
       CLI_OPT_LOCAL(c),
       CLI_OPT_TIME_LIMIT(&c->stab.time_limit, "limit of the stability test (default 10 s)",
@@ -168,6 +197,31 @@ static int full_test(const us_Structure *s, const RenderArgs *a, const CliCommon
   int r = w && us_stability_test_full(w, res, err) == US_OK ? 0 : -1;
   us_stability_free(w);
   return r;
+}
+
+/* --force-set margin|min-sum on a stable full structure: its
+ * representative forces replace the solver's in res when certified; else
+ * a note, and the solver's are drawn (the legend says which). */
+static int representative(const us_Structure *s, RenderArgs *a, const CliCommon *c,
+                          us_StabilityResult *res, us_Error *err) {
+  if (!a->forces || a->force_set == US_FORCESET_SOLVER || res->verdict != US_STABLE) return 0;
+  us_Bitset all;
+  if (us_bitset_init(&all, s->nbody > 0 ? s->nbody : 1))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory"), -1;
+  us_bitset_fill(&all);
+  us_StabilityResult rep;
+  us_stability_result_init(&rep);
+  us_Status st = us_stability_forces_representative(s, &all, a->force_set, &c->stab, &rep, err);
+  us_bitset_free(&all);
+  if (!st && rep.verdict == US_STABLE) {
+    us_Forces keep = res->forces;
+    res->forces = rep.forces, rep.forces = keep; /* rep frees the solver's */
+  } else if (!st) {
+    fprintf(stderr, "unstack render: %s; drawing the solver's forces\n", rep.note);
+    a->force_set = US_FORCESET_SOLVER;
+  }
+  us_stability_result_free(&rep);
+  return st ? -1 : 0;
 }
 
 /* "pyramid.json — 91 bodies, plan found, 91 steps" */
@@ -274,6 +328,7 @@ static int draw(RenderArgs *a, const us_Structure *s, const us_PlanFile *pf,
   a->r.blocked = pf->blocked;
   a->r.nblocked = pf->nblocked;
   a->r.forces = a->forces && res->verdict == US_STABLE ? &res->forces : NULL;
+  a->r.force_set = a->force_set;
   a->r.title = a->title ? a->title : title;
   return write_output(a, s, pf, c, err);
 }
@@ -328,6 +383,7 @@ int cmd_render(int argc, char **argv) {
   if (!code && verdict_needed && full_test(s, &a, &c, &res, &err)) code = CLI_EXIT_ERR;
   if (!code && a.plan && a.format != FMT_HTML && check_plan(s, &pf, &c, &pc, &err))
     code = CLI_EXIT_ERR;
+  if (!code && representative(s, &a, &c, &res, &err)) code = CLI_EXIT_ERR;
   if (!code) code = draw(&a, s, &pf, &res, &pc, &c, &err);
   if (code == CLI_EXIT_ERR) cli_error("render", &err);
   else if (code == CLI_EXIT_OK) code = outcome(&a, &res, &pc);

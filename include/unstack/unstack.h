@@ -480,6 +480,26 @@ US_API void us_stability_set_deadline(us_Stability *w, double deadline);
 /* Test the whole structure (every movable body present). */
 US_API us_Status us_stability_test_full(us_Stability *w, us_StabilityResult *res, us_Error *err);
 
+/* Which of the many admissible force sets to show (forces are not unique;
+ * src/stability/represent.c, docs/render.md "Forces"): the solver's own
+ * (a vertex), the one that maximises the smallest normal force with the
+ * total at most twice the least (then the least total keeping that
+ * margin), the least total force (friction counted twice), or the least
+ * sum of squares (a QP: the load spread evenly). */
+typedef enum us_ForceSet {
+  US_FORCESET_SOLVER = 0, US_FORCESET_MARGIN, US_FORCESET_MIN_SUM, US_FORCESET_MIN_NORM
+} us_ForceSet;
+US_API const char *us_force_set_name(us_ForceSet kind);
+/* The representative forces of sub-assembly `present` by rule `kind`
+ * (margin, min-sum or min-norm), solved with CLP (3D: inside the inner friction
+ * polygons). res->verdict US_STABLE: res->forces passed the certificate
+ * check (res->check) at set->cert_tol (set NULL: defaults); US_UNDECIDED:
+ * no such set found (res->note says why; it does not mean unstable).
+ * res must be initialized (us_stability_result_init). */
+US_API us_Status us_stability_forces_representative(const us_Structure *s, const us_Bitset *present,
+                                                    us_ForceSet kind, const us_StabilitySettings *set,
+                                                    us_StabilityResult *res, us_Error *err);
+
 /* Independent re-check of forces for a sub-assembly, without any solver. */
 US_API us_CertCheck us_certificate_check(const us_Structure *s, const us_Bitset *present,
                                   const us_Forces *f, double tol);
@@ -870,7 +890,13 @@ typedef struct us_RenderSettings {
   int ngroups;
   const int *blocked;     /* bodies that cannot be removed (plan status none) */
   int nblocked;
-  const us_Forces *forces;/* draw as arrows (may be NULL) */
+  const us_Forces *forces;/* draw as arrows (may be NULL): at each contact the
+                             force of the lower body on the upper one, normal
+                             and friction parts apart (docs/render.md) */
+  int force_resultants;   /* 1: one arrow per pair of touching bodies, their
+                             contacts' resultant at its centre of pressure */
+  us_ForceSet force_set;  /* which admissible set `forces` is (the legend
+                             names it; default US_FORCESET_SOLVER) */
   int show_contacts;      /* default 1 */
   int show_labels;        /* default 1 */
   double width_px;        /* default 800 */
@@ -898,7 +924,7 @@ US_API us_Status us_render_png(const us_Structure *s, const us_RenderSettings *r
                         us_Error *err);
 
 /* The interactive plan viewer (docs/viewer.md): one self-contained HTML
- * page (inline SVG, script and style; no network) with a step slider,
+ * page (a canvas, script and style; no network) with a step slider,
  * play/pause, the forces of each step, zoom, pan and hover. 2D only. */
 typedef struct us_HtmlSettings {
   const char *title;        /* shown in the page (NULL: "unstack") */
@@ -908,6 +934,8 @@ typedef struct us_HtmlSettings {
                                certs[k] = forces of the structure before step
                                k of r's order (nsteps = r's steps, 0 without
                                an order) */
+  us_ForceSet force_set;    /* which admissible set certs are (the page
+                               names it) */
   int verified;             /* 1: `verify` holds us_verify_steps' report on
                                r's order, shown in the page (a failing step in
                                red) */

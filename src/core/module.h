@@ -18,7 +18,7 @@
 
 /* Host and module must come from the same build: the table's layout, the
  * library version and this number must all agree. */
-#define US_MODULE_ABI 1
+#define US_MODULE_ABI 2
 
 typedef struct us_ModuleHost {
   int abi;              /* US_MODULE_ABI */

@@ -194,9 +194,11 @@ static void draw_arrow(cairo_t *cr, const us_Scene *sc, const double *a) {
 }
 
 static void draw_arrows(cairo_t *cr, const us_Scene *sc) {
-  set_rgb(cr, sc->arrow_color);
   cairo_set_line_width(cr, sc->arrow_width);
-  for (int k = 0; k < sc->narrow; k++) draw_arrow(cr, sc, &sc->arrows[4 * k]);
+  for (int k = 0; k < sc->narrow; k++) {
+    set_rgb(cr, sc->arrow_kind[k] ? sc->friction_color : sc->arrow_color);
+    draw_arrow(cr, sc, &sc->arrows[4 * k]);
+  }
 }
 
 /* The mechanism (failure.c): dashed ghosts, then the velocity arrows. */

@@ -75,7 +75,7 @@ typedef struct us_SceneBox {
   us_Paint paint;
 } us_SceneBox;
 
-#define US_SCENE_TEXTS 12
+#define US_SCENE_TEXTS 16
 #define US_SCENE_BOXES 4
 #define US_RAMP_STOPS 21
 
@@ -100,8 +100,9 @@ typedef struct us_Scene {
   us_Rgb dot_color;
   int narrow;
   double *arrows;         /* force arrows (x1, y1, x2, y2), head at (x2, y2) */
+  unsigned char *arrow_kind; /* [narrow] 0 normal part, 1 friction part */
   double arrow_width, arrow_head;
-  us_Rgb arrow_color;
+  us_Rgb arrow_color, friction_color; /* of the two kinds */
   int nmech;              /* mechanism: velocity arrows (x1, y1, x2, y2) at
                              the moving bodies' centres, class "mechanism" */
   double *mech;
@@ -178,6 +179,21 @@ void us_scene_mechanism(us_Scene *sc, const us_SceneView *v, const us_Structure 
 us_Status us_scene_build(us_Scene *sc, const us_Structure *s, const us_RenderSettings *r,
                          double max_side, double max_pixels, us_Error *err);
 void us_scene_free(us_Scene *sc);
+
+/* The force a picture draws at contact k of f (src/render/forces.c): the
+ * force the lower body exerts on the upper one (upper: the side the
+ * normal enters when it points up, against gravity), split into its
+ * normal part (into the upper body) and its friction part, world axes. */
+typedef struct us_DrawnForce {
+  int upper, lower;     /* body indices (lower may be US_GROUND) */
+  double p[3];          /* point of application */
+  double normal[3], friction[3];
+  double fn;            /* the normal component (>= 0 when admissible) */
+} us_DrawnForce;
+void us_drawn_force(const us_Structure *s, const us_Forces *f, int k, us_DrawnForce *out);
+/* One resultant per pair of touching bodies, at the centre of pressure;
+ * out holds f->ncontact entries. The count, or -1 on OOM. */
+int us_drawn_resultants(const us_Structure *s, const us_Forces *f, us_DrawnForce *out);
 
 /* The writers: the scene to an open stream. */
 void us_scene_write_svg(FILE *fp, const us_Scene *sc, const us_Structure *s);

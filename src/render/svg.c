@@ -101,10 +101,13 @@ static void put_header(FILE *fp, const us_Scene *sc) {
           sc->w, sc->h, sc->w, sc->h);
   for (int i = 0; i < US_NHATCH; i++) put_pattern(fp, &us_hatches[i]);
   /* the head is arrow_head px long: 6 marker units of stroke width 1.5 */
-  fputs("<marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" markerWidth=\"6\" "
-        "markerHeight=\"6\" orient=\"auto\"><path d=\"M0,0 L10,5 L0,10 z\" fill=\"", fp);
-  put_rgb(fp, sc->arrow_color);
-  fputs("\"/></marker>\n", fp);
+  for (int kind = 0; kind < 2; kind++) {
+    fprintf(fp, "<marker id=\"arrow%s\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" "
+            "markerWidth=\"6\" markerHeight=\"6\" orient=\"auto\"><path d=\"M0,0 L10,5 "
+            "L0,10 z\" fill=\"", kind ? "-friction" : "");
+    put_rgb(fp, kind ? sc->friction_color : sc->arrow_color);
+    fputs("\"/></marker>\n", fp);
+  }
   if (sc->nmech) put_mech_marker(fp, sc);
   fputs("<linearGradient id=\"ramp\" x1=\"0\" y1=\"0\" x2=\"1\" y2=\"0\">\n", fp);
   for (int i = 0; sc->has_ramp && i < US_RAMP_STOPS; i++) {
@@ -203,16 +206,21 @@ static void put_dots(FILE *fp, const us_Scene *sc) {
   fputs("</g>\n", fp);
 }
 
+/* One group per kind: normal parts (class forces), friction parts. */
 static void put_arrows(FILE *fp, const us_Scene *sc) {
-  fputs("<g class=\"forces\" stroke=\"", fp);
-  put_rgb(fp, sc->arrow_color);
-  fprintf(fp, "\" stroke-width=\"%g\">\n", sc->arrow_width);
-  for (int k = 0; k < sc->narrow; k++) {
-    const double *a = &sc->arrows[4 * k];
-    fprintf(fp, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" "
-            "marker-end=\"url(#arrow)\"/>\n", a[0], a[1], a[2], a[3]);
+  for (int kind = 0; kind < 2; kind++) {
+    fprintf(fp, "<g class=\"%s\" stroke=\"", kind ? "forces friction" : "forces");
+    put_rgb(fp, kind ? sc->friction_color : sc->arrow_color);
+    fprintf(fp, "\" stroke-width=\"%g\">\n", sc->arrow_width);
+    for (int k = 0; k < sc->narrow; k++) {
+      const double *a = &sc->arrows[4 * k];
+      if (sc->arrow_kind[k] == kind)
+        fprintf(fp, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" "
+                "marker-end=\"url(#arrow%s)\"/>\n",
+                a[0], a[1], a[2], a[3], kind ? "-friction" : "");
+    }
+    fputs("</g>\n", fp);
   }
-  fputs("</g>\n", fp);
 }
 
 static void put_box(FILE *fp, const us_SceneBox *b, const char *fill) {

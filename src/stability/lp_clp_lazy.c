@@ -8,11 +8,15 @@
  * workspace. A deadline makes it at once: CLP turns the wall-clock time
  * left into CPU seconds by the CPU share measured since its workspace was
  * made, which must span the work before the first LP as it always did. */
-#include "backend.h"
+#include "clp_module.h"
 
 #include "core/module.h"
 
 static us_Module clp_module = {"clp", "the CLP LP solver", NULL};
+
+const us_ClpModule *us_clp_module_api(us_Error *err) {
+  return us_module_api(&clp_module, err);
+}
 
 typedef struct LazyWs {
   const us_Structure *s;
@@ -42,8 +46,9 @@ static void lazy_destroy(void *ws) {
 /* The real workspace, loading the module first: US_OK or the error. */
 static us_Status ensure(LazyWs *w, us_Error *err) {
   if (w->ws) return US_OK;
-  w->be = us_module_api(&clp_module, err);
-  if (!w->be) return err ? err->code : US_ERR_IO;
+  const us_ClpModule *api = us_clp_module_api(err);
+  if (!api) return err ? err->code : US_ERR_IO;
+  w->be = api->lp;
   w->ws = w->be->create(w->s, &w->set, err);
   if (!w->ws) return err ? err->code : US_ERR_NOMEM;
   if (w->deadline > 0) w->be->set_deadline(w->ws, w->deadline);
