@@ -119,6 +119,10 @@ typedef struct us_SvgDoc {
   double friction;  /* the root's data-friction, or -1 */
   double flatten;
   int skipped;      /* elements skipped with a warning */
+  size_t size;      /* bytes of the file */
+  size_t entity_budget; /* what entity references in attribute values may
+                           add to the whole document (svg_walk.c) */
+  size_t entity_bytes;  /* what they added, checked before the walk */
   void (*warn)(const char *msg, void *user);
   void *warn_user;
 } us_SvgDoc;

@@ -31,6 +31,10 @@
 
 #define SNAP_REL 1e-3
 #define DEGENERATE_REL 1e-12
+/* What entity references may add to attribute values in all: 1 MiB plus
+ * 4 bytes per byte of the file (svg_walk.c, docs/svg.md) */
+#define ENTITY_BASE ((size_t)1 << 20)
+#define ENTITY_PER_BYTE 4
 
 us_SvgSettings us_svg_default_settings(void) {
   us_SvgSettings s;
@@ -89,7 +93,9 @@ static xmlDoc *parse_xml(const char *text, size_t len, const char *name, us_Erro
     char msg[256] = "unknown error";
     if (e && e->message) snprintf(msg, sizeof msg, "%s", e->message);
     msg[strcspn(msg, "\n")] = '\0';
-    us_error_set(err, US_ERR_PARSE, "%s:%d: malformed XML: %s", name, e ? e->line : 0, msg);
+    /* libxml2's amplification guard says "loop" for a bomb too */
+    const char *bomb = e && e->code == XML_ERR_ENTITY_LOOP ? " (or entities that expand too much)" : "";
+    us_error_set(err, US_ERR_PARSE, "%s:%d: malformed XML: %s%s", name, e ? e->line : 0, msg, bomb);
   }
   xmlFreeParserCtxt(ctx);
   return doc;
@@ -294,6 +300,8 @@ us_Structure *us_structure_parse_svg(const char *text, size_t len, const char *n
   im.err = err ? err : &local;
   im.doc.name = name ? name : "<input>";
   im.doc.flatten = im.set->flatten;
+  im.doc.size = len;
+  im.doc.entity_budget = ENTITY_BASE + ENTITY_PER_BYTE * len;
   im.doc.warn = im.set->warn;
   im.doc.warn_user = im.set->warn_user;
   double out_unit;
@@ -309,6 +317,7 @@ us_Structure *us_structure_parse_svg(const char *text, size_t len, const char *n
   us_free(im.gen);
   us_free(im.ids);
   us_svg_doc_free(&im.doc);
+  im.info.entity_bytes = im.doc.entity_bytes;
   if (info) *info = im.info;
   return s;
 }
