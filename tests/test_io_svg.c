@@ -668,7 +668,8 @@ static void illustrator_entities(void) {
   set.unit = "px";
   set.warn = count_warning;
   us_Error err;
-  us_Structure *s = imp(svg, &set, NULL, &err);
+  us_SvgInfo info;
+  us_Structure *s = imp(svg, &set, &info, &err);
   if (!s) fprintf(stderr, "%s\n", err.msg);
   CHECK(s);
   int n = s->nbody, fixed = s->bodies[0].fixed;
@@ -678,6 +679,88 @@ static void illustrator_entities(void) {
   CHECK_INT(n, ==, 2);
   CHECK(fixed && ok);
   CHECK_INT(nwarn, ==, 1); /* the path hidden through its style entity */
+  CHECK_INT((long)info.entity_bytes, ==, 2 * (27 + 1) + 12 + 1); /* st0 twice, hide once: each + 1 */
+}
+
+/* An internal entity of `size` bytes referenced `refs` times in the class
+ * of each of `rects` rects (line 4 on): the text, us_malloc'ed. */
+static char *entity_bomb(size_t size, int refs, int rects) {
+  size_t cap = size + (size_t)rects * ((size_t)refs * 4 + 80) + 256, len = 0;
+  char *t = us_malloc(cap);
+  len += (size_t)snprintf(t, cap, "<?xml version='1.0'?>\n<!DOCTYPE svg [<!ENTITY e '");
+  memset(t + len, 'x', size);
+  len += size;
+  len += (size_t)snprintf(t + len, cap - len, "'>]>\n<svg xmlns='http://www.w3.org/2000/svg'>\n");
+  for (int r = 0; r < rects; r++) {
+    len += (size_t)snprintf(t + len, cap - len, "<rect class='");
+    for (int k = 0; k < refs; k++) memcpy(t + len, "&e; ", 4), len += 4;
+    len += (size_t)snprintf(t + len, cap - len, "' x='%d' width='10' height='10'/>\n", 20 * r);
+  }
+  snprintf(t + len, cap - len, "</svg>\n");
+  return t;
+}
+
+static us_Structure *imp_len(const char *svg, us_SvgInfo *info, us_Error *err) {
+  us_SvgSettings set = raw();
+  return imp(svg, &set, info, err);
+}
+
+/* Entity references in attribute values: bounded in all by 1 MiB + 4 x
+ * the file's size, the count checked before the walk. */
+static void entity_bombs(void) {
+  /* the issue's reproducer: one 20 kB entity 6,000 times in one class
+     (120 MB expanded), refused at its element with the work bounded */
+  char *t = entity_bomb(20000, 6000, 1);
+  size_t budget = ((size_t)1 << 20) + 4 * strlen(t);
+  us_SvgInfo info;
+  us_Error err;
+  us_Structure *s = imp_len(t, &info, &err);
+  CHECK(!s && err.code == US_ERR_INPUT);
+  CHECK(strstr(err.msg, "t.svg:4: <rect>: attribute 'class': entity references expand past"));
+  CHECK(info.entity_bytes <= budget);
+  CHECK(info.entity_bytes > budget - 20001); /* refused as soon as it passed */
+  us_free(t);
+  /* many moderate ones: the budget is the document's, not each value's
+     (1 kB 60 times = 60 kB a rect; the 21st rect passes 1 MiB + 4 x 150 kB) */
+  t = entity_bomb(1000, 60, 400);
+  budget = ((size_t)1 << 20) + 4 * strlen(t);
+  s = imp_len(t, &info, &err);
+  CHECK(!s && err.code == US_ERR_INPUT);
+  CHECK_INT((long)info.entity_bytes, <=, (long)budget);
+  size_t line = 4 + budget / (60 * 1001); /* the rect whose class passes the budget */
+  char want[64];
+  snprintf(want, sizeof want, "t.svg:%zu: <rect>: attribute 'class'", line);
+  if (!strstr(err.msg, want)) fprintf(stderr, "want %s: %s\n", want, err.msg);
+  CHECK(strstr(err.msg, want));
+  us_free(t);
+  /* the same entity a few times is fine */
+  t = entity_bomb(1000, 3, 3);
+  s = imp_len(t, &info, &err);
+  CHECK(s);
+  CHECK_INT((long)info.entity_bytes, ==, 3 * (3 * (1000 + 1) + 3)); /* + the 3 spaces */
+  us_structure_free(s);
+  us_free(t);
+}
+
+/* Billion laughs: libxml2's own guard refuses nested entities that
+ * multiply, in attributes and in text, before the walk. */
+static void billion_laughs(void) {
+  char ents[2048] = "<!ENTITY l0 'lol'>";
+  for (int i = 1; i <= 9; i++) {
+    size_t n = strlen(ents);
+    n += (size_t)snprintf(ents + n, sizeof ents - n, "<!ENTITY l%d '", i);
+    for (int k = 0; k < 10; k++) n += (size_t)snprintf(ents + n, sizeof ents - n, "&l%d;", i - 1);
+    snprintf(ents + n, sizeof ents - n, "'>");
+  }
+  const char *uses[] = {"<rect class='&l9;' width='1' height='1'/>",
+                        "<rect width='1' height='1'/><text>&l9;</text>"};
+  us_SvgSettings set = raw();
+  for (int u = 0; u < 2; u++) {
+    char svg[4096];
+    snprintf(svg, sizeof svg, "<!DOCTYPE svg [%s]>\n" SVG_OPEN "%s</svg>\n", ents, uses[u]);
+    CHECK(fails_with(svg, &set, US_ERR_PARSE, "t.svg:", "malformed XML", "entities that expand too much",
+                     NULL));
+  }
 }
 
 /* ------------------------------------------------------------ examples */
@@ -849,6 +932,7 @@ US_TEST_MAIN(T(rect_element), T(polygon_element), T(polyline_closed_or_skipped),
              T(nested_groups), T(units_and_viewbox), T(flip_and_ground),
              T(curves_within_tolerance), T(arc_and_smooth_curves), T(curves_after_transforms),
              T(unique_ids), T(fixed_marks), T(materials), T(snapping), T(snapping_corners_meet),
-             T(skipped_elements), T(rounded_rect_warns), T(illustrator_entities), T(inkscape_example), T(figure1_examples),
+             T(skipped_elements), T(rounded_rect_warns), T(illustrator_entities), T(entity_bombs), T(billion_laughs),
+             T(inkscape_example), T(figure1_examples),
              T(malformed_xml), T(bad_path_data), T(non_finite_numbers), T(degenerate_shapes),
              T(bad_transforms), T(overlapping_shapes), T(bad_settings), T(out_of_memory))
