@@ -605,6 +605,41 @@ static void snapping_corners_meet(void) {
   CHECK(ok);
 }
 
+/* A thin plank (2000 x 1): its diagonal would allow a 2-unit snap, which
+ * would put its top on the ground; the tolerance is capped by a twentieth
+ * of its thickness (about 1), with the default and with --snap. */
+static void snapping_thin_plank(void) {
+  us_SvgSettings set = us_svg_default_settings();
+  set.unit = "user";
+  const double want[] = {0, 0, 2000, 0, 2000, 1, 0, 1};
+  for (int k = 0; k < 2; k++) {
+    set.snap = k ? 5 : -1;
+    us_SvgInfo info;
+    us_Error err;
+    us_Structure *s = imp(SVG("<rect id='plank' y='99' width='2000' height='1'/>"), &set, &info, &err);
+    if (!s) fprintf(stderr, "%s\n", err.msg);
+    CHECK(s);
+    CHECK(body_is(s, "plank", want, 4, 0) || (us_structure_free(s), 0));
+    CHECK_INT(contacts_between(s, US_GROUND, 0), ==, 2);
+    CHECK_INT(info.snapped, ==, 0);
+    us_structure_free(s);
+  }
+  /* drawn 0.02 above the ground line: the bottom snaps down (0.02 <
+     0.05 x 0.9995), the top stays */
+  set.snap = -1;
+  set.ground_at_set = 1;
+  set.ground_at = 100;
+  us_SvgInfo info;
+  us_Error err;
+  us_Structure *s = imp(SVG("<rect id='plank' y='98.98' width='2000' height='1'/>"), &set, &info, &err);
+  if (!s) fprintf(stderr, "%s\n", err.msg);
+  CHECK(s);
+  const double lifted[] = {0, 0, 2000, 0, 2000, 1.02, 0, 1.02};
+  CHECK(body_is(s, "plank", lifted, 4, 1e-9) || (us_structure_free(s), 0));
+  CHECK_INT(info.snapped, ==, 2);
+  us_structure_free(s);
+}
+
 /* ------------------------------------------------------- skipped elements */
 
 static void skipped_elements(void) {
@@ -851,6 +886,19 @@ static void non_finite_numbers(void) {
                    US_ERR_PARSE, "not finite", NULL));
   CHECK(fails_with(SVG("<rect x='1e300' width='1e300' height='1' transform='scale(1e10)'/>"), &set,
                    US_ERR_INPUT, "not finite", NULL));
+  /* overflow, named as such with the element and its line (issue 24) */
+  CHECK(fails_with(SVG("\n<rect id='r' x='1e308' width='1' height='1' transform='scale(10)'/>"), &set,
+                   US_ERR_INPUT, "t.svg:3: <rect id='r'>: a coordinate overflows after the transforms", NULL));
+  CHECK(fails_with(SVG("<path d='M0 0 L 1e308 0 L 1e308 1e308 Z' transform='scale(10)'/>"), &set,
+                   US_ERR_INPUT, "t.svg:2: <path>: a coordinate overflows", NULL));
+  CHECK(fails_with(SVG("<rect width='1e200' height='1e200'/>"), &set, US_ERR_INPUT,
+                   "t.svg:2: <rect>: coordinates too large: the shape's area or inertia overflows", NULL));
+  CHECK(fails_with(SVG("<rect width='1e307' height='1e307' transform='scale(10)'/>"), &set, US_ERR_INPUT,
+                   "<rect>: coordinates too large", NULL));
+  set.unit = "mm"; /* finite in the drawing, not in the output units */
+  set.scale = 1e300;
+  CHECK(fails_with(SVG("<rect width='1e10' height='1'/>"), &set, US_ERR_INPUT,
+                   "t.svg:2: <rect>: a coordinate overflows in the output units", NULL));
 }
 
 static void degenerate_shapes(void) {
@@ -931,7 +979,7 @@ US_TEST_MAIN(T(rect_element), T(polygon_element), T(polyline_closed_or_skipped),
              T(path_relative), T(circle_and_ellipse), T(transform_each_kind), T(transform_lists),
              T(nested_groups), T(units_and_viewbox), T(flip_and_ground),
              T(curves_within_tolerance), T(arc_and_smooth_curves), T(curves_after_transforms),
-             T(unique_ids), T(fixed_marks), T(materials), T(snapping), T(snapping_corners_meet),
+             T(unique_ids), T(fixed_marks), T(materials), T(snapping), T(snapping_corners_meet), T(snapping_thin_plank),
              T(skipped_elements), T(rounded_rect_warns), T(illustrator_entities), T(entity_bombs), T(billion_laughs),
              T(inkscape_example), T(figure1_examples),
              T(malformed_xml), T(bad_path_data), T(non_finite_numbers), T(degenerate_shapes),

@@ -35,6 +35,10 @@
  * 4 bytes per byte of the file (svg_walk.c, docs/svg.md) */
 #define ENTITY_BASE ((size_t)1 << 20)
 #define ENTITY_PER_BYTE 4
+/* Vertices the rings may have in all: 1 Mi plus 4 per byte of the file
+ * (a default circle is about 70 from 25 bytes) */
+#define POINTS_BASE (1 << 20)
+#define POINTS_PER_BYTE 4
 
 us_SvgSettings us_svg_default_settings(void) {
   us_SvgSettings s;
@@ -177,14 +181,17 @@ static us_Status map_ring(Import *im, int k, double *xy) {
     xy[2 * p + 1] = (im->ground_y - r->xy[2 * (s + p) + 1]) * im->k[1];
   }
   char at[200];
-  for (int p = 0; p < 2 * n; p++)
-    if (!isfinite(xy[p])) {
-      where(im, k, at, sizeof at);
-      return us_error_set(im->err, US_ERR_INPUT, "%s: a coordinate is not finite in the output units", at);
-    }
-  double d = us_poly_diameter(xy, n);
-  if (n >= 3 && fabs(us_poly_signed_area(xy, n)) > DEGENERATE_REL * d * d) return US_OK;
+  int finite = 1;
+  for (int p = 0; p < 2 * n; p++) finite &= isfinite(xy[p]) != 0;
+  double d = finite ? us_poly_diameter(xy, n) : INFINITY, a = finite ? us_poly_signed_area(xy, n) : 0;
   where(im, k, at, sizeof at);
+  if (!finite)
+    return us_error_set(im->err, US_ERR_INPUT, "%s: a coordinate overflows in the output units (not finite)", at);
+  /* area, size squared and the moment of inertia must stay doubles */
+  if (!isfinite(d * d) || !isfinite(a) || !isfinite(us_poly_polar_moment(xy, n)))
+    return us_error_set(im->err, US_ERR_INPUT, "%s: coordinates too large: the shape's area or "
+                        "inertia overflows (its size is %g output units)", at, d);
+  if (n >= 3 && fabs(a) > DEGENERATE_REL * d * d) return US_OK;
   return us_error_set(im->err, US_ERR_INPUT, "%s: degenerate shape (%s)", at,
                       n < 3 ? "fewer than 3 distinct points" : "no area");
 }
@@ -243,6 +250,10 @@ static us_Status finalize(Import *im, us_Structure *s) {
   char msg[sizeof im->err->msg];
   memcpy(msg, im->err->msg, sizeof msg);
   name_lines(im, s, msg, sizeof msg);
+  if (im->info.snapped) /* what snapping did, and how to do without it */
+    return us_error_set(im->err, st, "%s: %s; snapping moved %d vertices before this check "
+                        "(--snap 0: none, --snap TOL: another tolerance)", im->doc.name, msg,
+                        im->info.snapped);
   return us_error_set(im->err, st, "%s: %s", im->doc.name, msg);
 }
 
@@ -302,6 +313,7 @@ us_Structure *us_structure_parse_svg(const char *text, size_t len, const char *n
   im.doc.flatten = im.set->flatten;
   im.doc.size = len;
   im.doc.entity_budget = ENTITY_BASE + ENTITY_PER_BYTE * len;
+  im.doc.rings.max_pt = (int)US_MIN((size_t)POINTS_BASE + POINTS_PER_BYTE * len, (size_t)INT_MAX / 4);
   im.doc.warn = im.set->warn;
   im.doc.warn_user = im.set->warn_user;
   double out_unit;

@@ -310,9 +310,9 @@ static us_Status enter(Walk *w, const xmlNode *n, Ctx *c) {
 /* ---------------------------------------------------------------- shapes */
 
 static us_Status ring_status(Walk *w, const xmlNode *n, int rc) {
-  if (rc == -2) return fail(w, n, US_ERR_INPUT, "a coordinate is not finite after the transforms");
-  if (rc) return us_error_set(w->err, US_ERR_NOMEM, "out of memory");
-  return US_OK;
+  if (!rc) return US_OK;
+  us_Status st = us_svg_ring_error(&w->d->rings, rc, w->err);
+  return st == US_ERR_NOMEM ? st : reframe(w, n, st);
 }
 
 static us_Status do_rect(Walk *w, const xmlNode *n, const Ctx *c) {

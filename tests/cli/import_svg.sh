@@ -51,6 +51,16 @@ got=$(order "$T/tri-plan.json")
 expect 0 "quiet: no warnings" -- "$CLI" import-svg "$EX/inkscape_trilithon.svg" -q -o "$T/tri2.json"
 [ -s "$T/err" ] && bad "warnings printed with -q" || ok "no warnings with -q"
 
+# --- a thin plank on the ground (2000 x 1 px): snapping keeps its height
+printf '%s\n' "<svg xmlns='http://www.w3.org/2000/svg' width='2000' height='100'>" \
+  "<rect id='plank' x='0' y='99' width='2000' height='1'/></svg>" >"$T/plank.svg"
+for snap in "" "--snap 5"; do
+  expect 0 "plank imports ${snap:-(default snap)}" -- "$CLI" import-svg "$T/plank.svg" $snap --unit px -o "$T/plank.json"
+  contains "$T/plank.json" '[[0, 1], [0, 0], [2000, 0], [2000, 1]]' "plank keeps its height ${snap:-(default snap)}"
+  expect 0 "plank stands ${snap:-(default snap)}" -- "$CLI" check "$T/plank.json"
+  contains "$T/out" "stable: 1 bodies" "plank: stable ${snap:-(default snap)}"
+done
+
 # --- options
 printf '%s\n' "<svg xmlns='http://www.w3.org/2000/svg' width='100mm' height='50mm' viewBox='0 0 200 100'>" \
   "<rect id='a' x='0' y='80' width='20' height='20'/></svg>" >"$T/unit.svg"
@@ -83,6 +93,10 @@ bad_svg degenerate "<svg xmlns='http://www.w3.org/2000/svg'>
 <polygon id='line' points='0,0 5,5 10,10'/></svg>" "degenerate.svg:2: <polygon id='line'>: degenerate shape"
 bad_svg infinite "<svg xmlns='http://www.w3.org/2000/svg'>
 <rect width='1e999' height='1'/></svg>" "infinite.svg:2: <rect>: width is not finite"
+bad_svg overflow "<svg xmlns='http://www.w3.org/2000/svg'>
+<rect x='1e308' width='1' height='1' transform='scale(10)'/></svg>" "overflow.svg:2: <rect>: a coordinate overflows"
+bad_svg huge "<svg xmlns='http://www.w3.org/2000/svg'>
+<rect width='1e200' height='1e200'/></svg>" "huge.svg:2: <rect>: coordinates too large: the shape's area or inertia overflows"
 bad_svg empty "<svg xmlns='http://www.w3.org/2000/svg'><text>hello</text></svg>" "no shapes to import"
 # entity bombs (issue 24): one 20 kB entity 6,000 times in a class (38 kB of
 # file, 120 MB expanded) and 35,000 times (160 kB), refused before any
