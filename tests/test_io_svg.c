@@ -777,6 +777,23 @@ static void entity_bombs(void) {
   us_free(t);
 }
 
+/* Vertices in all at most 1 Mi + 4 per byte: 300 circles of 4096
+ * segments (the finest --flatten) pass it at the 257th. */
+static void vertex_budget(void) {
+  size_t cap = 300 * 64 + 128, len = 0;
+  char *t = us_malloc(cap);
+  len += (size_t)snprintf(t, cap, SVG_OPEN);
+  for (int k = 0; k < 300; k++) len += (size_t)snprintf(t + len, cap - len, "<circle cx='%d' r='1'/>\n", 3 * k);
+  snprintf(t + len, cap - len, "</svg>\n");
+  us_SvgSettings set = raw();
+  set.flatten = 1e-12;
+  int most = (1 << 20) + 4 * (int)strlen(t), line = 2 + most / 4096;
+  char want[96];
+  snprintf(want, sizeof want, "t.svg:%d: <circle>: the drawing makes more than %d vertices", line, most);
+  CHECK(fails_with(t, &set, US_ERR_INPUT, want, NULL));
+  us_free(t);
+}
+
 /* Billion laughs: libxml2's own guard refuses nested entities that
  * multiply, in attributes and in text, before the walk. */
 static void billion_laughs(void) {
@@ -980,7 +997,7 @@ US_TEST_MAIN(T(rect_element), T(polygon_element), T(polyline_closed_or_skipped),
              T(nested_groups), T(units_and_viewbox), T(flip_and_ground),
              T(curves_within_tolerance), T(arc_and_smooth_curves), T(curves_after_transforms),
              T(unique_ids), T(fixed_marks), T(materials), T(snapping), T(snapping_corners_meet), T(snapping_thin_plank),
-             T(skipped_elements), T(rounded_rect_warns), T(illustrator_entities), T(entity_bombs), T(billion_laughs),
+             T(skipped_elements), T(rounded_rect_warns), T(illustrator_entities), T(entity_bombs), T(billion_laughs), T(vertex_budget),
              T(inkscape_example), T(figure1_examples),
              T(malformed_xml), T(bad_path_data), T(non_finite_numbers), T(degenerate_shapes),
              T(bad_transforms), T(overlapping_shapes), T(bad_settings), T(out_of_memory))

@@ -35,6 +35,9 @@
  * 4 bytes per byte of the file (svg_walk.c, docs/svg.md) */
 #define ENTITY_BASE ((size_t)1 << 20)
 #define ENTITY_PER_BYTE 4
+/* The largest drawing read: its tree, rings and structure take up to
+ * about 40 times its size (a 20 MB wall of rects: 750 MB) */
+#define SVG_MAX_BYTES (64 << 20)
 /* Vertices the rings may have in all: 1 Mi plus 4 per byte of the file
  * (a default circle is about 70 from 25 bytes) */
 #define POINTS_BASE (1 << 20)
@@ -81,8 +84,9 @@ static us_Status check_settings(const us_SvgSettings *s, const char *name, doubl
 /* ------------------------------------------------------------------ XML */
 
 static xmlDoc *parse_xml(const char *text, size_t len, const char *name, us_Error *err) {
-  if (len > INT_MAX) {
-    us_error_set(err, US_ERR_IO, "%s: too large (over 2 GB)", name);
+  if (len > SVG_MAX_BYTES) {
+    us_error_set(err, US_ERR_INPUT, "%s: too large (%zu bytes): the import reads at most %d MiB "
+                 "of SVG, about a million blocks (docs/svg.md)", name, len, SVG_MAX_BYTES >> 20);
     return NULL;
   }
   xmlParserCtxt *ctx = xmlNewParserCtxt();
@@ -90,7 +94,10 @@ static xmlDoc *parse_xml(const char *text, size_t len, const char *name, us_Erro
     us_error_set(err, US_ERR_NOMEM, "out of memory");
     return NULL;
   }
-  int opts = XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING | XML_PARSE_BIG_LINES;
+  /* no network, no DTD loading, entities left as references (svg_walk.c),
+   XML_PARSE_HUGE off (libxml2's size limits hold), short strings in nodes */
+  int opts = XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING | XML_PARSE_BIG_LINES |
+             XML_PARSE_COMPACT;
   xmlDoc *doc = xmlCtxtReadMemory(ctx, text, (int)len, name, NULL, opts);
   if (!doc) {
     const xmlError *e = xmlCtxtGetLastError(ctx);
@@ -285,8 +292,12 @@ static us_Structure *build(Import *im) {
   return s;
 }
 
+/* The XML document is freed as soon as it is walked: the structure is
+ * built from the rings alone, so the two never take memory together. */
 static us_Structure *import(Import *im, xmlDoc *xml, double out_unit) {
-  if (us_svg_walk(&im->doc, xml, im->err)) return NULL;
+  us_Status walked = us_svg_walk(&im->doc, xml, im->err);
+  xmlFreeDoc(xml);
+  if (walked) return NULL;
   im->info.skipped = im->doc.skipped;
   im->info.curves = im->doc.rings.curves;
   if (im->doc.rings.nring == 0) {
@@ -324,7 +335,6 @@ us_Structure *us_structure_parse_svg(const char *text, size_t len, const char *n
   if (check_settings(im.set, im.doc.name, &out_unit, im.err)) return NULL;
   xmlDoc *xml = parse_xml(text, len, im.doc.name, im.err);
   us_Structure *s = xml ? import(&im, xml, out_unit) : NULL;
-  xmlFreeDoc(xml);
   for (int k = 0; k < im.ngen; k++) us_free(im.gen[k]);
   us_free(im.gen);
   us_free(im.ids);

@@ -309,6 +309,9 @@ static us_Status enter(Walk *w, const xmlNode *n, Ctx *c) {
 
 /* ---------------------------------------------------------------- shapes */
 
+/* Shape elements by kind (their names outlive the XML document) */
+static const char *const shapes[] = {"rect", "polygon", "polyline", "circle", "ellipse", "path", NULL};
+
 static us_Status ring_status(Walk *w, const xmlNode *n, int rc) {
   if (!rc) return US_OK;
   us_Status st = us_svg_ring_error(&w->d->rings, rc, w->err);
@@ -373,13 +376,11 @@ static us_Status do_path(Walk *w, const xmlNode *n, const Ctx *c) {
 
 /* Metadata for the rings from `first` on, made by element n. On failure
  * nothing of it is kept (the caller drops the rings). */
-static us_Status record(Walk *w, const xmlNode *n, const Ctx *c, int first) {
+static us_Status record(Walk *w, const xmlNode *n, const Ctx *c, int kind, int first) {
   us_SvgDoc *d = w->d;
   if (US_GROW(d->shapes, d->cap_shape, d->rings.nring))
     return us_error_set(w->err, US_ERR_NOMEM, "out of memory");
-  /* kind: the element's name lives as long as the XML document */
-  us_SvgShape sh = {NULL, (const char *)n->name, xmlGetLineNo(n), c->fixed, c->density, 0,
-                    c->friction};
+  us_SvgShape sh = {NULL, shapes[kind], xmlGetLineNo(n), c->fixed, c->density, 0, c->friction};
   if (material(w, n, "data-mass", 1, 0, &sh.mass)) return US_ERR_INPUT;
   char *id = attr(w, n, "id");
   int k = first, oom = 0;
@@ -400,14 +401,13 @@ static us_Status do_shape(Walk *w, const xmlNode *n, const Ctx *c, int kind) {
                  : kind <= 2 ? do_points(w, n, c, kind == 1)
                  : kind <= 4 ? do_ellipse(w, n, c, kind == 3)
                              : do_path(w, n, c);
-  if (!st && w->d->rings.nring > first) st = record(w, n, c, first);
+  if (!st && w->d->rings.nring > first) st = record(w, n, c, kind, first);
   if (st) us_svg_rings_truncate(&w->d->rings, first);
   return st;
 }
 
 /* ---------------------------------------------------------------- tree */
 
-static const char *const shapes[] = {"rect", "polygon", "polyline", "circle", "ellipse", "path", NULL};
 static const char *const groups[] = {"g", "a", "switch", "svg", NULL};
 static const char *const silent[] = {"defs", "clipPath", "mask", "symbol", "marker", "pattern",
                                      "linearGradient", "radialGradient", "filter", "metadata",
