@@ -125,11 +125,12 @@ static int has_reference(const xmlAttr *a) {
 }
 
 /* A's value (xmlFree it), at most the whole budget long; NULL when it is
- * longer (never after check_entities) or out of memory. */
+ * longer (never after check_entities) or out of memory (as libxml2's own
+ * reader: its allocations are not the library's funnel). */
 static char *attr_value(const Walk *w, const xmlAttr *a) {
   if (!a) return NULL;
   const xmlNode *k = a->children;
-  if (!has_reference(a))
+  if (!k || (!k->next && k->type == XML_TEXT_NODE)) /* the common case: one text */
     return (char *)xmlStrdup(k && k->content ? k->content : (const xmlChar *)"");
   Expand x = {xmlMalloc(1), 0, 1, 0, w->d->entity_budget};
   if (!x.buf) return NULL;
