@@ -944,6 +944,13 @@ static void bad_transforms(void) {
 
 static void overlapping_shapes(void) {
   us_SvgSettings set = us_svg_default_settings();
+  /* refused after snapping moved vertices (c's bottom onto the ground):
+     the message says so and how to do without */
+  CHECK(fails_with(SVG("<rect id='a' y='-10' width='10' height='10'/>\n"
+                       "<rect id='b' x='5' y='-10' width='10' height='10'/>\n"
+                       "<rect id='c' x='20' y='-10.005' width='10' height='10'/>"),
+                   &set, US_ERR_INPUT, "bodies 'a' and 'b' overlap",
+                   "; snapping moved 2 vertices before this check (--snap 0: none", NULL));
   CHECK(fails_with(SVG("<rect id='one' width='10' height='10'/>\n"
                        "<rect id='two' x='5' y='5' width='10' height='10'/>"),
                    &set, US_ERR_INPUT, "t.svg: bodies 'one' and 'two' overlap",

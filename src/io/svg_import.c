@@ -83,10 +83,14 @@ static us_Status check_settings(const us_SvgSettings *s, const char *name, doubl
 
 /* ------------------------------------------------------------------ XML */
 
+static void too_large(const char *name, double bytes, us_Error *err) {
+  us_error_set(err, US_ERR_INPUT, "%s: too large (%.0f bytes): the import reads at most %d MiB "
+               "of SVG, about a million blocks (docs/svg.md)", name, bytes, SVG_MAX_BYTES >> 20);
+}
+
 static xmlDoc *parse_xml(const char *text, size_t len, const char *name, us_Error *err) {
   if (len > SVG_MAX_BYTES) {
-    us_error_set(err, US_ERR_INPUT, "%s: too large (%zu bytes): the import reads at most %d MiB "
-                 "of SVG, about a million blocks (docs/svg.md)", name, len, SVG_MAX_BYTES >> 20);
+    too_large(name, (double)len, err);
     return NULL;
   }
   xmlParserCtxt *ctx = xmlNewParserCtxt();
@@ -348,6 +352,13 @@ us_Structure *us_structure_read_svg(const char *path, const us_SvgSettings *set,
                                     us_Error *err) {
   if (!path) {
     us_error_set(err, US_ERR_USAGE, "us_structure_read_svg: no path");
+    return NULL;
+  }
+  FILE *fp = fopen(path, "rb"); /* too large: refused before it is read */
+  long size = fp && !fseek(fp, 0, SEEK_END) ? ftell(fp) : -1;
+  if (fp) fclose(fp);
+  if (size > SVG_MAX_BYTES) {
+    too_large(path, (double)size, err);
     return NULL;
   }
   size_t len = 0;

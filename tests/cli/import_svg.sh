@@ -117,6 +117,10 @@ for b in "bomb38 6000" "bomb160 35000"; do
   contains "$T/err" "$1.svg:5: <rect id='r'>: attribute 'class': entity references expand past" "$1: says where and why"
   [ -e "$T/$1.json" ] && bad "$1: output written" || ok "$1: nothing written"
 done
+# over 64 MiB: refused before it is read (a sparse file)
+truncate -s 65M "$T/huge65.svg"
+expect 2 "65 MiB drawing: exit 2" -- "$CLI" import-svg "$T/huge65.svg" -o "$T/huge65.json"
+contains "$T/err" "huge65.svg: too large (68157440 bytes): the import reads at most 64 MiB" "65 MiB drawing: says why"
 laughs="<!ENTITY l0 'lol'>"
 for i in 1 2 3 4 5 6 7 8 9; do laughs="$laughs<!ENTITY l$i '$(printf "&l$((i - 1));%.0s" 1 2 3 4 5 6 7 8 9 10)'>"; done
 bad_svg laughs "<!DOCTYPE svg [$laughs]>
