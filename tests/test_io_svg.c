@@ -794,6 +794,19 @@ static void vertex_budget(void) {
   us_free(t);
 }
 
+/* Attribute defaults declared in the DTD are not read (their values
+ * would escape the entity budget): the rect is not fixed. */
+static void dtd_defaults_ignored(void) {
+  us_SvgSettings set = raw();
+  us_Error err;
+  us_Structure *s = imp("<!DOCTYPE svg [<!ATTLIST rect class CDATA 'fixed'>]>\n" SVG_OPEN
+                        "<rect width='1' height='1'/><rect x='2' class='fixed' width='1' height='1'/></svg>\n",
+                        &set, NULL, &err);
+  CHECK(s);
+  CHECK(!s->bodies[0].fixed && s->bodies[1].fixed);
+  us_structure_free(s);
+}
+
 /* Billion laughs: libxml2's own guard refuses nested entities that
  * multiply, in attributes and in text, before the walk. */
 static void billion_laughs(void) {
@@ -1004,7 +1017,7 @@ US_TEST_MAIN(T(rect_element), T(polygon_element), T(polyline_closed_or_skipped),
              T(nested_groups), T(units_and_viewbox), T(flip_and_ground),
              T(curves_within_tolerance), T(arc_and_smooth_curves), T(curves_after_transforms),
              T(unique_ids), T(fixed_marks), T(materials), T(snapping), T(snapping_corners_meet), T(snapping_thin_plank),
-             T(skipped_elements), T(rounded_rect_warns), T(illustrator_entities), T(entity_bombs), T(billion_laughs), T(vertex_budget),
+             T(skipped_elements), T(rounded_rect_warns), T(illustrator_entities), T(entity_bombs), T(dtd_defaults_ignored), T(billion_laughs), T(vertex_budget),
              T(inkscape_example), T(figure1_examples),
              T(malformed_xml), T(bad_path_data), T(non_finite_numbers), T(degenerate_shapes),
              T(bad_transforms), T(overlapping_shapes), T(bad_settings), T(out_of_memory))

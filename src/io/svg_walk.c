@@ -140,9 +140,20 @@ static char *attr_value(const Walk *w, const xmlAttr *a) {
   return NULL;
 }
 
+/* The attribute `name` of n in namespace ns (NULL: none) as written on
+ * the element: defaults a DTD declares are not looked up (xmlHasNsProp
+ * would, and their values would escape the entity budget). */
+static const xmlAttr *find_attr(const xmlNode *n, const char *name, const char *ns) {
+  for (const xmlAttr *a = n->properties; a; a = a->next)
+    if (!strcmp((const char *)a->name, name) &&
+        (ns ? a->ns && a->ns->href && !strcmp((const char *)a->ns->href, ns) : !a->ns))
+      return a;
+  return NULL;
+}
+
 /* An attribute without namespace (xmlFree it), or NULL. */
 static char *attr(const Walk *w, const xmlNode *n, const char *name) {
-  return attr_value(w, xmlHasNsProp(n, (const xmlChar *)name, NULL));
+  return attr_value(w, find_attr(n, name, NULL));
 }
 
 /* "<rect id='a'>" for messages. */
@@ -250,7 +261,7 @@ static int id_fixed(const char *id) {
  * inkscape:label whose first word is "fixed", or an id as above. */
 static int marked_fixed(const Walk *w, const xmlNode *n) {
   char *c = attr(w, n, "class"), *df = attr(w, n, "data-fixed"), *id = attr(w, n, "id");
-  char *lab = attr_value(w, xmlHasNsProp(n, (const xmlChar *)"label", (const xmlChar *)INKSCAPE_NS));
+  char *lab = attr_value(w, find_attr(n, "label", INKSCAPE_NS));
   int f = (c && has_word(c, "fixed", 0)) || (lab && has_word(lab, "fixed", 1)) ||
           (df && strcmp(df, "false") && strcmp(df, "0")) || id_fixed(id);
   xmlFree(c), xmlFree(df), xmlFree(lab), xmlFree(id);
