@@ -71,7 +71,7 @@ static us_Status check_settings(const us_SvgSettings *s, const char *name, doubl
                                 us_Error *err) {
   const char *u = s->unit ? s->unit : "m";
   *out_unit = strcmp(u, "user") ? us_svg_unit_metres(u, strlen(u)) : -1;
-  if (!*out_unit) return us_error_set(err, US_ERR_USAGE, "unknown unit '%s' (m, cm, mm, in, pt, pc, px, user)", u);
+  if (*out_unit == 0) return us_error_set(err, US_ERR_USAGE, "unknown unit '%s' (m, cm, mm, in, pt, pc, px, user)", u);
   if (!(s->scale > 0) || !isfinite(s->scale))
     return us_error_set(err, US_ERR_USAGE, "%s: the scale must be a finite number > 0", name);
   if (!(s->flatten > 0 && s->flatten <= 0.5))
