@@ -803,6 +803,9 @@ typedef struct us_SvgInfo {
   int ids_generated;       /* shapes without an id */
   int ids_renamed;         /* repeated ids made unique */
   double unit;             /* output units per root user unit (x) */
+  size_t entity_bytes;     /* attribute values that hold entity references:
+                              their expanded bytes plus one per reference, in
+                              all at most 1 MiB + 4 x the file's size */
 } us_SvgInfo;
 
 /* Read an SVG drawing into a finalized structure. Errors name the file,
