@@ -689,7 +689,9 @@ static void out_of_memory(void) {
   }
 }
 
-/* 10,000 bricks in running bond: read and write stay fast. */
+/* 10,000 bricks in running bond: written and read back unchanged. The
+ * times are printed, not asserted (a busy machine must not fail a test;
+ * bench/ measures speed). */
 static void large_wall(void) {
   const int rows = 100, cols = 100;
   size_t cap = (size_t)rows * cols * 120 + 100, n = 0;
@@ -722,7 +724,6 @@ static void large_wall(void) {
   CHECK(same_structure(s, back));
   printf("10,000 bricks: parse+finalize %.3f s, write %.3f s, read back %.3f s\n", t1 - t0, t3 - t2,
          t4 - t3);
-  CHECK(t3 - t2 < 5.0 && t4 - t3 < 20.0);
   us_structure_free(s);
   us_structure_free(back);
   remove(out);

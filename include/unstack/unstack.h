@@ -419,6 +419,8 @@ typedef struct us_StabilityInfo {
   long cone3_refined;    /* 3D: directions added to contacts' friction polygons */
   long cone3_open;       /* 3D: tests whose claim is the outer polygons' forces (no
                             direction left to add); the certificate decides */
+  long band_referee;     /* tests in the boundary band, decided by the referee
+                            (docs/planning.md, "The boundary band") */
 } us_StabilityInfo;
 
 /* The certificate of an unstable verdict: a virtual motion of some bodies

@@ -195,6 +195,8 @@ static void save_basis(Clp_Simplex *m, ClpWs *w, const us_EqSystem *sys) {
   }
 }
 
+#define CLP_CLOCK_RETRIES 4 /* runs continued after CLP's own clock stopped them early */
+
 /* CLP's time limit counts the process's CPU seconds; the deadline is wall
  * time. On a loaded machine the process gets a share of a core, so the
  * wall time left is scaled by the share measured since the workspace was
@@ -363,6 +365,15 @@ static us_Status clp_solve(void *ws, const us_BackendProblem *pb, us_BackendOut 
   /* the statuses are keyed: no list of changes needed */
   Clp_Simplex *m = clp_run(w, sys, region, info);
   if (!m) return us_error_set(err, US_ERR_NOMEM, "CLP could not create a model");
+  /* CLP's clock (CPU seconds, scaled by the share measured so far) may
+     stop it before the wall deadline when the machine's load changes:
+     it goes on with the wall time left, unscaled */
+  for (int k = 0; k < CLP_CLOCK_RETRIES && Clp_status(m) == 3 && Clp_secondaryStatus(m) == 9 &&
+                  w->deadline > 0 && us_now() < w->deadline;
+       k++) {
+    Clp_setMaximumSeconds(m, US_MAX(w->deadline - us_now(), 1e-3));
+    Clp_dual(m, 0);
+  }
   int status = Clp_status(m);
   if (status != 0 && status != 1 && w->deadline > 0 && us_now() >= w->deadline) {
     Clp_deleteModel(m); /* stopped by the deadline: no verdict, no error */
