@@ -217,6 +217,30 @@ static void hull_deadline(void) {
   free(x);
 }
 
+/* us_structure_finalize_until: a past deadline stops the hull with
+ * US_ERR_TIME_LIMIT naming the body; finalizing again without one works. */
+static void finalize_deadline(void) {
+  int n = 3000;
+  double *x = malloc((size_t)n * 3 * sizeof *x);
+  unsigned long long rng = 9;
+  for (int i = 0; i < n; i++) {
+    double z = 2 * test_rnd(&rng) - 1, t = 2 * PI * test_rnd(&rng), r = sqrt(1 - z * z);
+    x[3 * i] = r * cos(t), x[3 * i + 1] = r * sin(t), x[3 * i + 2] = z + 5;
+  }
+  us_Structure *s = us_structure_new(3);
+  us_BodyDef d = us_default_body_def();
+  us_Error err;
+  d.id = "ball", d.nvert = n, d.xyz = x;
+  s->ground = 0;
+  CHECK_INT(us_structure_add_body(s, &d, &err), ==, 0);
+  CHECK_INT(us_structure_finalize_until(s, 1e-9, &err), ==, US_ERR_TIME_LIMIT);
+  CHECK(strstr(err.msg, "convex hull of body 'ball'") != NULL);
+  CHECK_INT(us_structure_finalize_until(s, us_now() + 1e6, &err), ==, US_OK);
+  CHECK(s->finalized && s->bodies[0].parts[0].nface > 0);
+  us_structure_free(s);
+  free(x);
+}
+
 /* A structure of one 3D body given by its points (hull taken). */
 static us_Structure *one_body(int n, const double *xyz, double density, us_Error *err) {
   us_Structure *s = us_structure_new(3);
@@ -538,7 +562,7 @@ static void out_of_memory_sweep(void) {
   CHECK(done);
 }
 
-US_TEST_MAIN(T(hull_box_with_redundant_points), T(hull_random_points), T(hull_flat_sets), T(hull_against_brute_force), T(hull_deadline), T(mass_box),
+US_TEST_MAIN(T(hull_box_with_redundant_points), T(hull_random_points), T(hull_flat_sets), T(hull_against_brute_force), T(hull_deadline), T(finalize_deadline), T(mass_box),
              T(mass_rotated_box), T(mass_tetrahedron), T(mass_compound_l), T(mass_invariance),
              T(reader_errors), T(reader_defaults_and_rotations), T(write_read_round_trip),
              T(explicit_contacts), T(out_of_memory_sweep))

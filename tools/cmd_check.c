@@ -78,8 +78,9 @@ int cmd_check(int argc, char **argv) {
     else file = argv[i];
   }
   if (!file) return cli_fail("check", "no FILE given (see 'unstack check --help')");
-  us_Structure *s = cli_load("check", file, &c);
-  if (!s) return CLI_EXIT_ERR;
+  int load;
+  us_Structure *s = cli_load("check", file, &c, c.stab.time_limit, &load);
+  if (!s) return load;
   us_Error err;
   us_error_clear(&err);
   us_StabilityResult res;

@@ -194,8 +194,9 @@ int cmd_plan(int argc, char **argv) {
   cli_progress_on("plan", &c);
   c.plan.stability = c.stab;
   if (a.out && cli_check_output("plan", a.out, &a.file, 1)) return CLI_EXIT_ERR;
-  us_Structure *s = cli_load("plan", a.file, &c);
-  if (!s) return CLI_EXIT_ERR;
+  int load;
+  us_Structure *s = cli_load("plan", a.file, &c, c.plan.time_limit, &load);
+  if (!s) return load;
   us_Error err;
   us_error_clear(&err);
   us_Plan p;

@@ -117,8 +117,9 @@ int cmd_verify(int argc, char **argv) {
     files[nfiles++] = argv[i];
   }
   if (nfiles < 2) return cli_fail("verify", "need FILE and PLAN.json (see 'unstack verify --help')");
-  us_Structure *s = cli_load("verify", files[0], &c);
-  if (!s) return CLI_EXIT_ERR;
+  int load;
+  us_Structure *s = cli_load("verify", files[0], &c, c.stab.time_limit, &load);
+  if (!s) return load;
   us_Error err;
   us_error_clear(&err);
   us_PlanFile pf;

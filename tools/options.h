@@ -27,6 +27,8 @@ void cli_progress_off(const CliCommon *c);
  * 1 ms; limit itself when <= 0). */
 void cli_clock_start(void);
 double cli_time_left(double limit);
+/* The us_now() time limit seconds after the start (0 when limit <= 0). */
+double cli_deadline(double limit);
 /* --time-limit S into c->stab.time_limit; 0, or -1 (message printed). */
 int cli_time_limit(const char *cmd, const char *v, CliCommon *c);
 /* The local-test statistics lines of --stats (nothing when none ran). */
@@ -37,8 +39,11 @@ const char *cli_direction_word(int i);
 const char *cli_removal_word(int i);
 const char *cli_count_method_word(int i);
 int cli_common_option(const char *cmd, int argc, char **argv, int *i, CliCommon *c);
-/* Read and finalize a structure; prints the error and returns NULL. */
-us_Structure *cli_load(const char *cmd, const char *path, const CliCommon *c);
+/* Read and finalize a structure within time_limit seconds of the
+ * command's start (<= 0: no limit). NULL with the message printed and
+ * *code CLI_EXIT_UNDECIDED when the limit cut loading, else CLI_EXIT_ERR. */
+us_Structure *cli_load(const char *cmd, const char *path, const CliCommon *c, double time_limit,
+                       int *code);
 
 /* render --html (cmd_render_html.c): does the output name end in .html or
  * .htm; the viewer page of s with the plan file `plan` (NULL: none) read

@@ -310,7 +310,7 @@ static us_HullStatus insert_all(Hull *h, const int s[4]) {
   for (long it = 1; h->nwork > 0 && !st; it++) {
     int t = h->work[--h->nwork];
     if (!h->t[t].alive || h->head[t] < 0) continue; /* removed since */
-    if ((it & 1023) == 0 && h->deadline > 0 && us_now() > h->deadline) return US_HULL_TIMEOUT;
+    if ((it & 1023) == 0 && us_past(h->deadline)) return US_HULL_TIMEOUT;
     int i = h->far[t];
     h->owner[i] = -1;
     int nv = visible_set(h, i, t);

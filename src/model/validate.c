@@ -145,11 +145,11 @@ static us_Status check_shape(const us_Structure *s, us_Body *b, us_Error *err) {
   return US_OK;
 }
 
-us_Status us_model_validate(us_Structure *s, us_Error *err) {
+us_Status us_model_validate(us_Structure *s, double deadline, us_Error *err) {
   us_Status st = check_globals(s, err);
   for (int i = 0; !st && i < s->nbody; i++) st = check_values(s, &s->bodies[i], err);
   for (int i = 0; !st && i < s->nbody; i++)
-    if (s->bodies[i].npart > 0) st = us_solid_check_shape(s, &s->bodies[i], err);
+    if (s->bodies[i].npart > 0) st = us_solid_check_shape(s, &s->bodies[i], deadline, err);
     else if (s->bodies[i].nvert > 0) st = check_shape(s, &s->bodies[i], err);
   return st;
 }
