@@ -75,8 +75,10 @@ static const char help[] =
     "  --density D           density of every block (default 1)\n"
     "  --max-tries N         random, stacker: attempts before giving up (default 10000);\n"
     "                        random3d: discarded drops in a row before stopping (200)\n"
+    "  --time-limit S        stop after S seconds (random3d), nothing written, exit 3\n"
     "\n"
-    "exit: 0 written, 2 usage error (nothing written)\n";
+    "exit: 0 written, 2 usage error (nothing written), 3 stopped by --time-limit (nothing\n"
+    "written)\n";
 
 typedef us_Structure *(*GenFn)(const us_GenSettings *, us_Error *);
 
@@ -123,6 +125,7 @@ typedef struct Extra {
   const char *remove; /* --remove list, NULL when not given */
   int height_given, tries_given;
   int returns_given; /* --returns, for wall3d only */
+  double time_limit;  /* --time-limit, 0 when not given */
 } Extra;
 
 static int parse_option(int argc, char **argv, int *i, us_GenSettings *g, Extra *x) {
@@ -146,6 +149,10 @@ static int parse_option(int argc, char **argv, int *i, us_GenSettings *g, Extra 
       return cli_fail("generate", "--returns needs a non-negative integer (bricks), got '%s'", v);
     if (n > INT_MAX) return cli_fail("generate", "--returns: %s is too large (at most %d)", v, INT_MAX);
     g->returns = (int)n, x->returns_given = 1;
+  } else if (!strcmp(name, "--time-limit")) {
+    if (!(v = cli_value("generate", argc, argv, i))) return CLI_EXIT_ERR;
+    if (cli_parse_double(v, &x->time_limit) || x->time_limit <= 0)
+      return cli_fail("generate", "--time-limit needs a positive number of seconds, got '%s'", v);
   } else if (!strcmp(name, "--seed")) {
     if (!(v = cli_value("generate", argc, argv, i))) return CLI_EXIT_ERR;
     if (cli_parse_long(v, &n) || n < 0)
@@ -236,7 +243,7 @@ int cmd_generate(int argc, char **argv) {
   int default_rows = g.rows;
   g.rows = -1; /* to see whether --rows was given */
   double block_width = g.width;
-  Extra x = {0, NULL, 0, 0, 0};
+  Extra x = {0, NULL, 0, 0, 0, 0};
   const char *out = NULL;
   for (int i = 2; i < argc; i++) {
     if (cli_is_help(argv[i])) return fputs(help, stdout), CLI_EXIT_OK;
@@ -256,8 +263,13 @@ int cmd_generate(int argc, char **argv) {
   g.remove = pairs;
   us_Error err;
   us_error_clear(&err);
+  g.deadline = cli_deadline(x.time_limit);
   us_Structure *s = fn(&g, &err);
   free(pairs);
+  if (!s && err.code == US_ERR_TIME_LIMIT) { /* an outcome: nothing written */
+    printf("stopped: %s (--time-limit %g); nothing written\n", err.msg, x.time_limit);
+    return CLI_EXIT_UNDECIDED;
+  }
   if (!s || us_structure_write(s, out, &err)) {
     us_structure_free(s);
     return cli_error("generate", &err);

@@ -31,7 +31,8 @@
  * Cost: a tested drop rebuilds and finalizes the structure (contact
  * detection, O(k log k) for k boxes) and solves one LP over k bodies; the
  * LP dominates, so a run is about quadratic in n (measured figures in
- * docs/format.md). Randomness: splitmix64 seeded with g->seed, so a seed
+ * docs/format.md). g->deadline (a us_now() time; 0: none) is read before
+ * every drop: past it, US_ERR_TIME_LIMIT. Randomness: splitmix64 seeded with g->seed, so a seed
  * gives the same structure on every platform. Bodies "b1", "b2", ... in the
  * order they were kept. */
 #include "gen.h"
@@ -153,6 +154,9 @@ static us_Status run(Drops *d, us_Error *err) {
   us_Status st = US_OK;
   for (int failed = 0; !st && d->n < d->g->n && failed < d->g->max_tries;) {
     int kept = 0;
+    if (us_past(d->g->deadline))
+      return us_error_set(err, US_ERR_TIME_LIMIT, "random3d: time limit reached (%d of %d boxes placed)",
+                          d->n, d->g->n);
     st = drop(d, &kept, err);
     failed = kept ? 0 : failed + 1;
   }

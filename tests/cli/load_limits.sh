@@ -27,4 +27,10 @@ contains "$T/out" "loading was cut by the time limit" "check big: says loading w
 expect 3 "verify: loading cut by the limit" -- "$CLI" verify "$T/big.json" "$T/wall.json" --time-limit 1e-9
 expect 3 "render: loading cut by the limit" -- "$CLI" render "$T/wall.json" --time-limit 1e-9 -o "$T/w.svg"
 [ -e "$T/w.svg" ] && bad "render: wrote a picture" || ok "render: no picture"
+# generate --time-limit (random3d reads the clock before every drop)
+expect 3 "generate random3d: stopped by the limit" -- "$CLI" generate random3d --blocks 50 --time-limit 1e-9 -o "$T/r.json"
+contains "$T/out" "random3d: time limit reached" "generate: says it stopped"
+[ -e "$T/r.json" ] && bad "generate: wrote a file" || ok "generate: nothing written"
+expect 0 "generate random3d with room" -- "$CLI" generate random3d --blocks 3 --time-limit 600 -o "$T/r.json"
+expect 2 "generate --time-limit 0" -- "$CLI" generate random3d --time-limit 0 -o "$T/r0.json"
 finish
