@@ -241,6 +241,37 @@ static void finalize_deadline(void) {
   free(x);
 }
 
+/* Extreme sizes get their true reason (issue 24, point 5): a cube of side
+ * 1e-100 is accepted (as a 2D square is), 1e101 overflows its inertia,
+ * 1e-300 underflows its volume; a huge quaternion is normalized without
+ * overflow; zero gravity in 3D suggests a 3D vector. */
+static void extreme_sizes(void) {
+  static const char *const sides[] = {"1e-100", "1e101", "1e-300"};
+  static const char *const want[] = {NULL, "the inertia overflows", "the volume underflows"};
+  for (int k = 0; k < 3; k++) {
+    char text[256];
+    snprintf(text, sizeof text, "{\"dimension\": 3, \"ground\": false, \"bodies\": [{\"id\": \"c\", \"box\": "
+             "{\"center\": [0, 0, 0], \"size\": [%s, %s, %s]}}]}", sides[k], sides[k], sides[k]);
+    us_Error err;
+    us_error_clear(&err);
+    us_Structure *s = us_structure_parse(text, "cube", 0, &err);
+    if (want[k]) CHECK(!s && strstr(err.msg, want[k]) != NULL);
+    else CHECK(s != NULL && s->bodies[0].parts[0].nface == 6);
+    us_structure_free(s);
+  }
+  us_Error err;
+  us_Structure *s = us_structure_parse("{\"dimension\": 3, \"bodies\": [{\"id\": \"c\", \"box\": {\"center\": "
+                                       "[0, 0, 1], \"size\": [1, 2, 1], \"rotation\": [1e308, 1e308, 0, 0]}}]}",
+                                       "q", 0, &err);
+  CHECK(s != NULL); /* turned 90 degrees about x: 2 high */
+  if (s) CHECK_NEAR(s->bbox3[5] - s->bbox3[2], 2.0, 1e-12);
+  us_structure_free(s);
+  us_error_clear(&err);
+  s = us_structure_parse("{\"dimension\": 3, \"gravity\": [0, 0, 0], \"bodies\": [{\"id\": \"c\", \"box\": "
+                         "{\"center\": [0, 0, 0.5], \"size\": [1, 1, 1]}}]}", "g", 0, &err);
+  CHECK(!s && strstr(err.msg, "[0, 0, -9.81]") != NULL);
+}
+
 /* A structure of one 3D body given by its points (hull taken). */
 static us_Structure *one_body(int n, const double *xyz, double density, us_Error *err) {
   us_Structure *s = us_structure_new(3);
@@ -562,7 +593,7 @@ static void out_of_memory_sweep(void) {
   CHECK(done);
 }
 
-US_TEST_MAIN(T(hull_box_with_redundant_points), T(hull_random_points), T(hull_flat_sets), T(hull_against_brute_force), T(hull_deadline), T(finalize_deadline), T(mass_box),
+US_TEST_MAIN(T(hull_box_with_redundant_points), T(hull_random_points), T(hull_flat_sets), T(hull_against_brute_force), T(hull_deadline), T(finalize_deadline), T(extreme_sizes), T(mass_box),
              T(mass_rotated_box), T(mass_tetrahedron), T(mass_compound_l), T(mass_invariance),
              T(reader_errors), T(reader_defaults_and_rotations), T(write_read_round_trip),
              T(explicit_contacts), T(out_of_memory_sweep))

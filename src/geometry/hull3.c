@@ -4,7 +4,10 @@
  * Incremental construction on a triangulated hull with conflict lists
  * (Clarkson and Shor; the "outside sets" of Quickhull). Coordinates are
  * shifted by the centre of the points' box (results are translation
- * invariant; the output keeps the input coordinates bit for bit). Steps:
+ * invariant; the output keeps the input coordinates bit for bit)
+ * and scaled by a power of two to a box of side about 1 (exact, so results
+ * are scale invariant too, and sides from 1e-300 to 1e300 square without
+ * overflow or underflow). Steps:
  *  1. A starting tetrahedron from extreme points: p0 of least x, p1
  *     farthest from p0, p2 farthest from the line p0 p1, p3 farthest from
  *     the plane p0 p1 p2. When one of those distances is <= tol every
@@ -517,7 +520,17 @@ static us_HullStatus hull_init(Hull *h, const double *xyz, int n, double tol, do
   double bb[6];
   us_points3_bbox(xyz, n, bb);
   us_Vec3 c = us_v3(0.5 * (bb[0] + bb[3]), 0.5 * (bb[1] + bb[4]), 0.5 * (bb[2] + bb[5]));
-  for (int i = 0; i < n; i++) h->q[i] = us_v3_sub(us_v3_at(xyz, i), c), h->hstart[i] = h->hend[i] = -1;
+  /* scaled by a power of two (exact) to a box of side about 1, so that
+   * squares of lengths (norms, cross products) neither overflow (sides
+   * near 1e101) nor underflow (sides near 1e-300); tol with them */
+  int e = 0;
+  frexp(US_MAX(US_MAX(bb[3] - bb[0], bb[4] - bb[1]), bb[5] - bb[2]), &e);
+  h->tol = ldexp(tol, -e);
+  for (int i = 0; i < n; i++) {
+    us_Vec3 d = us_v3_sub(us_v3_at(xyz, i), c);
+    h->q[i] = us_v3(ldexp(d.x, -e), ldexp(d.y, -e), ldexp(d.z, -e));
+    h->hstart[i] = h->hend[i] = -1;
+  }
   return US_HULL_OK;
 }
 

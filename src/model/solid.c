@@ -128,6 +128,9 @@ static us_Status build_hull(us_Body *b, int k, double tol, double size, double d
       return us_error_set(err, US_ERR_INPUT, "body '%s': %scould not build its convex hull", id, pl);
   }
   if (p->nface == 0) us_polyhedron_free(p), *p = h;
+  if (p->volume == 0 && size * size * size < 0x1p-1000) /* built, so not flat: too small */
+    return us_error_set(err, US_ERR_INPUT, "body '%s': %scoordinates too small, the volume "
+                        "underflows (size %g)", id, pl, size);
   if (!(p->volume > tol * size * size)) /* h is kept: freed with the body */
     return us_error_set(err, US_ERR_INPUT, "body '%s': %spolyhedron has (almost) zero volume (%g)",
                         id, pl, p->volume);
