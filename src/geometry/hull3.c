@@ -13,14 +13,16 @@
  *     the plane p0 p1 p2. When one of those distances is <= tol every
  *     point lies within about tol of a line or plane: US_HULL_FLAT.
  *  2. Every other point is put in the conflict list of the triangle it is
- *     farthest above, if more than tol; the others are dropped. Points are
- *     then taken in order of decreasing distance from the tetrahedron's
- *     centre (far points first, so points on edges and faces mostly come
- *     after the corners that make them redundant); a point still in a list
- *     is added: the triangles it sees (above their plane at all, found by
- *     a walk over neighbours from its own triangle, so the set is
- *     connected) are removed and their boundary (the horizon, which must be
- *     one simple cycle, else US_HULL_FAIL) is joined to the point. The
+ *     farthest above, if more than tol; the others are dropped. While a
+ *     triangle has a list, the point of it farthest above it is added
+ *     (Quickhull's choice: that point is a vertex of the hull, so points
+ *     on edges and faces never come before the corners that make them
+ *     redundant): the triangles it sees (more than tol above their plane,
+ *     so exactly coplanar triangles of grid-like inputs, whose heights are
+ *     rounding noise, stay and cannot pinch the horizon; found by a walk
+ *     over neighbours from its own triangle, so the set is connected) are
+ *     removed and their boundary (the horizon, which must be one simple
+ *     cycle, else US_HULL_FAIL) is joined to the point. The
  *     points of the removed triangles' lists go to the new triangle they
  *     are farthest above (more than tol), else to an old triangle across
  *     the horizon they are more than tol above, else they are dropped.
@@ -42,7 +44,7 @@
  * vertices some face uses are kept; edges listed once, (i, j) with i < j.
  * Cost: each point is tested against the triangles created near it, so
  * about O(n log n) for points in general position (a 1,000,000-point
- * sphere in about 2 s here, docs/format.md); the worst case (every point a
+ * sphere in 4.8 s of CPU here, docs/format.md); the worst case (every point a
  * hull vertex seeing a horizon as long as the hull) stays quadratic.
  * Removed triangles' slots are reused, so memory follows the live hull.
  * A deadline (a us_now() time) is read every 1024 points: US_HULL_TIMEOUT.
