@@ -107,6 +107,32 @@ static void read_examples(void) {
   }
 }
 
+/* us_structure_parse_with: a past deadline stops reading 2,000 bodies
+ * (the clock is read every 1024) with US_ERR_TIME_LIMIT naming the file;
+ * with no deadline (the defaults) the same text reads. */
+static void read_deadline(void) {
+  size_t cap = 2000 * 80 + 64, len = 0;
+  char *text = malloc(cap);
+  len += (size_t)snprintf(text + len, cap - len, "{\"bodies\": [");
+  for (int i = 0; i < 2000; i++)
+    len += (size_t)snprintf(text + len, cap - len, "%s{\"id\": \"b%d\", \"polygon\": [[%d,0],[%d,0],[%d,1],[%d,1]]}",
+                            i ? "," : "", i, 2 * i, 2 * i + 1, 2 * i + 1, 2 * i);
+  snprintf(text + len, cap - len, "]}");
+  us_LoadSettings set = us_load_default_settings();
+  CHECK(set.contact_tol == 0 && set.deadline == 0);
+  set.deadline = 1e-9;
+  us_Error err;
+  us_error_clear(&err);
+  CHECK(us_structure_parse_with(text, "many.json", &set, &err) == NULL);
+  CHECK_INT(err.code, ==, US_ERR_TIME_LIMIT);
+  CHECK(strstr(err.msg, "many.json: time limit") != NULL);
+  us_Structure *s = us_structure_parse_with(text, "many.json", NULL, &err);
+  CHECK(s != NULL);
+  if (s) CHECK_INT(s->nbody, ==, 2000);
+  us_structure_free(s);
+  free(text);
+}
+
 static void defaults_and_fields(void) {
   us_Error err;
   us_Structure *s = us_structure_parse(
@@ -858,7 +884,7 @@ static void plan_fingerprint(void) {
   us_structure_free(s);
 }
 
-US_TEST_MAIN(T(read_examples), T(defaults_and_fields), T(explicit_contacts),
+US_TEST_MAIN(T(read_examples), T(read_deadline), T(defaults_and_fields), T(explicit_contacts),
              T(contact_tol_override), T(examples_physics), T(round_trip), T(round_trip_awkward),
              T(bad_files), T(read_errors), T(failed_write_leaves_no_file), T(plan_round_trip),
              T(plan_without_certificates), T(plan_read_errors), T(fuzz_mutations), T(fuzz_plan),

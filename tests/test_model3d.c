@@ -114,6 +114,164 @@ static void hull_flat_sets(void) {
   us_polyhedron_free(&p);
 }
 
+/* Brute-force reference for the hull (independent of hull3.c): the
+ * supporting planes through every triple of points (all points within eps
+ * below), one per distinct plane, and the vertices: points on three
+ * supporting planes of independent normals. */
+typedef struct Brute {
+  double pl[4 * 500];
+  int npl, nvert;
+} Brute;
+
+static void brute_hull(const double *x, int n, double eps, Brute *b) {
+  b->npl = b->nvert = 0;
+  for (int i = 0; i < n; i++)
+    for (int j = i + 1; j < n; j++)
+      for (int k = j + 1; k < n; k++) {
+        us_Vec3 a = us_v3_at(x, i), nn = us_v3_cross(us_v3_sub(us_v3_at(x, j), a), us_v3_sub(us_v3_at(x, k), a));
+        if (!(us_v3_norm(nn) > 1e-6)) continue; /* collinear */
+        nn = us_v3_unit(nn);
+        for (int side = 0; side < 2; side++, nn = us_v3_scale(nn, -1)) {
+          double d = us_v3_dot(nn, a);
+          int ok = 1, dup = 0;
+          for (int m = 0; m < n && ok; m++) ok = us_v3_dot(nn, us_v3_at(x, m)) <= d + eps;
+          for (int q = 0; q < b->npl && ok && !dup; q++)
+            dup = us_v3_dist(nn, us_v3(b->pl[4 * q], b->pl[4 * q + 1], b->pl[4 * q + 2])) < 1e-9;
+          if (ok && !dup && b->npl < 500) {
+            double *p = b->pl + 4 * b->npl++;
+            p[0] = nn.x, p[1] = nn.y, p[2] = nn.z, p[3] = d;
+          }
+        }
+      }
+  for (int i = 0; i < n; i++) { /* a vertex: three independent planes through it */
+    us_Vec3 v = us_v3_at(x, i), on[500];
+    int m = 0, dup = 0;
+    for (int q = 0; q < b->npl; q++)
+      if (fabs(us_v3_dot(us_v3(b->pl[4 * q], b->pl[4 * q + 1], b->pl[4 * q + 2]), v) - b->pl[4 * q + 3]) <= eps)
+        on[m++] = us_v3(b->pl[4 * q], b->pl[4 * q + 1], b->pl[4 * q + 2]);
+    for (int j = 0; j < i; j++) dup |= us_v3_dist(v, us_v3_at(x, j)) == 0;
+    int rank3 = 0;
+    for (int p = 0; p < m && !rank3; p++)
+      for (int q = p + 1; q < m && !rank3; q++)
+        for (int r = q + 1; r < m && !rank3; r++)
+          rank3 = fabs(us_v3_dot(on[p], us_v3_cross(on[q], on[r]))) > 1e-9;
+    b->nvert += rank3 && !dup;
+  }
+}
+
+/* Does the hull have the reference's planes and vertices? */
+static int hull_matches(const us_Polyhedron *p, const Brute *b) {
+  if (p->nface != b->npl) return 0;
+  for (int f = 0; f < p->nface; f++) {
+    int found = 0;
+    for (int q = 0; q < b->npl && !found; q++)
+      found = us_v3_dist(us_face_normal(p, f), us_v3(b->pl[4 * q], b->pl[4 * q + 1], b->pl[4 * q + 2])) < 1e-9 &&
+              fabs(p->planes[4 * f + 3] - b->pl[4 * q + 3]) < 1e-9;
+    if (!found) return 0;
+  }
+  return p->nvert == b->nvert;
+}
+
+/* Differential test against the brute force on small random sets: points
+ * in general position, and points on a 3x3x3 grid (duplicates, collinear
+ * and coplanar points, and flat sets, which both must call flat). */
+static void hull_against_brute_force(void) {
+  unsigned long long rng = 777;
+  static Brute b;
+  for (int trial = 0; trial < 120; trial++) {
+    int n = 4 + (int)(test_rnd(&rng) * 30), grid = trial % 2;
+    double x[3 * 40];
+    for (int i = 0; i < 3 * n; i++) x[i] = grid ? floor(3 * test_rnd(&rng)) : 2 * test_rnd(&rng) - 1;
+    if (grid && trial % 6 == 1)
+      for (int i = 0; i < n; i++) x[3 * i + 2] = 1; /* flat */
+    brute_hull(x, n, 1e-9, &b);
+    us_Polyhedron p;
+    us_HullStatus st = us_hull3(x, n, 1e-9, &p);
+    if (b.nvert < 4) {
+      CHECK_INT(st, ==, US_HULL_FLAT);
+      continue;
+    }
+    int ok = st == US_HULL_OK && hull_matches(&p, &b);
+    if (!ok) printf("  trial %d (n %d, grid %d): status %d, %d faces (%d), %d vertices (%d)\n", trial, n, grid, st,
+                    p.nface, b.npl, p.nvert, b.nvert);
+    us_polyhedron_free(&p);
+    CHECK(ok);
+  }
+}
+
+/* A deadline already past stops a large hull (checked every 1024 points). */
+static void hull_deadline(void) {
+  int n = 5000;
+  double *x = malloc((size_t)n * 3 * sizeof *x);
+  unsigned long long rng = 5;
+  for (int i = 0; i < n; i++) {
+    double z = 2 * test_rnd(&rng) - 1, t = 2 * PI * test_rnd(&rng), r = sqrt(1 - z * z);
+    x[3 * i] = r * cos(t), x[3 * i + 1] = r * sin(t), x[3 * i + 2] = z;
+  }
+  us_Polyhedron p;
+  CHECK_INT(us_hull3_until(x, n, 1e-9, 1e-9, &p), ==, US_HULL_TIMEOUT);
+  CHECK_INT(p.nface, ==, 0);
+  CHECK_INT(us_hull3_until(x, n, 1e-9, us_now() + 1e6, &p), ==, US_HULL_OK);
+  CHECK_INT(p.nvert, ==, n);
+  us_polyhedron_free(&p);
+  free(x);
+}
+
+/* us_structure_finalize_until: a past deadline stops the hull with
+ * US_ERR_TIME_LIMIT naming the body; finalizing again without one works. */
+static void finalize_deadline(void) {
+  int n = 3000;
+  double *x = malloc((size_t)n * 3 * sizeof *x);
+  unsigned long long rng = 9;
+  for (int i = 0; i < n; i++) {
+    double z = 2 * test_rnd(&rng) - 1, t = 2 * PI * test_rnd(&rng), r = sqrt(1 - z * z);
+    x[3 * i] = r * cos(t), x[3 * i + 1] = r * sin(t), x[3 * i + 2] = z + 5;
+  }
+  us_Structure *s = us_structure_new(3);
+  us_BodyDef d = us_default_body_def();
+  us_Error err;
+  d.id = "ball", d.nvert = n, d.xyz = x;
+  s->ground = 0;
+  CHECK_INT(us_structure_add_body(s, &d, &err), ==, 0);
+  CHECK_INT(us_structure_finalize_until(s, 1e-9, &err), ==, US_ERR_TIME_LIMIT);
+  CHECK(strstr(err.msg, "convex hull of body 'ball'") != NULL);
+  CHECK_INT(us_structure_finalize_until(s, us_now() + 1e6, &err), ==, US_OK);
+  CHECK(s->finalized && s->bodies[0].parts[0].nface > 0);
+  us_structure_free(s);
+  free(x);
+}
+
+/* Extreme sizes get their true reason (issue 24, point 5): a cube of side
+ * 1e-100 is accepted (as a 2D square is), 1e101 overflows its inertia,
+ * 1e-300 underflows its volume; a huge quaternion is normalized without
+ * overflow; zero gravity in 3D suggests a 3D vector. */
+static void extreme_sizes(void) {
+  static const char *const sides[] = {"1e-100", "1e101", "1e-300"};
+  static const char *const want[] = {NULL, "the inertia overflows", "the volume underflows"};
+  for (int k = 0; k < 3; k++) {
+    char text[256];
+    snprintf(text, sizeof text, "{\"dimension\": 3, \"ground\": false, \"bodies\": [{\"id\": \"c\", \"box\": "
+             "{\"center\": [0, 0, 0], \"size\": [%s, %s, %s]}}]}", sides[k], sides[k], sides[k]);
+    us_Error err;
+    us_error_clear(&err);
+    us_Structure *s = us_structure_parse(text, "cube", 0, &err);
+    if (want[k]) CHECK(!s && strstr(err.msg, want[k]) != NULL);
+    else CHECK(s != NULL && s->bodies[0].parts[0].nface == 6);
+    us_structure_free(s);
+  }
+  us_Error err;
+  us_Structure *s = us_structure_parse("{\"dimension\": 3, \"bodies\": [{\"id\": \"c\", \"box\": {\"center\": "
+                                       "[0, 0, 1], \"size\": [1, 2, 1], \"rotation\": [1e308, 1e308, 0, 0]}}]}",
+                                       "q", 0, &err);
+  CHECK(s != NULL); /* turned 90 degrees about x: 2 high */
+  if (s) CHECK_NEAR(s->bbox3[5] - s->bbox3[2], 2.0, 1e-12);
+  us_structure_free(s);
+  us_error_clear(&err);
+  s = us_structure_parse("{\"dimension\": 3, \"gravity\": [0, 0, 0], \"bodies\": [{\"id\": \"c\", \"box\": "
+                         "{\"center\": [0, 0, 0.5], \"size\": [1, 1, 1]}}]}", "g", 0, &err);
+  CHECK(!s && strstr(err.msg, "[0, 0, -9.81]") != NULL);
+}
+
 /* A structure of one 3D body given by its points (hull taken). */
 static us_Structure *one_body(int n, const double *xyz, double density, us_Error *err) {
   us_Structure *s = us_structure_new(3);
@@ -435,7 +593,7 @@ static void out_of_memory_sweep(void) {
   CHECK(done);
 }
 
-US_TEST_MAIN(T(hull_box_with_redundant_points), T(hull_random_points), T(hull_flat_sets), T(mass_box),
+US_TEST_MAIN(T(hull_box_with_redundant_points), T(hull_random_points), T(hull_flat_sets), T(hull_against_brute_force), T(hull_deadline), T(finalize_deadline), T(extreme_sizes), T(mass_box),
              T(mass_rotated_box), T(mass_tetrahedron), T(mass_compound_l), T(mass_invariance),
              T(reader_errors), T(reader_defaults_and_rotations), T(write_read_round_trip),
              T(explicit_contacts), T(out_of_memory_sweep))

@@ -90,8 +90,9 @@ int cmd_check(int argc, char **argv) {
   CheckArgs a = {NULL, 0, 0};
   int r = parse(argc, argv, &c, &a);
   if (r) return r < 0 ? CLI_EXIT_OK : r;
-  us_Structure *s = cli_load("check", a.file, &c);
-  if (!s) return CLI_EXIT_ERR;
+  int load;
+  us_Structure *s = cli_load("check", a.file, &c, c.stab.time_limit, &load);
+  if (!s) return load;
   us_Error err;
   us_error_clear(&err);
   us_StabilityResult res;

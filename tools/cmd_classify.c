@@ -326,8 +326,9 @@ int cmd_classify(int argc, char **argv) {
   a.set = us_classify_default_settings();
   int r = parse_args(argc, argv, &a);
   if (r) return r < 0 ? CLI_EXIT_OK : r;
-  us_Structure *s = cli_load("classify", a.file, &a.common);
-  if (!s) return CLI_EXIT_ERR;
+  int load;
+  us_Structure *s = cli_load("classify", a.file, &a.common, a.set.time_limit, &load);
+  if (!s) return load;
   us_Error err;
   us_error_clear(&err);
   us_Classification c;

@@ -64,7 +64,9 @@ static const char head[] =
     "                                         highest boxes under it, kept only if all still\n"
     "                                         stands; stops at N boxes (10) or after\n"
     "                                         --max-tries discarded drops in a row (fewer)\n";
-static const char tail[] = "exit: 0 written, 2 usage error (nothing written)\n";
+static const char tail[] =
+    "exit: 0 written, 2 usage error (nothing written), 3 stopped by --time-limit (nothing\n"
+    "written)\n";
 
 typedef us_Structure *(*GenFn)(const us_GenSettings *, us_Error *);
 
@@ -83,6 +85,7 @@ typedef struct Extra {
   const char *remove; /* --remove list, NULL when not given */
   int height_given, tries_given;
   int returns_given; /* --returns, for wall3d only */
+  double time_limit;  /* --time-limit, 0 when not given */
 } Extra;
 
 /* A positive int setting: "--blocks N" ... */
@@ -131,6 +134,8 @@ static int parse(int argc, char **argv, us_GenSettings *g, Extra *x, const char 
       GEN_INT("--max-tries", "N", &g->max_tries, "random, stacker: attempts before giving up "
               "(default 10000); random3d: discarded drops in a row before stopping (200)",
               .given = &x->tries_given),
+      CLI_OPT_TIME_LIMIT(&x->time_limit, "stop after S seconds (random3d), nothing written, "
+                         "exit 3"),
       CLI_END};
   const CliSpec spec = {"generate", head, tail, opts, NULL, 0, NULL};
   if (argc == 0) return cli_print_help(&spec, stderr), CLI_EXIT_ERR;
@@ -206,7 +211,7 @@ int cmd_generate(int argc, char **argv) {
   int default_rows = g.rows;
   g.rows = -1; /* to see whether --rows was given */
   double block_width = g.width;
-  Extra x = {0, NULL, 0, 0, 0};
+  Extra x = {0, NULL, 0, 0, 0, 0};
   const char *out = NULL;
   if (argc < 2) return parse(0, NULL, &g, &x, &out); /* the help on stderr, exit 2 */
   if (cli_is_help(argv[1])) return parse(argc, argv, &g, &x, &out) < 0 ? CLI_EXIT_OK : CLI_EXIT_ERR;
@@ -226,8 +231,13 @@ int cmd_generate(int argc, char **argv) {
   g.remove = pairs;
   us_Error err;
   us_error_clear(&err);
+  g.deadline = cli_deadline(x.time_limit);
   us_Structure *s = fn(&g, &err);
   free(pairs);
+  if (!s && err.code == US_ERR_TIME_LIMIT) { /* an outcome: nothing written */
+    printf("stopped: %s (--time-limit %g); nothing written\n", err.msg, x.time_limit);
+    return CLI_EXIT_UNDECIDED;
+  }
   if (!s || us_structure_write(s, out, &err)) {
     us_structure_free(s);
     return cli_error("generate", &err);

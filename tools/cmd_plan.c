@@ -209,8 +209,9 @@ int cmd_plan(int argc, char **argv) {
   if (r) return r < 0 ? CLI_EXIT_OK : r;
   int to_stdout = a.out && !strcmp(a.out, "-");
   if (a.out && !to_stdout && cli_check_output("plan", a.out, &a.file, 1)) return CLI_EXIT_ERR;
-  us_Structure *s = cli_load("plan", a.file, &c);
-  if (!s) return CLI_EXIT_ERR;
+  int load;
+  us_Structure *s = cli_load("plan", a.file, &c, c.plan.time_limit, &load);
+  if (!s) return load;
   cli_progress_on("plan", &c, progress_mode(&c.plan), us_structure_movable_count(s));
   c.plan.stability = c.stab;
   us_Error err;

@@ -365,8 +365,9 @@ int cmd_render(int argc, char **argv) {
   const char *inputs[2] = {a.file, a.plan};
   if (cli_check_output("render", a.out, inputs, a.plan ? 2 : 1)) return CLI_EXIT_ERR;
   if (pick_format(&a)) return CLI_EXIT_ERR;
-  us_Structure *s = cli_load("render", a.file, &c);
-  if (!s) return CLI_EXIT_ERR;
+  int load;
+  us_Structure *s = cli_load("render", a.file, &c, c.stab.time_limit, &load);
+  if (!s) return load;
   us_Error err;
   us_error_clear(&err);
   us_PlanFile pf;

@@ -145,8 +145,9 @@ int cmd_verify(int argc, char **argv) {
   const char *files[2] = {NULL, NULL};
   int r = parse(argc, argv, &c, files);
   if (r) return r < 0 ? CLI_EXIT_OK : r;
-  us_Structure *s = cli_load("verify", files[0], &c);
-  if (!s) return CLI_EXIT_ERR;
+  int load;
+  us_Structure *s = cli_load("verify", files[0], &c, c.stab.time_limit, &load);
+  if (!s) return load;
   us_Error err;
   us_error_clear(&err);
   us_PlanFile pf;

@@ -39,11 +39,21 @@ void cli_common_init(CliCommon *c) {
   c->stab = us_stability_default_settings();
 }
 
-us_Structure *cli_load(const char *cmd, const char *path, const CliCommon *c) {
+us_Structure *cli_load(const char *cmd, const char *path, const CliCommon *c, double time_limit,
+                       int *code) {
   us_Error err;
   us_error_clear(&err);
-  us_Structure *s = us_structure_read(path, c->contact_tol, &err);
-  if (!s) cli_error(cmd, &err);
+  us_LoadSettings set = us_load_default_settings();
+  set.contact_tol = c->contact_tol;
+  set.deadline = cli_deadline(time_limit);
+  us_Structure *s = us_structure_read_with(path, &set, &err);
+  *code = s ? CLI_EXIT_OK : CLI_EXIT_ERR;
+  if (!s && err.code == US_ERR_TIME_LIMIT) { /* an outcome: nothing decided */
+    printf("undecided: loading was cut by the time limit (--time-limit %g): %s\n", time_limit,
+           err.msg);
+    *code = CLI_EXIT_UNDECIDED;
+  }
+  else if (!s) cli_error(cmd, &err);
   return s;
 }
 
@@ -131,6 +141,10 @@ static double clock_start = -1.0;
 void cli_clock_start(void) { clock_start = us_now(); }
 
 double cli_elapsed(void) { return clock_start < 0 ? 0.0 : us_now() - clock_start; }
+
+double cli_deadline(double limit) {
+  return limit > 0 && clock_start >= 0 ? clock_start + limit : 0.0;
+}
 
 double cli_time_left(double limit) {
   if (!(limit > 0) || clock_start < 0) return limit;

@@ -46,6 +46,8 @@ void cli_progress_line(char *buf, size_t n, const CliProgress *pr, const us_Prog
 void cli_clock_start(void);
 double cli_time_left(double limit);
 double cli_elapsed(void); /* seconds since cli_clock_start */
+/* The us_now() time limit seconds after the start (0 when limit <= 0). */
+double cli_deadline(double limit);
 /* The local-test statistics lines of --stats (nothing when none ran). */
 void cli_print_local_stats(const us_StabilityInfo *in);
 /* The solver lines of --stats: pivots, fallbacks, reuse, cone Lemke. */
@@ -104,8 +106,11 @@ int cli_set_local(const char *v, void *dst, const char *cmd); /* on|off -> 1 or 
  * the end (the top-level help lists them). */
 const char *cli_generator_kind(int i);
 
-/* Read and finalize a structure; prints the error and returns NULL. */
-us_Structure *cli_load(const char *cmd, const char *path, const CliCommon *c);
+/* Read and finalize a structure within time_limit seconds of the
+ * command's start (<= 0: no limit). NULL with the message printed and
+ * *code CLI_EXIT_UNDECIDED when the limit cut loading, else CLI_EXIT_ERR. */
+us_Structure *cli_load(const char *cmd, const char *path, const CliCommon *c, double time_limit,
+                       int *code);
 
 /* Read the plan file `plan` for the structure s read from `file`
  * (cmd_verify.c): 0, or -1 with err set; another structure's plan (its

@@ -57,6 +57,8 @@ typedef enum us_Status {
   US_ERR_INPUT,   /* well-formed but invalid structure or plan */
   US_ERR_NOMEM,   /* an allocation failed */
   US_ERR_SOLVER,  /* a backend failed in a way that gives no verdict */
+  US_ERR_TIME_LIMIT, /* a deadline passed before the work was done (reading
+                        and finalizing a structure, us_LoadSettings) */
   US_ERR_COUNT
 } us_Status;
 
@@ -249,6 +251,9 @@ US_API int us_structure_find_body(const us_Structure *s, const char *id); /* ind
 US_API us_Status us_structure_finalize(us_Structure *s, us_Error *err);
 /* 1 after a successful us_structure_finalize until the next body is added. */
 US_API int us_structure_is_finalized(const us_Structure *s);
+/* The same, stopped with US_ERR_TIME_LIMIT once us_now() passes deadline
+ * (0: none); the hulls and contact detection read the clock as they go. */
+US_API us_Status us_structure_finalize_until(us_Structure *s, double deadline, us_Error *err);
 
 /* The friction coefficient of a contact between two bodies (a may be
  * US_GROUND): the smaller of the two sides' coefficients, each side
@@ -719,6 +724,9 @@ typedef struct us_GenSettings {
                         this fraction of their width and of the course
                         height, in [0, 0.5) (default 0.02, as cut stone's
                         arrised edges; 0: sharp, see docs/format.md) */
+  double deadline;   /* a us_now() time (0, the default: none): random3d
+                        and the finalize of every generator stop past it
+                        with US_ERR_TIME_LIMIT */
 } us_GenSettings;
 US_API us_GenSettings us_gen_default_settings(void);
 
@@ -763,6 +771,18 @@ US_API us_Structure *us_gen_random3d(const us_GenSettings *g, us_Error *err);
 US_API us_Structure *us_structure_read(const char *path, double contact_tol, us_Error *err);
 US_API us_Structure *us_structure_parse(const char *text, const char *name, double contact_tol,
                                  us_Error *err);
+/* Settings of reading a structure; start from us_load_default_settings(). */
+typedef struct us_LoadSettings {
+  double contact_tol; /* > 0 overrides the derived tolerance (default 0) */
+  double deadline;    /* a us_now() time (default 0: none): reading and
+                         finalize stop past it with US_ERR_TIME_LIMIT */
+} us_LoadSettings;
+US_API us_LoadSettings us_load_default_settings(void);
+/* us_structure_read and _parse with settings (set NULL: the defaults). */
+US_API us_Structure *us_structure_read_with(const char *path, const us_LoadSettings *set,
+                                            us_Error *err);
+US_API us_Structure *us_structure_parse_with(const char *text, const char *name,
+                                             const us_LoadSettings *set, us_Error *err);
 /* Write atomically (temporary file + rename): no partial file on error. */
 US_API us_Status us_structure_write(const us_Structure *s, const char *path, us_Error *err);
 

@@ -60,7 +60,13 @@ us_EdgeGrid *us_detect_grid(us_Detect *d, int i);
  * dropped), with each body's own tolerance tol[i]; reference: every pair
  * of bodies instead of the broad phase's. */
 us_Status us_detect_contacts3(const us_Structure *s, const double *tol, int reference,
-                              us_ContactList *out, us_Error *err);
+                              double deadline, us_ContactList *out, us_Error *err);
+/* detect.c: us_detect_contacts stopped with US_ERR_TIME_LIMIT once the
+ * clock passes deadline (read every 1024 pairs of bodies; 0: none). */
+us_Status us_detect_contacts_until(const us_Structure *s, const us_ContactSettings *set,
+                                   double deadline, us_ContactList *out, us_Error *err);
+/* The error of detection cut by its deadline after `done` of `total` pairs. */
+us_Status us_detect_timeout(int done, int total, us_Error *err);
 
 /* Interpenetration of bodies i and j beyond tol: US_ERR_INPUT naming both. */
 us_Status us_pair_overlap(us_Detect *d, int i, int j, double tol, us_Error *err);

@@ -53,7 +53,7 @@ static int ground_contacts(const us_Structure *s, const double *tol, us_CandList
 }
 
 static us_Status pair_phase(const us_Structure *s, int reference, const double *tol,
-                            us_CandList *out, us_Error *err) {
+                            double deadline, us_CandList *out, us_Error *err) {
   us_BodyPair *pairs = NULL;
   int np = 0, nb = s->nbody > 0 ? s->nbody : 1;
   us_Detect d = {s, reference, tol, us_calloc((size_t)nb, sizeof(us_EdgeGrid)),
@@ -68,7 +68,8 @@ static us_Status pair_phase(const us_Structure *s, int reference, const double *
   for (int k = 0; !st && k < np; k++) {
     int i = pairs[k].i, j = pairs[k].j;
     double t = US_MIN(tol[i], tol[j]);
-    st = us_pair_overlap(&d, i, j, t, err);
+    if ((k & 1023) == 1023 && us_past(deadline)) st = us_detect_timeout(k, np, err);
+    if (!st) st = us_pair_overlap(&d, i, j, t, err);
     if (!st) st = us_pair_contacts(&d, i, j, t, out, err);
   }
   for (int i = 0; d.built && i < s->nbody; i++)
@@ -114,20 +115,25 @@ static us_Status to_list(const us_CandList *l, us_ContactList *out, us_Error *er
 
 us_Status us_detect_contacts(const us_Structure *s, const us_ContactSettings *set,
                              us_ContactList *out, us_Error *err) {
+  return us_detect_contacts_until(s, set, 0.0, out, err);
+}
+
+us_Status us_detect_contacts_until(const us_Structure *s, const us_ContactSettings *set,
+                                   double deadline, us_ContactList *out, us_Error *err) {
   out->n = 0;
   us_Status st = check_input(s, err);
   if (st) return st;
   double *tol = body_tols(s, set ? set->tol : 0.0);
   if (!tol) return us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
   if (s->dim == 3) {
-    st = us_detect_contacts3(s, tol, set && set->reference, out, err);
+    st = us_detect_contacts3(s, tol, set && set->reference, deadline, out, err);
     us_free(tol);
     return st;
   }
   us_CandList l = {NULL, 0, 0};
   if (ground_contacts(s, tol, &l))
     st = us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
-  if (!st) st = pair_phase(s, set && set->reference, tol, &l, err);
+  if (!st) st = pair_phase(s, set && set->reference, tol, deadline, &l, err);
   if (!st) st = to_list(&l, out, err);
   us_free(l.c);
   us_free(tol);

@@ -276,7 +276,7 @@ static void det_free(Det3 *d) {
 }
 
 us_Status us_detect_contacts3(const us_Structure *s, const double *tol, int reference,
-                              us_ContactList *out, us_Error *err) {
+                              double deadline, us_ContactList *out, us_Error *err) {
   Det3 d = {s, tol, out, NULL, NULL, NULL, NULL, NULL, NULL, 0, 0, 0, 0, 0, 0};
   us_Status st = US_OK;
   for (int i = 0; !st && s->ground && i < s->nbody; i++)
@@ -285,7 +285,9 @@ us_Status us_detect_contacts3(const us_Structure *s, const double *tol, int refe
   int np = 0;
   if (!st) st = reference ? us_broadphase_all(s, &pairs, &np, err) : us_broadphase(s, tol, &pairs, &np, err);
   for (int k = 0; !st && k < np; k++)
-    st = pair3(&d, pairs[k].i, pairs[k].j, US_MIN(tol[pairs[k].i], tol[pairs[k].j]), err);
+    st = (k & 1023) == 1023 && us_past(deadline)
+             ? us_detect_timeout(k, np, err)
+             : pair3(&d, pairs[k].i, pairs[k].j, US_MIN(tol[pairs[k].i], tol[pairs[k].j]), err);
   us_free(pairs);
   det_free(&d);
   if (st) out->n = 0;

@@ -13,3 +13,10 @@ us_EdgeGrid *us_detect_grid(us_Detect *d, int i) {
   d->built[i] = 1;
   return &d->grid[i];
 }
+
+/* The message of a detection cut by its deadline (detect.c, detect3.c). */
+us_Status us_detect_timeout(int done, int total, us_Error *err) {
+  return us_error_set(err, US_ERR_TIME_LIMIT,
+                      "time limit reached during contact detection (%d of %d pairs of bodies)",
+                      done, total);
+}

@@ -66,4 +66,7 @@ int us_idmap_get(const us_IdMap *m, const char *key); /* value or -1 */
 /* Insert key -> val: 0 done, -1 the key exists (nothing changed), -2 OOM. */
 int us_idmap_put(us_IdMap *m, const char *key, int val);
 
+/* Has the clock passed deadline (a us_now() time; 0: never)? */
+static inline int us_past(double deadline) { return deadline > 0 && us_now() > deadline; }
+
 #endif

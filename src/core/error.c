@@ -9,7 +9,7 @@
 
 static const char *const status_names[US_ERR_COUNT] = {
     "ok", "usage error", "i/o error", "parse error", "invalid input", "out of memory",
-    "solver failure",
+    "solver failure", "time limit",
 };
 
 const char *us_status_name(us_Status s) {

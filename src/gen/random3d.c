@@ -28,11 +28,30 @@
  * max_tries discarded drops in a row: the structure then has fewer boxes
  * (s->nbody says how many), never an error.
  *
- * Cost: a tested drop rebuilds and finalizes the structure (contact
- * detection, O(k log k) for k boxes) and solves one LP over k bodies; the
- * LP dominates, so a run is about quadratic in n (measured figures in
- * docs/format.md). Randomness: splitmix64 seeded with g->seed, so a seed
- * gives the same structure on every platform. Bodies "b1", "b2", ... in the
+ * Two cheaper tests come first for a box above the ground. A plumb line
+ * (sufficient, no LP): the vertical through the box's centre is carried
+ * down, at each level by a box below whose footprint contains it (closed),
+ * or split among three corners of the contact patches below whose
+ * triangle contains it, each corner's line carried on in turn, down to
+ * the ground. The weight then travels as vertical forces at patch corners
+ * (normal: contacts are horizontal, so inside every cone) whose resultant
+ * on each box stays on the line, leaving every box's balance unchanged;
+ * the kept structure stood with some forces, and those plus these hold it
+ * with the new box (cones are convex; no box can lie on the new one, its
+ * level is the top of its cells): kept, as the full LP would. Otherwise
+ * two necessary tests (any part of a standing whole stands with the rest
+ * held still): the box alone, then the box with the boxes under it
+ * (transitively) movable; each failure discards the drop after an LP over
+ * those boxes only. So the outputs are the same as testing every drop
+ * whole.
+ *
+ * Cost: a drop the cheap tests do not settle rebuilds and finalizes the
+ * structure (contact detection, O(k log k) for k boxes) and solves one LP
+ * over k bodies; those LPs dominate, so a run is about quadratic in n
+ * (measured figures in docs/format.md). g->deadline (a us_now() time;
+ * 0: none) is read before every drop: past it, US_ERR_TIME_LIMIT.
+ * Randomness: splitmix64 seeded with g->seed, so a seed gives the same
+ * structure on every platform. Bodies "b1", "b2", ... in the
  * order they were kept. */
 #include "gen.h"
 
@@ -48,6 +67,9 @@ typedef struct Drops {
   int n;            /* boxes kept */
   long *q;          /* [2 * n_wanted] corner cells (qx, qy) of the kept boxes */
   int *level;       /* [n_wanted] level of each kept box */
+  int *owner;       /* [side * side] the box on top of each cell, or -1 */
+  int *below;       /* [16 * n_wanted] per box and cell: the box under it in
+                       contact (its top at the box's level), or -1 */
 } Drops;
 
 static us_Status check_random3d(const us_GenSettings *g, us_Error *err) {
@@ -71,6 +93,73 @@ static int support_level(const Drops *d, long qx, long qy) {
   return lv;
 }
 
+/* Box i's cells: the boxes under them in contact (from the height map as
+ * it is before box i is placed). */
+static void note_below(Drops *d, int i) {
+  long qx = d->q[2 * i], qy = d->q[2 * i + 1];
+  for (int k = 0; k < 16; k++) {
+    long c = (qy + k / 4) * d->side + qx + k % 4;
+    d->below[16 * i + k] = d->level[i] > 0 && d->top[c] == d->level[i] ? d->owner[c] : -1;
+  }
+}
+
+/* Support points of box b: the corners of its contact patches with the
+ * boxes under it (overlaps of footprints), each with that box; returns
+ * the count (at most 64). Coordinates in quarter boxes. */
+static int supports(const Drops *d, int b, long pt[][2], int *box) {
+  int m = 0;
+  for (int k = 0; k < 16; k++) {
+    int j = d->below[16 * b + k], seen = 0;
+    for (int r = 0; r < k; r++) seen |= d->below[16 * b + r] == j;
+    if (j < 0 || seen) continue;
+    long x0 = US_MAX(d->q[2 * b], d->q[2 * j]), y0 = US_MAX(d->q[2 * b + 1], d->q[2 * j + 1]);
+    long x1 = US_MIN(d->q[2 * b], d->q[2 * j]) + 4, y1 = US_MIN(d->q[2 * b + 1], d->q[2 * j + 1]) + 4;
+    for (int c = 0; c < 4; c++, m++)
+      pt[m][0] = c & 1 ? x1 : x0, pt[m][1] = c & 2 ? y1 : y0, box[m] = j;
+  }
+  return m;
+}
+
+static long cross(const long a[2], const long b[2], long px, long py) {
+  return (b[0] - a[0]) * (py - a[1]) - (b[1] - a[1]) * (px - a[0]);
+}
+
+/* Is (px, py) in the closed triangle a b c (of non-zero area)? Exact. */
+static int in_triangle(const long a[2], const long b[2], const long c[2], long px, long py) {
+  long s1 = cross(a, b, px, py), s2 = cross(b, c, px, py), s3 = cross(c, a, px, py);
+  long area = cross(a, b, c[0], c[1]);
+  if (area == 0) return 0;
+  return area > 0 ? s1 >= 0 && s2 >= 0 && s3 >= 0 : s1 <= 0 && s2 <= 0 && s3 <= 0;
+}
+
+/* Can a vertical load on box b at (px, py) be carried to the ground: the
+ * point is a support point, or in a triangle of them, whose lines can be
+ * carried on (docs/local.md, "Plumb lines")? *budget bounds the work (the
+ * search may branch at every level); when it runs out: no. */
+static int route(const Drops *d, int b, long px, long py, long *budget) {
+  if (d->level[b] == 0) return 1;
+  if (--*budget < 0) return 0;
+  long pt[64][2];
+  int box[64], m = supports(d, b, pt, box);
+  for (int k = 0; k < m; k++) /* a patch containing the point */
+    if (d->q[2 * box[k]] <= px && px <= d->q[2 * box[k]] + 4 && d->q[2 * box[k] + 1] <= py &&
+        py <= d->q[2 * box[k] + 1] + 4)
+      return route(d, box[k], px, py, budget);
+  for (int a = 0; a < m; a++)
+    for (int e = a + 1; e < m; e++)
+      for (int c = e + 1; c < m && *budget >= 0; c++)
+        if (in_triangle(pt[a], pt[e], pt[c], px, py) && route(d, box[a], pt[a][0], pt[a][1], budget) &&
+            route(d, box[e], pt[e][0], pt[e][1], budget) && route(d, box[c], pt[c][0], pt[c][1], budget))
+          return 1;
+  return 0;
+}
+
+/* The plumb line of box i from its centre (a sufficient test, no LP). */
+static int plumb_line(const Drops *d, int i) {
+  long budget = 4096;
+  return route(d, i, d->q[2 * i] + 2, d->q[2 * i + 1] + 2, &budget);
+}
+
 /* Box i of the kept boxes, or the candidate when i == d->n. */
 static us_Status add_drop(us_Structure *s, const Drops *d, int i, us_Error *err) {
   double x0 = 0.25 * (double)d->q[2 * i], y0 = 0.25 * (double)d->q[2 * i + 1];
@@ -79,11 +168,15 @@ static us_Status add_drop(us_Structure *s, const Drops *d, int i, us_Error *err)
                          (double)(d->level[i] + 1) * h, err);
 }
 
-/* The finalized structure of boxes 0..count-1, or NULL. */
-static us_Structure *build(const Drops *d, int count, us_Error *err) {
+/* The finalized structure of boxes 0..count-1, or NULL; with `movable`,
+ * the boxes it marks 0 are fixed. */
+static us_Structure *build(const Drops *d, int count, const char *movable, us_Error *err) {
   us_Structure *s = us_gen_begin_dim(d->g, 3, err);
   us_Status st = s ? US_OK : US_ERR_NOMEM;
-  for (int i = 0; !st && i < count; i++) st = add_drop(s, d, i, err);
+  for (int i = 0; !st && i < count; i++) {
+    st = add_drop(s, d, i, err);
+    if (!st && movable) s->bodies[i].fixed = !movable[i];
+  }
   if (st) {
     us_structure_free(s);
     return NULL;
@@ -121,15 +214,39 @@ static us_Status candidate_alone(const Drops *d, int *stable, us_Error *err) {
   return st;
 }
 
+/* Can the candidate and the boxes under it (transitively, through the
+ * contacts in `below`) stand with every other box held still? Necessary,
+ * as candidate_alone is (forces that held the whole hold any part of it
+ * against the rest held still), with a larger part: the supports that
+ * give way under the new load are found by an LP over them only. */
+static us_Status candidate_column(const Drops *d, int *stable, us_Error *err) {
+  char *in = us_calloc((size_t)d->n + 1, 1);
+  int *stack = us_malloc(((size_t)d->n + 1) * sizeof *stack), ns = 0;
+  if (in && stack) stack[ns++] = d->n, in[d->n] = 1;
+  while (ns > 0) /* the closure below the candidate */
+    for (int b = stack[--ns], k = 0; k < 16; k++) {
+      int j = d->below[16 * b + k];
+      if (j >= 0 && !in[j]) in[j] = 1, stack[ns++] = j;
+    }
+  us_Structure *s = in && stack ? build(d, d->n + 1, in, err) : NULL;
+  us_Status st = s ? us_gen_stands(s, stable, err)
+                   : in && stack ? err->code : us_error_set(err, US_ERR_NOMEM, "random3d: out of memory");
+  us_structure_free(s);
+  us_free(in);
+  us_free(stack);
+  return st;
+}
+
 /* Does the candidate (box d->n, already written into q and level) keep
  * the whole standing? Boxes on the ground always do; a candidate that
  * cannot stand with its neighbours held still never does. */
 static us_Status candidate_stands(const Drops *d, int *stable, us_Error *err) {
   *stable = 1;
-  if (d->level[d->n] == 0) return US_OK;
+  if (d->level[d->n] == 0 || plumb_line(d, d->n)) return US_OK;
   us_Status st0 = candidate_alone(d, stable, err);
+  if (!st0 && *stable) st0 = candidate_column(d, stable, err);
   if (st0 || !*stable) return st0;
-  us_Structure *s = build(d, d->n + 1, err);
+  us_Structure *s = build(d, d->n + 1, NULL, err);
   if (!s) return err->code;
   us_Status st = us_gen_stands(s, stable, err);
   us_structure_free(s);
@@ -141,10 +258,12 @@ static us_Status drop(Drops *d, int *kept, us_Error *err) {
   long qx = us_rng_below(&d->rng, d->nq), qy = us_rng_below(&d->rng, d->nq);
   d->q[2 * d->n] = qx, d->q[2 * d->n + 1] = qy;
   d->level[d->n] = support_level(d, qx, qy);
+  note_below(d, d->n);
   us_Status st = candidate_stands(d, kept, err);
   if (st || !*kept) return st;
   for (long y = qy; y < qy + 4; y++)
-    for (long x = qx; x < qx + 4; x++) d->top[y * d->side + x] = d->level[d->n] + 1;
+    for (long x = qx; x < qx + 4; x++)
+      d->top[y * d->side + x] = d->level[d->n] + 1, d->owner[y * d->side + x] = d->n;
   d->n++;
   return US_OK;
 }
@@ -153,6 +272,9 @@ static us_Status run(Drops *d, us_Error *err) {
   us_Status st = US_OK;
   for (int failed = 0; !st && d->n < d->g->n && failed < d->g->max_tries;) {
     int kept = 0;
+    if (us_past(d->g->deadline))
+      return us_error_set(err, US_ERR_TIME_LIMIT, "random3d: time limit reached (%d of %d boxes placed)",
+                          d->n, d->g->n);
     st = drop(d, &kept, err);
     failed = kept ? 0 : failed + 1;
   }
@@ -163,16 +285,23 @@ us_Structure *us_gen_random3d(const us_GenSettings *g, us_Error *err) {
   us_Error local;
   if (!err) err = &local; /* the steps below read err->code */
   if (check_random3d(g, err)) return NULL;
-  Drops d = {g, (uint64_t)g->seed, (long)floor(4.0 * (g->width - 1.0)) + 1, 0, NULL, 0, NULL, NULL};
+  Drops d = {g, (uint64_t)g->seed, (long)floor(4.0 * (g->width - 1.0)) + 1, 0, NULL, 0, NULL, NULL,
+             NULL, NULL};
   d.side = d.nq + 3;
   d.top = us_calloc((size_t)(d.side * d.side), sizeof *d.top);
+  d.owner = us_malloc((size_t)(d.side * d.side) * sizeof *d.owner);
   d.q = us_malloc((size_t)g->n * 2 * sizeof *d.q);
   d.level = us_malloc((size_t)g->n * sizeof *d.level);
-  us_Status st = d.top && d.q && d.level ? run(&d, err)
-                                         : us_error_set(err, US_ERR_NOMEM, "random3d: out of memory");
-  us_Structure *s = st ? NULL : build(&d, d.n, err);
+  d.below = us_malloc((size_t)g->n * 16 * sizeof *d.below);
+  for (long c = 0; d.owner && c < d.side * d.side; c++) d.owner[c] = -1;
+  us_Status st = d.top && d.owner && d.q && d.level && d.below
+                     ? run(&d, err)
+                     : us_error_set(err, US_ERR_NOMEM, "random3d: out of memory");
+  us_Structure *s = st ? NULL : build(&d, d.n, NULL, err);
   us_free(d.top);
   us_free(d.q);
   us_free(d.level);
+  us_free(d.owner);
+  us_free(d.below);
   return s;
 }

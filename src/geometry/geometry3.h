@@ -67,7 +67,8 @@ typedef enum us_HullStatus {
   US_HULL_OK = 0,
   US_HULL_FLAT,   /* fewer than 4 points off one plane (within tol) */
   US_HULL_FAIL,   /* numerical trouble (a non-simple horizon) */
-  US_HULL_NOMEM
+  US_HULL_NOMEM,
+  US_HULL_TIMEOUT /* the deadline passed (us_hull3_until) */
 } us_HullStatus;
 
 /* The convex hull of n points (3*n coordinates) with length tolerance tol
@@ -76,6 +77,10 @@ typedef enum us_HullStatus {
  * *out owns new arrays (free with us_polyhedron_free) and its vertices are
  * input points, bit for bit; on failure *out is empty. */
 us_HullStatus us_hull3(const double *xyz, int n, double tol, us_Polyhedron *out);
+/* The same, stopped with US_HULL_TIMEOUT once us_now() passes deadline
+ * (read every 1024 points; 0: no deadline). */
+us_HullStatus us_hull3_until(const double *xyz, int n, double tol, double deadline,
+                             us_Polyhedron *out);
 void us_polyhedron_free(us_Polyhedron *p);
 /* A deep copy (0, or -1 when out of memory: dst empty). */
 int us_polyhedron_copy(us_Polyhedron *dst, const us_Polyhedron *src);

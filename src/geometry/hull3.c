@@ -1,22 +1,35 @@
 /* Convex hull of a point set in space, as a polyhedron with planar convex
  * faces.
  *
- * Incremental construction on a triangulated hull. Coordinates are shifted
- * by the centre of the points' box (results are translation invariant; the
- * output keeps the input coordinates bit for bit). Steps:
+ * Incremental construction on a triangulated hull with conflict lists
+ * (Clarkson and Shor; the "outside sets" of Quickhull). Coordinates are
+ * shifted by the centre of the points' box (results are translation
+ * invariant; the output keeps the input coordinates bit for bit)
+ * and scaled by a power of two to a box of side about 1 (exact, so results
+ * are scale invariant too, and sides from 1e-300 to 1e300 square without
+ * overflow or underflow). Steps:
  *  1. A starting tetrahedron from extreme points: p0 of least x, p1
  *     farthest from p0, p2 farthest from the line p0 p1, p3 farthest from
  *     the plane p0 p1 p2. When one of those distances is <= tol every
  *     point lies within about tol of a line or plane: US_HULL_FLAT.
- *  2. The other points in order of decreasing distance from the
- *     tetrahedron's centre (far points first, so points on edges and faces
- *     mostly come after the corners that make them redundant). A point
- *     more than tol above some triangle is added: the triangles it sees
- *     (above their plane at all, found by a walk over neighbours from the
- *     one it is farthest above, so the set is connected) are removed and
- *     their boundary (the horizon, which must be one simple cycle, else
- *     US_HULL_FAIL) is joined to the point. A point within tol of the
- *     hull is dropped.
+ *  2. Every other point is put in the conflict list of the triangle it is
+ *     farthest above, if more than tol; the others are dropped. While a
+ *     triangle has a list, the point of it farthest above it is added
+ *     (Quickhull's choice: that point is a vertex of the hull, so points
+ *     on edges and faces never come before the corners that make them
+ *     redundant): the triangles it sees (more than tol above their plane,
+ *     so exactly coplanar triangles of grid-like inputs, whose heights are
+ *     rounding noise, stay and cannot pinch the horizon; found by a walk
+ *     over neighbours from its own triangle, so the set is connected) are
+ *     removed and their boundary (the horizon, which must be one simple
+ *     cycle, else US_HULL_FAIL) is joined to the point. The
+ *     points of the removed triangles' lists go to the new triangle they
+ *     are farthest above (more than tol), else to an old triangle across
+ *     the horizon they are more than tol above, else they are dropped.
+ *     Why the new triangles suffice: a point p above a removed triangle F
+ *     and outside the new hull H' sees the segment from p to F's interior
+ *     leave H' through a face lying strictly above F's plane; the old
+ *     triangles all lie below that plane, so the face is a new one.
  *  3. Triangles become faces: in order of decreasing area, an unassigned
  *     triangle seeds a face and takes every neighbouring triangle (through
  *     shared edges, transitively) whose three vertices lie within tol of
@@ -29,8 +42,16 @@
  * Invariants of the output: faces counter-clockwise seen from outside;
  * every input point within about tol inside every face plane; only
  * vertices some face uses are kept; edges listed once, (i, j) with i < j.
- * Cost: O(n F) for n points and F triangles (the visible triangle is found
- * by a scan), fine for the tens to hundreds of points of a block. */
+ * Cost: each point is tested against the triangles created near it, so
+ * about O(n log n) for points in general position (a 1,000,000-point
+ * sphere in 4.8 s of CPU here, docs/format.md); the worst case (every point a
+ * hull vertex seeing a horizon as long as the hull) stays quadratic.
+ * Removed triangles' slots are reused, so memory follows the live hull.
+ * A deadline (a us_now() time) is read every 1024 points: US_HULL_TIMEOUT.
+ * Why our own and not libqhull_r: measured on this machine, see
+ * docs/format.md ("Hull cost"); the output contract (tol semantics, faces
+ * merged within tol, vertices bit for bit) is this file's, and step 3 is
+ * needed either way. */
 #include "geometry3.h"
 
 #include <math.h>
@@ -49,31 +70,50 @@ typedef struct Hull {
   const double *xyz;
   us_Vec3 *q;     /* shifted points */
   int n;
-  double tol;
+  double tol, deadline;
   Tri *t;
-  int nt, cap;
+  int nt, cap;    /* triangle slots used (live or free) */
   int *stamp;     /* per triangle: visit mark */
+  int *head;      /* per triangle: first point of its conflict list, or -1 */
+  int *far;       /* per triangle: the point of its list farthest above it */
+  double *fard;   /* per triangle: that point's height */
   int mark;
-  int *stack, *vis, cap_stamp, cap_stack, cap_vis;
+  int *stack, *vis, *newt, *freet, *work, cap_stamp, cap_head, cap_far, cap_fard, cap_stack,
+      cap_vis, cap_newt, cap_free, cap_work;
+  int nnew, nfree, nwork; /* triangles made by the last point; free slots;
+                             triangles that took points (to visit) */
   int *hstart, *hend; /* per point: horizon edge starting / ending there */
+  int *owner, *next;  /* per point: its triangle (-1: none) and list link */
 } Hull;
 
-/* Append triangle (a, b, c); its index or -1 (out of memory or degenerate). */
+/* A slot for a new triangle: a freed one, else appended (-1: no memory). */
+static int new_slot(Hull *h) {
+  if (h->nfree > 0) return h->freet[--h->nfree];
+  if (US_GROW(h->t, h->cap, h->nt + 1) || US_GROW(h->stamp, h->cap_stamp, h->nt + 1) ||
+      US_GROW(h->head, h->cap_head, h->nt + 1) || US_GROW(h->far, h->cap_far, h->nt + 1) ||
+      US_GROW(h->fard, h->cap_fard, h->nt + 1))
+    return -1;
+  return h->nt++;
+}
+
+/* Add triangle (a, b, c); its index or -1 (out of memory or degenerate). */
 static int add_tri(Hull *h, int a, int b, int c, int *nomem) {
-  if (US_GROW(h->t, h->cap, h->nt + 1) || US_GROW(h->stamp, h->cap_stamp, h->nt + 1)) {
+  us_Vec3 n = us_v3_cross(us_v3_sub(h->q[b], h->q[a]), us_v3_sub(h->q[c], h->q[a]));
+  if (!(us_v3_norm(n) > 0)) return -1;
+  int k = new_slot(h);
+  if (k < 0) {
     *nomem = 1;
     return -1;
   }
-  us_Vec3 n = us_v3_cross(us_v3_sub(h->q[b], h->q[a]), us_v3_sub(h->q[c], h->q[a]));
-  if (!(us_v3_norm(n) > 0)) return -1;
-  Tri *t = &h->t[h->nt];
+  Tri *t = &h->t[k];
   t->v[0] = a, t->v[1] = b, t->v[2] = c;
   t->nb[0] = t->nb[1] = t->nb[2] = -1;
   t->n = us_v3_unit(n);
   t->d = us_v3_dot(t->n, h->q[a]);
   t->alive = 1;
-  h->stamp[h->nt] = 0;
-  return h->nt++;
+  h->stamp[k] = 0;
+  h->head[k] = -1;
+  return k;
 }
 
 static double height(const Hull *h, int t, int i) { return us_v3_dot(h->t[t].n, h->q[i]) - h->t[t].d; }
@@ -123,14 +163,14 @@ static void link_brute(Hull *h) {
             h->t[a].nb[k] = b;
 }
 
-static us_HullStatus tetrahedron(Hull *h, const int s[4], us_Vec3 *centre) {
+static us_HullStatus tetrahedron(Hull *h, const int s[4]) {
   static const int faces[4][4] = {{0, 1, 2, 3}, {0, 1, 3, 2}, {0, 2, 3, 1}, {1, 2, 3, 0}};
-  *centre = us_v3(0, 0, 0);
-  for (int k = 0; k < 4; k++) *centre = us_v3_add(*centre, us_v3_scale(h->q[s[k]], 0.25));
+  us_Vec3 centre = us_v3(0, 0, 0);
+  for (int k = 0; k < 4; k++) centre = us_v3_add(centre, us_v3_scale(h->q[s[k]], 0.25));
   for (int f = 0; f < 4; f++) {
     int a = s[faces[f][0]], b = s[faces[f][1]], c = s[faces[f][2]], nomem = 0;
     us_Vec3 n = us_v3_cross(us_v3_sub(h->q[b], h->q[a]), us_v3_sub(h->q[c], h->q[a]));
-    if (us_v3_dot(n, us_v3_sub(*centre, h->q[a])) > 0) b = s[faces[f][2]], c = s[faces[f][1]];
+    if (us_v3_dot(n, us_v3_sub(centre, h->q[a])) > 0) b = s[faces[f][2]], c = s[faces[f][1]];
     if (add_tri(h, a, b, c, &nomem) < 0) return nomem ? US_HULL_NOMEM : US_HULL_FAIL;
   }
   link_brute(h);
@@ -148,16 +188,33 @@ static int key_desc(const void *pa, const void *pb) {
   return (a->i > b->i) - (a->i < b->i);
 }
 
-/* The live triangle point i is farthest above, if more than tol. */
-static int seen_from(const Hull *h, int i) {
+/* Of the m triangles in ts (live), the one point i is farthest above, if
+ * more than tol (its height in *d); with `across`, the triangle across
+ * each one's edge 0. */
+static int best_of(const Hull *h, int i, const int *ts, int m, int across, double *d) {
   int best = -1;
-  double bd = h->tol;
-  for (int t = 0; t < h->nt; t++)
-    if (h->t[t].alive) {
-      double d = height(h, t, i);
-      if (d > bd) bd = d, best = t;
-    }
+  *d = h->tol;
+  for (int k = 0; k < m; k++) {
+    int t = across ? h->t[ts[k]].nb[0] : ts[k];
+    double e = height(h, t, i);
+    if (e > *d) *d = e, best = t;
+  }
   return best;
+}
+
+/* Put point i, d above triangle t, in t's conflict list (t < 0: drop it);
+ * a triangle's first point puts it on the work list. */
+static int assign(Hull *h, int i, int t, double d) {
+  h->owner[i] = t;
+  if (t < 0) return 0;
+  if (h->head[t] < 0) {
+    if (US_GROW(h->work, h->cap_work, h->nwork + 1)) return -1;
+    h->work[h->nwork++] = t, h->fard[t] = -1.0;
+  }
+  if (d > h->fard[t]) h->far[t] = i, h->fard[t] = d;
+  h->next[i] = h->head[t];
+  h->head[t] = i;
+  return 0;
 }
 
 /* The connected set of triangles point i is above, from t0, in h->vis;
@@ -172,7 +229,7 @@ static int visible_set(Hull *h, int i, int t0) {
     h->vis[nv++] = t;
     for (int k = 0; k < 3; k++) {
       int u = h->t[t].nb[k];
-      if (u >= 0 && h->stamp[u] != h->mark && height(h, u, i) > 0) {
+      if (u >= 0 && h->stamp[u] != h->mark && height(h, u, i) > h->tol) {
         h->stamp[u] = h->mark;
         h->stack[ns++] = u;
       }
@@ -187,10 +244,12 @@ static void relink(Hull *h, int u, int old, int now) {
     if (h->t[u].nb[k] == old) h->t[u].nb[k] = now;
 }
 
-/* Step 2 for one point: join the horizon of the visible set to i. */
+/* Step 2 for one point: join the horizon of the visible set to i; the
+ * new triangles are listed in h->newt. */
 static us_HullStatus add_point(Hull *h, int i, int nv) {
-  int first = h->nt, nh = 0, nomem = 0;
+  int nh = 0, nomem = 0;
   us_HullStatus st = US_HULL_OK;
+  h->nnew = 0;
   for (int q = 0; q < nv && !st; q++) {
     int t = h->vis[q];
     for (int k = 0; k < 3 && !st; k++) {
@@ -199,37 +258,70 @@ static us_HullStatus add_point(Hull *h, int i, int nv) {
       if (h->hstart[a] >= 0 || h->hend[b] >= 0) st = US_HULL_FAIL; /* not a simple cycle */
       int nt = st ? -1 : add_tri(h, a, b, i, &nomem);
       if (nt < 0) st = nomem ? US_HULL_NOMEM : US_HULL_FAIL;
+      if (!st && US_GROW(h->newt, h->cap_newt, h->nnew + 1)) st = US_HULL_NOMEM;
       if (st) break;
+      h->newt[h->nnew++] = nt;
       h->t[nt].nb[0] = u;
       relink(h, u, t, nt);
       h->hstart[a] = nt, h->hend[b] = nt, nh++;
     }
   }
-  for (int t = first; t < h->nt && !st; t++) {
-    int a = h->t[t].v[0], b = h->t[t].v[1];
+  for (int k = 0; k < h->nnew && !st; k++) {
+    int t = h->newt[k], a = h->t[t].v[0], b = h->t[t].v[1];
     if (h->hstart[b] < 0 || h->hend[a] < 0) st = US_HULL_FAIL;
     else h->t[t].nb[1] = h->hstart[b], h->t[t].nb[2] = h->hend[a];
   }
-  for (int t = first; t < h->nt; t++) h->hstart[h->t[t].v[0]] = h->hend[h->t[t].v[1]] = -1;
-  for (int q = 0; q < nv && !st; q++) h->t[h->vis[q]].alive = 0;
+  for (int k = 0; k < h->nnew; k++) {
+    int t = h->newt[k];
+    h->hstart[h->t[t].v[0]] = h->hend[h->t[t].v[1]] = -1;
+  }
   return nh >= 3 || st ? st : US_HULL_FAIL;
 }
 
-static us_HullStatus insert_all(Hull *h, const int s[4], us_Vec3 centre) {
-  Key *key = us_malloc((size_t)h->n * sizeof *key);
-  if (!key) return US_HULL_NOMEM;
-  for (int i = 0; i < h->n; i++) key[i] = (Key){us_v3_dist(h->q[i], centre), i};
-  qsort(key, (size_t)h->n, sizeof *key, key_desc);
-  us_HullStatus st = US_HULL_OK;
-  for (int r = 0; r < h->n && !st; r++) {
-    int i = key[r].i;
-    if (i == s[0] || i == s[1] || i == s[2] || i == s[3]) continue;
-    int t0 = seen_from(h, i);
-    if (t0 < 0) continue;
-    int nv = visible_set(h, i, t0);
-    st = nv < 0 ? US_HULL_NOMEM : add_point(h, i, nv);
+/* After add_point: the removed triangles' points go to the new triangles
+ * (or across the horizon, or are dropped) and their slots are freed. */
+static us_HullStatus redistribute(Hull *h, int nv) {
+  if (US_GROW(h->freet, h->cap_free, h->nfree + nv)) return US_HULL_NOMEM;
+  for (int q = 0; q < nv; q++) {
+    int t = h->vis[q];
+    for (int p = h->head[t], nx; p >= 0; p = nx) {
+      nx = h->next[p];
+      if (h->owner[p] != t) continue; /* the point added */
+      double d;
+      int to = best_of(h, p, h->newt, h->nnew, 0, &d);
+      if (to < 0) to = best_of(h, p, h->newt, h->nnew, 1, &d);
+      if (assign(h, p, to, d)) return US_HULL_NOMEM;
+    }
+    h->t[t].alive = 0;
+    h->freet[h->nfree++] = t;
   }
-  us_free(key);
+  return US_HULL_OK;
+}
+
+/* The tetrahedron's four triangles take the points that see them. */
+static us_HullStatus assign_start(Hull *h, const int s[4]) {
+  int tet[4] = {0, 1, 2, 3};
+  for (int i = 0; i < h->n; i++) {
+    double d = 0.0;
+    int t = i == s[0] || i == s[1] || i == s[2] || i == s[3] ? -1 : best_of(h, i, tet, 4, 0, &d);
+    if (assign(h, i, t, d)) return US_HULL_NOMEM;
+  }
+  return US_HULL_OK;
+}
+
+/* Step 2: while a triangle has points above it, add the farthest. */
+static us_HullStatus insert_all(Hull *h, const int s[4]) {
+  us_HullStatus st = assign_start(h, s);
+  for (long it = 1; h->nwork > 0 && !st; it++) {
+    int t = h->work[--h->nwork];
+    if (!h->t[t].alive || h->head[t] < 0) continue; /* removed since */
+    if ((it & 1023) == 0 && us_past(h->deadline)) return US_HULL_TIMEOUT;
+    int i = h->far[t];
+    h->owner[i] = -1;
+    int nv = visible_set(h, i, t);
+    st = nv < 0 ? US_HULL_NOMEM : add_point(h, i, nv);
+    if (!st) st = redistribute(h, nv);
+  }
   return st;
 }
 
@@ -413,34 +505,52 @@ static int assemble(const Hull *h, const Out *o, us_Polyhedron *p) {
 
 static void hull_free(Hull *h) {
   us_free(h->q), us_free(h->t), us_free(h->stamp), us_free(h->stack), us_free(h->vis);
-  us_free(h->hstart), us_free(h->hend);
+  us_free(h->hstart), us_free(h->hend), us_free(h->head), us_free(h->newt), us_free(h->freet);
+  us_free(h->far), us_free(h->fard), us_free(h->work);
+  us_free(h->owner), us_free(h->next);
 }
 
-static us_HullStatus hull_init(Hull *h, const double *xyz, int n, double tol) {
+static us_HullStatus hull_init(Hull *h, const double *xyz, int n, double tol, double deadline) {
   memset(h, 0, sizeof *h);
-  h->xyz = xyz, h->n = n, h->tol = tol;
+  h->xyz = xyz, h->n = n, h->tol = tol, h->deadline = deadline;
   h->q = us_malloc((size_t)n * sizeof *h->q);
   h->hstart = us_malloc((size_t)n * sizeof(int));
   h->hend = us_malloc((size_t)n * sizeof(int));
-  if (!h->q || !h->hstart || !h->hend) return US_HULL_NOMEM;
+  h->owner = us_malloc((size_t)n * sizeof(int));
+  h->next = us_malloc((size_t)n * sizeof(int));
+  if (!h->q || !h->hstart || !h->hend || !h->owner || !h->next) return US_HULL_NOMEM;
   double bb[6];
   us_points3_bbox(xyz, n, bb);
   us_Vec3 c = us_v3(0.5 * (bb[0] + bb[3]), 0.5 * (bb[1] + bb[4]), 0.5 * (bb[2] + bb[5]));
-  for (int i = 0; i < n; i++) h->q[i] = us_v3_sub(us_v3_at(xyz, i), c), h->hstart[i] = h->hend[i] = -1;
+  /* scaled by a power of two (exact) to a box of side about 1, so that
+   * squares of lengths (norms, cross products) neither overflow (sides
+   * near 1e101) nor underflow (sides near 1e-300); tol with them */
+  int e = 0;
+  frexp(US_MAX(US_MAX(bb[3] - bb[0], bb[4] - bb[1]), bb[5] - bb[2]), &e);
+  h->tol = ldexp(tol, -e);
+  for (int i = 0; i < n; i++) {
+    us_Vec3 d = us_v3_sub(us_v3_at(xyz, i), c);
+    h->q[i] = us_v3(ldexp(d.x, -e), ldexp(d.y, -e), ldexp(d.z, -e));
+    h->hstart[i] = h->hend[i] = -1;
+  }
   return US_HULL_OK;
 }
 
 us_HullStatus us_hull3(const double *xyz, int n, double tol, us_Polyhedron *out) {
+  return us_hull3_until(xyz, n, tol, 0.0, out);
+}
+
+us_HullStatus us_hull3_until(const double *xyz, int n, double tol, double deadline,
+                             us_Polyhedron *out) {
   memset(out, 0, sizeof *out);
   if (n < 4) return US_HULL_FLAT;
   Hull h;
   int s[4];
-  us_Vec3 centre;
   Out o = {0};
-  us_HullStatus st = hull_init(&h, xyz, n, tol);
+  us_HullStatus st = hull_init(&h, xyz, n, tol, deadline);
   if (!st) st = start_points(&h, s);
-  if (!st) st = tetrahedron(&h, s, &centre);
-  if (!st) st = insert_all(&h, s, centre);
+  if (!st) st = tetrahedron(&h, s);
+  if (!st) st = insert_all(&h, s);
   if (!st && build_faces(&h, &o)) st = US_HULL_NOMEM;
   if (!st && o.nf < 4) st = US_HULL_FLAT;
   if (!st && assemble(&h, &o, out)) st = US_HULL_NOMEM;

@@ -27,6 +27,9 @@ us_Status us_io_bad(const us_IoCtx *c, const char *where, const char *fmt, ...)
 /* Parse text (len bytes) as JSON; on a syntax error set US_ERR_PARSE with
  * "NAME:LINE:COLUMN: text" and return NULL. */
 json_t *us_io_parse_json(const us_IoCtx *c, const char *text, size_t len);
+/* The same, stopped with US_ERR_TIME_LIMIT once the clock passes deadline
+ * (0: none; read every 1 MB of text). */
+json_t *us_io_parse_json_until(const us_IoCtx *c, const char *text, size_t len, double deadline);
 /* Read a whole file into a NUL-terminated buffer (us_free it). */
 char *us_io_slurp(const char *path, size_t *len, us_Error *err);
 

@@ -37,6 +37,7 @@ typedef struct Reader {
   us_IoCtx c;
   us_Structure *s;
   int explicit_contacts;
+  double deadline; /* us_LoadSettings.deadline */
 } Reader;
 
 /* A friction field: a number >= 0, or "infinite" (INFINITY). */
@@ -236,6 +237,9 @@ static us_Status read_bodies(Reader *r, json_t *root) {
   if (json_array_size(arr) > (size_t)INT_MAX / 4)
     return us_io_bad(&r->c, "", "bodies: too many bodies");
   for (size_t k = 0; k < json_array_size(arr); k++) {
+    if ((k & 1023) == 1023 && us_past(r->deadline))
+      return us_error_set(r->c.err, US_ERR_TIME_LIMIT, "%s: time limit reached reading the bodies "
+                          "(%zu of %zu read)", r->c.name, k, json_array_size(arr));
     us_Status st = read_body(r, (int)k, json_array_get(arr, k));
     if (st) return st;
   }
@@ -330,18 +334,28 @@ static us_Status read_document(Reader *r, json_t *root, double contact_tol) {
   if (st) return st;
   r->s->explicit_contacts = r->explicit_contacts;
   if (contact_tol > 0) r->s->contact_tol = contact_tol;
-  st = us_structure_finalize(r->s, r->c.err);
+  st = us_structure_finalize_until(r->s, r->deadline, r->c.err);
   return st ? prefix_file(&r->c, st) : US_OK;
 }
 
+us_LoadSettings us_load_default_settings(void) { return (us_LoadSettings){0.0, 0.0}; }
+
 us_Structure *us_structure_parse(const char *text, const char *name, double contact_tol,
                                  us_Error *err) {
+  us_LoadSettings set = {contact_tol, 0.0};
+  return us_structure_parse_with(text, name, &set, err);
+}
+
+us_Structure *us_structure_parse_with(const char *text, const char *name,
+                                      const us_LoadSettings *set, us_Error *err) {
+  us_LoadSettings def = us_load_default_settings();
+  if (!set) set = &def;
   us_Error local;
   us_error_clear(&local);
-  Reader r = {{name ? name : "<input>", &local}, NULL, 0};
-  json_t *root = us_io_parse_json(&r.c, text, strlen(text));
+  Reader r = {{name ? name : "<input>", &local}, NULL, 0, set->deadline};
+  json_t *root = us_io_parse_json_until(&r.c, text, strlen(text), set->deadline);
   us_Status st = root ? US_OK : local.code;
-  if (!st) st = read_document(&r, root, contact_tol);
+  if (!st) st = read_document(&r, root, set->contact_tol);
   json_decref(root);
   if (st) {
     us_structure_free(r.s);
@@ -352,6 +366,12 @@ us_Structure *us_structure_parse(const char *text, const char *name, double cont
 }
 
 us_Structure *us_structure_read(const char *path, double contact_tol, us_Error *err) {
+  us_LoadSettings set = {contact_tol, 0.0};
+  return us_structure_read_with(path, &set, err);
+}
+
+us_Structure *us_structure_read_with(const char *path, const us_LoadSettings *set,
+                                     us_Error *err) {
   size_t len = 0;
   char *text = us_io_slurp(path, &len, err);
   if (!text) return NULL;
@@ -360,7 +380,7 @@ us_Structure *us_structure_read(const char *path, double contact_tol, us_Error *
     us_error_set(err, US_ERR_PARSE, "%s: contains a NUL byte (not a JSON text file)", path);
     return NULL;
   }
-  us_Structure *s = us_structure_parse(text, path, contact_tol, err);
+  us_Structure *s = us_structure_parse_with(text, path, set, err);
   us_free(text);
   return s;
 }

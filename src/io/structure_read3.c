@@ -57,9 +57,14 @@ static us_Status read_rotation(const us_IoCtx *c, const char *where, json_t *box
   }
   if (!r) return US_OK;
   us_Status st = us_io_vecn(c, where, "box.rotation", r, 4, q);
-  double l = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-  if (!st && !(l > 1e-12 && isfinite(l)))
+  /* normalized here, its norm taken after dividing by the largest
+   * component, so that [1e308, 1e308, 0, 0] does not overflow */
+  double m = 0.0, l = 0.0;
+  for (int k = 0; !st && k < 4; k++) m = fmax(m, fabs(q[k]));
+  for (int k = 0; !st && k < 4; k++) l += (q[k] / m) * (q[k] / m);
+  if (!st && !(m > 0))
     st = us_io_bad(c, where, "box.rotation: the quaternion must not be zero");
+  for (int k = 0; !st && k < 4; k++) q[k] = q[k] / m / sqrt(l);
   return st;
 }
 

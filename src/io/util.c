@@ -31,11 +31,40 @@ us_Status us_io_bad(const us_IoCtx *c, const char *where, const char *fmt, ...) 
   return us_error_set(c->err, US_ERR_INPUT, "%s: %s", c->name, detail);
 }
 
+/* The text fed to jansson, stopped once past the deadline (the clock is
+ * read after each MB). */
+typedef struct Feed {
+  const char *text;
+  size_t len, at, check;
+  double deadline;
+  int late;
+} Feed;
+
+static size_t feed(void *buf, size_t n, void *data) {
+  Feed *f = data;
+  if (f->at >= f->check && (f->check += (size_t)1 << 20) && us_past(f->deadline))
+    return f->late = 1, (size_t)-1;
+  size_t k = US_MIN(n, f->len - f->at);
+  memcpy(buf, f->text + f->at, k);
+  f->at += k;
+  return k;
+}
+
 json_t *us_io_parse_json(const us_IoCtx *c, const char *text, size_t len) {
+  return us_io_parse_json_until(c, text, len, 0.0);
+}
+
+json_t *us_io_parse_json_until(const us_IoCtx *c, const char *text, size_t len, double deadline) {
   json_error_t je;
   if (len >= 3 && !memcmp(text, "\xEF\xBB\xBF", 3)) text += 3, len -= 3; /* UTF-8 BOM */
-  json_t *root = json_loadb(text, len, JSON_DECODE_INT_AS_REAL | JSON_REJECT_DUPLICATES, &je);
+  size_t flags = JSON_DECODE_INT_AS_REAL | JSON_REJECT_DUPLICATES;
+  Feed f = {text, len, 0, (size_t)1 << 20, deadline, 0};
+  json_t *root = deadline > 0 ? json_load_callback(feed, &f, flags, &je) : json_loadb(text, len, flags, &je);
   if (root) return root;
+  if (f.late) {
+    us_error_set(c->err, US_ERR_TIME_LIMIT, "%s: time limit reached parsing the file", c->name);
+    return NULL;
+  }
   if (je.line > 0)
     us_error_set(c->err, US_ERR_PARSE, "%s:%d:%d: %s", c->name, je.line, je.column, je.text);
   else

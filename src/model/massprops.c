@@ -93,6 +93,9 @@ static us_Status check_body(const us_Body *b, us_Error *err) {
     return us_error_set(err, US_ERR_INPUT, "body '%s': density %g * area %g overflows",
                         us_id_text(b->id).s,
                         b->density, fabs(us_poly_signed_area(b->verts, b->nvert)));
+  if (b->mass > 0 && isfinite(b->mass) && !isfinite(b->inertia) && us_body_has_shape(b))
+    return us_error_set(err, US_ERR_INPUT, "body '%s': coordinates too large, the inertia "
+                        "overflows (mass %g)", us_id_text(b->id).s, b->mass);
   if (!(b->mass > 0 && isfinite(b->mass) && isfinite(b->inertia)))
     return us_error_set(err, US_ERR_INPUT, "body '%s': mass %g / inertia %g not usable",
                         us_id_text(b->id).s,

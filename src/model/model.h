@@ -10,7 +10,7 @@
  * area, simple, not below the ground when there is one), orienting each
  * polygon counter-clockwise. Explicit-contact structures: point bodies need
  * a finite centre and positive mass. Messages name the body. */
-us_Status us_model_validate(us_Structure *s, us_Error *err);
+us_Status us_model_validate(us_Structure *s, double deadline, us_Error *err);
 
 /* massprops.c: mass (from density unless given), centre of mass and polar
  * inertia about it, for every polygon body. */
@@ -56,7 +56,7 @@ us_Status us_solid_check_values(const us_Body *b, us_Error *err);
 /* Shape with the body's own tolerance: each part's convex hull (points not
  * all near one plane, volume above tol * size^2), parts of one body not
  * overlapping beyond tol, not below the ground. Builds the hulls in place. */
-us_Status us_solid_check_shape(const us_Structure *s, us_Body *b, us_Error *err);
+us_Status us_solid_check_shape(const us_Structure *s, us_Body *b, double deadline, us_Error *err);
 /* Mass (from density unless given), centre of mass and inertia tensor of a
  * 3D body from its parts' hulls. */
 void us_solid_mass_props(us_Body *b);

@@ -107,13 +107,18 @@ us_Status us_solid_check_values(const us_Body *b, us_Error *err) {
 }
 
 /* Replace part k's points by their hull. */
-static us_Status build_hull(us_Body *b, int k, double tol, double size, us_Error *err) {
+static us_Status build_hull(us_Body *b, int k, double tol, double size, double deadline,
+                            us_Error *err) {
   us_Polyhedron *p = &b->parts[k], h;
   char lab[32];
   us_IdText idt = us_id_text(b->id);
   const char *id = idt.s, *pl = part_label(b, k, lab, sizeof lab);
-  switch (p->nface > 0 ? US_HULL_OK : us_hull3(p->verts, p->nvert, tol, &h)) {
+  switch (p->nface > 0 ? US_HULL_OK : us_hull3_until(p->verts, p->nvert, tol, deadline, &h)) {
     case US_HULL_OK: break;
+    case US_HULL_TIMEOUT:
+      return us_error_set(err, US_ERR_TIME_LIMIT,
+                          "time limit reached building the convex hull of body '%s' (%s%d points)",
+                          id, pl, p->nvert);
     case US_HULL_NOMEM: return us_error_set(err, US_ERR_NOMEM, "out of memory checking body '%s'", id);
     case US_HULL_FLAT:
       return us_error_set(err, US_ERR_INPUT,
@@ -123,6 +128,9 @@ static us_Status build_hull(us_Body *b, int k, double tol, double size, us_Error
       return us_error_set(err, US_ERR_INPUT, "body '%s': %scould not build its convex hull", id, pl);
   }
   if (p->nface == 0) us_polyhedron_free(p), *p = h;
+  if (p->volume == 0 && size * size * size < 0x1p-1000) /* built, so not flat: too small */
+    return us_error_set(err, US_ERR_INPUT, "body '%s': %scoordinates too small, the volume "
+                        "underflows (size %g)", id, pl, size);
   if (!(p->volume > tol * size * size)) /* h is kept: freed with the body */
     return us_error_set(err, US_ERR_INPUT, "body '%s': %spolyhedron has (almost) zero volume (%g)",
                         id, pl, p->volume);
@@ -140,14 +148,14 @@ static us_Status parts_overlap(const us_Body *b, double tol, us_Error *err) {
   return US_OK;
 }
 
-us_Status us_solid_check_shape(const us_Structure *s, us_Body *b, us_Error *err) {
+us_Status us_solid_check_shape(const us_Structure *s, us_Body *b, double deadline, us_Error *err) {
   double size = us_body_diameter(b);
   if (!isfinite(size))
     return us_error_set(err, US_ERR_INPUT, "body '%s': coordinates too large, the size overflows",
                         us_id_text(b->id).s);
   double tol = s->contact_tol > 0 ? s->contact_tol : us_geom_tol(size);
   us_Status st = US_OK;
-  for (int k = 0; !st && k < b->npart; k++) st = build_hull(b, k, tol, size, err);
+  for (int k = 0; !st && k < b->npart; k++) st = build_hull(b, k, tol, size, deadline, err);
   if (!st) st = parts_overlap(b, tol, err);
   double bb[6];
   us_body_bbox3(b, bb);

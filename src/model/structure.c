@@ -13,6 +13,7 @@
 #include "model.h"
 #include "massprops.h"
 
+#include "contact/contact.h"
 #include "geometry/geometry3.h"
 
 #include <math.h>
@@ -322,20 +323,29 @@ static us_Status install(us_Structure *s, const us_ContactList *l, us_Error *err
   return US_OK;
 }
 
-us_Status us_structure_detect_contacts(us_Structure *s, const us_ContactSettings *set,
-                                       us_Error *err) {
+static us_Status detect_until(us_Structure *s, const us_ContactSettings *set, double deadline,
+                              us_Error *err) {
   for (int i = 0; i < s->nbody; i++)
     if (s->bodies[i].nvert >= 3) us_poly_make_ccw(s->bodies[i].verts, s->bodies[i].nvert);
   us_ContactSettings own = {s->contact_tol, 0};
   us_ContactList l = {NULL, 0, 0};
-  us_Status st = us_detect_contacts(s, set ? set : &own, &l, err);
+  us_Status st = us_detect_contacts_until(s, set ? set : &own, deadline, &l, err);
   if (!st) st = install(s, &l, err);
   us_contact_list_free(&l);
   return st;
 }
 
+us_Status us_structure_detect_contacts(us_Structure *s, const us_ContactSettings *set,
+                                       us_Error *err) {
+  return detect_until(s, set, 0.0, err);
+}
+
 us_Status us_structure_finalize(us_Structure *s, us_Error *err) {
-  us_Status st = us_model_validate(s, err);
+  return us_structure_finalize_until(s, 0.0, err);
+}
+
+us_Status us_structure_finalize_until(us_Structure *s, double deadline, us_Error *err) {
+  us_Status st = us_model_validate(s, deadline, err);
   if (st) return st;
   us_model_measure(s); /* scale: the fallback radius of point bodies */
   st = us_model_mass_properties(s, err);
@@ -344,7 +354,7 @@ us_Status us_structure_finalize(us_Structure *s, us_Error *err) {
    * so finalizing again after adding bodies sees the new bodies */
   if (s->ncontact > 0 && !s->contacts_detected) s->explicit_contacts = 1;
   if (!s->explicit_contacts) {
-    st = us_structure_detect_contacts(s, NULL, err);
+    st = detect_until(s, NULL, deadline, err);
     if (st) return st;
   }
   us_model_measure(s); /* weight, and the bbox with contact points */

@@ -29,7 +29,8 @@ static us_Status check_globals(const us_Structure *s, us_Error *err) {
     if (!isfinite(s->gravity[k])) return us_error_set(err, US_ERR_INPUT, "gravity is not finite");
   if (s->gravity[0] == 0.0 && s->gravity[1] == 0.0 && s->gravity[2] == 0.0)
     return us_error_set(err, US_ERR_INPUT, "gravity is zero: every part would stand, touching "
-                        "anything or not (give its direction and size, e.g. [0, -9.81])");
+                        "anything or not (give its direction and size, e.g. %s)",
+                        s->dim == 3 ? "[0, 0, -9.81]" : "[0, -9.81]");
   if (isnan(s->friction) || s->friction < 0) /* INFINITY: no sliding */
     return us_error_set(err, US_ERR_INPUT, "default friction %g must be >= 0 or infinite",
                         s->friction);
@@ -134,6 +135,9 @@ static us_Status check_shape(const us_Structure *s, us_Body *b, us_Error *err) {
   if (d == US_POLY_NOMEM || (d == US_POLY_EDGES_CROSS && crosses_properly(b, i, j)))
     return defect_error(b, d, i, j, err);
   double area = us_poly_signed_area(b->verts, b->nvert);
+  if (area == 0 && diam > 0 && diam * diam < 0x1p-1000) /* not a sliver: too small */
+    return us_error_set(err, US_ERR_INPUT, "body '%s': coordinates too small, the area "
+                        "underflows (size %g)", us_id_text(b->id).s, diam);
   if (!(fabs(area) > tol * diam))
     return us_error_set(err, US_ERR_INPUT, "body '%s': polygon has (almost) zero area (%g)",
                         us_id_text(b->id).s, area);
@@ -145,11 +149,11 @@ static us_Status check_shape(const us_Structure *s, us_Body *b, us_Error *err) {
   return US_OK;
 }
 
-us_Status us_model_validate(us_Structure *s, us_Error *err) {
+us_Status us_model_validate(us_Structure *s, double deadline, us_Error *err) {
   us_Status st = check_globals(s, err);
   for (int i = 0; !st && i < s->nbody; i++) st = check_values(s, &s->bodies[i], err);
   for (int i = 0; !st && i < s->nbody; i++)
-    if (s->bodies[i].npart > 0) st = us_solid_check_shape(s, &s->bodies[i], err);
+    if (s->bodies[i].npart > 0) st = us_solid_check_shape(s, &s->bodies[i], deadline, err);
     else if (s->bodies[i].nvert > 0) st = check_shape(s, &s->bodies[i], err);
   return st;
 }
