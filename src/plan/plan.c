@@ -20,6 +20,7 @@
  * length); those tests are counted in the statistics like the others. */
 #include "assemble.h"
 #include "exact.h"
+#include "hands.h"
 #include "hook.h"
 #include "stability/backend.h"
 #include "order.h"
@@ -40,6 +41,7 @@ us_PlanSettings us_plan_default_settings(void) {
   p.rules = US_RULE_ALL;
   p.seed = 1;
   p.max_exact_tests = 100000;
+  p.hands = 1;
   p.stability = us_stability_default_settings();
   return p;
 }
@@ -53,6 +55,9 @@ void us_plan_free(us_Plan *p) {
   us_free(p->group_start);
   us_free(p->buildable);
   us_free(p->blocked);
+  us_free(p->actions);
+  p->actions = NULL;
+  p->nactions = 0;
   p->certs = NULL;
   p->order = p->group_start = p->buildable = p->blocked = NULL;
   p->nsteps = p->ngroups = p->nbuildable = p->nblocked = 0;
@@ -419,6 +424,7 @@ us_Status us_plan(const us_Structure *s, const us_PlanSettings *set, us_Plan *ou
   if (!s || !set) return us_error_set(err, US_ERR_USAGE, "us_plan: NULL argument");
   us_Status st = check_settings(set, err);
   if (st) return st;
+  if (set->hands != 1) return us_plan_hands(s, set, out, err); /* hands.c */
   us_SearchCtx ctx;
   st = ctx_init(&ctx, s, set, &out->stats, err);
   ctx.note = out->note;

@@ -4,7 +4,8 @@
  *
  * Dependencies inside src/plan run one way (no cycles); each file
  * includes the headers of the files it calls:
- *   plan.c     -> searches.h (dfs.c, bfs.c), rules.h, exact.h, assemble.h,
+ *   plan.c     -> hands.h (hands.c -> hook.h),
+ *                 searches.h (dfs.c, bfs.c), rules.h, exact.h, assemble.h,
  *                 order.h, search.h, hook.h
  *   dfs.c, bfs.c -> rescue.h, rules.h, search.h
  *   rescue.c   -> rules.h, search.h
