@@ -16,10 +16,12 @@
 #include <string.h>
 
 #include "io.h"
+#include "plan_actions.h"
 
 static const char *const plan_keys[] = {
     "format",    "version",   "status",  "order",   "method",    "search",     "order_heuristic",
-    "direction", "removal",   "max_group", "buildable", "blocked", "steps", "statistics", NULL};
+    "direction", "removal",   "max_group", "buildable", "blocked", "steps", "statistics",
+    "hands",     "hands_lower", "actions", NULL};
 
 /* ------------------------------------------------------------------ write */
 
@@ -214,6 +216,7 @@ us_Status us_plan_write(const us_Structure *s, const us_Plan *p, const us_PlanSe
   us_JsonOut o = {us_atomic_stream(af), 0, 0};
   us_Status st = US_OK;
   write_header(&o, s, p, set);
+  us_plan_write_actions(&o, s, p);
   if (p->certs) st = write_steps(&o, s, p, set ? set->stability.cert_tol : 1e-6);
   if (!st) write_stats(&o, &p->stats);
   us_jo_raw(&o, "}\n");
@@ -388,6 +391,7 @@ us_Status us_plan_read(const us_Structure *s, const char *path, us_PlanFile *out
   if (!st) st = read_order(&c, s, json_object_get(root, "order"), out);
   if (!st) st = read_blocked(&c, s, json_object_get(root, "blocked"), out);
   if (!st) st = read_removal(&c, json_object_get(root, "removal"), &out->removal);
+  if (!st) st = us_plan_read_actions(&c, s, root, out);
   json_decref(root);
   us_free(text);
   if (st) {
@@ -402,6 +406,9 @@ void us_plan_file_free(us_PlanFile *pf) {
   us_free(pf->order);
   us_free(pf->group_start);
   us_free(pf->blocked);
+  us_free(pf->actions);
+  pf->actions = NULL;
+  pf->nactions = pf->hands = 0;
   pf->order = pf->group_start = pf->blocked = NULL;
   pf->n = pf->ngroups = pf->nblocked = 0;
 }

@@ -99,16 +99,22 @@ static void fixed_clear(Fixed *f) {
   memset(f, 0, sizeof *f);
 }
 
+int us_hands_fixed_copy(const us_Structure *s, const us_Bitset *F, us_Structure *copy,
+                        us_Body **bodies) {
+  *copy = *s;
+  *bodies = us_malloc((size_t)s->nbody * sizeof(us_Body) + 1);
+  if (!*bodies) return -1;
+  memcpy(*bodies, s->bodies, (size_t)s->nbody * sizeof(us_Body));
+  for (int i = 0; i < s->nbody; i++)
+    if (us_bitset_get(F, i)) (*bodies)[i].fixed = 1;
+  copy->bodies = *bodies;
+  return 0;
+}
+
 /* A workspace on a copy of the structure with the bodies of F fixed. */
 static int fixed_make(Hands *h, Fixed *f, const us_Bitset *F, us_Error *err) {
-  f->s = *h->s;
-  f->bodies = us_malloc((size_t)h->n * sizeof(us_Body) + 1);
-  if (!f->bodies || us_bitset_copy(&f->held, F))
+  if (us_hands_fixed_copy(h->s, F, &f->s, &f->bodies) || us_bitset_copy(&f->held, F))
     return oom(err);
-  memcpy(f->bodies, h->s->bodies, (size_t)h->n * sizeof(us_Body));
-  for (int i = 0; i < h->n; i++)
-    if (us_bitset_get(F, i)) f->bodies[i].fixed = 1;
-  f->s.bodies = f->bodies;
   f->w = us_stability_new(&f->s, &h->set->stability, err);
   if (!f->w) return -1;
   us_stability_set_skip_forces(f->w, 1);

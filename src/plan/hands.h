@@ -11,4 +11,10 @@
 us_Status us_plan_hands(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
                         us_Error *err);
 
+/* A shallow copy of s whose bodies in F are fixed (held): the same
+ * geometry, contacts and ids; *bodies is its own body array (us_free it;
+ * the copy is valid while s is). 0, or -1 on OOM. */
+int us_hands_fixed_copy(const us_Structure *s, const us_Bitset *F, us_Structure *copy,
+                        us_Body **bodies);
+
 #endif
