@@ -59,9 +59,8 @@ static void print_hands(const us_Structure *s, const us_Plan *p, int asked) {
   if (p->status == US_PLAN_FOUND && asked == 0 && p->hands_lower >= p->hands)
     printf("  %d hand%s: the minimum (proven)\n", p->hands, p->hands == 1 ? "" : "s");
   else if (p->status == US_PLAN_FOUND && asked == 0)
-    printf("  %d hands; not proven impossible: %d%s%d (budget: --exact-tests, --time-limit)\n",
-           p->hands, p->hands_lower, p->hands - 1 > p->hands_lower ? " to " : "",
-           p->hands - 1 > p->hands_lower ? p->hands - 1 : p->hands_lower);
+    printf("  %d hands, not proven minimal: %d to %d not proven impossible (budget: "
+           "--exact-tests, --time-limit)\n", p->hands, p->hands_lower, p->hands - 1);
   else if (p->status == US_PLAN_NONE && p->blocked) {
     printf("  proven: %d hand%s cannot build the part of ", asked, asked == 1 ? "" : "s");
     print_ids(s, p->blocked, p->nblocked, 20);

@@ -52,6 +52,8 @@
 
 #define HANDS_CACHE 16  /* workspaces kept, one per held set */
 #define DOMINANCE_MAX 10 /* held sets up to this size: every subset looked up */
+#define RELEASE_TRIES 3  /* constructive: the oldest held bodies tried for release */
+#define EXACT_SECONDS 10.0 /* auto without a time limit: the exact phase's time */
 
 typedef struct {
   us_Structure s;   /* shallow copy whose held bodies are fixed */
@@ -74,6 +76,7 @@ typedef struct {
   size_t note_sz;
   double t_start;
   long test_end;             /* the exact search's budget end (0: none) */
+  double time_end;           /* the exact phase's deadline (us_now; 0: none) */
   int n;                     /* bodies */
   Fixed cache[HANDS_CACHE];
   long clock;
@@ -152,6 +155,7 @@ static int limit_reached(const Hands *h) {
   const us_PlanSettings *set = h->set;
   if (set->max_tests > 0 && h->st->tests >= set->max_tests) return 1;
   if (h->test_end > 0 && h->st->tests >= h->test_end) return 1;
+  if (h->time_end > 0 && us_now() >= h->time_end) return 1;
   return set->time_limit > 0 && us_now() - h->t_start >= set->time_limit;
 }
 
@@ -298,11 +302,13 @@ static int make_order(const Hands *h, int k, int along, int *ord) {
   return m;
 }
 
-/* Release held bodies, oldest first, while one can go. held[0..*nh) by
- * age; F their set. 0 done, < 0 error or limit. */
+/* Release held bodies, oldest first, while one of the RELEASE_TRIES
+ * oldest can go (trying them all costs a test per held body after every
+ * placement: on the dome, 3D tests of 100 bodies). held[0..*nh) by age;
+ * F their set. 0 done, < 0 error or limit. */
 static int release_eagerly(Hands *h, us_Bitset *P, us_Bitset *F, int *held, int *nh,
                            Actions *out, us_Error *err) {
-  for (int q = 0; q < *nh;) {
+  for (int q = 0; q < *nh && q < RELEASE_TRIES;) {
     us_bitset_clear(F, held[q]);
     int r = stands(h, P, F, err);
     if (r < 0) return r;
@@ -651,7 +657,9 @@ static int run_auto(Hands *h, Part *parts, int *lower, us_Error *err) {
     if (H > ub) ub = H;
   }
   if (ub <= *lower) return US_PLAN_FOUND;
+  if (h->set->time_limit <= 0) h->time_end = us_now() + EXACT_SECONDS;
   int e = auto_exact(h, parts, lower, err);
+  h->time_end = 0;
   return e == US_PLAN_LIMIT ? US_PLAN_FOUND : e; /* the constructive plans stand */
 }
 
