@@ -1,0 +1,45 @@
+# plan --hands: the arch's proven minimum, H - 1 none, the plan file's
+# actions accepted by verify; verify rejects bad action lists naming the
+# action's index (exit 2) and a release that falls (exit 1); an old plan
+# verifies as before.
+. "$(dirname "$0")/lib.sh"
+"$CLI" generate arch --voussoirs 7 -o "$T/arch.json" >/dev/null
+expect 0 "arch: --hands auto finds a plan" -- "$CLI" plan "$T/arch.json" --hands auto -o "$T/auto.json"
+contains "$T/out" "2 hands: the minimum (proven)" "the minimum is 2, proven"
+contains "$T/auto.json" '"hands": 2' "plan file: hands"
+contains "$T/auto.json" '["place", "b1"]' "plan file: actions"
+expect 0 "verify accepts the action plan" -- "$CLI" verify "$T/arch.json" "$T/auto.json"
+contains "$T/out" "at most 2 hands" "verify names the hands"
+expect 1 "arch: one hand is none" -- "$CLI" plan "$T/arch.json" --hands 1
+contains "$T/out" "none" "says none"
+expect 0 "arch: --hands 2" -- "$CLI" plan "$T/arch.json" --hands=2 -o "$T/two.json"
+expect 0 "verify accepts it" -- "$CLI" verify "$T/arch.json" "$T/two.json"
+expect 2 "--hands 0 is a usage error" -- "$CLI" plan "$T/arch.json" --hands 0
+expect 2 "--hands x is a usage error" -- "$CLI" plan "$T/arch.json" --hands x
+
+"$CLI" generate column --blocks 3 -o "$T/col.json" >/dev/null
+expect 0 "old plan verifies as before" -- "$CLI" plan "$T/col.json" -o "$T/old.json"
+expect 0 "old plan verify" -- "$CLI" verify "$T/col.json" "$T/old.json"
+contains "$T/out" "valid: 3 removals" "old report unchanged"
+
+plan() { # plan HANDS ACTIONS ORDER
+  printf '{"status": "found", "hands": %s, "order": [%s], "actions": [%s]}\n' "$1" "$3" "$2"
+}
+plan 1 '["place", "b1"], ["place", "b1"], ["release", "b1"]' '"b1"' >"$T/twice.json"
+expect 2 "a body placed twice" -- "$CLI" verify "$T/col.json" "$T/twice.json"
+contains "$T/err" "action 1" "names the action's index"
+plan 2 '["place", "b1"], ["release", "b2"]' '"b1"' >"$T/unheld.json"
+expect 2 "a release of a body not held" -- "$CLI" verify "$T/col.json" "$T/unheld.json"
+contains "$T/err" "action 1" "names the action's index"
+plan 1 '["place", "b1"], ["place", "b2"], ["release", "b1"], ["release", "b2"], ["place", "b3"], ["release", "b3"]' '"b3", "b2", "b1"' >"$T/many.json"
+expect 2 "more than H held" -- "$CLI" verify "$T/col.json" "$T/many.json"
+contains "$T/err" "action 1" "names the action's index"
+plan 1 '["put", "b1"]' '"b1"' >"$T/verb.json"
+expect 2 "an unknown verb" -- "$CLI" verify "$T/col.json" "$T/verb.json"
+contains "$T/err" "actions[0]" "names the entry"
+plan 1 '["place", "b2"], ["release", "b2"], ["place", "b1"], ["release", "b1"], ["place", "b3"], ["release", "b3"]' '"b3", "b1", "b2"' >"$T/falls.json"
+expect 1 "a release that falls" -- "$CLI" verify "$T/col.json" "$T/falls.json"
+contains "$T/out" "action 1" "names the release"
+plan 1 '["place", "b1"], ["release", "b1"], ["place", "b2"], ["release", "b2"], ["place", "b3"], ["release", "b3"]' '"b1", "b2", "b3"' >"$T/order.json"
+expect 2 "order not the placements reversed" -- "$CLI" verify "$T/col.json" "$T/order.json"
+finish
