@@ -1,7 +1,7 @@
 # plan --hands: the arch's proven minimum, H - 1 none, the plan file's
 # actions accepted by verify; verify rejects bad action lists naming the
 # action's index (exit 2) and a release that falls (exit 1); an old plan
-# verifies as before.
+# verifies as before; classify names the buttressing class.
 . "$(dirname "$0")/lib.sh"
 "$CLI" generate arch --voussoirs 7 -o "$T/arch.json" >/dev/null
 expect 0 "arch: --hands auto finds a plan" -- "$CLI" plan "$T/arch.json" --hands auto -o "$T/auto.json"
@@ -17,10 +17,15 @@ expect 0 "verify accepts it" -- "$CLI" verify "$T/arch.json" "$T/two.json"
 expect 2 "--hands 0 is a usage error" -- "$CLI" plan "$T/arch.json" --hands 0
 expect 2 "--hands x is a usage error" -- "$CLI" plan "$T/arch.json" --hands x
 
+expect 0 "classify the arch" -- "$CLI" classify "$T/arch.json"
+contains "$T/out" "buttressing: needed: the smallest number of hands holding bodies still is 2 (proven" "classify: needs buttressing, 2 hands, proven"
+
 "$CLI" generate column --blocks 3 -o "$T/col.json" >/dev/null
 expect 0 "old plan verifies as before" -- "$CLI" plan "$T/col.json" -o "$T/old.json"
 expect 0 "old plan verify" -- "$CLI" verify "$T/col.json" "$T/old.json"
 contains "$T/out" "valid: 3 removals" "old report unchanged"
+expect 0 "classify the column" -- "$CLI" classify "$T/col.json"
+if grep -q buttressing "$T/out"; then bad "a column needs no buttressing line"; else ok "no buttressing line for a column"; fi
 
 plan() { # plan HANDS ACTIONS ORDER
   printf '{"status": "found", "hands": %s, "order": [%s], "actions": [%s]}\n' "$1" "$3" "$2"
