@@ -53,6 +53,7 @@
  * Every step writes its own fields of the classification and its time;
  * the first error stops the driver and empties the result. */
 #include "core/core.h"
+#include "hands.h"
 #include "hook.h"
 
 #include <math.h>
@@ -246,7 +247,8 @@ static us_Status classify_hands(const us_Structure *s, const us_ClassifySettings
   us_PlanSettings p = probe_settings(set, US_SEARCH_ASSEMBLE, 1);
   p.hands = 0;
   us_Plan plan;
-  us_Status st = us_plan(s, &p, &plan, err);
+  memset(&plan, 0, sizeof plan);
+  us_Status st = us_plan_hands_after_none(s, &p, &plan, err); /* step 4 proved H = 1 none */
   if (st) return st;
   out->hands_status = plan.status;
   out->hands = plan.status == US_PLAN_FOUND ? plan.hands : 0;

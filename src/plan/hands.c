@@ -85,6 +85,7 @@ typedef struct {
   us_BitsetSet seen;         /* exact search: expanded states */
   us_Bitset key, none;       /* key: 2 * 64 * nwords bits; none: empty held set */
   int *comp, ncomp;          /* comp[i]: component of movable body i, else -1 */
+  int one_none;              /* the caller proved H = 1 impossible (auto skips it) */
   Actions path;              /* actions of the search under way */
 } Hands;
 
@@ -120,9 +121,11 @@ static int fixed_make(Hands *h, Fixed *f, const us_Bitset *F, us_Error *err) {
     return oom(err);
   f->w = us_stability_new(&f->s, &h->set->stability, err);
   if (!f->w) return -1;
+  /* no deadline inside the solver: the time limit is checked between
+     tests (CLP's CPU-time limit, scaled by a share measured since the
+     workspace was made, can stop a cached workspace's solve before the
+     wall-clock deadline: an error, not a verdict) */
   us_stability_set_skip_forces(f->w, 1);
-  double tl = h->set->time_limit;
-  if (tl > 0 && isfinite(tl)) us_stability_set_deadline(f->w, h->t_start + tl);
   return 0;
 }
 
@@ -645,7 +648,7 @@ static int auto_exact(Hands *h, Part *parts, int *lower, us_Error *err) {
 
 /* hands 0: the smallest H (proven or bounded). A status or < 0. */
 static int run_auto(Hands *h, Part *parts, int *lower, us_Error *err) {
-  int r = one_hand(h, parts, err);
+  int r = h->one_none ? US_PLAN_NONE : one_hand(h, parts, err);
   *lower = r == US_PLAN_NONE ? 2 : 1;
   if (r < 0 || r == US_PLAN_FOUND || r == US_PLAN_UNSTABLE) return r;
   int ub = 0;
@@ -712,8 +715,8 @@ static int run(Hands *h, Part *parts, us_Plan *out, us_Error *err) {
   return r;
 }
 
-us_Status us_plan_hands(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
-                        us_Error *err) {
+static us_Status plan_hands(const us_Structure *s, const us_PlanSettings *set, int one_none,
+                            us_Plan *out, us_Error *err) {
   if (set->hands < 0 || set->hands > 64)
     return us_error_set(err, US_ERR_USAGE, "plan settings: hands must be 0 (auto) to 64, got %d",
                         set->hands);
@@ -723,6 +726,7 @@ us_Status us_plan_hands(const us_Structure *s, const us_PlanSettings *set, us_Pl
   Hands h;
   Part *parts = NULL;
   us_Status st = hands_init(&h, s, set, out, err);
+  h.one_none = one_none && set->hands == 0;
   if (!st && !(parts = us_calloc((size_t)h.ncomp + 1, sizeof *parts)))
     st = us_error_set(err, US_ERR_NOMEM, "out of memory (hands)");
   int r = st ? -1 : run(&h, parts, out, err);
@@ -733,5 +737,16 @@ us_Status us_plan_hands(const us_Structure *s, const us_PlanSettings *set, us_Pl
   us_free(parts);
   hands_free(&h);
   out->stats.time_total = us_now() - h.t_start;
+  if (st) us_plan_free(out);
   return st;
+}
+
+us_Status us_plan_hands(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
+                        us_Error *err) {
+  return plan_hands(s, set, 0, out, err);
+}
+
+us_Status us_plan_hands_after_none(const us_Structure *s, const us_PlanSettings *set,
+                                   us_Plan *out, us_Error *err) {
+  return plan_hands(s, set, 1, out, err);
 }

@@ -11,6 +11,13 @@
 us_Status us_plan_hands(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
                         us_Error *err);
 
+/* The same for hands 0 (auto) when the caller has proven that no
+ * one-at-a-time order exists (classify's sequence class): H = 1 is not
+ * searched again. Out as us_plan's (memset by the caller's us_plan is not
+ * done here: out must be zeroed). */
+us_Status us_plan_hands_after_none(const us_Structure *s, const us_PlanSettings *set,
+                                   us_Plan *out, us_Error *err);
+
 /* A shallow copy of s whose bodies in F are fixed (held): the same
  * geometry, contacts and ids; *bodies is its own body array (us_free it;
  * the copy is valid while s is). 0, or -1 on OOM. */

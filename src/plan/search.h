@@ -12,7 +12,8 @@
  *   rules.c    -> exact.h, assemble.h, search.h
  *   exact.c    -> assemble.h, order.h, search.h, hook.h
  *   assemble.c, order.c -> search.h
- *   search.c, verify.c, classify.c -> hook.h
+ *   classify.c -> hands.h, hook.h; verify_actions.c -> hands.h, hook.h
+ *   search.c, verify.c -> hook.h
  *   search.h, graph.h and hook.h call nothing in src/plan. */
 #ifndef US_SEARCH_H
 #define US_SEARCH_H
