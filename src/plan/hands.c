@@ -86,6 +86,7 @@ typedef struct {
   us_Bitset key, none;       /* key: 2 * 64 * nwords bits; none: empty held set */
   int *comp, ncomp;          /* comp[i]: component of movable body i, else -1 */
   int one_none;              /* the caller proved H = 1 impossible (auto skips it) */
+  int exact_only;            /* tests: fixed H by the exact search alone */
   Actions path;              /* actions of the search under way */
 } Hands;
 
@@ -670,7 +671,7 @@ static int run_auto(Hands *h, Part *parts, int *lower, us_Error *err) {
  * *failed: the component without a plan. A status or < 0. */
 static int run_fixed(Hands *h, Part *parts, int H, int *failed, us_Error *err) {
   for (int k = 0; k < h->ncomp; k++) {
-    int c = construct_best(h, k, H, &parts[k].plan, err);
+    int c = h->exact_only ? 0 : construct_best(h, k, H, &parts[k].plan, err);
     if (c < 0) return c == -2 ? US_PLAN_LIMIT : c;
     if (c > 0) continue;
     int proof, r = exact_search(h, k, H, &parts[k].plan, &proof, err);
@@ -716,8 +717,8 @@ static int run(Hands *h, Part *parts, us_Plan *out, us_Error *err) {
 }
 
 static us_Status plan_hands(const us_Structure *s, const us_PlanSettings *set, int one_none,
-                            us_Plan *out, us_Error *err) {
-  if (set->hands < 0 || set->hands > 64)
+                            int exact_only, us_Plan *out, us_Error *err) {
+  if (set->hands < 0 || set->hands > 64 || (exact_only && set->hands < 1))
     return us_error_set(err, US_ERR_USAGE, "plan settings: hands must be 0 (auto) to 64, got %d",
                         set->hands);
   if (set->search != US_SEARCH_ASSEMBLE || set->removal != US_REMOVAL_ANY || set->max_group != 1)
@@ -727,6 +728,7 @@ static us_Status plan_hands(const us_Structure *s, const us_PlanSettings *set, i
   Part *parts = NULL;
   us_Status st = hands_init(&h, s, set, out, err);
   h.one_none = one_none && set->hands == 0;
+  h.exact_only = exact_only;
   if (!st && !(parts = us_calloc((size_t)h.ncomp + 1, sizeof *parts)))
     st = us_error_set(err, US_ERR_NOMEM, "out of memory (hands)");
   int r = st ? -1 : run(&h, parts, out, err);
@@ -743,10 +745,16 @@ static us_Status plan_hands(const us_Structure *s, const us_PlanSettings *set, i
 
 us_Status us_plan_hands(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
                         us_Error *err) {
-  return plan_hands(s, set, 0, out, err);
+  return plan_hands(s, set, 0, 0, out, err);
 }
 
 us_Status us_plan_hands_after_none(const us_Structure *s, const us_PlanSettings *set,
                                    us_Plan *out, us_Error *err) {
-  return plan_hands(s, set, 1, out, err);
+  return plan_hands(s, set, 1, 0, out, err);
+}
+
+us_Status us_plan_hands_exact(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
+                              us_Error *err) {
+  memset(out, 0, sizeof *out);
+  return plan_hands(s, set, 0, 1, out, err);
 }

@@ -18,6 +18,11 @@ us_Status us_plan_hands(const us_Structure *s, const us_PlanSettings *set, us_Pl
 us_Status us_plan_hands_after_none(const us_Structure *s, const us_PlanSettings *set,
                                    us_Plan *out, us_Error *err);
 
+/* Tests: set->hands (1 to 64) decided by the exact search alone (no
+ * constructive plan first, H = 1 not handed to today's planner). */
+us_Status us_plan_hands_exact(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
+                              us_Error *err);
+
 /* A shallow copy of s whose bodies in F are fixed (held): the same
  * geometry, contacts and ids; *bodies is its own body array (us_free it;
  * the copy is valid while s is). 0, or -1 on OOM. */
