@@ -724,6 +724,9 @@ static us_Status plan_hands(const us_Structure *s, const us_PlanSettings *set, i
   if (set->search != US_SEARCH_ASSEMBLE || set->removal != US_REMOVAL_ANY || set->max_group != 1)
     return us_error_set(err, US_ERR_USAGE, "plans with hands use the assemble search, removal "
                         "any and steps of one body");
+  if (set->certificates)
+    return us_error_set(err, US_ERR_USAGE, "plans with hands do not store certificates yet "
+                        "(verify re-tests every release and re-checks its certificate)");
   Hands h;
   Part *parts = NULL;
   us_Status st = hands_init(&h, s, set, out, err);

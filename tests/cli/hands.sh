@@ -16,6 +16,8 @@ expect 0 "arch: --hands 2" -- "$CLI" plan "$T/arch.json" --hands=2 -o "$T/two.js
 expect 0 "verify accepts it" -- "$CLI" verify "$T/arch.json" "$T/two.json"
 expect 2 "--hands 0 is a usage error" -- "$CLI" plan "$T/arch.json" --hands 0
 expect 2 "--hands x is a usage error" -- "$CLI" plan "$T/arch.json" --hands x
+expect 2 "--hands with --certificates is refused, not ignored" -- "$CLI" plan "$T/arch.json" --hands 2 --certificates
+contains "$T/err" "certificates" "says why"
 
 expect 0 "classify the arch" -- "$CLI" classify "$T/arch.json"
 contains "$T/out" "buttressing: needed: the smallest number of hands holding bodies still is 2 (proven" "classify: needs buttressing, 2 hands, proven"
