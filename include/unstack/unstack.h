@@ -634,6 +634,9 @@ typedef struct us_Plan {
                             minimum is proven when hands_lower == hands */
   int nactions;
   us_Action *actions;    /* [nactions] in assembly order */
+  us_Forces *release_certs; /* with certificates: [nactions], action k's forces
+                            when it is a release (the placed bodies, the held
+                            ones fixed), else empty */
 } us_Plan;
 US_API void us_plan_free(us_Plan *p);
 

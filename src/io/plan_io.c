@@ -21,7 +21,7 @@
 static const char *const plan_keys[] = {
     "format",    "version",   "status",  "order",   "method",    "search",     "order_heuristic",
     "direction", "removal",   "max_group", "buildable", "blocked", "steps", "statistics",
-    "hands",     "hands_lower", "actions", NULL};
+    "hands",     "hands_lower", "actions", "release_certificates", NULL};
 
 /* ------------------------------------------------------------------ write */
 

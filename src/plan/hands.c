@@ -704,12 +704,66 @@ static int full_stands(Hands *h, us_Error *err) {
   return r;
 }
 
+/* dst = src (dim forces per contact). */
+static int forces_copy(us_Forces *dst, const us_Forces *src, int dim) {
+  int n = src->ncontact;
+  dst->contact = us_malloc((size_t)(n > 0 ? n : 1) * sizeof(int));
+  dst->f = us_malloc((size_t)(n > 0 ? n : 1) * (size_t)dim * sizeof(double));
+  if (!dst->contact || !dst->f) return -1;
+  if (n > 0) memcpy(dst->contact, src->contact, (size_t)n * sizeof(int));
+  if (n > 0) memcpy(dst->f, src->f, (size_t)n * (size_t)dim * sizeof(double));
+  dst->ncontact = dst->cap = n;
+  return 0;
+}
+
+/* Release k's certificate: the placed bodies P with the held ones F
+ * fixed, tested again with forces kept (a fresh workspace). */
+static int release_cert(Hands *h, const us_Bitset *P, const us_Bitset *F, us_Forces *out,
+                        us_Error *err) {
+  us_Structure copy;
+  us_Body *bodies;
+  if (us_hands_fixed_copy(h->s, F, &copy, &bodies)) return oom(err);
+  us_Stability *w = us_stability_new(&copy, &h->set->stability, err);
+  int r = w ? 0 : -1;
+  if (w) us_stability_set_skip_forces(w, 0);
+  if (!r && us_plan_stability_test(w, P, &h->res, err)) r = -1;
+  if (!r) count_verdict(h);
+  if (!r && h->res.verdict != US_STABLE) {
+    us_error_set(err, US_ERR_SOLVER, "hands: a release of the plan did not test stable again "
+                 "with forces (%s)", h->res.note);
+    r = -1;
+  }
+  if (!r && forces_copy(out, &h->res.forces, h->s->dim)) r = oom(err);
+  us_stability_free(w);
+  us_free(bodies);
+  return r;
+}
+
+/* Certificates of every release of out's actions. */
+static int collect_certs(Hands *h, us_Plan *out, us_Error *err) {
+  us_Bitset P = {0}, F = {0};
+  out->release_certs = us_calloc((size_t)out->nactions + 1, sizeof(us_Forces));
+  int r = !out->release_certs || us_bitset_init(&P, h->n) || us_bitset_init(&F, h->n) ? oom(err) : 0;
+  for (int k = 0; !r && k < out->nactions; k++) {
+    const us_Action *a = &out->actions[k];
+    if (a->verb == US_ACTION_PLACE) us_bitset_set(&P, a->body);
+    if (a->verb != US_ACTION_RELEASE) us_bitset_set(&F, a->body);
+    if (a->verb != US_ACTION_RELEASE) continue;
+    us_bitset_clear(&F, a->body);
+    r = release_cert(h, &P, &F, &out->release_certs[k], err);
+  }
+  us_bitset_free(&P);
+  us_bitset_free(&F);
+  return r;
+}
+
 static int run(Hands *h, Part *parts, us_Plan *out, us_Error *err) {
   int full = full_stands(h, err), failed = -1, lower = h->set->hands;
   if (full <= 0) return full == -2 ? US_PLAN_LIMIT : full < 0 ? full : US_PLAN_UNSTABLE;
   int r = h->set->hands == 0 ? run_auto(h, parts, &lower, err)
                              : run_fixed(h, parts, h->set->hands, &failed, err);
   if (r == US_PLAN_FOUND && fill_plan(h, parts, out, err)) return -1;
+  if (r == US_PLAN_FOUND && h->set->certificates && collect_certs(h, out, err)) return -1;
   out->hands_lower = h->set->hands ? 1 : lower; /* a fixed H proves nothing below it */
   if (r == US_PLAN_NONE) out->hands = h->set->hands, out->hands_lower = h->set->hands + 1;
   if (r == US_PLAN_NONE && name_blocked(h, failed, out, err)) return -1;
@@ -724,9 +778,6 @@ static us_Status plan_hands(const us_Structure *s, const us_PlanSettings *set, i
   if (set->search != US_SEARCH_ASSEMBLE || set->removal != US_REMOVAL_ANY || set->max_group != 1)
     return us_error_set(err, US_ERR_USAGE, "plans with hands use the assemble search, removal "
                         "any and steps of one body");
-  if (set->certificates)
-    return us_error_set(err, US_ERR_USAGE, "plans with hands do not store certificates yet "
-                        "(verify re-tests every release and re-checks its certificate)");
   Hands h;
   Part *parts = NULL;
   us_Status st = hands_init(&h, s, set, out, err);

@@ -55,7 +55,10 @@ void us_plan_free(us_Plan *p) {
   us_free(p->group_start);
   us_free(p->buildable);
   us_free(p->blocked);
+  for (int k = 0; p->release_certs && k < p->nactions; k++) us_forces_free(&p->release_certs[k]);
+  us_free(p->release_certs);
   us_free(p->actions);
+  p->release_certs = NULL;
   p->actions = NULL;
   p->nactions = 0;
   p->certs = NULL;

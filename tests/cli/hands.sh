@@ -1,7 +1,9 @@
 # plan --hands: the arch's proven minimum, H - 1 none, the plan file's
 # actions accepted by verify; verify rejects bad action lists naming the
 # action's index (exit 2) and a release that falls (exit 1); an old plan
-# verifies as before; classify names the buttressing class.
+# verifies as before; classify names the buttressing class; with
+# --certificates the independent Python checker replays the actions and
+# rejects corrupted ones.
 . "$(dirname "$0")/lib.sh"
 "$CLI" generate arch --voussoirs 7 -o "$T/arch.json" >/dev/null
 expect 0 "arch: --hands auto finds a plan" -- "$CLI" plan "$T/arch.json" --hands auto -o "$T/auto.json"
@@ -16,8 +18,6 @@ expect 0 "arch: --hands 2" -- "$CLI" plan "$T/arch.json" --hands=2 -o "$T/two.js
 expect 0 "verify accepts it" -- "$CLI" verify "$T/arch.json" "$T/two.json"
 expect 2 "--hands 0 is a usage error" -- "$CLI" plan "$T/arch.json" --hands 0
 expect 2 "--hands x is a usage error" -- "$CLI" plan "$T/arch.json" --hands x
-expect 2 "--hands with --certificates is refused, not ignored" -- "$CLI" plan "$T/arch.json" --hands 2 --certificates
-contains "$T/err" "certificates" "says why"
 
 expect 0 "classify the arch" -- "$CLI" classify "$T/arch.json"
 contains "$T/out" "buttressing: needed: the smallest number of hands holding bodies still is 2 (proven" "classify: needs buttressing, 2 hands, proven"
@@ -49,4 +49,33 @@ expect 1 "a release that falls" -- "$CLI" verify "$T/col.json" "$T/falls.json"
 contains "$T/out" "action 1" "names the release"
 plan 1 '["place", "b1"], ["release", "b1"], ["place", "b2"], ["release", "b2"], ["place", "b3"], ["release", "b3"]' '"b1", "b2", "b3"' >"$T/order.json"
 expect 2 "order not the placements reversed" -- "$CLI" verify "$T/col.json" "$T/order.json"
+# the independent Python checker replays action plans with certificates
+CHECK="python3 $(cd "$(dirname "$0")/.." && pwd)/independent/check_plan.py"
+expect 0 "arch: --hands auto --certificates" -- "$CLI" plan "$T/arch.json" --hands auto --certificates -o "$T/cert.json"
+contains "$T/cert.json" '"release_certificates"' "plan file: release certificates"
+expect 0 "the independent checker passes the action plan" -- $CHECK "$T/arch.json" "$T/cert.json" --quiet
+contains "$T/out" "7 releases checked" "every release checked"
+"$CLI" generate pyramid3d --rows 3 -o "$T/p3.json" >/dev/null
+expect 0 "3D: --hands auto --certificates" -- "$CLI" plan "$T/p3.json" --hands auto --certificates -o "$T/p3c.json"
+expect 0 "3D: the independent checker passes" -- $CHECK "$T/p3.json" "$T/p3c.json" --quiet
+# corrupted: a force scaled by 1.5, a held body dropped, one hand too few
+python3 - "$T/cert.json" "$T" <<'PY'
+import json, sys
+p = json.load(open(sys.argv[1]))
+q = json.loads(json.dumps(p))
+c = q["release_certificates"][1]["contacts"][0]
+c["force"] = [1.5 * v for v in c["force"]]
+c["force_xyz"] = [1.5 * v for v in c["force_xyz"]]
+json.dump(q, open(sys.argv[2] + "/scaled.json", "w"))
+q = json.loads(json.dumps(p))
+q["release_certificates"][1]["held"] = []
+json.dump(q, open(sys.argv[2] + "/unheld.json", "w"))
+q = json.loads(json.dumps(p))
+q["hands"] = 1
+json.dump(q, open(sys.argv[2] + "/onehand.json", "w"))
+PY
+expect 1 "checker: a scaled force fails" -- $CHECK "$T/arch.json" "$T/scaled.json" --quiet
+expect 1 "checker: a held body left out of the certificate fails" -- $CHECK "$T/arch.json" "$T/unheld.json" --quiet
+expect 1 "checker: more bodies held than hands fails" -- $CHECK "$T/arch.json" "$T/onehand.json" --quiet
+contains "$T/out" "more than 1 hands" "names the hands"
 finish
