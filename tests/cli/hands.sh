@@ -58,6 +58,15 @@ contains "$T/out" "7 releases checked" "every release checked"
 "$CLI" generate pyramid3d --rows 3 -o "$T/p3.json" >/dev/null
 expect 0 "3D: --hands auto --certificates" -- "$CLI" plan "$T/p3.json" --hands auto --certificates -o "$T/p3c.json"
 expect 0 "3D: the independent checker passes" -- $CHECK "$T/p3.json" "$T/p3c.json" --quiet
+for seed in 1 2 3 4 5; do
+  "$CLI" generate stacker --rows 4 --width 5 --seed $seed -o "$T/st$seed.json" >/dev/null
+  "$CLI" plan "$T/st$seed.json" --hands auto --certificates -o "$T/st$seed-plan.json" >"$T/out" 2>&1
+  if [ $? -eq 0 ]; then
+    expect 0 "stacker seed $seed: the checker passes the action plan" -- $CHECK "$T/st$seed.json" "$T/st$seed-plan.json" --quiet
+  else
+    bad "stacker seed $seed: plan --hands auto found nothing"; sed 's/^/    /' "$T/out" | head -5
+  fi
+done
 # corrupted: a force scaled by 1.5, a held body dropped, one hand too few
 python3 - "$T/cert.json" "$T" <<'PY'
 import json, sys
