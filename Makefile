@@ -7,7 +7,7 @@ CLI    = $(BUILD)/unstack
 OUT   ?= demo-out
 QUICK ?= 0
 
-.PHONY: all deps build asan demo test test-release test-asan bench clean fuzz fuzz-build
+.PHONY: all deps build cli asan demo test test-release test-asan bench clean fuzz fuzz-build
 
 all: build
 
@@ -22,8 +22,15 @@ asan: deps
 	@cmake -S . -B $(ASAN) -DCMAKE_BUILD_TYPE=Debug -DUS_SANITIZE=ON >/dev/null
 	@cmake --build $(ASAN) -j$(JOBS)
 
+# What the demo runs: the tool and its modules (docs/modules.md), none of
+# the test programs; `make build` and `make test` build everything.
+cli:
+	@bash scripts/deps.sh demo
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
+	@cmake --build $(BUILD) -j$(JOBS) --target unstack_cli
+
 # The main job on a built-in default: the source's 91-block pyramid.
-demo: build
+demo: cli
 	@mkdir -p $(OUT)
 	$(CLI) generate pyramid --rows 13 -o $(OUT)/pyramid.json
 	$(CLI) check $(OUT)/pyramid.json
@@ -51,7 +58,7 @@ bench: build
 FUZZ_BUILD   ?= build-fuzz
 FUZZ_OUT     ?= $(FUZZ_BUILD)/out
 FUZZ_TIME    ?= 60
-FUZZ_TARGETS ?= structure pipeline oom
+FUZZ_TARGETS ?= structure pipeline oom svg html
 FUZZ_FLAGS   ?= -max_len=8192 -timeout=20 -rss_limit_mb=2048 -print_final_stats=1
 
 fuzz-build:
@@ -64,7 +71,7 @@ fuzz: fuzz-build
 	  mkdir -p $(FUZZ_OUT)/$$t/corpus $(FUZZ_OUT)/$$t/findings; \
 	  echo "fuzz_$$t: $(FUZZ_TIME) s, new inputs in $(FUZZ_OUT)/$$t/corpus"; \
 	  OPENBLAS_NUM_THREADS=1 $(FUZZ_BUILD)/fuzz_$$t $(FUZZ_FLAGS) -max_total_time=$(FUZZ_TIME) \
-	    -dict=tests/fuzz/json.dict -artifact_prefix=$(FUZZ_OUT)/$$t/findings/ \
+	    -dict=tests/fuzz/$$( [ -f tests/fuzz/$$t.dict ] && echo $$t || echo json).dict -artifact_prefix=$(FUZZ_OUT)/$$t/findings/ \
 	    $(FUZZ_OUT)/$$t/corpus tests/fuzz/corpus/$$t 2>$(FUZZ_OUT)/$$t/log \
 	    || { found=1; echo "fuzz_$$t: FINDING in $(FUZZ_OUT)/$$t/findings/ (log: $(FUZZ_OUT)/$$t/log)"; }; \
 	  tail -n 3 $(FUZZ_OUT)/$$t/log; \

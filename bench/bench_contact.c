@@ -81,7 +81,7 @@ static int run(const char *name, us_Structure *s, us_Error *err) {
     return 1;
   }
   double t0 = us_now();
-  us_Status st = s->finalized ? US_OK : us_structure_finalize(s, err);
+  us_Status st = us_structure_is_finalized(s) ? US_OK : us_structure_finalize(s, err);
   double t_fin = us_now() - t0;
   if (st != US_OK) {
     fprintf(stderr, "%s: %s\n", name, err->msg);

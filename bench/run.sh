@@ -13,6 +13,10 @@
 #                 the bodies in the tested sub-assembly, per method, on the
 #                 91-block pyramid and a 1,000-block wall (bench_fig4),
 #                 and on the frictionless pyramid taken apart (the source's);
+#   startup.csv   whole commands timed from fork to exit: /bin/true, check
+#                 on a 5-block column, plan on the pyramid with lp and
+#                 lpsolve (bench/startup.c); startup-ratios.csv the two
+#                 ratios of issue 24;
 #   scaling.csv   walls and pyramids from 100 to 100,000 blocks, the
 #                 stacker's random stacks from 100 to about 9,000: plan and verify time, tests, peak memory,
 #                 and the fitted exponent from 1,000 blocks up;
@@ -216,6 +220,46 @@ for m in lpsolve lcp lcp-reuse lp auto; do
   [ -n "$stats" ] || continue
   say "| $m | $stats | $(echo "$fits" | awk -v m="$m" '$1 == m {print $2}') |"
 done
+say ""
+
+# ------------------------------------------------------------------ start-up
+# Whole commands as a user runs them (bench_startup: fork to exit, median
+# of many runs): the price of loading the executable and its libraries
+# (docs/modules.md). Targets (issue 24): check on a 5-block column at most
+# 4x /bin/true; plan on the pyramid at least 20x faster than with lpsolve.
+say "## Start-up: whole commands"
+say ""
+ST=$OUT/startup-$tag.csv
+RUNS=$([ "$QUICK" = 1 ] && echo 31 || echo 101)
+SLOW=$([ "$QUICK" = 1 ] && echo 11 || echo 31)
+gen column --blocks 5 -o "$W/column5.json"
+echo "command,runs,median_ms,min_ms,objects" >"$ST"
+# objects COMMAND...: the shared objects one run maps
+objects() { LD_DEBUG=files "$@" 2>&1 >/dev/null | grep -c 'generating link map'; }
+# the fast three take turns (bench_startup), so the load falls on all alike
+fast=$("$B/bench_startup" "$RUNS" /bin/true -- "$CLI" check "$W/column5.json" \
+  -- "$CLI" plan "$W/pyramid91.json" -o "$W/sp.json")
+slow=$("$B/bench_startup" "$SLOW" "$CLI" plan "$W/pyramid91.json" --method lpsolve -o "$W/sp.json")
+# shellcheck disable=SC2086 # the numbers, one word each
+read -r t_true m_true t_check m_check t_plan m_plan < <(echo $fast)
+read -r t_lps m_lps <<<"$slow"
+{
+  echo "true,$RUNS,$t_true,$m_true,$(objects /bin/true)"
+  echo "check column5,$RUNS,$t_check,$m_check,$(objects "$CLI" check "$W/column5.json")"
+  echo "plan pyramid91,$RUNS,$t_plan,$m_plan,$(objects "$CLI" plan "$W/pyramid91.json" -o "$W/sp.json")"
+  echo "plan pyramid91 --method lpsolve,$SLOW,$t_lps,$m_lps,$(objects "$CLI" plan "$W/pyramid91.json" \
+    --method lpsolve -o "$W/sp.json")"
+} >>"$ST"
+say "| command | runs | median ms | min ms | shared objects loaded |"
+say "|---|---|---|---|---|"
+tail -n +2 "$ST" | awk -F, '{printf "| %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5}' | tee -a "$MD"
+say ""
+say "$(awk -v c="$t_check" -v t="$t_true" -v p="$t_plan" -v l="$t_lps" 'BEGIN {
+  printf "check column5 / true: %.2f (target at most 4); plan pyramid91 lpsolve / lp: %.1f (target at least 20)", c / t, l / p }')"
+awk -v c="$t_check" -v t="$t_true" -v p="$t_plan" -v l="$t_lps" 'BEGIN {
+  print "ratio,value,target"
+  printf "check column5 / true,%.3f,at most 4\n", c / t
+  printf "plan pyramid91 lpsolve / lp,%.3f,at least 20\n", l / p }' >"$OUT/startup-ratios-$tag.csv"
 say ""
 
 # ------------------------------------------------------------------ scaling

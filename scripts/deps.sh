@@ -6,17 +6,23 @@ pkgs=(build-essential cmake pkg-config coinor-libclp-dev liblpsolve55-dev libsui
       libjansson-dev libxml2-dev libcairo2-dev libsiconos-numerics-dev python3)
 # `deps.sh fuzz` (make fuzz): also clang with libFuzzer and its sanitizers
 [ "${1:-}" = fuzz ] && pkgs+=(clang libclang-rt-14-dev)
+# `deps.sh demo` (make demo): what building the tool needs, without the
+# packages only the tests use (below: the browser test's too)
+test_only=" libsiconos-numerics-dev python3 "
 missing=()
 for p in "${pkgs[@]}"; do
+  [ "${1:-}" = demo ] && [[ $test_only == *" $p "* ]] && continue
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 # The browser test of the HTML viewer (tests/browser): Debian's chromium,
 # and node with npm for playwright-core. Node and npm are judged by their
 # commands: a node from another source (nodesource) bundles npm, and
 # Debian's npm package would conflict with it.
-command -v chromium >/dev/null 2>&1 || missing+=(chromium)
-command -v node >/dev/null 2>&1 || missing+=(nodejs)
-command -v npm >/dev/null 2>&1 || missing+=(npm)
+if [ "${1:-}" != demo ]; then
+  command -v chromium >/dev/null 2>&1 || missing+=(chromium)
+  command -v node >/dev/null 2>&1 || missing+=(nodejs)
+  command -v npm >/dev/null 2>&1 || missing+=(npm)
+fi
 [ ${#missing[@]} -eq 0 ] && exit 0
 echo "installing: ${missing[*]}"
 SUDO=""

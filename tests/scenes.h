@@ -1,5 +1,7 @@
-/* Small scenes shared by the test programs: an axis-aligned box and
- * sealing a structure. Header-only (static inline) because each test
+/* Small scenes and helpers shared by the test programs, written once:
+ * axis-aligned boxes (by size, by corners, auto-named), random rows of
+ * boxes, sealing a structure, a verdict with its certificate checked, and
+ * a few named structures. Header-only (static inline) because each test
  * program links only its own concept library. */
 #ifndef US_TEST_SCENES_H
 #define US_TEST_SCENES_H
@@ -43,6 +45,72 @@ static inline us_Structure *scene_seal(us_Structure *s) {
     return NULL;
   }
   return s;
+}
+
+/* Box [x0, x1] x [y0, y1] by its corners, density 1; the body index, or
+ * -1 with err set. */
+static inline int scene_box_corners(us_Structure *s, const char *id, double x0, double y0,
+                                    double x1, double y1, us_Error *err) {
+  double xy[8] = {x0, y0, x1, y0, x1, y1, x0, y1};
+  us_BodyDef d = us_default_body_def();
+  d.id = id;
+  d.nvert = 4;
+  d.xy = xy;
+  return us_structure_add_body(s, &d, err);
+}
+
+/* Box w x h at (x0, y0), density 1, named b<its index>; the body index or -1. */
+static inline int scene_box_auto(us_Structure *s, double x0, double y0, double w, double h) {
+  char id[24];
+  snprintf(id, sizeof id, "b%d", s->nbody);
+  return scene_box(s, id, x0, y0, w, h, 1.0);
+}
+
+/* 1-4 rows of 1-3 boxes (scene_box_auto), each row on the previous one's
+ * height, with random widths, heights, gaps (some zero: touching
+ * neighbours) and a row start in [-spread, spread]: stacks, overhangs,
+ * floating pieces. rnd: the caller's uniform numbers in [0, 1). */
+static inline double scene_uniform(double (*rnd)(void), double a, double b) {
+  return a + (b - a) * rnd();
+}
+
+static inline void scene_random_rows(us_Structure *s, double (*rnd)(void), double spread) {
+  int rows = 1 + (int)(rnd() * 4);
+  double y = 0;
+  for (int r = 0; r < rows; r++) {
+    int nb = 1 + (int)(rnd() * 3);
+    double h = scene_uniform(rnd, 0.3, 1.0), x = scene_uniform(rnd, -spread, spread);
+    for (int k = 0; k < nb; k++) {
+      double w = scene_uniform(rnd, 0.4, 1.5);
+      scene_box_auto(s, x, y, w, h);
+      x += w + (rnd() < 0.4 ? 0.0 : scene_uniform(rnd, 0.05, 0.6));
+    }
+    y += h;
+  }
+}
+
+/* Verdict of `present` (NULL: the full structure) with method m; -1 on
+ * error, -2 for a STABLE verdict without a passing certificate. */
+static inline int scene_verdict(const us_Structure *s, us_Method m, const us_Bitset *present) {
+  us_StabilitySettings set = us_stability_default_settings();
+  set.method = m;
+  us_Error err;
+  us_Stability *w = us_stability_new(s, &set, &err);
+  if (!w) {
+    fprintf(stderr, "new: %s\n", err.msg);
+    return -1;
+  }
+  us_StabilityResult res;
+  us_stability_result_init(&res);
+  us_Status st = present ? us_stability_test(w, present, &res, &err)
+                         : us_stability_test_full(w, &res, &err);
+  int v = st == US_OK ? (int)res.verdict : -1;
+  if (st) fprintf(stderr, "test: %s\n", err.msg);
+  if (v == US_STABLE && !res.check.ok) v = -2;
+  if (v == US_UNDECIDED) fprintf(stderr, "  %s: undecided: %s\n", us_method_name(m), res.note);
+  us_stability_result_free(&res);
+  us_stability_free(w);
+  return v;
 }
 
 /* A column of n boxes 1 x 0.5, ids c0 (bottom) .. c<n-1>. */

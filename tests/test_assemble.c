@@ -372,6 +372,43 @@ static void greedy_can_be_stuck_where_an_order_exists(void) {
   CHECK_INT(exhaustive, >, 0); /* the greedy alone was stuck */
 }
 
+/* The greedy's budget on the source-style stacker (issue 8: at most 2 n
+ * tests): a sweep of seeds, sizes and friction, each plan found with at
+ * most 2 n tests (a count, not a time). Before bodies woken by a far
+ * growth of their part were deferred (assemble.c), 14 x 60 seed 3 took
+ * 3.08 n frictionless. */
+static void stacker_within_two_n_tests(void) {
+#ifdef US_TEST_SANITIZED
+  static const int size[][2] = {{14, 12}, {14, 60}};
+  const unsigned long seeds = 3;
+#else
+  static const int size[][2] = {{14, 12}, {14, 60}, {30, 30}};
+  const unsigned long seeds = 6;
+#endif
+  for (size_t z = 0; z < sizeof size / sizeof size[0]; z++)
+    for (unsigned long seed = 1; seed <= seeds; seed++)
+      for (int f = 0; f < 2; f++) {
+        us_GenSettings g = us_gen_default_settings();
+        g.rows = size[z][0], g.width = size[z][1], g.seed = seed, g.friction = f ? 0.5 : 0.0;
+        us_Error err;
+        us_Structure *s = us_gen_stacker(&g, &err);
+        CHECK(s);
+        us_PlanSettings set = us_plan_default_settings();
+        us_Plan p;
+        us_PlanStatus st = run_plan(s, &set, &p);
+        long tests = p.stats.tests, n = s->nbody;
+        int valid = st == US_PLAN_FOUND && plan_valid(s, &p);
+        if (st != US_PLAN_FOUND || tests > 2 * n)
+          fprintf(stderr, "stacker %d x %d seed %lu mu %g: %s, %ld tests for %ld bodies\n",
+                  size[z][0], size[z][1], seed, g.friction, us_plan_status_name(st), tests, n);
+        us_plan_free(&p);
+        us_structure_free(s);
+        CHECK_INT(st, ==, US_PLAN_FOUND);
+        CHECK(valid);
+        CHECK_INT(tests, <=, 2 * n);
+      }
+}
+
 static void rules_report_their_savings(void) {
   us_Structure *s = arch_with_loose(LOOSE_PLAIN);
   CHECK(s);
@@ -458,8 +495,58 @@ static void undecided_plan_file_round_trip(void) {
   us_structure_free(s);
 }
 
-US_TEST_MAIN(T(assemble_agrees_with_exhaustive_reference), T(graph_searches_and_rules_agree),
+/* Does the sub-assembly of the first m bodies of v (fixed bodies always
+ * there) stand? 1, 0, or -1 on error. */
+static int prefix_stands(const us_Structure *s, const int *v, int m) {
+  us_StabilitySettings set = us_stability_default_settings();
+  us_Error err;
+  us_Bitset present;
+  if (us_bitset_init(&present, s->nbody)) return -1;
+  for (int q = 0; q < m; q++) us_bitset_set(&present, v[q]);
+  us_Stability *w = us_stability_new(s, &set, &err);
+  us_StabilityResult res;
+  us_stability_result_init(&res);
+  int r = w && us_stability_test(w, &present, &res, &err) == US_OK ? res.verdict == US_STABLE : -1;
+  us_stability_result_free(&res);
+  us_stability_free(w);
+  us_bitset_free(&present);
+  return r;
+}
+
+/* A none plan's build order (the greedy's placements, docs/format.md
+ * "build"): its steps cover the buildable bodies, and after every step
+ * what is placed stands (re-tested here), for the assemble search and for
+ * a graph search's none alike. */
+static void none_build_order_stands(void) {
+  /* a column listed top first (its index order does not stand) beside
+     two slabs leaning on each other (neither can be placed first) */
+  us_Structure *s = us_structure_new(2);
+  const char *ids[3] = {"top", "mid", "low"};
+  for (int i = 0; i < 3; i++) scene_box(s, ids[i], 5, 2.0 - i, 1, 1, 1);
+  double l[8] = {0, 0, 0.4, 0, 1.0, 1.5, 1.0, 2.0}, r[8] = {1.6, 0, 2.0, 0, 1.0, 2.0, 1.0, 1.5};
+  scene_polygon(s, "left", 4, l, 0);
+  scene_polygon(s, "right", 4, r, 0);
+  s = scene_seal(s);
+  CHECK(s);
+  CHECK_INT(prefix_stands(s, (const int[]){0}, 1), ==, 0); /* the index order fails */
+  us_Search searches[2] = {US_SEARCH_ASSEMBLE, US_SEARCH_DFS};
+  for (int k = 0; k < 2; k++) {
+    us_PlanSettings set = us_plan_default_settings();
+    set.search = searches[k];
+    us_Plan p;
+    CHECK_INT(run_plan(s, &set, &p), ==, US_PLAN_NONE);
+    int ok = p.build_start && p.nbuild == 3 && p.build_start[0] == 0 &&
+             p.build_start[p.nbuild] == p.nbuildable && p.nbuildable + p.nblocked == s->nbody;
+    for (int j = 1; ok && j <= p.nbuild; j++)
+      ok = prefix_stands(s, p.buildable, p.build_start[j]) == 1;
+    us_plan_free(&p);
+    CHECK(ok);
+  }
+  us_structure_free(s);
+}
+
+US_TEST_MAIN(T(stacker_within_two_n_tests), T(assemble_agrees_with_exhaustive_reference), T(graph_searches_and_rules_agree),
              T(steps_of_two_agree_with_reference), T(arch_next_to_loose_blocks_is_none),
              T(greedy_can_be_stuck_where_an_order_exists), T(rules_report_their_savings),
              T(kinematics_need_a_graph_search), T(out_of_memory_is_clean),
-             T(undecided_plan_file_round_trip))
+             T(undecided_plan_file_round_trip), T(none_build_order_stands))

@@ -2,6 +2,7 @@
  * dome.c, jenga.c, random3d.c): the layouts' contacts and volumes from
  * independent formulas, and the statics each structure must show, decided
  * by the library's stability test and planner. */
+#include "scenes.h"
 #include "test.h"
 
 #include <math.h>
@@ -20,17 +21,8 @@ static int count_pair(const us_Structure *s, int i, int j) {
 
 /* The verdict on the bodies of s whose bit is set in `present` (NULL: all). */
 static us_Verdict verdict_of(const us_Structure *s, const us_Bitset *present) {
-  us_StabilitySettings set = us_stability_default_settings();
-  us_Error err;
-  us_Stability *w = us_stability_new(s, &set, &err);
-  us_StabilityResult res;
-  us_stability_result_init(&res);
-  us_Status st = !w ? US_ERR_NOMEM : present ? us_stability_test(w, present, &res, &err)
-                                             : us_stability_test_full(w, &res, &err);
-  us_Verdict v = st ? US_UNDECIDED : res.verdict;
-  us_stability_result_free(&res);
-  us_stability_free(w);
-  return v;
+  int v = scene_verdict(s, US_METHOD_AUTO, present);
+  return v < 0 ? US_UNDECIDED : (us_Verdict)v;
 }
 
 static us_PlanStatus plan_status(const us_Structure *s) {

@@ -101,7 +101,7 @@ static void read_examples(void) {
     us_Structure *s = read_data(good_files[i], &err);
     if (!s) fprintf(stderr, "%s: %s\n", good_files[i], err.msg);
     CHECK(s != NULL);
-    CHECK(s->finalized);
+    CHECK(us_structure_is_finalized(s));
     CHECK_INT(s->ncontact, >, 0);
     us_structure_free(s);
   }
@@ -689,7 +689,9 @@ static void out_of_memory(void) {
   }
 }
 
-/* 10,000 bricks in running bond: read and write stay fast. */
+/* 10,000 bricks in running bond: written and read back unchanged. The
+ * times are printed, not asserted (a busy machine must not fail a test;
+ * bench/ measures speed). */
 static void large_wall(void) {
   const int rows = 100, cols = 100;
   size_t cap = (size_t)rows * cols * 120 + 100, n = 0;
@@ -722,7 +724,6 @@ static void large_wall(void) {
   CHECK(same_structure(s, back));
   printf("10,000 bricks: parse+finalize %.3f s, write %.3f s, read back %.3f s\n", t1 - t0, t3 - t2,
          t4 - t3);
-  CHECK(t3 - t2 < 5.0 && t4 - t3 < 20.0);
   us_structure_free(s);
   us_structure_free(back);
   remove(out);
@@ -765,9 +766,101 @@ static void write_invalid_utf8(void) {
   us_structure_free(s);
 }
 
+/* The fingerprint of a structure given as JSON text; 0 on error. */
+static uint64_t fingerprint_of(const char *text) {
+  us_Error err;
+  us_Structure *s = us_structure_parse(text, "fp.json", 0, &err);
+  uint64_t h = 0;
+  if (!s || us_structure_fingerprint(s, &h, &err)) h = 0;
+  us_structure_free(s);
+  return h;
+}
+
+/* The same structure spelled differently has one fingerprint; a change in
+ * anything that decides verdicts gives another. */
+static void fingerprint(void) {
+  const char *base = "{\"bodies\": [{\"id\": \"a\", \"polygon\": [[0,0],[2,0],[2,1],[0,1]]},"
+                     "{\"id\": \"b\", \"polygon\": [[0,1],[1,1],[1,2],[0,2]]}]}";
+  const char *respelt =
+      "{ \"friction\": 0.5, \"bodies\" : [ {\"polygon\": [[2.0, 1], [2e0, 0], [0, 0], [0, 1.0]],"
+      " \"id\": \"a\", \"density\": 1}, {\"id\":\"b\",\"polygon\":[[1,2],[0,2],[0,1],[1,1]]}],"
+      " \"_comment\": \"x\", \"gravity\": [0, -9.81]}";
+  const char *changed[] = {
+      /* density, friction, id, gravity, a vertex, fixed, order of bodies */
+      "{\"bodies\": [{\"id\": \"a\", \"density\": 2, \"polygon\": [[0,0],[2,0],[2,1],[0,1]]},"
+      "{\"id\": \"b\", \"polygon\": [[0,1],[1,1],[1,2],[0,2]]}]}",
+      "{\"friction\": 0.4, \"bodies\": [{\"id\": \"a\", \"polygon\": [[0,0],[2,0],[2,1],[0,1]]},"
+      "{\"id\": \"b\", \"polygon\": [[0,1],[1,1],[1,2],[0,2]]}]}",
+      "{\"bodies\": [{\"id\": \"a\", \"polygon\": [[0,0],[2,0],[2,1],[0,1]]},"
+      "{\"id\": \"c\", \"polygon\": [[0,1],[1,1],[1,2],[0,2]]}]}",
+      "{\"gravity\": [0.1, -9.81], \"bodies\": [{\"id\": \"a\", \"polygon\": [[0,0],[2,0],[2,1],[0,1]]},"
+      "{\"id\": \"b\", \"polygon\": [[0,1],[1,1],[1,2],[0,2]]}]}",
+      "{\"bodies\": [{\"id\": \"a\", \"polygon\": [[0,0],[2,0],[2,1],[0,1]]},"
+      "{\"id\": \"b\", \"polygon\": [[0,1],[1,1],[1,2.000001],[0,2]]}]}",
+      "{\"bodies\": [{\"id\": \"a\", \"fixed\": true, \"polygon\": [[0,0],[2,0],[2,1],[0,1]]},"
+      "{\"id\": \"b\", \"polygon\": [[0,1],[1,1],[1,2],[0,2]]}]}",
+      "{\"bodies\": [{\"id\": \"b\", \"polygon\": [[0,1],[1,1],[1,2],[0,2]]},"
+      "{\"id\": \"a\", \"polygon\": [[0,0],[2,0],[2,1],[0,1]]}]}"};
+  uint64_t h = fingerprint_of(base);
+  CHECK(h != 0);
+  CHECK(fingerprint_of(respelt) == h);
+  for (int k = 0; k < 7; k++) {
+    uint64_t g = fingerprint_of(changed[k]);
+    if (g == 0 || g == h) fprintf(stderr, "changed[%d] keeps the fingerprint\n", k);
+    CHECK(g != 0 && g != h);
+  }
+  char text[US_FINGERPRINT_CHARS];
+  us_fingerprint_text(0x0123456789abcdefull, text);
+  CHECK(!strcmp(text, "fnv1a64:0123456789abcdef"));
+}
+
+/* A plan names its structure: read back against it, refused against
+ * another (other_structure), read without a fingerprint; "build". */
+static void plan_fingerprint(void) {
+  us_Error err;
+  us_Structure *s = read_data("column3.json", &err);
+  CHECK(s);
+  const char *heavy = "{\"bodies\": [{\"id\": \"b1\", \"density\": 3, \"polygon\": "
+                      "[[0, 0], [1, 0], [1, 1], [0, 1]]}, {\"id\": \"b2\", \"polygon\": "
+                      "[[0, 1], [1, 1], [1, 2], [0, 2]]}, {\"id\": \"b3\", \"polygon\": "
+                      "[[0, 2], [1, 2], [1, 3], [0, 3]]}]}";
+  us_Structure *other = us_structure_parse(heavy, "heavy.json", 0, &err);
+  CHECK(other);
+  int build[2] = {0, 1}, start[3] = {0, 1, 2}, blocked[1] = {2};
+  us_Plan p;
+  memset(&p, 0, sizeof p);
+  p.status = US_PLAN_NONE;
+  p.buildable = build, p.nbuildable = 2, p.build_start = start, p.nbuild = 2;
+  p.blocked = blocked, p.nblocked = 1;
+  char out[256], old[256];
+  tmp_path(out, sizeof out, "fp-plan.json");
+  tmp_path(old, sizeof old, "fp-old.json");
+  CHECK_OK(us_plan_write(s, &p, NULL, out, &err), &err);
+  us_PlanFile pf;
+  CHECK_OK(us_plan_read(s, out, &pf, &err), &err);
+  int ok = pf.has_fingerprint && !pf.other_structure && pf.nbuildable == 2 && pf.nbuild == 2 &&
+           pf.buildable[0] == 0 && pf.buildable[1] == 1 && pf.nblocked == 1;
+  us_plan_file_free(&pf);
+  CHECK(ok);
+  us_Status st = us_plan_read(other, out, &pf, &err);
+  CHECK_INT(st, ==, US_ERR_INPUT);
+  CHECK(pf.other_structure && pf.order == NULL);
+  CHECK(strstr(err.msg, "another structure") != NULL);
+  write_text(old, "{\"status\": \"found\", \"order\": [\"b3\", \"b2\", \"b1\"]}");
+  CHECK_OK(us_plan_read(other, old, &pf, &err), &err);
+  CHECK(!pf.has_fingerprint && pf.n == 3);
+  us_plan_file_free(&pf);
+  write_text(old, "{\"fingerprint\": \"sha:1\", \"status\": \"found\", \"order\": []}");
+  CHECK_INT(us_plan_read(s, old, &pf, &err), ==, US_ERR_INPUT);
+  remove(out);
+  remove(old);
+  us_structure_free(other);
+  us_structure_free(s);
+}
+
 US_TEST_MAIN(T(read_examples), T(defaults_and_fields), T(explicit_contacts),
              T(contact_tol_override), T(examples_physics), T(round_trip), T(round_trip_awkward),
              T(bad_files), T(read_errors), T(failed_write_leaves_no_file), T(plan_round_trip),
              T(plan_without_certificates), T(plan_read_errors), T(fuzz_mutations), T(fuzz_plan),
              T(out_of_memory), T(large_wall), T(text_and_ids),
-             T(write_invalid_utf8))
+             T(write_invalid_utf8), T(fingerprint), T(plan_fingerprint))

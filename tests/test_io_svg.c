@@ -605,6 +605,41 @@ static void snapping_corners_meet(void) {
   CHECK(ok);
 }
 
+/* A thin plank (2000 x 1): its diagonal would allow a 2-unit snap, which
+ * would put its top on the ground; the tolerance is capped by a twentieth
+ * of its thickness (about 1), with the default and with --snap. */
+static void snapping_thin_plank(void) {
+  us_SvgSettings set = us_svg_default_settings();
+  set.unit = "user";
+  const double want[] = {0, 0, 2000, 0, 2000, 1, 0, 1};
+  for (int k = 0; k < 2; k++) {
+    set.snap = k ? 5 : -1;
+    us_SvgInfo info;
+    us_Error err;
+    us_Structure *s = imp(SVG("<rect id='plank' y='99' width='2000' height='1'/>"), &set, &info, &err);
+    if (!s) fprintf(stderr, "%s\n", err.msg);
+    CHECK(s);
+    CHECK(body_is(s, "plank", want, 4, 0) || (us_structure_free(s), 0));
+    CHECK_INT(contacts_between(s, US_GROUND, 0), ==, 2);
+    CHECK_INT(info.snapped, ==, 0);
+    us_structure_free(s);
+  }
+  /* drawn 0.02 above the ground line: the bottom snaps down (0.02 <
+     0.05 x 0.9995), the top stays */
+  set.snap = -1;
+  set.ground_at_set = 1;
+  set.ground_at = 100;
+  us_SvgInfo info;
+  us_Error err;
+  us_Structure *s = imp(SVG("<rect id='plank' y='98.98' width='2000' height='1'/>"), &set, &info, &err);
+  if (!s) fprintf(stderr, "%s\n", err.msg);
+  CHECK(s);
+  const double lifted[] = {0, 0, 2000, 0, 2000, 1.02, 0, 1.02};
+  CHECK(body_is(s, "plank", lifted, 4, 1e-9) || (us_structure_free(s), 0));
+  CHECK_INT(info.snapped, ==, 2);
+  us_structure_free(s);
+}
+
 /* ------------------------------------------------------- skipped elements */
 
 static void skipped_elements(void) {
@@ -668,7 +703,8 @@ static void illustrator_entities(void) {
   set.unit = "px";
   set.warn = count_warning;
   us_Error err;
-  us_Structure *s = imp(svg, &set, NULL, &err);
+  us_SvgInfo info;
+  us_Structure *s = imp(svg, &set, &info, &err);
   if (!s) fprintf(stderr, "%s\n", err.msg);
   CHECK(s);
   int n = s->nbody, fixed = s->bodies[0].fixed;
@@ -678,6 +714,118 @@ static void illustrator_entities(void) {
   CHECK_INT(n, ==, 2);
   CHECK(fixed && ok);
   CHECK_INT(nwarn, ==, 1); /* the path hidden through its style entity */
+  CHECK_INT((long)info.entity_bytes, ==, 2 * (27 + 1) + 12 + 1); /* st0 twice, hide once: each + 1 */
+}
+
+/* An internal entity of `size` bytes referenced `refs` times in the class
+ * of each of `rects` rects (line 4 on): the text, us_malloc'ed. */
+static char *entity_bomb(size_t size, int refs, int rects) {
+  size_t cap = size + (size_t)rects * ((size_t)refs * 4 + 80) + 256, len = 0;
+  char *t = us_malloc(cap);
+  len += (size_t)snprintf(t, cap, "<?xml version='1.0'?>\n<!DOCTYPE svg [<!ENTITY e '");
+  memset(t + len, 'x', size);
+  len += size;
+  len += (size_t)snprintf(t + len, cap - len, "'>]>\n<svg xmlns='http://www.w3.org/2000/svg'>\n");
+  for (int r = 0; r < rects; r++) {
+    len += (size_t)snprintf(t + len, cap - len, "<rect class='");
+    for (int k = 0; k < refs; k++) memcpy(t + len, "&e; ", 4), len += 4;
+    len += (size_t)snprintf(t + len, cap - len, "' x='%d' width='10' height='10'/>\n", 20 * r);
+  }
+  snprintf(t + len, cap - len, "</svg>\n");
+  return t;
+}
+
+static us_Structure *imp_len(const char *svg, us_SvgInfo *info, us_Error *err) {
+  us_SvgSettings set = raw();
+  return imp(svg, &set, info, err);
+}
+
+/* Entity references in attribute values: bounded in all by 1 MiB + 4 x
+ * the file's size, the count checked before the walk. */
+static void entity_bombs(void) {
+  /* the issue's reproducer: one 20 kB entity 6,000 times in one class
+     (120 MB expanded), refused at its element with the work bounded */
+  char *t = entity_bomb(20000, 6000, 1);
+  size_t budget = ((size_t)1 << 20) + 4 * strlen(t);
+  us_SvgInfo info;
+  us_Error err;
+  us_Structure *s = imp_len(t, &info, &err);
+  CHECK(!s && err.code == US_ERR_INPUT);
+  CHECK(strstr(err.msg, "t.svg:4: <rect>: attribute 'class': entity references expand past"));
+  CHECK(info.entity_bytes <= budget);
+  CHECK(info.entity_bytes > budget - 20001); /* refused as soon as it passed */
+  us_free(t);
+  /* many moderate ones: the budget is the document's, not each value's
+     (1 kB 60 times = 60 kB a rect; the 21st rect passes 1 MiB + 4 x 150 kB) */
+  t = entity_bomb(1000, 60, 400);
+  budget = ((size_t)1 << 20) + 4 * strlen(t);
+  s = imp_len(t, &info, &err);
+  CHECK(!s && err.code == US_ERR_INPUT);
+  CHECK_INT((long)info.entity_bytes, <=, (long)budget);
+  size_t line = 4 + budget / (60 * 1001); /* the rect whose class passes the budget */
+  char want[64];
+  snprintf(want, sizeof want, "t.svg:%zu: <rect>: attribute 'class'", line);
+  if (!strstr(err.msg, want)) fprintf(stderr, "want %s: %s\n", want, err.msg);
+  CHECK(strstr(err.msg, want));
+  us_free(t);
+  /* the same entity a few times is fine */
+  t = entity_bomb(1000, 3, 3);
+  s = imp_len(t, &info, &err);
+  CHECK(s);
+  CHECK_INT((long)info.entity_bytes, ==, 3 * (3 * (1000 + 1) + 3)); /* + the 3 spaces */
+  us_structure_free(s);
+  us_free(t);
+}
+
+/* Vertices in all at most 1 Mi + 4 per byte: 300 circles of 4096
+ * segments (the finest --flatten) pass it at the 257th. */
+static void vertex_budget(void) {
+  size_t cap = 300 * 64 + 128, len = 0;
+  char *t = us_malloc(cap);
+  len += (size_t)snprintf(t, cap, SVG_OPEN);
+  for (int k = 0; k < 300; k++) len += (size_t)snprintf(t + len, cap - len, "<circle cx='%d' r='1'/>\n", 3 * k);
+  snprintf(t + len, cap - len, "</svg>\n");
+  us_SvgSettings set = raw();
+  set.flatten = 1e-12;
+  int most = (1 << 20) + 4 * (int)strlen(t), line = 2 + most / 4096;
+  char want[96];
+  snprintf(want, sizeof want, "t.svg:%d: <circle>: the drawing makes more than %d vertices", line, most);
+  CHECK(fails_with(t, &set, US_ERR_INPUT, want, NULL));
+  us_free(t);
+}
+
+/* Attribute defaults declared in the DTD are not read (their values
+ * would escape the entity budget): the rect is not fixed. */
+static void dtd_defaults_ignored(void) {
+  us_SvgSettings set = raw();
+  us_Error err;
+  us_Structure *s = imp("<!DOCTYPE svg [<!ATTLIST rect class CDATA 'fixed'>]>\n" SVG_OPEN
+                        "<rect width='1' height='1'/><rect x='2' class='fixed' width='1' height='1'/></svg>\n",
+                        &set, NULL, &err);
+  CHECK(s);
+  CHECK(!s->bodies[0].fixed && s->bodies[1].fixed);
+  us_structure_free(s);
+}
+
+/* Billion laughs: libxml2's own guard refuses nested entities that
+ * multiply, in attributes and in text, before the walk. */
+static void billion_laughs(void) {
+  char ents[2048] = "<!ENTITY l0 'lol'>";
+  for (int i = 1; i <= 9; i++) {
+    size_t n = strlen(ents);
+    n += (size_t)snprintf(ents + n, sizeof ents - n, "<!ENTITY l%d '", i);
+    for (int k = 0; k < 10; k++) n += (size_t)snprintf(ents + n, sizeof ents - n, "&l%d;", i - 1);
+    snprintf(ents + n, sizeof ents - n, "'>");
+  }
+  const char *uses[] = {"<rect class='&l9;' width='1' height='1'/>",
+                        "<rect width='1' height='1'/><text>&l9;</text>"};
+  us_SvgSettings set = raw();
+  for (int u = 0; u < 2; u++) {
+    char svg[4096];
+    snprintf(svg, sizeof svg, "<!DOCTYPE svg [%s]>\n" SVG_OPEN "%s</svg>\n", ents, uses[u]);
+    CHECK(fails_with(svg, &set, US_ERR_PARSE, "t.svg:", "malformed XML", "entities that expand too much",
+                     NULL));
+  }
 }
 
 /* ------------------------------------------------------------ examples */
@@ -768,6 +916,19 @@ static void non_finite_numbers(void) {
                    US_ERR_PARSE, "not finite", NULL));
   CHECK(fails_with(SVG("<rect x='1e300' width='1e300' height='1' transform='scale(1e10)'/>"), &set,
                    US_ERR_INPUT, "not finite", NULL));
+  /* overflow, named as such with the element and its line (issue 24) */
+  CHECK(fails_with(SVG("\n<rect id='r' x='1e308' width='1' height='1' transform='scale(10)'/>"), &set,
+                   US_ERR_INPUT, "t.svg:3: <rect id='r'>: a coordinate overflows after the transforms", NULL));
+  CHECK(fails_with(SVG("<path d='M0 0 L 1e308 0 L 1e308 1e308 Z' transform='scale(10)'/>"), &set,
+                   US_ERR_INPUT, "t.svg:2: <path>: a coordinate overflows", NULL));
+  CHECK(fails_with(SVG("<rect width='1e200' height='1e200'/>"), &set, US_ERR_INPUT,
+                   "t.svg:2: <rect>: coordinates too large: the shape's area or inertia overflows", NULL));
+  CHECK(fails_with(SVG("<rect width='1e307' height='1e307' transform='scale(10)'/>"), &set, US_ERR_INPUT,
+                   "<rect>: coordinates too large", NULL));
+  set.unit = "mm"; /* finite in the drawing, not in the output units */
+  set.scale = 1e300;
+  CHECK(fails_with(SVG("<rect width='1e10' height='1'/>"), &set, US_ERR_INPUT,
+                   "t.svg:2: <rect>: a coordinate overflows in the output units", NULL));
 }
 
 static void degenerate_shapes(void) {
@@ -796,6 +957,13 @@ static void bad_transforms(void) {
 
 static void overlapping_shapes(void) {
   us_SvgSettings set = us_svg_default_settings();
+  /* refused after snapping moved vertices (c's bottom onto the ground):
+     the message says so and how to do without */
+  CHECK(fails_with(SVG("<rect id='a' y='-10' width='10' height='10'/>\n"
+                       "<rect id='b' x='5' y='-10' width='10' height='10'/>\n"
+                       "<rect id='c' x='20' y='-10.005' width='10' height='10'/>"),
+                   &set, US_ERR_INPUT, "bodies 'a' and 'b' overlap",
+                   "; snapping moved 2 vertices before this check (--snap 0: none", NULL));
   CHECK(fails_with(SVG("<rect id='one' width='10' height='10'/>\n"
                        "<rect id='two' x='5' y='5' width='10' height='10'/>"),
                    &set, US_ERR_INPUT, "t.svg: bodies 'one' and 'two' overlap",
@@ -848,7 +1016,8 @@ US_TEST_MAIN(T(rect_element), T(polygon_element), T(polyline_closed_or_skipped),
              T(path_relative), T(circle_and_ellipse), T(transform_each_kind), T(transform_lists),
              T(nested_groups), T(units_and_viewbox), T(flip_and_ground),
              T(curves_within_tolerance), T(arc_and_smooth_curves), T(curves_after_transforms),
-             T(unique_ids), T(fixed_marks), T(materials), T(snapping), T(snapping_corners_meet),
-             T(skipped_elements), T(rounded_rect_warns), T(illustrator_entities), T(inkscape_example), T(figure1_examples),
+             T(unique_ids), T(fixed_marks), T(materials), T(snapping), T(snapping_corners_meet), T(snapping_thin_plank),
+             T(skipped_elements), T(rounded_rect_warns), T(illustrator_entities), T(entity_bombs), T(dtd_defaults_ignored), T(billion_laughs), T(vertex_budget),
+             T(inkscape_example), T(figure1_examples),
              T(malformed_xml), T(bad_path_data), T(non_finite_numbers), T(degenerate_shapes),
              T(bad_transforms), T(overlapping_shapes), T(bad_settings), T(out_of_memory))

@@ -5,22 +5,11 @@
 #include "scenes.h"
 #include "test.h"
 
-static int add_box(us_Structure *s, const char *id, double x0, double y0, double x1, double y1,
-                   us_Error *err) {
-  double xy[8] = {x0, y0, x1, y0, x1, y1, x0, y1};
-  return us_structure_add_body(
-      s,
-      &(us_BodyDef){
-          .id = id, .nvert = 4, .xy = xy, .density = 1.0, .friction = -1.0},
-      err);
-}
-
-
 static void self_intersecting(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
   double bow[8] = {0, 0, 1, 1, 1, 0, 0, 1};
-  CHECK(add_box(s, "ok", 2, 0, 3, 1, &err) >= 0);
+  CHECK(scene_box_corners(s, "ok", 2, 0, 3, 1, &err) >= 0);
   CHECK(
       us_structure_add_body(
           s,
@@ -35,7 +24,7 @@ static void zero_area(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
   double flat[8] = {0, 0, 1, 0, 2, 0, 3, 1e-12};
-  CHECK(add_box(s, "ok", 4, 0, 5, 1, &err) >= 0);
+  CHECK(scene_box_corners(s, "ok", 4, 0, 5, 1, &err) >= 0);
   CHECK(us_structure_add_body(s,
                               &(us_BodyDef){.id = "flat",
                                             .nvert = 4,
@@ -106,14 +95,14 @@ static void huge_coordinates(void) {
 static void below_ground(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
-  CHECK(add_box(s, "b0", 0, 0, 1, 1, &err) >= 0);
-  CHECK(add_box(s, "b3", 2, -0.2, 3, 1, &err) >= 0);
+  CHECK(scene_box_corners(s, "b0", 0, 0, 1, 1, &err) >= 0);
+  CHECK(scene_box_corners(s, "b3", 2, -0.2, 3, 1, &err) >= 0);
   CHECK(scene_fails_with(s, "body 'b3' is below the ground", "y = -0.2"));
   us_structure_free(s);
   /* without a ground the same structure is fine */
   s = us_structure_new(2);
   s->ground = 0;
-  CHECK(add_box(s, "b3", 2, -0.2, 3, 1, &err) >= 0);
+  CHECK(scene_box_corners(s, "b3", 2, -0.2, 3, 1, &err) >= 0);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_INT(s->ncontact, ==, 0);
   us_structure_free(s);
@@ -122,8 +111,8 @@ static void below_ground(void) {
 static void duplicate_id(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
-  CHECK(add_box(s, "b", 0, 0, 1, 1, &err) == 0);
-  CHECK(add_box(s, "b", 1, 0, 2, 1, &err) == -1);
+  CHECK(scene_box_corners(s, "b", 0, 0, 1, 1, &err) == 0);
+  CHECK(scene_box_corners(s, "b", 1, 0, 2, 1, &err) == -1);
   CHECK(strstr(err.msg, "'b'") != NULL);
   us_structure_free(s);
 }
@@ -132,7 +121,7 @@ static void duplicate_id(void) {
 static void bad_materials(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
-  CHECK(add_box(s, "d", 0, 0, 1, 1, &err) >= 0);
+  CHECK(scene_box_corners(s, "d", 0, 0, 1, 1, &err) >= 0);
   s->bodies[0].density = -2.0;
   CHECK(scene_fails_with(s, "'d'", "density"));
   s->bodies[0].density = 1.0;
@@ -310,8 +299,8 @@ static void empty_and_all_fixed(void) {
 /* Every allocation failure is reported as US_ERR_NOMEM, never a crash or
  * a leak (the harness checks leaks after the case). */
 static int three_boxes(us_Structure *s, us_Error *err) {
-  return add_box(s, "a", 0, 0, 2, 1, err) >= 0 && add_box(s, "b", 0, 1, 2, 2, err) >= 0 &&
-         add_box(s, "c", 2, 0, 3, 1, err) >= 0;
+  return scene_box_corners(s, "a", 0, 0, 2, 1, err) >= 0 && scene_box_corners(s, "b", 0, 1, 2, 2, err) >= 0 &&
+         scene_box_corners(s, "c", 2, 0, 3, 1, err) >= 0;
 }
 
 static void out_of_memory(void) {

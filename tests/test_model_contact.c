@@ -17,12 +17,6 @@ static int add_poly(us_Structure *s, const char *id, int n, const double *xy, us
       err);
 }
 
-static int add_box(us_Structure *s, const char *id, double x0, double y0, double x1, double y1,
-                   us_Error *err) {
-  double xy[8] = {x0, y0, x1, y0, x1, y1, x0, y1};
-  return add_poly(s, id, 4, xy, err);
-}
-
 /* Contacts between bodies i and j (either order; j may be US_GROUND). */
 static int count_pair(const us_Structure *s, int i, int j) {
   int n = 0;
@@ -100,7 +94,7 @@ static int contacts_sane(const us_Structure *s) {
 static void block_on_ground(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
-  CHECK(add_box(s, "b0", 0, 0, 2, 1, &err) == 0);
+  CHECK(scene_box_corners(s, "b0", 0, 0, 2, 1, &err) == 0);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_INT(s->ncontact, ==, 2);
   CHECK(find_at(s, US_GROUND, 0, 0, 0) >= 0 && find_at(s, US_GROUND, 0, 2, 0) >= 0);
@@ -117,8 +111,8 @@ static void block_on_ground(void) {
 static void stacked_aligned(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
-  CHECK(add_box(s, "lo", 0, 0, 1, 1, &err) == 0);
-  CHECK(add_box(s, "hi", 0, 1, 1, 2, &err) == 1);
+  CHECK(scene_box_corners(s, "lo", 0, 0, 1, 1, &err) == 0);
+  CHECK(scene_box_corners(s, "hi", 0, 1, 1, 2, &err) == 1);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_INT(s->ncontact, ==, 4);
   CHECK_INT(count_pair(s, US_GROUND, 0), ==, 2);
@@ -138,9 +132,9 @@ static void stacked_aligned(void) {
 static void running_bond(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
-  CHECK(add_box(s, "l", 0, 0, 2, 1, &err) == 0);
-  CHECK(add_box(s, "r", 2, 0, 4, 1, &err) == 1);
-  CHECK(add_box(s, "top", 1, 1, 3, 2, &err) == 2);
+  CHECK(scene_box_corners(s, "l", 0, 0, 2, 1, &err) == 0);
+  CHECK(scene_box_corners(s, "r", 2, 0, 4, 1, &err) == 1);
+  CHECK(scene_box_corners(s, "top", 1, 1, 3, 2, &err) == 2);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_INT(count_pair(s, US_GROUND, 0), ==, 2);
   CHECK_INT(count_pair(s, US_GROUND, 1), ==, 2);
@@ -163,8 +157,8 @@ static void running_bond(void) {
 static void side_by_side(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
-  CHECK(add_box(s, "a", 0, 0, 1, 1, &err) == 0);
-  CHECK(add_box(s, "b", 1, 0, 2, 2, &err) == 1);
+  CHECK(scene_box_corners(s, "a", 0, 0, 1, 1, &err) == 0);
+  CHECK(scene_box_corners(s, "b", 1, 0, 2, 2, &err) == 1);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_INT(count_pair(s, 0, 1), ==, 2);
   for (int y = 0; y <= 1; y++) {
@@ -187,7 +181,7 @@ static void leaning_slab(void) {
   /* underside from (0,0) along (c, sn); the block corner is at distance 2 */
   double bx = 2 * c, by = 2 * sn;
   double slab[8] = {0, 0, len * c, len * sn, len * c - t * sn, len * sn + t * c, -t * sn, t * c};
-  CHECK(add_box(s, "block", bx, 0, bx + 1, by, &err) == 0);
+  CHECK(scene_box_corners(s, "block", bx, 0, bx + 1, by, &err) == 0);
   CHECK(add_poly(s, "slab", 4, slab, &err) == 1);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_INT(count_pair(s, 0, 1), ==, 1);
@@ -206,7 +200,7 @@ static void triangle_apex(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
   double tri[6] = {1.5, 1, 2.5, 2, 0.5, 2};
-  CHECK(add_box(s, "block", 0, 0, 3, 1, &err) == 0);
+  CHECK(scene_box_corners(s, "block", 0, 0, 3, 1, &err) == 0);
   CHECK(add_poly(s, "tri", 3, tri, &err) == 1);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_INT(count_pair(s, 0, 1), ==, 1);
@@ -241,7 +235,7 @@ static void apex_on_corner(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
   double tri[6] = {3, 1, 3.5, 2, 2.5, 2};
-  CHECK(add_box(s, "block", 0, 0, 3, 1, &err) == 0);
+  CHECK(scene_box_corners(s, "block", 0, 0, 3, 1, &err) == 0);
   CHECK(add_poly(s, "tri", 3, tri, &err) == 1);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_INT(count_pair(s, 0, 1), ==, 2);
@@ -270,7 +264,7 @@ static void tiny_tilt(void) {
   double tol = 1e-4, a = 5e-5; /* slope */
   us_Structure *s = us_structure_new(2);
   s->contact_tol = tol;
-  CHECK(add_box(s, "lo", 0, 0, 1, 1, &err) == 0);
+  CHECK(scene_box_corners(s, "lo", 0, 0, 1, 1, &err) == 0);
   double y0 = 1 - 0.5 * tol, L = 4.0;
   double hi[8] = {0.5, y0, 0.5 + L, y0 - a * L, 0.5 + L + a, y0 - a * L + 1, 0.5 + a, y0 + 1};
   CHECK(add_poly(s, "hi", 4, hi, &err) == 1);
@@ -287,8 +281,8 @@ static void tiny_tilt(void) {
 static void corner_to_corner(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
-  CHECK(add_box(s, "lo", 0, 0, 1, 1, &err) == 0);
-  CHECK(add_box(s, "hi", 1, 1, 2, 2, &err) == 1);
+  CHECK(scene_box_corners(s, "lo", 0, 0, 1, 1, &err) == 0);
+  CHECK(scene_box_corners(s, "hi", 1, 1, 2, 2, &err) == 1);
   s->bodies[1].fixed = 1; /* keep it from needing support */
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_INT(count_pair(s, 0, 1), ==, 2);
@@ -313,7 +307,7 @@ static void box_in_l_notch(void) {
   us_Structure *s = us_structure_new(2);
   double L[12] = {0, 0, 2, 0, 2, 2, 1, 2, 1, 1, 0, 1}; /* notch at the top left */
   CHECK(add_poly(s, "L", 6, L, &err) == 0);
-  CHECK(add_box(s, "box", 0, 1, 1, 2, &err) == 1);
+  CHECK(scene_box_corners(s, "box", 0, 1, 1, 2, &err) == 1);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_INT(count_pair(s, 0, 1), ==, 4);
   int kf0 = find_at(s, 0, 1, 0, 1), kf1 = find_at(s, 0, 1, 1, 1), kw = find_at(s, 0, 1, 1, 2);
@@ -330,7 +324,7 @@ static void block_in_u(void) {
   us_Structure *s = us_structure_new(2);
   double U[16] = {0, 0, 5, 0, 5, 3, 4, 3, 4, 1, 1, 1, 1, 3, 0, 3};
   CHECK(add_poly(s, "U", 8, U, &err) == 0);
-  CHECK(add_box(s, "in", 2, 1, 3, 2, &err) == 1);
+  CHECK(scene_box_corners(s, "in", 2, 1, 3, 2, &err) == 1);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_INT(count_pair(s, 0, 1), ==, 2);
   CHECK(find_at(s, 0, 1, 2, 1) >= 0 && find_at(s, 0, 1, 3, 1) >= 0);
@@ -366,7 +360,7 @@ static void fixed_bodies(void) {
   double p1[8] = {0, 0, 1, 0, 1, 1, 0, 1}, p2[8] = {1, 0, 2, 0, 2, 1, 1, 1};
   CHECK(scene_polygon(s, "pier1", 4, p1, 1) == 0);
   CHECK(scene_polygon(s, "pier2", 4, p2, 1) == 1);
-  CHECK(add_box(s, "deck", 0.5, 1, 1.5, 1.2, &err) == 2);
+  CHECK(scene_box_corners(s, "deck", 0.5, 1, 1.5, 1.2, &err) == 2);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_INT(count_pair(s, US_GROUND, 0), ==, 0);
   CHECK_INT(count_pair(s, US_GROUND, 1), ==, 0);
@@ -386,8 +380,8 @@ static void tolerance(void) {
     double gap = far ? 2 * tol : 0.5 * tol;
     us_Structure *s = us_structure_new(2);
     s->contact_tol = tol;
-    CHECK(add_box(s, "lo", 0, gap, 1, 1, &err) == 0);
-    CHECK(add_box(s, "hi", 0.25, 1 + gap, 1.25, 2, &err) == 1);
+    CHECK(scene_box_corners(s, "lo", 0, gap, 1, 1, &err) == 0);
+    CHECK(scene_box_corners(s, "hi", 0.25, 1 + gap, 1.25, 2, &err) == 1);
     CHECK_OK(us_structure_finalize(s, &err), &err);
     CHECK_NEAR(s->contact_tol, tol, 0);
     CHECK_INT(count_pair(s, US_GROUND, 0), ==, far ? 0 : 2);
@@ -398,16 +392,16 @@ static void tolerance(void) {
   /* a penetration of 0.5 tol is also a contact, not an overlap */
   us_Structure *s = us_structure_new(2);
   s->contact_tol = tol;
-  CHECK(add_box(s, "lo", 0, 0, 1, 1, &err) == 0);
-  CHECK(add_box(s, "hi", 0.25, 1 - 0.5 * tol, 1.25, 2, &err) == 1);
+  CHECK(scene_box_corners(s, "lo", 0, 0, 1, 1, &err) == 0);
+  CHECK(scene_box_corners(s, "hi", 0.25, 1 - 0.5 * tol, 1.25, 2, &err) == 1);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   CHECK_INT(count_pair(s, 0, 1), ==, 2);
   us_structure_free(s);
   /* ... and 2 tol is an overlap */
   s = us_structure_new(2);
   s->contact_tol = tol;
-  CHECK(add_box(s, "lo", 0, 0, 1, 1, &err) == 0);
-  CHECK(add_box(s, "hi", 0.25, 1 - 2 * tol, 1.25, 2, &err) == 1);
+  CHECK(scene_box_corners(s, "lo", 0, 0, 1, 1, &err) == 0);
+  CHECK(scene_box_corners(s, "hi", 0.25, 1 - 2 * tol, 1.25, 2, &err) == 1);
   CHECK(scene_fails_with(s, "'lo' and 'hi' overlap", NULL));
   us_structure_free(s);
 }
@@ -416,8 +410,8 @@ static void tolerance(void) {
 static void overlaps(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
-  CHECK(add_box(s, "a", 0, 0, 2, 1, &err) >= 0);
-  CHECK(add_box(s, "b", 1.5, 0.5, 3, 1.5, &err) >= 0);
+  CHECK(scene_box_corners(s, "a", 0, 0, 2, 1, &err) >= 0);
+  CHECK(scene_box_corners(s, "b", 1.5, 0.5, 3, 1.5, &err) >= 0);
   CHECK(scene_fails_with(s, "bodies 'a' and 'b' overlap (vertex 0 of 'b' is 0.5 inside 'a')", NULL));
   us_structure_free(s);
 
@@ -425,29 +419,29 @@ static void overlaps(void) {
   s = us_structure_new(2);
   double h = 0.5, r = 0.5 * sqrt(2.0), cx = 2, cy = 2;
   double dia[8] = {cx, cy - r, cx + r, cy, cx, cy + r, cx - r, cy};
-  CHECK(add_box(s, "sq", cx - h, cy - h, cx + h, cy + h, &err) >= 0);
+  CHECK(scene_box_corners(s, "sq", cx - h, cy - h, cx + h, cy + h, &err) >= 0);
   CHECK(add_poly(s, "diamond", 4, dia, &err) >= 0);
   CHECK(scene_fails_with(s, "bodies 'sq' and 'diamond' overlap", NULL));
   us_structure_free(s);
 
   /* a plus sign of two bars */
   s = us_structure_new(2);
-  CHECK(add_box(s, "h", 0, 1.9, 4, 2.1, &err) >= 0);
-  CHECK(add_box(s, "v", 1.9, 0, 2.1, 4, &err) >= 0);
+  CHECK(scene_box_corners(s, "h", 0, 1.9, 4, 2.1, &err) >= 0);
+  CHECK(scene_box_corners(s, "v", 1.9, 0, 2.1, 4, &err) >= 0);
   CHECK(scene_fails_with(s, "bodies 'h' and 'v' overlap", NULL));
   us_structure_free(s);
 
   /* the same square twice */
   s = us_structure_new(2);
-  CHECK(add_box(s, "one", 0, 0, 1, 1, &err) >= 0);
-  CHECK(add_box(s, "two", 0, 0, 1, 1, &err) >= 0);
+  CHECK(scene_box_corners(s, "one", 0, 0, 1, 1, &err) >= 0);
+  CHECK(scene_box_corners(s, "two", 0, 0, 1, 1, &err) >= 0);
   CHECK(scene_fails_with(s, "bodies 'one' and 'two' overlap", NULL));
   us_structure_free(s);
 
   /* a triangle inscribed in a square: its vertices on the square's edges */
   s = us_structure_new(2);
   double tri[6] = {1, 0, 2, 1, 0, 2};
-  CHECK(add_box(s, "sq", 0, 0, 2, 2, &err) >= 0);
+  CHECK(scene_box_corners(s, "sq", 0, 0, 2, 2, &err) >= 0);
   CHECK(add_poly(s, "tri", 3, tri, &err) >= 0);
   CHECK(scene_fails_with(s, "bodies 'sq' and 'tri' overlap", NULL));
   us_structure_free(s);
@@ -457,14 +451,14 @@ static void overlaps(void) {
   s = us_structure_new(2);
   double U[16] = {0, 0, 5, 0, 5, 3, 4, 3, 4, 1, 1, 1, 1, 3, 0, 3};
   CHECK(add_poly(s, "U", 8, U, &err) >= 0);
-  CHECK(add_box(s, "in", 3.5, 1, 4.5, 2, &err) >= 0);
+  CHECK(scene_box_corners(s, "in", 3.5, 1, 4.5, 2, &err) >= 0);
   CHECK(scene_fails_with(s, "bodies 'U' and 'in' overlap", NULL));
   us_structure_free(s);
 
   /* a small box entirely inside a big one */
   s = us_structure_new(2);
-  CHECK(add_box(s, "big", 0, 0, 4, 4, &err) >= 0);
-  CHECK(add_box(s, "small", 1, 1, 2, 2, &err) >= 0);
+  CHECK(scene_box_corners(s, "big", 0, 0, 4, 4, &err) >= 0);
+  CHECK(scene_box_corners(s, "small", 1, 1, 2, 2, &err) >= 0);
   CHECK(scene_fails_with(s, "bodies 'big' and 'small' overlap", NULL));
   us_structure_free(s);
 }
@@ -474,9 +468,9 @@ static void overlaps(void) {
 static void deterministic(void) {
   us_Error err;
   us_Structure *s = us_structure_new(2);
-  CHECK(add_box(s, "l", 0, 0, 2, 1, &err) == 0);
-  CHECK(add_box(s, "r", 2, 0, 4, 1, &err) == 1);
-  CHECK(add_box(s, "top", 1, 1, 3, 2, &err) == 2);
+  CHECK(scene_box_corners(s, "l", 0, 0, 2, 1, &err) == 0);
+  CHECK(scene_box_corners(s, "r", 2, 0, 4, 1, &err) == 1);
+  CHECK(scene_box_corners(s, "top", 1, 1, 3, 2, &err) == 2);
   CHECK_OK(us_structure_finalize(s, &err), &err);
   int n = s->ncontact;
   us_Contact *copy = us_malloc((size_t)n * sizeof *copy);
@@ -532,7 +526,7 @@ static void direct_call_clockwise(void) {
   us_Structure *s = us_structure_new(2);
   double cw[8] = {0, 0, 0, 1, 1, 1, 1, 0};
   CHECK(add_poly(s, "cw", 4, cw, &err) == 0);
-  CHECK(add_box(s, "top", 0, 1, 1, 2, &err) == 1);
+  CHECK(scene_box_corners(s, "top", 0, 1, 1, 2, &err) == 1);
   us_ContactSettings cs = {1e-6, 0};
   us_ContactList l = {0};
   CHECK(us_detect_contacts(s, &cs, &l, &err) == US_ERR_INPUT);
@@ -596,7 +590,7 @@ static int scene_count(const Scene *sc, double sx, double dx, int reverse) {
     double x0 = sx * sc->x[r][k] + dx, x1 = sx * sc->x[r][k + 1] + dx;
     char id[32];
     snprintf(id, sizeof id, "r%dk%d", r, k);
-    ok = add_box(s, id, fmin(x0, x1), r, fmax(x0, x1), r + 1, &err) >= 0;
+    ok = scene_box_corners(s, id, fmin(x0, x1), r, fmax(x0, x1), r + 1, &err) >= 0;
   }
   int n = ok && us_structure_finalize(s, &err) == US_OK && contacts_sane(s) ? s->ncontact : -1;
   if (n < 0) fprintf(stderr, "  scene failed: %s\n", err.msg);
@@ -629,7 +623,7 @@ static void small_wall(void) {
       char id[32];
       snprintf(id, sizeof id, "b%d_%d", r, c);
       double x0 = c * w + (r % 2) * 0.5 * w;
-      CHECK(add_box(s, id, x0, r * h, x0 + w, (r + 1) * h, &err) >= 0);
+      CHECK(scene_box_corners(s, id, x0, r * h, x0 + w, (r + 1) * h, &err) >= 0);
     }
   CHECK_OK(us_structure_finalize(s, &err), &err);
   int overl = 0; /* pairs with overlapping x-ranges between rows 0 and 1 */

@@ -296,8 +296,12 @@ static us_Structure *wall(int rows, int cols) {
  * voussoir at a time at once (the cut, exact.c), but its smallest K is
  * beyond the exact decision in half a second (K = 7 and up: the cut no
  * longer proves it, the exhaustive search runs for minutes), and its
- * friction bisection is cut by the same limit. (The 30-voussoir arch,
- * this test's structure before the cut, now gets K = 20 in 0.04 s.) */
+ * friction bisection is usually cut by the same limit. Only what holds
+ * whatever the machine's speed is asserted: the group search is cut
+ * (minutes against half a second), the sequence search and the bisection
+ * are cut or end, never undecided. (The 30-voussoir arch, this test's
+ * structure before the cut, now gets K = 20 in 0.04 s; its 30 s limit is
+ * a ceiling.) */
 static void time_limit_leaves_classes_unknown(void) {
   us_GenSettings g = us_gen_default_settings();
   g.n = 5, g.segments = 8;
@@ -310,7 +314,9 @@ static void time_limit_leaves_classes_unknown(void) {
   us_Classification c;
   CHECK(classify(s, &set, &c));
   CHECK(c.stands);
-  CHECK(c.friction_timed_out && c.friction_undecided == 0); /* cut, not undecided */
+  /* the bisection is usually cut (a fast machine may end it): never undecided */
+  CHECK(c.friction_undecided == 0);
+  CHECK(c.friction_timed_out || (c.stands_some_mu && !c.stands_frictionless && c.mu_critical > 0));
   CHECK(!c.undecided); /* unknown classes, no undecided test */
   /* the sequence search usually finishes in time (none, a proof); on a
      loaded machine it may be cut too: then nothing past it is known */

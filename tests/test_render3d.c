@@ -269,4 +269,43 @@ static void pyramid_views(void) {
   CHECK_INT(bad, ==, US_ERR_USAGE);
 }
 
-US_TEST_MAIN(T(tower_top_face), T(nearer_wins), T(pyramid_views))
+/* 3D: labels by id or step, and an unstable pair's falling body and
+ * mechanism arrows in the SVG (no ghosts in 3D). */
+static void labels_and_failure(void) {
+  us_Error err;
+  const double lo[2][3] = {{0, 0, 0}, {0.6, 0, 1}}, size[2][3] = {{1, 1, 1}, {1.2, 1, 0.4}};
+  us_Structure *s = boxes(2, lo, size); /* no ground: both fall */
+  CHECK(s != NULL);
+  us_StabilitySettings set = us_stability_default_settings();
+  us_Stability *w = us_stability_new(s, &set, &err);
+  us_StabilityResult res;
+  us_stability_result_init(&res);
+  CHECK(w != NULL);
+  CHECK_OK(us_stability_test_full(w, &res, &err), &err);
+  int verdict = res.verdict;
+  us_RenderFailure f = {0, res.unstable_body, &res.mechanism};
+  int order[2] = {1, 0};
+  us_RenderSettings r = us_render_default_settings();
+  r.order = order, r.norder = 2, r.labels = US_LABELS_IDS, r.failure = &f;
+  char path[128];
+  int ok = test_tmp_path("fail3.svg", path, sizeof path) && us_render_svg(s, &r, path, &err) == 0;
+  char *ids = ok ? test_slurp(path) : NULL;
+  r.labels = US_LABELS_STEPS;
+  r.failure = NULL;
+  ok = ok && us_render_svg(s, &r, path, &err) == 0;
+  char *steps = ok ? test_slurp(path) : NULL;
+  remove(path);
+  us_stability_result_free(&res);
+  us_stability_free(w);
+  us_structure_free(s);
+  CHECK_INT(verdict, ==, US_UNSTABLE);
+  CHECK(ids && steps);
+  CHECK(strstr(ids, ">b1</text>") && !strstr(ids, ">1</text>"));
+  CHECK(strstr(steps, ">1</text>") && strstr(steps, ">2</text>") && !strstr(steps, ">b1</text>"));
+  CHECK(strstr(ids, "<g class=\"falls\"><title>") != NULL);
+  CHECK(strstr(ids, "class=\"velocity\"") && !strstr(ids, "class=\"ghost\""));
+  CHECK(!strstr(steps, "class=\"falls\""));
+  us_free(ids), us_free(steps);
+}
+
+US_TEST_MAIN(T(tower_top_face), T(nearer_wins), T(pyramid_views), T(labels_and_failure))

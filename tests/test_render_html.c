@@ -82,20 +82,29 @@ static us_RenderSettings order_of(const us_Plan *p) {
   return r;
 }
 
-/* forces[k] = [contact, fx, fy, ...] equal f_n n + f_t t of certs[k]. */
+/* forces[k] = [contact, nx, ny, tx, ty, ...]: the force on the upper body
+ * of each contact (b when the normal n, from a into b, points up, or
+ * right on a vertical joint; else a, which receives -(f_n n + f_t t)),
+ * normal part f_n n and friction part f_t t with that sign. */
 static int forces_match(const us_Structure *s, json_t *list, const us_Forces *f) {
-  if (json_array_size(list) != 3 * (size_t)f->ncontact) return 0;
+  if (json_array_size(list) != 5 * (size_t)f->ncontact) return 0;
   for (int j = 0; j < f->ncontact; j++) {
     const us_Contact *c = &s->contacts[f->contact[j]];
-    double fx = f->f[2 * j] * c->n[0] + f->f[2 * j + 1] * c->t[0][0];
-    double fy = f->f[2 * j] * c->n[1] + f->f[2 * j + 1] * c->t[0][1];
+    double sg = c->n[1] > 1e-9 || (fabs(c->n[1]) <= 1e-9 && c->n[0] > 0) ? 1.0 : -1.0;
+    double want[4] = {sg * f->f[2 * j] * c->n[0], sg * f->f[2 * j] * c->n[1],
+                      sg * f->f[2 * j + 1] * c->t[0][0], sg * f->f[2 * j + 1] * c->t[0][1]};
     double tol = 1e-7 * (fabs(f->f[2 * j]) + fabs(f->f[2 * j + 1]) + 1e-12);
-    if (json_number_value(json_array_get(list, 3 * (size_t)j)) != f->contact[j] ||
-        fabs(json_number_value(json_array_get(list, 3 * (size_t)j + 1)) - fx) > tol ||
-        fabs(json_number_value(json_array_get(list, 3 * (size_t)j + 2)) - fy) > tol)
-      return 0;
+    if (json_number_value(json_array_get(list, 5 * (size_t)j)) != f->contact[j]) return 0;
+    for (int q = 0; q < 4; q++)
+      if (fabs(json_number_value(json_array_get(list, 5 * (size_t)j + 1 + (size_t)q)) - want[q]) > tol)
+        return 0;
   }
   return 1;
+}
+
+/* certs[k].ok of the page's data. */
+static int cert_ok(json_t *d, int k) {
+  return json_is_true(json_object_get(json_array_get(json_object_get(d, "certs"), (size_t)k), "ok"));
 }
 
 /* ------------------------------------------------------------ cases */
@@ -136,12 +145,43 @@ static void json_parses_back(void) {
       ok = json_number_value(json_array_get(st, (size_t)(q - a))) == p.order[q];
   }
   for (int k = 0; ok && k <= nsteps; k++)
-    ok = forces_match(s, json_array_get(json_object_get(d, "forces"), (size_t)k), &p.certs[k]);
+    ok = forces_match(s, json_array_get(json_object_get(d, "forces"), (size_t)k), &p.certs[k]) &&
+         cert_ok(d, k);
   json_decref(d);
   us_free(page);
   us_plan_free(&p);
   us_structure_free(s);
   CHECK(ok);
+}
+
+/* Forces edited after planning (a negative normal force, a 1e308 force)
+ * fail the page's own re-check at their step and only there. */
+static void tampered_forces_flagged(void) {
+  us_Structure *s = pyramid(3);
+  CHECK(s);
+  us_Plan p;
+  memset(&p, 0, sizeof p);
+  us_Error err;
+  CHECK_OK(plan_with_certs(s, &p), &err);
+  CHECK_INT(p.status, ==, US_PLAN_FOUND);
+  int nsteps = p.group_start ? p.ngroups : p.nsteps;
+  CHECK(nsteps >= 3 && p.certs[0].ncontact > 0 && p.certs[1].ncontact > 0);
+  p.certs[0].f[0] = -p.certs[0].f[0] - 1.0;
+  p.certs[1].f[0] = 1e308;
+  us_RenderSettings r = order_of(&p);
+  us_HtmlSettings h = us_html_default_settings();
+  h.certs = p.certs;
+  char *page = NULL;
+  json_t *d = page_data(s, &r, &h, "t.html", &page);
+  CHECK(d != NULL);
+  int flags = 0;
+  for (int k = 0; d && k <= nsteps; k++) flags += !cert_ok(d, k);
+  CHECK(d && !cert_ok(d, 0) && !cert_ok(d, 1) && cert_ok(d, 2));
+  CHECK_INT(flags, ==, 2);
+  json_decref(d);
+  us_free(page);
+  us_plan_free(&p);
+  us_structure_free(s);
 }
 
 /* Ids that try to leave the data element, through the C API. */
@@ -251,21 +291,31 @@ static void bad_input_refused(void) {
 static void out_of_memory_leaves_nothing(void) {
   us_Structure *s = scene_column(3);
   CHECK(s);
+  us_Plan p;
+  memset(&p, 0, sizeof p);
+  us_Error err;
+  CHECK_OK(plan_with_certs(s, &p), &err);
   char path[128];
   test_tmp_path("oom.html", path, sizeof path);
-  us_Status st = US_ERR_NOMEM;
-  int n = 0, bad = 0;
-  for (; st == US_ERR_NOMEM && n < 1000; n++) {
-    us_alloc_fail_after(n);
-    st = us_render_html(s, NULL, NULL, path, NULL);
-    us_alloc_fail_after(-1);
-    if (st == US_ERR_NOMEM && access(path, F_OK) == 0) bad = 1;
+  for (int with_plan = 0; with_plan <= 1; with_plan++) {
+    us_RenderSettings r = order_of(&p);
+    us_HtmlSettings h = us_html_default_settings();
+    h.certs = p.certs; /* the per-step re-check allocates too */
+    us_Status st = US_ERR_NOMEM;
+    int n = 0, bad = 0;
+    for (; st == US_ERR_NOMEM && n < 1000; n++) {
+      us_alloc_fail_after(n);
+      st = with_plan ? us_render_html(s, &r, &h, path, NULL) : us_render_html(s, NULL, NULL, path, NULL);
+      us_alloc_fail_after(-1);
+      if (st == US_ERR_NOMEM && access(path, F_OK) == 0) bad = 1;
+    }
+    int written = st == US_OK && access(path, F_OK) == 0;
+    unlink(path);
+    CHECK(!bad);
+    CHECK(written);
   }
-  int written = st == US_OK && access(path, F_OK) == 0;
-  unlink(path);
+  us_plan_free(&p);
   us_structure_free(s);
-  CHECK(!bad);
-  CHECK(written);
 }
 
 /* ------------------------------------------------ plan certificates */
@@ -383,6 +433,6 @@ static void certs_absent_or_tampered(void) {
   CHECK_INT(three, ==, US_ERR_INPUT);
 }
 
-US_TEST_MAIN(T(json_parses_back), T(hostile_ids_escaped), T(steps_and_verify), T(bad_input_refused),
+US_TEST_MAIN(T(json_parses_back), T(tampered_forces_flagged), T(hostile_ids_escaped), T(steps_and_verify), T(bad_input_refused),
              T(out_of_memory_leaves_nothing), T(certs_read_back), T(certs_shared_points),
              T(certs_absent_or_tampered))

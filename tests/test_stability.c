@@ -14,39 +14,11 @@ static const us_Method lp_methods[] = {US_METHOD_LP, US_METHOD_LPSOLVE};
 
 /* ---------------------------------------------------------------- helpers */
 
-/* Verdict of `present` (NULL: everything) with method m; -1 on error. A
- * STABLE verdict must carry an ok certificate (else -2). */
-static int verdict_of(const us_Structure *s, us_Method m, const us_Bitset *present) {
-  us_StabilitySettings set = us_stability_default_settings();
-  set.method = m;
-  us_Error err;
-  us_Stability *w = us_stability_new(s, &set, &err);
-  if (!w) {
-    fprintf(stderr, "new: %s\n", err.msg);
-    return -1;
-  }
-  us_Bitset all = {0};
-  if (!present) {
-    if (us_bitset_init(&all, s->nbody)) return -1;
-    us_bitset_fill(&all);
-    present = &all;
-  }
-  us_StabilityResult res = {0};
-  int v = -1;
-  if (us_stability_test(w, present, &res, &err) == US_OK) v = (int)res.verdict;
-  else fprintf(stderr, "test: %s\n", err.msg);
-  if (v == US_STABLE && !res.check.ok) v = -2;
-  us_stability_result_free(&res);
-  us_bitset_free(&all);
-  us_stability_free(w);
-  return v;
-}
-
 /* Both LP methods must give `want`. */
 #define CHECK_VERDICT(s, present, want)                               \
   do {                                                                \
     for (int mi_ = 0; mi_ < 2; mi_++)                                 \
-      CHECK_INT(verdict_of((s), lp_methods[mi_], (present)), ==, (want)); \
+      CHECK_INT(scene_verdict((s), lp_methods[mi_], (present)), ==, (want)); \
   } while (0)
 
 /* A point body of mass 1 at (cx, cy) on two ground contacts at x = xl, xr. */
@@ -302,14 +274,11 @@ static void unstable_evidence(void) {
 
 /* A backend that claims stable with made-up forces: the front end must
  * not pass that on as stable. */
-static us_Status liar_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
-                            const int *removed, int nremoved, int restart, us_Verdict *verdict,
-                            double *f, us_StabilityInfo *info, char *note, size_t note_sz,
+static us_Status liar_solve(void *ws, const us_BackendProblem *pb, us_BackendOut *out,
                             us_Error *err) {
-  US_UNUSED(ws), US_UNUSED(added), US_UNUSED(nadded), US_UNUSED(removed), US_UNUSED(nremoved);
-  US_UNUSED(restart), US_UNUSED(info), US_UNUSED(note), US_UNUSED(note_sz), US_UNUSED(err);
-  for (int j = 0; j < sys->ncontact * sys->dim; j++) f[j] = j % 2 ? 0.0 : 0.01;
-  *verdict = US_STABLE;
+  US_UNUSED(ws), US_UNUSED(err);
+  for (int j = 0; j < pb->sys->ncontact * pb->sys->dim; j++) out->f[j] = j % 2 ? 0.0 : 0.01;
+  out->verdict = US_STABLE;
   return US_OK;
 }
 
@@ -320,7 +289,8 @@ static void *liar_create(const us_Structure *s, const us_StabilitySettings *set,
 
 static void liar_destroy(void *ws) { us_backend_clp.destroy(ws); }
 
-static const us_Backend liar_backend = {US_METHOD_LP, liar_create, liar_destroy, liar_solve, NULL, NULL, NULL};
+static const us_Backend liar_backend = {
+    .method = US_METHOD_LP, .create = liar_create, .destroy = liar_destroy, .solve = liar_solve};
 
 static void never_stable_without_certificate(void) {
   us_Structure *s = two_blocks(0.0);
@@ -359,10 +329,11 @@ static void spy_destroy(void *ws) {
   us_backend_clp.destroy(ws);
 }
 
-static us_Status spy_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
-                           const int *removed, int nremoved, int restart, us_Verdict *verdict,
-                           double *f, us_StabilityInfo *info, char *note, size_t note_sz,
+static us_Status spy_solve(void *ws, const us_BackendProblem *pb, us_BackendOut *out,
                            us_Error *err) {
+  const us_EqSystem *sys = pb->sys;
+  const int *added = pb->added, *removed = pb->removed;
+  int nadded = pb->nadded, nremoved = pb->nremoved, restart = pb->restart;
   spy.calls++;
   if (restart) memset(spy.mirror.w, 0, (size_t)spy.mirror.nwords * 8);
   for (int i = 0; i < nremoved; i++) {
@@ -379,11 +350,11 @@ static us_Status spy_solve(void *ws, const us_EqSystem *sys, const int *added, i
   if (us_bitset_count(&spy.mirror) != sys->nbody) spy.errors++;
   for (int r = 0; r < sys->nbody; r++)
     if (!us_bitset_get(&spy.mirror, sys->body[r])) spy.errors++;
-  return us_backend_clp.solve(ws, sys, added, nadded, removed, nremoved, restart, verdict, f,
-                              info, note, note_sz, err);
+  return us_backend_clp.solve(ws, pb, out, err);
 }
 
-static const us_Backend spy_backend = {US_METHOD_LP, spy_create, spy_destroy, spy_solve, NULL, NULL, NULL};
+static const us_Backend spy_backend = {
+    .method = US_METHOD_LP, .create = spy_create, .destroy = spy_destroy, .solve = spy_solve};
 
 static unsigned long rng_state = 12345;
 static double rnd(void) {
@@ -429,7 +400,7 @@ static void order_independence(void) {
     random_subset(&p);
     if (t % 7 == 3) us_bitset_fill(&p);
     CHECK_OK(us_stability_test(w, &p, &res, &err), &err);
-    int fresh = verdict_of(s, t % 2 ? US_METHOD_LP : US_METHOD_LPSOLVE, &p);
+    int fresh = scene_verdict(s, t % 2 ? US_METHOD_LP : US_METHOD_LPSOLVE, &p);
     CHECK_INT(res.verdict, ==, fresh);
     if (res.verdict == US_STABLE) CHECK(res.check.ok);
     nstable += res.verdict == US_STABLE;

@@ -109,18 +109,13 @@ static void cone_and_sign(void) {
   us_structure_free(s);
 }
 
-static int add_box(us_Structure *s, const char *id, double x0, double y0, double w, double h) {
-  double xy[8] = {x0, y0, x0 + w, y0, x0 + w, y0 + h, x0, y0 + h};
-  return scene_polygon(s, id, 4, xy, 0);
-}
-
 /* Solver forces of a 2 x 2 brick stack minus its top-right brick. */
 static void tampered_solver_forces(void) {
   us_Structure *s = us_structure_new(2);
-  add_box(s, "a", 0, 0, 1, 0.5);
-  add_box(s, "b", 1, 0, 1, 0.5);
-  add_box(s, "c", 0.25, 0.5, 1, 0.5);
-  add_box(s, "d", 1.25, 0.5, 0.5, 0.5);
+  scene_box(s, "a", 0, 0, 1, 0.5, 1);
+  scene_box(s, "b", 1, 0, 1, 0.5, 1);
+  scene_box(s, "c", 0.25, 0.5, 1, 0.5, 1);
+  scene_box(s, "d", 1.25, 0.5, 0.5, 0.5, 1);
   us_Error err;
   CHECK_OK(us_structure_finalize(s, &err), &err);
   us_Bitset p;

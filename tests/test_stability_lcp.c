@@ -12,6 +12,7 @@
 #include "stability/backend.h"
 #include "stability/equilibrium.h"
 #include "lcp_dense.h"
+#include "scenes.h"
 #include "test.h"
 #include "walks.h"
 
@@ -344,28 +345,6 @@ static int test_on(us_Stability *w, const us_Bitset *present) {
   return v;
 }
 
-static int add_box(us_Structure *s, double x0, double y0, double w, double h) {
-  char id[32];
-  snprintf(id, sizeof id, "b%d", s->nbody);
-  double xy[8] = {x0, y0, x0 + w, y0, x0 + w, y0 + h, x0, y0 + h};
-  us_Error err;
-  return us_structure_add_body(
-      s,
-      &(us_BodyDef){
-          .id = id, .nvert = 4, .xy = xy, .density = 1.0, .friction = -1.0},
-      &err);
-}
-
-static us_Structure *sealed(us_Structure *s) {
-  us_Error err;
-  if (us_structure_finalize(s, &err) != US_OK) {
-    fprintf(stderr, "finalize: %s\n", err.msg);
-    us_structure_free(s);
-    return NULL;
-  }
-  return s;
-}
-
 /* The three methods on the full structure; all verdicts must equal. */
 static int agree_full(const us_Structure *s, int *verdict) {
   us_Bitset all;
@@ -389,10 +368,10 @@ static void redundant_contacts(void) {
   for (int k = 0; k < 4; k++) {
     us_Structure *s = us_structure_new(2);
     s->friction = k % 2 ? 0.6 : 0.0;
-    add_box(s, 0, 0, 1, 1);
-    add_box(s, 1.5, 0, 1, 1);
-    add_box(s, k < 2 ? 0.25 : 0.6, 1, 2.0, 0.5);
-    s = sealed(s);
+    scene_box_auto(s, 0, 0, 1, 1);
+    scene_box_auto(s, 1.5, 0, 1, 1);
+    scene_box_auto(s, k < 2 ? 0.25 : 0.6, 1, 2.0, 0.5);
+    s = scene_seal(s);
     CHECK(s);
     int v;
     CHECK(agree_full(s, &v) == 0);
@@ -416,7 +395,7 @@ static void coincident_contacts(void) {
     CHECK(us_structure_add_contact(s, US_GROUND, b, p0, up, -1, &err) >= 0);
     CHECK(us_structure_add_contact(s, US_GROUND, b, p1, up, -1, &err) >= 0);
     s->explicit_contacts = 1;
-    s = sealed(s);
+    s = scene_seal(s);
     CHECK(s);
     int v;
     CHECK(agree_full(s, &v) == 0);
@@ -448,8 +427,8 @@ static void column_counters(void) {
   for (int fr = 0; fr < 2; fr++) {
     us_Structure *s = us_structure_new(2);
     s->friction = fr ? 0.5 : 0.0;
-    for (int i = 0; i < 6; i++) add_box(s, 0.05 * (i % 2), i, 1, 1);
-    s = sealed(s);
+    for (int i = 0; i < 6; i++) scene_box_auto(s, 0.05 * (i % 2), i, 1, 1);
+    s = scene_seal(s);
     CHECK(s);
     us_Stability *w = open_ws(s, US_METHOD_LCP_REUSE, 0);
     CHECK(w);
@@ -476,9 +455,9 @@ static void column_counters(void) {
 static void pivot_limit_falls_back(void) {
   us_Structure *s = us_structure_new(2);
   s->friction = 0.0;
-  for (int i = 0; i < 3; i++) add_box(s, 0, i, 1, 1);
-  add_box(s, 0.7, 3, 1, 1); /* overhangs by 0.7: the top block falls */
-  s = sealed(s);
+  for (int i = 0; i < 3; i++) scene_box_auto(s, 0, i, 1, 1);
+  scene_box_auto(s, 0.7, 3, 1, 1); /* overhangs by 0.7: the top block falls */
+  s = scene_seal(s);
   CHECK(s);
   us_Bitset sub;
   CHECK(us_bitset_init(&sub, s->nbody) == 0);
@@ -508,8 +487,8 @@ static void pivot_limit_falls_back(void) {
  * (the harness checks leaks). */
 static void out_of_memory(void) {
   us_Structure *s = us_structure_new(2);
-  for (int i = 0; i < 3; i++) add_box(s, 0.1 * i, i, 1, 1);
-  s = sealed(s);
+  for (int i = 0; i < 3; i++) scene_box_auto(s, 0.1 * i, i, 1, 1);
+  s = scene_seal(s);
   CHECK(s);
   us_Bitset sub;
   CHECK(us_bitset_init(&sub, s->nbody) == 0);
@@ -540,13 +519,13 @@ static us_Structure *running_bond(int rows, int cols, double mu) {
   for (int r = 0; r < rows; r++) {
     double y = 0.5 * r, x = 0.0;
     if (r % 2) {
-      add_box(s, 0.0, y, 0.5, 0.5);
+      scene_box_auto(s, 0.0, y, 0.5, 0.5);
       x = 0.5;
     }
-    for (int c = 0; c < cols - (r % 2); c++, x += 1.0) add_box(s, x, y, 1.0, 0.5);
-    if (r % 2) add_box(s, x, y, 0.5, 0.5);
+    for (int c = 0; c < cols - (r % 2); c++, x += 1.0) scene_box_auto(s, x, y, 1.0, 0.5);
+    if (r % 2) scene_box_auto(s, x, y, 0.5, 0.5);
   }
-  return sealed(s);
+  return scene_seal(s);
 }
 
 static void wall_takedown(void) {
@@ -621,23 +600,6 @@ static unsigned long long rng = 0x9e3779b97f4a7c15ULL;
 static double rnd(void) { return test_rnd(&rng); }
 static double uniform(double a, double b) { return a + (b - a) * rnd(); }
 
-/* Rows of boxes with random widths, gaps (some zero: touching) and
- * offsets: stacks, overhangs, floating pieces. */
-static void random_box_rows(us_Structure *s) {
-  int rows = 1 + (int)(rnd() * 4);
-  double y = 0;
-  for (int r = 0; r < rows; r++) {
-    int nb = 1 + (int)(rnd() * 3);
-    double h = uniform(0.3, 1.0), x = uniform(-0.8, 0.8);
-    for (int k = 0; k < nb; k++) {
-      double w = uniform(0.4, 1.5);
-      add_box(s, x, y, w, h);
-      x += w + (rnd() < 0.4 ? 0.0 : uniform(0.05, 0.6));
-    }
-    y += h;
-  }
-}
-
 /* A row of quadrilaterals between slanted cuts x = x_k + slope_k (y - y0)
  * on a base slab: alternately narrow-top and wide-top pieces that wedge
  * against each other, held by friction or not (arch-like). */
@@ -645,8 +607,8 @@ static void random_wedges(us_Structure *s) {
   us_Error err;
   int n = 3 + (int)(rnd() * 3);
   double h = uniform(0.5, 1.2), base = uniform(0.2, 0.5), width = uniform(0.8, 1.3);
-  add_box(s, -0.5, 0, n * width + 1.0, base);
-  if (rnd() < 0.3) add_box(s, -0.5, base, 0.4, h); /* abutments */
+  scene_box_auto(s, -0.5, 0, n * width + 1.0, base);
+  if (rnd() < 0.3) scene_box_auto(s, -0.5, base, 0.4, h); /* abutments */
   double x[8], sl[8];
   for (int k = 0; k <= n; k++) {
     x[k] = k * width + uniform(-0.1, 0.1);
@@ -666,14 +628,14 @@ static void random_wedges(us_Structure *s) {
                                         .friction = -1.0},
                           &err);
   }
-  if (rnd() < 0.5) add_box(s, uniform(0, n * width - 1.5), base + h, 1.5, uniform(0.2, 0.5));
+  if (rnd() < 0.5) scene_box_auto(s, uniform(0, n * width - 1.5), base + h, 1.5, uniform(0.2, 0.5));
 }
 
 static us_Structure *random_scene(int frictional) {
   us_Structure *s = us_structure_new(2);
   s->friction = frictional ? uniform(0.1, 0.9) : 0.0;
   if (rnd() < 0.5)
-    random_box_rows(s);
+    scene_random_rows(s, rnd, 0.8);
   else
     random_wedges(s);
   us_Error err;
@@ -1076,17 +1038,17 @@ static void raw_infinite_friction_stacks(void) {
  * 0 and f_t free, the same cone for any LP. */
 typedef void (*SceneFn)(us_Structure *s, unsigned long long seed);
 
-static void scene_box(us_Structure *s, unsigned long long seed) {
+static void scene_stacked_box(us_Structure *s, unsigned long long seed) {
   double w = seed % 2 ? 0.4 : 1.2, h = seed % 2 ? 2.0 : 0.5;
-  add_box(s, 0, 0, w, h);
-  add_box(s, 0.1, h, 0.5 * w, 0.3); /* a small block on top */
+  scene_box_auto(s, 0, 0, w, h);
+  scene_box_auto(s, 0.1, h, 0.5 * w, 0.3); /* a small block on top */
 }
 
 static void scene_wall(us_Structure *s, unsigned long long seed) {
   US_UNUSED(seed);
   for (int r = 0; r < 4; r++) {
     double y = 0.5 * r, x = r % 2 ? -0.5 : 0.0;
-    for (int c = 0; c < 3; c++, x += 1.0) add_box(s, x, y, 1.0, 0.5);
+    for (int c = 0; c < 3; c++, x += 1.0) scene_box_auto(s, x, y, 1.0, 0.5);
   }
 }
 
@@ -1094,7 +1056,7 @@ static void scene_random(us_Structure *s, unsigned long long seed) {
   unsigned long long saved = rng;
   rng = seed * 0x9e3779b97f4a7c15ULL + 1;
   if (rnd() < 0.5)
-    random_box_rows(s);
+    scene_random_rows(s, rnd, 0.8);
   else
     random_wedges(s);
   rng = saved;
@@ -1172,7 +1134,7 @@ static void infinite_friction_structures(void) {
   int bad = 0, pairs = 0, expect_bad = 0, lp_takes_inf = 0;
   int nrandom = 60 / US_TEST_SHARE;
   for (int t = 0; t < 6 + nrandom; t++) {
-    SceneFn fn = t < 4 ? scene_box : t < 6 ? scene_wall : scene_random;
+    SceneFn fn = t < 4 ? scene_stacked_box : t < 6 ? scene_wall : scene_random;
     double deg = 3.14159265358979323846 / 180.0;
     double tilt = t < 4 ? 50.0 * deg : (double)(t % 7) * 6.0 * deg;
     us_Structure *s, *ref;

@@ -22,13 +22,6 @@ static double rnd(void) {
 }
 static double uniform(double a, double b) { return a + (b - a) * rnd(); }
 
-static int add_box(us_Structure *s, double x0, double y0, double w, double h) {
-  double xy[8] = {x0, y0, x0 + w, y0, x0 + w, y0 + h, x0, y0 + h};
-  char id[24];
-  snprintf(id, sizeof id, "b%d", s->nbody);
-  return scene_polygon(s, id, 4, xy, 0);
-}
-
 /* Verdicts of both backends on one workspace each. */
 typedef struct Pair {
   us_Stability *w[2];
@@ -112,7 +105,7 @@ static void random_columns(void) {
       h[i] = uniform(0.2, 1.0);
       /* overlap with the block below at least 0.05 */
       x[i] = i ? uniform(x[i - 1] - w[i] + 0.05, x[i - 1] + w[i - 1] - 0.05) : 0.0;
-      add_box(s, x[i], y, w[i], h[i]);
+      scene_box_auto(s, x[i], y, w[i], h[i]);
       y += h[i];
     }
     us_Error err;
@@ -143,25 +136,8 @@ static us_Structure *random_rows(void) {
   us_Structure *s = us_structure_new(2);
   static const double mus[3] = {0.0, 0.3, 0.7};
   s->friction = mus[(int)(rnd() * 3)];
-  int rows = 1 + (int)(rnd() * 4);
-  double y = 0;
-  for (int r = 0; r < rows; r++) {
-    int nb = 1 + (int)(rnd() * 3);
-    double h = uniform(0.3, 1.0), x = uniform(-0.6, 0.6);
-    for (int k = 0; k < nb; k++) {
-      double w = uniform(0.4, 1.5);
-      add_box(s, x, y, w, h);
-      x += w + (rnd() < 0.4 ? 0.0 : uniform(0.05, 0.6));
-    }
-    y += h;
-  }
-  us_Error err;
-  if (us_structure_finalize(s, &err) != US_OK) {
-    fprintf(stderr, "finalize: %s\n", err.msg);
-    us_structure_free(s);
-    return NULL;
-  }
-  return s;
+  scene_random_rows(s, rnd, 0.6);
+  return scene_seal(s);
 }
 
 static void backends_agree_rows(void) {
@@ -232,7 +208,7 @@ static void backends_agree_leaning(void) {
 static us_Structure *wall(int rows, int cols) {
   us_Structure *s = us_structure_new(2);
   for (int r = 0; r < rows; r++)
-    for (int c = 0; c < cols; c++) add_box(s, c * 2.0 + (r % 2), r * 1.0, 2.0, 1.0);
+    for (int c = 0; c < cols; c++) scene_box_auto(s, c * 2.0 + (r % 2), r * 1.0, 2.0, 1.0);
   us_Error err;
   if (us_structure_finalize(s, &err) != US_OK) {
     us_structure_free(s);

@@ -248,9 +248,10 @@ static void deadline_stops(void) {
   double f[4096];
   char note[128] = "";
   us_StabilityInfo info = {0};
-  us_Verdict v = US_STABLE;
-  us_Status st = us_backend_lp_lcp.solve(ws, &e, NULL, 0, NULL, 0, 1, &v, f, &info, note,
-                                         sizeof note, &err);
+  us_BackendOut out = {US_STABLE, f, &info, note, sizeof note};
+  us_Status st = us_backend_lp_lcp.solve(ws, &(us_BackendProblem){.sys = &e, .restart = 1}, &out,
+                                         &err);
+  us_Verdict v = out.verdict;
   us_backend_lp_lcp.destroy(ws);
   us_eq_free(&e);
   us_bitset_free(&all);

@@ -10,36 +10,11 @@
 
 #define NMETHOD 4
 
-/* Verdict of the full structure with method m; -1 on error, -2 for a
- * STABLE verdict without a passing certificate. */
-static int verdict_of(const us_Structure *s, us_Method m) {
-  us_StabilitySettings set = us_stability_default_settings();
-  set.method = m;
-  us_Error err;
-  us_Stability *w = us_stability_new(s, &set, &err);
-  if (!w) {
-    fprintf(stderr, "new: %s\n", err.msg);
-    return -1;
-  }
-  us_StabilityResult res;
-  us_stability_result_init(&res);
-  int v = -1;
-  if (us_stability_test_full(w, &res, &err) == US_OK)
-    v = (int)res.verdict;
-  else
-    fprintf(stderr, "test: %s\n", err.msg);
-  if (v == US_STABLE && !res.check.ok) v = -2;
-  if (v == US_UNDECIDED) fprintf(stderr, "  %s: undecided: %s\n", us_method_name(m), res.note);
-  us_stability_result_free(&res);
-  us_stability_free(w);
-  return v;
-}
-
 /* Every method gives `want` on s (which is freed). 0, or -1 on mismatch. */
 static int all_methods(us_Structure *s, int want, const char *what, double x) {
   int bad = !s;
   for (int m = 0; s && m < NMETHOD; m++) {
-    int v = verdict_of(s, (us_Method)m);
+    int v = scene_verdict(s, (us_Method)m, NULL);
     if (v != want) {
       fprintf(stderr, "%s (%g): %s gives %d, expected %d\n", what, x,
               us_method_name((us_Method)m), v, want);

@@ -16,100 +16,138 @@ static const char tail[] =
     "error, 3 undecided (no order found, and none or unstable would rest on\n"
     "stability tests that could not be decided)\n";
 
-static void print_stats(const us_PlanStats *st) {
-  printf("statistics:\n  tests %ld (stable %ld, unstable %ld, undecided %ld), revisited %ld, "
+static void print_stats(FILE *fp, const us_PlanStats *st) {
+  fprintf(fp, "statistics:\n  tests %ld (stable %ld, unstable %ld, undecided %ld), revisited %ld, "
          "expanded %ld, max depth %ld\n",
          st->tests, st->stable, st->unstable, st->undecided, st->revisited, st->nodes_expanded,
          st->max_depth);
-  printf("  backtracks %ld; rules: ground saved %ld tests, union saved %ld, exact checks %ld, "
+  fprintf(fp, "  backtracks %ld; rules: ground saved %ld tests, union saved %ld, exact checks %ld, "
          "greedy checks %ld, components %ld\n",
          st->backtracks, st->saved_ground, st->saved_union, st->exact_checks, st->greedy_checks,
          st->components);
-  printf("  assembly: retries skipped %ld, sets searched exhaustively %ld, proven unbuildable "
+  fprintf(fp, "  assembly: retries skipped %ld, sets searched exhaustively %ld, proven unbuildable "
          "by a cut %ld (%ld held tests); restarts %ld\n",
          st->retries_skipped, st->exhaustive, st->cuts, st->held_tests, st->restarts);
-  printf("  time: total %.6f s, setup %.6f s, search %.6f s, in solver %.6f s, "
+  fprintf(fp, "  time: total %.6f s, setup %.6f s, search %.6f s, in solver %.6f s, "
          "certificate checks %.6f s\n",
          st->time_total, st->time_setup, st->time_search, st->time_solve, st->time_check);
-  printf("  memo %zu bytes\n", st->memo_bytes);
+  fprintf(fp, "  memo %zu bytes\n", st->memo_bytes);
   cli_print_solver_stats(&st->stability);
   cli_print_local_stats(&st->stability);
 }
 
 /* Up to `max` ids of a list, then "and N more". */
-static void print_ids(const us_Structure *s, const int *v, int n, int max) {
-  for (int k = 0; k < n && k < max; k++) printf("%s%s",
+static void print_ids(FILE *fp, const us_Structure *s, const int *v, int n, int max) {
+  for (int k = 0; k < n && k < max; k++) fprintf(fp, "%s%s",
                                                 k ? ", " : "", us_id_text(s->bodies[v[k]].id).s);
-  if (n > max) printf(" and %d more", n - max);
+  if (n > max) fprintf(fp, " and %d more", n - max);
 }
 
 /* Why no answer is proven, and what the greedy reached. */
-static void print_undecided(const us_Structure *s, const us_Plan *p) {
-  printf("  %ld stability test%s could not be decided (taken as not standing); the first: %s\n",
+static void print_undecided(FILE *fp, const us_Structure *s, const us_Plan *p) {
+  fprintf(fp, "  %ld stability test%s could not be decided (taken as not standing); the first: %s\n",
          p->stats.undecided, p->stats.undecided == 1 ? "" : "s", p->note);
   if (!p->blocked) return;
-  printf("  the greedy placed %d of %d bodies; not reached: ", p->nbuildable,
+  fprintf(fp, "  the greedy placed %d of %d bodies; not reached: ", p->nbuildable,
          p->nbuildable + p->nblocked);
-  print_ids(s, p->blocked, p->nblocked, 20);
-  printf("\n");
+  print_ids(fp, s, p->blocked, p->nblocked, 20);
+  fprintf(fp, "\n");
 }
 
 /* What is proven about the number of hands. */
-static void print_hands(const us_Structure *s, const us_Plan *p, int asked) {
+static void print_hands(FILE *fp, const us_Structure *s, const us_Plan *p, int asked) {
   if (p->status == US_PLAN_FOUND && asked == 0 && p->hands_lower >= p->hands)
-    printf("  %d hand%s: the minimum (proven)\n", p->hands, p->hands == 1 ? "" : "s");
+    fprintf(fp, "  %d hand%s: the minimum (proven)\n", p->hands, p->hands == 1 ? "" : "s");
   else if (p->status == US_PLAN_FOUND && asked == 0)
-    printf("  %d hands, not proven minimal: %d to %d not proven impossible (budget: "
-           "--exact-tests, --time-limit)\n", p->hands, p->hands_lower, p->hands - 1);
+    fprintf(fp, "  %d hands, not proven minimal: %d to %d not proven impossible (budget: "
+            "--exact-tests, --time-limit)\n", p->hands, p->hands_lower, p->hands - 1);
   else if (p->status == US_PLAN_NONE && p->blocked) {
-    printf("  proven: %d hand%s cannot build the part of ", asked, asked == 1 ? "" : "s");
-    print_ids(s, p->blocked, p->nblocked, 20);
-    printf("\n");
+    fprintf(fp, "  proven: %d hand%s cannot build the part of ", asked, asked == 1 ? "" : "s");
+    print_ids(fp, s, p->blocked, p->nblocked, 20);
+    fprintf(fp, "\n");
   }
 }
 
-static void print_summary(const us_Structure *s, const us_Plan *p, const CliCommon *c,
+static void print_summary(FILE *fp, const us_Structure *s, const us_Plan *p, const CliCommon *c,
                           const char *out) {
   const us_PlanStats *st = &p->stats;
-  printf("%s", us_plan_status_name(p->status));
+  fprintf(fp, "%s", us_plan_status_name(p->status));
   if (p->status == US_PLAN_FOUND && p->actions)
-    printf(": %d actions with %d hand%s", p->nactions, p->hands, p->hands == 1 ? "" : "s");
+    fprintf(fp, ": %d actions with %d hand%s", p->nactions, p->hands, p->hands == 1 ? "" : "s");
   else if (p->status == US_PLAN_FOUND && p->ngroups == p->nsteps)
-    printf(": %d removals", p->nsteps);
+    fprintf(fp, ": %d removals", p->nsteps);
   else if (p->status == US_PLAN_FOUND)
-    printf(": %d removals in %d step%s of up to %d bodies", p->nsteps, p->ngroups,
+    fprintf(fp, ": %d removals in %d step%s of up to %d bodies", p->nsteps, p->ngroups,
            p->ngroups == 1 ? "" : "s", p->max_group);
-  printf(", %ld tests (%ld unstable, %ld revisited), %.3f s [%s, %s", st->tests, st->unstable,
+  fprintf(fp, ", %ld tests (%ld unstable, %ld revisited), %.3f s [%s, %s", st->tests, st->unstable,
          st->revisited, st->time_total, us_method_name(us_method_resolve(c->stab.method, s)),
          us_search_name(c->plan.search));
   if (c->plan.search != US_SEARCH_ASSEMBLE)
-    printf(", %s, %s", us_order_name(c->plan.order), us_direction_name(c->plan.direction));
-  if (c->plan.removal != US_REMOVAL_ANY) printf(", removal %s", us_removal_name(c->plan.removal));
-  printf("]");
-  if (out) printf(" -> %s", out);
-  printf("\n");
+    fprintf(fp, ", %s, %s", us_order_name(c->plan.order), us_direction_name(c->plan.direction));
+  if (c->plan.removal != US_REMOVAL_ANY) fprintf(fp, ", removal %s", us_removal_name(c->plan.removal));
+  fprintf(fp, "]");
+  if (out) fprintf(fp, " -> %s", out);
+  fprintf(fp, "\n");
   if (p->status == US_PLAN_LIMIT && p->blocked) {
-    printf("  the greedy was stuck with %d of %d bodies placed, and the exact decision was "
+    fprintf(fp, "  the greedy was stuck with %d of %d bodies placed, and the exact decision was "
            "cut (--exact-tests, --max-tests, --time-limit);\n  not reached by the greedy: ",
            p->nbuildable, p->nbuildable + p->nblocked);
-    print_ids(s, p->blocked, p->nblocked, 20);
-    printf("\n");
+    print_ids(fp, s, p->blocked, p->nblocked, 20);
+    fprintf(fp, "\n");
   }
-  if (p->status == US_PLAN_UNDECIDED) print_undecided(s, p);
-  if (c->plan.hands != 1) print_hands(s, p, c->plan.hands);
+  if (p->status == US_PLAN_UNDECIDED) print_undecided(fp, s, p);
+  if (c->plan.hands != 1) print_hands(fp, s, p, c->plan.hands);
   if (p->status == US_PLAN_NONE && p->blocked) {
-    printf("  cannot be removed with steps of up to %d bod%s: ", p->max_group > 0 ? p->max_group : 1,
+    fprintf(fp, "  cannot be removed with steps of up to %d bod%s: ", p->max_group > 0 ? p->max_group : 1,
            p->max_group > 1 ? "ies" : "y");
-    print_ids(s, p->blocked, p->nblocked, 20);
-    printf("\n  a maximal buildable sub-assembly (the greedy's) has %d of %d bodies\n", p->nbuildable,
+    print_ids(fp, s, p->blocked, p->nblocked, 20);
+    fprintf(fp, "\n  a maximal buildable sub-assembly (the greedy's) has %d of %d bodies\n", p->nbuildable,
            p->nbuildable + p->nblocked);
   }
 }
 
 typedef struct {
   const char *file, *out;
-  int stats;
+  int stats, print;
 } PlanArgs;
+
+/* --print: "K<TAB>id[<TAB>id...]" per step; a none plan's build order. */
+static void print_steps(FILE *fp, const us_Structure *s, const us_Plan *p) {
+  int build = p->status != US_PLAN_FOUND;
+  const int *v = build ? p->buildable : p->order, *start = build ? p->build_start : p->group_start;
+  int nsteps = build ? (start ? p->nbuild : 0) : (start ? p->ngroups : p->nsteps);
+  if (build && v) fprintf(fp, "build order of the buildable part (the greedy's placements):\n");
+  for (int k = 0; v && k < nsteps; k++) {
+    fprintf(fp, "%d", k + 1);
+    for (int q = start ? start[k] : k; q < (start ? start[k + 1] : k + 1); q++)
+      fprintf(fp, "\t%s", us_id_text(s->bodies[v[q]].id).s);
+    fputc('\n', fp);
+  }
+}
+
+/* -o -: the plan through a scratch file, so that an error leaves stdout
+ * empty. */
+static us_Status write_stdout(const us_Structure *s, const us_Plan *p, const CliCommon *c,
+                              us_Error *err) {
+  FILE *tmp = tmpfile();
+  if (!tmp) return us_error_set(err, US_ERR_IO, "-: cannot open a scratch file");
+  us_Status st = us_plan_write_stream(s, p, &c->plan, tmp, "-", err);
+  char buf[8192];
+  size_t n;
+  if (!st) rewind(tmp);
+  while (!st && (n = fread(buf, 1, sizeof buf, tmp)) > 0)
+    if (fwrite(buf, 1, n, stdout) != n) st = us_error_set(err, US_ERR_IO, "-: write error");
+  if (!st && fflush(stdout)) st = us_error_set(err, US_ERR_IO, "-: write error");
+  fclose(tmp);
+  return st;
+}
+
+static us_Status write_plan(const us_Structure *s, const us_Plan *p, const CliCommon *c,
+                            const char *out, us_Error *err) {
+  if (!out) return US_OK;
+  if (!strcmp(out, "-")) return write_stdout(s, p, c, err);
+  return us_plan_write(s, p, &c->plan, out, err);
+}
 
 /* --max-group K: 'auto' (0) or 1..64. */
 static int set_max_group(const char *v, void *dst, const char *cmd) {
@@ -141,8 +179,10 @@ static int parse(int argc, char **argv, CliCommon *c, PlanArgs *a) {
   us_PlanSettings *p = &c->plan;
   /* One entry per option, in --help's order; optable.h says how to add one. */
   const CliOpt opts[] = {
-      CLI_TEXT("--output", "PLAN", &a->out, "write the plan file (also when no order exists)",
-               .alias = "-o"),
+      CLI_TEXT("--output", "PLAN", &a->out, "write the plan file (also when no order exists); "
+               "'-o -' writes it to stdout (the summary then goes to stderr)", .alias = "-o"),
+      CLI_FLAG("--print", &a->print, "list the steps, one per line: the step number and the ids "
+               "it removes (a none plan: its build order)"),
       CLI_OPT_METHOD(c),
       CLI_OPT_LOCAL(c),
       CLI_OPT_SEARCH(c),
@@ -178,6 +218,9 @@ static int parse(int argc, char **argv, CliCommon *c, PlanArgs *a) {
   const CliSpec spec = {"plan", head, tail, opts, &a->file, 1, "more than one FILE given"};
   int r = cli_parse(&spec, argc, argv);
   if (!r && !a->file) return cli_fail("plan", "no FILE given (see 'unstack plan --help')");
+  if (!r && (a->print || a->stats) && a->out && !strcmp(a->out, "-"))
+    return cli_fail("plan", "%s and -o - both write to stdout: choose one",
+                    a->print ? "--print" : "--stats");
   return r;
 }
 
@@ -191,10 +234,11 @@ static CliProgressMode progress_mode(const us_PlanSettings *p) {
 int cmd_plan(int argc, char **argv) {
   CliCommon c;
   cli_common_init(&c);
-  PlanArgs a = {NULL, NULL, 0};
+  PlanArgs a = {NULL, NULL, 0, 0};
   int r = parse(argc, argv, &c, &a);
   if (r) return r < 0 ? CLI_EXIT_OK : r;
-  if (a.out && cli_check_output("plan", a.out, &a.file, 1)) return CLI_EXIT_ERR;
+  int to_stdout = a.out && !strcmp(a.out, "-");
+  if (a.out && !to_stdout && cli_check_output("plan", a.out, &a.file, 1)) return CLI_EXIT_ERR;
   us_Structure *s = cli_load("plan", a.file, &c);
   if (!s) return CLI_EXIT_ERR;
   cli_progress_on("plan", &c, progress_mode(&c.plan), us_structure_movable_count(s));
@@ -207,9 +251,11 @@ int cmd_plan(int argc, char **argv) {
   us_Status pst = us_plan(s, &c.plan, &p, &err);
   cli_progress_off(&c);
   if (pst == US_OK) {
-    if (!a.out || us_plan_write(s, &p, &c.plan, a.out, &err) == US_OK) {
-      print_summary(s, &p, &c, a.out);
-      if (a.stats) print_stats(&p.stats);
+    if (write_plan(s, &p, &c, a.out, &err) == US_OK) {
+      FILE *info = to_stdout ? stderr : stdout;
+      print_summary(info, s, &p, &c, to_stdout ? "stdout" : a.out);
+      if (a.stats) print_stats(info, &p.stats);
+      if (a.print) print_steps(stdout, s, &p);
       code = p.status == US_PLAN_FOUND       ? CLI_EXIT_OK
              : p.status == US_PLAN_UNDECIDED ? CLI_EXIT_UNDECIDED
                                              : CLI_EXIT_NO;

@@ -15,6 +15,37 @@ static const char tail[] =
     "error, 3 undecided (a step's test could not be decided and no later step\n"
     "falls)\n";
 
+int cli_read_plan(const char *cmd, const us_Structure *s, const char *file, const char *plan,
+                  us_PlanFile *pf, us_Error *err) {
+  if (us_plan_read(s, plan, pf, err) == US_OK) {
+    if (!pf->has_fingerprint)
+      fprintf(stderr, "unstack %s: note: %s has no fingerprint (an older plan file): it is not "
+              "checked to be a plan of %s\n", cmd, plan, file);
+    return 0;
+  }
+  if (pf->other_structure) {
+    uint64_t h = 0;
+    char mine[US_FINGERPRINT_CHARS];
+    us_structure_fingerprint(s, &h, NULL);
+    us_fingerprint_text(h, mine);
+    us_error_set(err, US_ERR_INPUT, "%s is a plan of another structure, not of %s (fingerprints "
+                 "differ: the plan's %s, %s's %s)", plan, file, pf->fingerprint, file, mine);
+  }
+  return -1;
+}
+
+/* A found plan verified as `unstack verify` does (render and render --html):
+ * 1 invalid, 0 valid or undecided, -1 error. */
+int cli_verify_plan(const us_Structure *s, const us_PlanFile *pf, CliCommon *c,
+                    us_VerifyReport *rep, us_Error *err) {
+  cli_progress_on("render", c, CLI_PROGRESS_STEPS, pf->ngroups);
+  us_Status st = us_verify_steps(s, &c->stab, pf->order, pf->n, pf->group_start, pf->ngroups,
+                                 rep, err);
+  cli_progress_off(c);
+  if (st) return -1;
+  return !rep->ok && !rep->undecided;
+}
+
 /* The command line, by verify's option table (optable.h): files[0] the
  * structure, files[1] the plan. */
 static int parse(int argc, char **argv, CliCommon *c, const char **files) {
@@ -162,7 +193,7 @@ int cmd_verify(int argc, char **argv) {
   memset(&pf, 0, sizeof pf);
   us_VerifyReport rep;
   int code = CLI_EXIT_ERR;
-  if (us_plan_read(s, files[1], &pf, &err) == US_OK) {
+  if (cli_read_plan("verify", s, files[0], files[1], &pf, &err) == 0) {
     if (pf.status == US_PLAN_UNDECIDED) {
       printf("undecided: the plan's status is \"%s\": it holds no order to verify\n",
              us_plan_status_name(pf.status));

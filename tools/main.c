@@ -2,9 +2,6 @@
 #include "cli.h"
 #include "options.h"
 
-#include <errno.h>
-#include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -34,55 +31,6 @@ static void usage(FILE *f) {
         "\n"
         "Run 'unstack COMMAND --help' for a command's options. Exit code 2: usage or input error.\n",
         f);
-}
-
-int cli_fail(const char *cmd, const char *fmt, ...) {
-  fprintf(stderr, "unstack %s: ", cmd);
-  va_list ap;
-  va_start(ap, fmt);
-  vfprintf(stderr, fmt, ap);
-  va_end(ap);
-  fputc('\n', stderr);
-  return CLI_EXIT_ERR;
-}
-
-int cli_error(const char *cmd, const us_Error *err) {
-  fprintf(stderr, "unstack %s: %s: %s\n", cmd, us_status_name(err->code), err->msg);
-  return CLI_EXIT_ERR;
-}
-
-int cli_check_output(const char *cmd, const char *out, const char *const *inputs, int n) {
-  us_Error err;
-  us_error_clear(&err);
-  return us_output_check(out, inputs, n, &err) ? cli_error(cmd, &err) : 0;
-}
-
-int cli_is_help(const char *arg) { return !strcmp(arg, "--help") || !strcmp(arg, "-h"); }
-
-int cli_parse_double(const char *s, double *out) {
-  char *end;
-  errno = 0;
-  double v = strtod(s, &end);
-  if (end == s || *end || errno || !isfinite(v)) return -1;
-  *out = v;
-  return 0;
-}
-
-int cli_parse_long(const char *s, long *out) {
-  char *end;
-  errno = 0;
-  long v = strtol(s, &end, 10);
-  if (end == s || *end || errno) return -1;
-  *out = v;
-  return 0;
-}
-
-const char *cli_value(const char *cmd, int argc, char **argv, int *i) {
-  if (*i + 1 >= argc) {
-    cli_fail(cmd, "option %s needs a value", argv[*i]);
-    return NULL;
-  }
-  return argv[++*i];
 }
 
 int main(int argc, char **argv) {

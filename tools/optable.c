@@ -118,6 +118,18 @@ static int real(const char *cmd, const CliOpt *o, const char *v, double *out) {
   return 0;
 }
 
+/* Is w one of the '|'-separated words of list? */
+static int is_word_of(const char *w, const char *list) {
+  size_t n = strlen(w);
+  for (const char *p = list; *p;) {
+    const char *bar = strchr(p, '|');
+    size_t len = bar ? (size_t)(bar - p) : strlen(p);
+    if (len == n && !strncmp(p, w, n)) return 1;
+    p += len + (bar != NULL);
+  }
+  return 0;
+}
+
 /* Apply option o found at argv[*i], with its value after '=' in `eq` (NULL:
  * none, the value is the next argument); 0, or CLI_EXIT_ERR (message
  * printed). */
@@ -128,7 +140,9 @@ static int apply(const char *cmd, const CliOpt *o, const char *eq, int argc, cha
   if (eq && no_value && !o->optional) return cli_fail(cmd, "option %s takes no value", o->name);
   if (o->given) *o->given = 1;
   if (o->kind == CLI_K_FLAG) return *(int *)o->dst = o->flag, 0;
-  if (no_value) return o->set(eq, o->dst, cmd) ? CLI_EXIT_ERR : 0;
+  if (no_value && !eq && o->next_words && *i + 1 < argc && is_word_of(argv[*i + 1], o->next_words))
+    v = argv[++*i];
+  if (no_value) return o->set(v, o->dst, cmd) ? CLI_EXIT_ERR : 0;
   if (!v && !(v = cli_value(cmd, argc, argv, i))) return CLI_EXIT_ERR;
   switch (o->kind) {
   case CLI_K_INT:

@@ -66,6 +66,8 @@ typedef struct CliOpt {
   int takes_value;   /* CLI_K_CALL: 1 when it takes a value (else a flag) */
   int optional;      /* CLI_K_CALL without a value: "--name=value" may still give
                         one (set gets it, else NULL): --forces[=resultants] */
+  const char *next_words; /* optional: "a|b": the next argument is taken as the
+                        value when it is one of these words (--forces resultants) */
 } CliOpt;
 
 #define CLI_FLAG(n, d, h, ...) {.name = n, .kind = CLI_K_FLAG, .help = h, .dst = d, .flag = 1, __VA_ARGS__}

@@ -107,6 +107,19 @@ const char *cli_generator_kind(int i);
 /* Read and finalize a structure; prints the error and returns NULL. */
 us_Structure *cli_load(const char *cmd, const char *path, const CliCommon *c);
 
+/* Read the plan file `plan` for the structure s read from `file`
+ * (cmd_verify.c): 0, or -1 with err set; another structure's plan (its
+ * fingerprint) is refused naming both files; a plan without a fingerprint
+ * is read with a note on stderr. */
+int cli_read_plan(const char *cmd, const us_Structure *s, const char *file, const char *plan,
+                  us_PlanFile *pf, us_Error *err);
+
+/* Verify a found plan's order as `unstack verify` does, with the progress
+ * line (cmd_verify.c; render and render --html): 1 the order is invalid,
+ * 0 valid or undecided (rep says which), -1 error (err set). */
+int cli_verify_plan(const us_Structure *s, const us_PlanFile *pf, CliCommon *c,
+                    us_VerifyReport *rep, us_Error *err);
+
 /* render --html (cmd_render_html.c): does the output name end in .html or
  * .htm; the viewer page of s with the plan file `plan` (NULL: none) read
  * into pf, its certificates and a verification. Exit code; err set when

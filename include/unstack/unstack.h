@@ -83,8 +83,10 @@ US_API void *us_calloc(size_t count, size_t size);
 US_API void *us_realloc(void *p, size_t n);
 US_API void us_free(void *p);
 US_API char *us_strdup(const char *s);
-/* After `n` more successful allocations, every allocation fails; n < 0 turns
- * the hook off. Returns the number of live allocations (for leak checks). */
+/* After `n` more successful allocations, every allocation of the calling
+ * thread fails; n < 0 turns the hook off. Returns the number of live
+ * allocations of the process (for leak checks). Both are thread-safe: the
+ * hook is per thread, the count atomic. */
 US_API long us_alloc_fail_after(long n);
 US_API long us_alloc_live(void);
 
@@ -179,9 +181,9 @@ typedef struct us_Structure {
   double bbox[4];       /* xmin, ymin, xmax, ymax of all geometry and centres */
   double scale;         /* characteristic length: bbox diagonal (>0) */
   double weight;        /* total weight of movable bodies, |g| * sum m */
-  int finalized;
-  int cap_body, cap_contact;
-  void *id_index;       /* private: id -> body index hash map */
+  /* the library's own bookkeeping (finalize state, array capacities, the
+   * id index): opaque, never read or written by users */
+  struct us_StructureInternal *internal;
   double bbox3[6];      /* 3D: xmin, ymin, zmin, xmax, ymax, zmax (scale is its
                            diagonal); 2D: the x, y range of bbox, z = 0 */
 } us_Structure;
@@ -245,6 +247,8 @@ US_API int us_structure_find_body(const us_Structure *s, const char *id); /* ind
  * properties (3D: mass, com and the inertia tensor, exactly), and detect
  * contacts unless explicit contacts were given. Messages name the body ids. */
 US_API us_Status us_structure_finalize(us_Structure *s, us_Error *err);
+/* 1 after a successful us_structure_finalize until the next body is added. */
+US_API int us_structure_is_finalized(const us_Structure *s);
 
 /* The friction coefficient of a contact between two bodies (a may be
  * US_GROUND): the smaller of the two sides' coefficients, each side
@@ -415,6 +419,8 @@ typedef struct us_StabilityInfo {
   long cone3_refined;    /* 3D: directions added to contacts' friction polygons */
   long cone3_open;       /* 3D: tests whose claim is the outer polygons' forces (no
                             direction left to add); the certificate decides */
+  long band_referee;     /* tests in the boundary band, decided by the referee
+                            (docs/planning.md, "The boundary band") */
 } us_StabilityInfo;
 
 /* The certificate of an unstable verdict: a virtual motion of some bodies
@@ -475,6 +481,26 @@ US_API const us_StabilityInfo *us_stability_info(const us_Stability *w);
 US_API void us_stability_set_deadline(us_Stability *w, double deadline);
 /* Test the whole structure (every movable body present). */
 US_API us_Status us_stability_test_full(us_Stability *w, us_StabilityResult *res, us_Error *err);
+
+/* Which of the many admissible force sets to show (forces are not unique;
+ * src/stability/represent.c, docs/render.md "Forces"): the solver's own
+ * (a vertex), the one that maximises the smallest normal force with the
+ * total at most twice the least (then the least total keeping that
+ * margin), the least total force (friction counted twice), or the least
+ * sum of squares (a QP: the load spread evenly). */
+typedef enum us_ForceSet {
+  US_FORCESET_SOLVER = 0, US_FORCESET_MARGIN, US_FORCESET_MIN_SUM, US_FORCESET_MIN_NORM
+} us_ForceSet;
+US_API const char *us_force_set_name(us_ForceSet kind);
+/* The representative forces of sub-assembly `present` by rule `kind`
+ * (margin, min-sum or min-norm), solved with CLP (3D: inside the inner friction
+ * polygons). res->verdict US_STABLE: res->forces passed the certificate
+ * check (res->check) at set->cert_tol (set NULL: defaults); US_UNDECIDED:
+ * no such set found (res->note says why; it does not mean unstable).
+ * res must be initialized (us_stability_result_init). */
+US_API us_Status us_stability_forces_representative(const us_Structure *s, const us_Bitset *present,
+                                                    us_ForceSet kind, const us_StabilitySettings *set,
+                                                    us_StabilityResult *res, us_Error *err);
 
 /* Independent re-check of forces for a sub-assembly, without any solver. */
 US_API us_CertCheck us_certificate_check(const us_Structure *s, const us_Bitset *present,
@@ -627,6 +653,9 @@ typedef struct us_Plan {
   int nblocked, *blocked;
   char note[128];        /* stats.undecided > 0: the first undecided test's reason */
   us_PlanStats stats;
+  /* with buildable: buildable is the greedy's placement order, in nbuild
+     steps, build_start[nbuild + 1] offsets into it */
+  int nbuild, *build_start;
   /* hands != 1 in the settings: the assembly actions (found) */
   int hands;             /* largest number of bodies held at once (found), or
                             the bound searched (none) */
@@ -811,6 +840,9 @@ typedef struct us_SvgInfo {
   int ids_generated;       /* shapes without an id */
   int ids_renamed;         /* repeated ids made unique */
   double unit;             /* output units per root user unit (x) */
+  size_t entity_bytes;     /* attribute values that hold entity references:
+                              their expanded bytes plus one per reference, in
+                              all at most 1 MiB + 4 x the file's size */
 } us_SvgInfo;
 
 /* Read an SVG drawing into a finalized structure. Errors name the file,
@@ -826,6 +858,21 @@ US_API us_Structure *us_structure_parse_svg(const char *text, size_t len, const 
 /* Plan files. Reading maps ids to body indices of s. */
 US_API us_Status us_plan_write(const us_Structure *s, const us_Plan *p, const us_PlanSettings *set,
                         const char *path, us_Error *err);
+/* The same into an open stream fp (a FILE*, e.g. a temporary file for
+ * `plan -o -`); `name` is the output's name for messages. On an error part
+ * of the plan may have been written: write to a scratch stream. */
+US_API us_Status us_plan_write_stream(const us_Structure *s, const us_Plan *p,
+                                      const us_PlanSettings *set, void *fp, const char *name,
+                                      us_Error *err);
+/* The fingerprint of a finalized structure (src/io/fingerprint.c,
+ * docs/format.md): a 64-bit FNV-1a hash of a canonical serialisation of
+ * what determines its verdicts (dimension, gravity, friction, ground, each
+ * body's id, fixed flag, mass or density, friction and geometry, explicit
+ * contacts), written into plan files so that a plan read against another
+ * structure is refused. Text form: "fnv1a64:" and 16 lowercase hex digits. */
+#define US_FINGERPRINT_CHARS 25
+US_API us_Status us_structure_fingerprint(const us_Structure *s, uint64_t *out, us_Error *err);
+US_API void us_fingerprint_text(uint64_t fp, char out[US_FINGERPRINT_CHARS]);
 typedef struct us_PlanFile {
   us_PlanStatus status;
   int n;
@@ -835,6 +882,15 @@ typedef struct us_PlanFile {
   int nblocked;       /* "blocked": bodies a plan with status none names */
   int *blocked;
   us_Removal removal; /* "removal" (default any): verify checks the kinematics */
+  int has_fingerprint; /* the file names its structure ("fingerprint"); it
+                          matched (us_plan_read refuses another's) */
+  int other_structure; /* set on the refusal: the file's fingerprint is not
+                          the structure's (fingerprint holds the file's) */
+  char fingerprint[US_FINGERPRINT_CHARS];
+  int nbuildable;      /* status none: "build" (placement order, steps as in
+                          "order"), else 0 */
+  int *buildable, *build_start; /* [nbuildable], [nbuild + 1] offsets */
+  int nbuild;          /* steps of the build */
   int hands;          /* "hands" (0: absent, an order-only plan) */
   int nactions;       /* "actions": ids checked, sequence checked by verify */
   us_Action *actions;
@@ -856,6 +912,20 @@ US_API void us_certs_free(us_Forces *certs, int n);
 
 /* ------------------------------------------------------------------ render */
 
+/* Body labels: AUTO the step number with an order, else the id; IDS the
+ * id; STEPS the step number (bodies without a step: none); NONE. */
+typedef enum us_Labels { US_LABELS_AUTO = 0, US_LABELS_IDS, US_LABELS_STEPS, US_LABELS_NONE } us_Labels;
+/* What a picture marks when the structure (or a plan's remainder) does not
+ * stand: the failing step (1-based step of the order after which the rest
+ * falls; 0: the full structure), the body that cannot be held (-1: not
+ * known) and the mechanism (the unstable verdict's motion; NULL or nbody 0:
+ * none), drawn as velocity arrows and, in 2D, ghosts of the moving bodies
+ * displaced along it (docs/render.md). */
+typedef struct us_RenderFailure {
+  int step;
+  int body;
+  const us_Mechanism *mechanism;
+} us_RenderFailure;
 typedef struct us_RenderSettings {
   const int *order;       /* removal order (may be NULL) */
   int norder;
@@ -863,7 +933,13 @@ typedef struct us_RenderSettings {
   int ngroups;
   const int *blocked;     /* bodies that cannot be removed (plan status none) */
   int nblocked;
-  const us_Forces *forces;/* draw as arrows (may be NULL) */
+  const us_Forces *forces;/* draw as arrows (may be NULL): at each contact the
+                             force of the lower body on the upper one, normal
+                             and friction parts apart (docs/render.md) */
+  int force_resultants;   /* 1: one arrow per pair of touching bodies, their
+                             contacts' resultant at its centre of pressure */
+  us_ForceSet force_set;  /* which admissible set `forces` is (the legend
+                             names it; default US_FORCESET_SOLVER) */
   int show_contacts;      /* default 1 */
   int show_labels;        /* default 1 */
   double width_px;        /* default 800 */
@@ -874,6 +950,12 @@ typedef struct us_RenderSettings {
   double view_az, view_el;/* 3D: the axonometric view's azimuth and
                              elevation in degrees (default 35, 25; el in
                              [-90, 90]; docs/render.md) */
+  us_Labels labels;       /* what bodies are labelled with (default
+                             US_LABELS_AUTO; show_labels 0 is NONE) */
+  int order_builds;       /* 1: order is a build (placement) order, the
+                             buildable part of a none plan, numbered 1 =
+                             placed first */
+  const us_RenderFailure *failure; /* why it does not stand (NULL: no mark) */
 } us_RenderSettings;
 US_API us_RenderSettings us_render_default_settings(void);
 /* Draw s (docs/render.md) as SVG or PNG, written atomically: on any error
@@ -885,7 +967,7 @@ US_API us_Status us_render_png(const us_Structure *s, const us_RenderSettings *r
                         us_Error *err);
 
 /* The interactive plan viewer (docs/viewer.md): one self-contained HTML
- * page (inline SVG, script and style; no network) with a step slider,
+ * page (a canvas, script and style; no network) with a step slider,
  * play/pause, the forces of each step, zoom, pan and hover. 2D only. */
 typedef struct us_HtmlSettings {
   const char *title;        /* shown in the page (NULL: "unstack") */
@@ -895,6 +977,8 @@ typedef struct us_HtmlSettings {
                                certs[k] = forces of the structure before step
                                k of r's order (nsteps = r's steps, 0 without
                                an order) */
+  us_ForceSet force_set;    /* which admissible set certs are (the page
+                               names it) */
   int verified;             /* 1: `verify` holds us_verify_steps' report on
                                r's order, shown in the page (a failing step in
                                red) */

@@ -43,7 +43,8 @@
  * pinched between two walls stands for every mu > 0, not at 0).
  *
  * The copy (the "view") is a struct copy of the structure that shares its
- * bodies and id index read-only and owns its contacts array. It is never
+ * bodies and internal part (id index, finalized) read-only and owns its
+ * contacts array. It is never
  * handed to us_structure_free. One stability workspace per probe: a
  * backend may keep per-contact data from its creation (the LCP keeps the
  * coefficients), so a workspace must not outlive a change of mu.
@@ -107,7 +108,7 @@ static int forces_copy(us_Forces *dst, const us_Forces *src, int dim) {
 static us_Status check_args(const us_Structure *s, const us_Bitset *present, double tol,
                             double mu_max, const us_FrictionResult *out, us_Error *err) {
   if (!s || !out) return us_error_set(err, US_ERR_USAGE, "us_critical_friction: NULL argument");
-  if (!s->finalized)
+  if (!us_structure_is_finalized(s))
     return us_error_set(err, US_ERR_USAGE, "us_critical_friction: the structure is not finalized");
   if (present && (present->nbits != s->nbody || !present->w))
     return us_error_set(err, US_ERR_USAGE, "us_critical_friction: sub-assembly has %d bits, "
@@ -131,7 +132,6 @@ static int ctx_init(FrictionCtx *x, const us_Structure *s, const us_Bitset *pres
   size_t nc = (size_t)US_MAX(s->ncontact, 1), nb = (size_t)US_MAX(s->nbody, 1);
   x->view = *s;
   x->view.contacts = us_malloc(nc * sizeof(us_Contact));
-  x->view.cap_contact = s->ncontact;
   x->acc = us_malloc(US_CERT_ACC * nb * sizeof(double));
   x->seen = us_malloc(nc);
   if (!x->view.contacts || !x->acc || !x->seen) return -1;

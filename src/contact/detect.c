@@ -52,14 +52,6 @@ static int ground_contacts(const us_Structure *s, const double *tol, us_CandList
   return 0;
 }
 
-us_EdgeGrid *us_detect_grid(us_Detect *d, int i) {
-  const us_Body *b = &d->s->bodies[i];
-  double pad = d->reference ? INFINITY : d->tol[i];
-  if (!d->built[i] && us_edge_grid_init(&d->grid[i], b->verts, b->nvert, pad)) return NULL;
-  d->built[i] = 1;
-  return &d->grid[i];
-}
-
 static us_Status pair_phase(const us_Structure *s, int reference, const double *tol,
                             us_CandList *out, us_Error *err) {
   us_BodyPair *pairs = NULL;

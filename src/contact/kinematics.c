@@ -345,7 +345,7 @@ static int build_common(us_Kinematics *k, const us_Structure *s) {
 }
 
 us_Kinematics *us_kinematics_new(const us_Structure *s, us_Removal mode, us_Error *err) {
-  if (!s || !s->finalized || s->dim != 2) {
+  if (!s || !us_structure_is_finalized(s) || s->dim != 2) {
     us_error_set(err, US_ERR_USAGE, "removal kinematics needs a finalized 2D structure");
     return NULL;
   }

@@ -34,20 +34,6 @@ static us_Status add_row_block(us_Structure *s, const us_GenSettings *g, int *k,
   return st;
 }
 
-/* Checks shared by the block generators: common settings, block size, a
- * positive count `n` named `nname`, and a total below the body limit. */
-us_Status us_gen_check_blocks(const us_GenSettings *g, const char *what, int n, const char *nname,
-                              long total, us_Error *err) {
-  us_Status st = us_gen_check_common(g, what, err);
-  if (!st) st = us_gen_check_positive(g->width, what, "block width", err);
-  if (!st) st = us_gen_check_positive(g->height, what, "block height", err);
-  if (!st && n < 1) st = us_error_set(err, US_ERR_USAGE, "%s: %s must be >= 1, got %d", what, nname, n);
-  if (!st && total > US_GEN_MAX_BODIES)
-    st = us_error_set(err, US_ERR_USAGE, "%s: %ld blocks is more than the limit of %ld", what,
-                      total, US_GEN_MAX_BODIES);
-  return st;
-}
-
 /* Column: g->n blocks of g->width x g->height, aligned, b1 on the ground. */
 us_Structure *us_gen_column(const us_GenSettings *g, us_Error *err) {
   if (us_gen_check_blocks(g, "column", g ? g->n : 0, "n", g ? (long)g->n : 0, err)) return NULL;

@@ -1,6 +1,9 @@
 /* Plan files (docs/format.md): writing a plan with its settings, optional
  * per-step certificates and statistics; reading back its status and removal
- * order as body indices of a given structure.
+ * order as body indices of a given structure. A written plan carries the
+ * fingerprint of its structure (src/io/fingerprint.c); reading refuses a
+ * plan whose fingerprint is not the structure's, and accepts one without
+ * (older files).
  *
  * Steps: an "order" entry is a body id, or an array of ids removed in one
  * step (a group). Certificates: certs[k] holds the contact forces of the
@@ -21,7 +24,7 @@
 static const char *const plan_keys[] = {
     "format",    "version",   "status",  "order",   "method",    "search",     "order_heuristic",
     "direction", "removal",   "max_group", "buildable", "blocked", "steps", "statistics",
-    "hands",     "hands_lower", "actions", "release_certificates", NULL};
+    "fingerprint", "build", "hands",     "hands_lower", "actions", "release_certificates", NULL};
 
 /* ------------------------------------------------------------------ write */
 
@@ -170,9 +173,26 @@ static void write_settings(us_JsonOut *o, const us_PlanSettings *set) {
   fprintf(o->fp, "  \"removal\": \"%s\"", us_removal_name(set->removal));
 }
 
+/* "build": the greedy's placements, steps as in "order". */
+static void write_build(us_JsonOut *o, const us_Structure *s, const us_Plan *p) {
+  us_jo_raw(o, "  \"build\": [");
+  for (int k = 0; k < p->nbuild; k++) {
+    int a = p->build_start[k], b = p->build_start[k + 1];
+    us_jo_raw(o, k ? (b - a > 1 ? ", [" : ", ") : (b - a > 1 ? "[" : ""));
+    for (int q = a; q < b; q++) {
+      if (q > a) us_jo_raw(o, ", ");
+      us_jo_string(o, s->bodies[p->buildable[q]].id);
+    }
+    if (b - a > 1) us_jo_raw(o, "]");
+  }
+  us_jo_raw(o, "],\n");
+}
+
 static void write_header(us_JsonOut *o, const us_Structure *s, const us_Plan *p,
-                         const us_PlanSettings *set) {
-  us_jo_raw(o, "{\n  \"format\": \"unstack-plan\",\n  \"version\": 1,\n  \"status\": ");
+                         const us_PlanSettings *set, const char *fp) {
+  us_jo_raw(o, "{\n  \"format\": \"unstack-plan\",\n  \"version\": 1,\n  \"fingerprint\": ");
+  us_jo_string(o, fp);
+  us_jo_raw(o, ",\n  \"status\": ");
   us_jo_string(o, us_plan_status_name(p->status));
   if (set) write_settings(o, set);
   if (p->max_group > 0) fprintf(o->fp, ",\n  \"max_group\": %d", p->max_group);
@@ -184,6 +204,7 @@ static void write_header(us_JsonOut *o, const us_Structure *s, const us_Plan *p,
   us_jo_raw(o, "],\n");
   if (p->buildable) write_id_list(o, "buildable", s, p->buildable, p->nbuildable);
   if (p->blocked) write_id_list(o, "blocked", s, p->blocked, p->nblocked);
+  if (p->buildable && p->build_start) write_build(o, s, p);
 }
 
 /* Indices in the plan must be bodies of s (a caller bug otherwise). */
@@ -198,6 +219,11 @@ static int plan_consistent(const us_Structure *s, const us_Plan *p) {
     if (p->buildable[k] < 0 || p->buildable[k] >= s->nbody) return 0;
   for (int k = 0; k < p->nblocked; k++)
     if (p->blocked[k] < 0 || p->blocked[k] >= s->nbody) return 0;
+  if (p->build_start && (p->nbuild < 0 || p->build_start[0] != 0 ||
+                         p->build_start[p->nbuild] != p->nbuildable))
+    return 0;
+  for (int k = 0; p->build_start && k < p->nbuild; k++)
+    if (p->build_start[k + 1] <= p->build_start[k]) return 0;
   for (int k = 0; k < p->nsteps; k++)
     if (p->order[k] < 0 || p->order[k] >= s->nbody) return 0;
   for (int k = 0; p->certs && k <= nsteps_of(p); k++)
@@ -206,27 +232,56 @@ static int plan_consistent(const us_Structure *s, const us_Plan *p) {
   return 1;
 }
 
-us_Status us_plan_write(const us_Structure *s, const us_Plan *p, const us_PlanSettings *set,
-                        const char *path, us_Error *err) {
+static us_Status check_plan(const us_Structure *s, const us_Plan *p, const char *path,
+                            us_Error *err) {
   if (!s || !p || !path) return us_error_set(err, US_ERR_USAGE, "us_plan_write: missing argument");
   if (!plan_consistent(s, p))
     return us_error_set(err, US_ERR_USAGE, "%s: plan does not match the structure", path);
-  us_AtomicFile *af = us_atomic_open(path, err);
-  if (!af) return err ? err->code : US_ERR_IO;
-  us_JsonOut o = {us_atomic_stream(af), 0, 0};
-  us_Status st = US_OK;
-  write_header(&o, s, p, set);
+  return US_OK;
+}
+
+/* The whole plan into fp; an error leaves fp with part of it. */
+static us_Status write_plan(FILE *fp, const us_Structure *s, const us_Plan *p,
+                            const us_PlanSettings *set, const char *path, us_Error *err) {
+  uint64_t h;
+  char fpt[US_FINGERPRINT_CHARS];
+  us_Status st = us_structure_fingerprint(s, &h, err);
+  if (st) return st;
+  us_fingerprint_text(h, fpt);
+  us_JsonOut o = {fp, 0, 0};
+  write_header(&o, s, p, set, fpt);
   us_plan_write_actions(&o, s, p);
   if (p->certs) st = write_steps(&o, s, p, set ? set->stability.cert_tol : 1e-6);
   if (!st) write_stats(&o, &p->stats);
   us_jo_raw(&o, "}\n");
-  if (st || o.bad || o.bad_text) {
-    us_atomic_abort(af);
-    if (st) return us_error_set(err, st, "%s: out of memory writing the plan", path);
+  if (st) return us_error_set(err, st, "%s: out of memory writing the plan", path);
+  if (o.bad || o.bad_text)
     return us_error_set(err, US_ERR_INPUT, "%s: the plan holds %s", path,
                         o.bad ? "a non-finite number" : "an id that is not valid UTF-8");
-  }
-  return us_atomic_commit(af, err);
+  return US_OK;
+}
+
+us_Status us_plan_write(const us_Structure *s, const us_Plan *p, const us_PlanSettings *set,
+                        const char *path, us_Error *err) {
+  us_Status st = check_plan(s, p, path, err);
+  if (st) return st;
+  us_AtomicFile *af = us_atomic_open(path, err);
+  if (!af) return err ? err->code : US_ERR_IO;
+  st = write_plan(us_atomic_stream(af), s, p, set, path, err);
+  if (!st) return us_atomic_commit(af, err);
+  us_atomic_abort(af);
+  return st;
+}
+
+us_Status us_plan_write_stream(const us_Structure *s, const us_Plan *p,
+                               const us_PlanSettings *set, void *fp, const char *name,
+                               us_Error *err) {
+  us_Status st = check_plan(s, p, name, err);
+  if (!st && !fp) st = us_error_set(err, US_ERR_USAGE, "us_plan_write_stream: no stream");
+  if (!st) st = write_plan(fp, s, p, set, name, err);
+  if (!st && (fflush(fp) || ferror(fp)))
+    st = us_error_set(err, US_ERR_IO, "%s: write error", name);
+  return st;
 }
 
 /* ------------------------------------------------------------------- read */
@@ -297,11 +352,11 @@ static us_Status first_unknown(const us_IoCtx *c, const us_Structure *s, json_t 
   return US_OK;
 }
 
-/* order[k]: an id (one body) or a non-empty array of ids (a group). */
-static us_Status read_order_entry(const us_IoCtx *c, const us_Structure *s, json_t *v, int k,
-                                  int *first, us_PlanFile *out) {
+/* FIELD[k]: an id (one body) or a non-empty array of ids (a group). */
+static us_Status read_order_entry(const us_IoCtx *c, const us_Structure *s, json_t *v,
+                                  const char *field, int k, int *first, us_PlanFile *out) {
   char where[48];
-  snprintf(where, sizeof where, "order[%d]", k);
+  snprintf(where, sizeof where, "%s[%d]", field, k);
   if (!json_is_array(v)) {
     us_Status st = read_order_id(c, s, v, where, out->n, first, &out->order[out->n]);
     if (!st) out->n++;
@@ -311,7 +366,7 @@ static us_Status read_order_entry(const us_IoCtx *c, const us_Structure *s, json
   if (m == 0) return us_io_bad(c, where, "an empty step");
   for (size_t q = 0; q < m; q++) {
     if (out->n >= s->nbody) return us_io_bad(c, where, "more bodies than the structure has");
-    snprintf(where, sizeof where, "order[%d][%zu]", k, q);
+    snprintf(where, sizeof where, "%s[%d][%zu]", field, k, q);
     us_Status st = read_order_id(c, s, json_array_get(v, q), where, out->n, first,
                                  &out->order[out->n]);
     if (st) return st;
@@ -320,14 +375,15 @@ static us_Status read_order_entry(const us_IoCtx *c, const us_Structure *s, json
   return US_OK;
 }
 
+/* "order" (or "build", the same syntax) into out->order, group_start. */
 static us_Status read_order(const us_IoCtx *c, const us_Structure *s, json_t *arr,
-                            us_PlanFile *out) {
-  if (!arr) return us_io_bad(c, "", "missing field 'order'");
-  if (!json_is_array(arr)) return us_io_bad(c, "", "order: expected an array of body ids");
+                            const char *field, us_PlanFile *out) {
+  if (!arr) return us_io_bad(c, "", "missing field '%s'", field);
+  if (!json_is_array(arr)) return us_io_bad(c, "", "%s: expected an array of body ids", field);
   size_t n = json_array_size(arr);
-  if (n > (size_t)s->nbody && first_unknown(c, s, arr, "order")) return US_ERR_INPUT;
+  if (n > (size_t)s->nbody && first_unknown(c, s, arr, field)) return US_ERR_INPUT;
   if (n > (size_t)s->nbody)
-    return us_io_bad(c, "", "order: more entries (%zu) than bodies (%d)", n, s->nbody);
+    return us_io_bad(c, "", "%s: more entries (%zu) than bodies (%d)", field, n, s->nbody);
   int *first = us_malloc(((size_t)s->nbody + 1) * sizeof *first);
   out->order = us_malloc(((size_t)s->nbody + 1) * sizeof *out->order);
   out->group_start = us_malloc((n + 2) * sizeof *out->group_start);
@@ -337,7 +393,7 @@ static us_Status read_order(const us_IoCtx *c, const us_Structure *s, json_t *ar
   for (int i = 0; !st && i < s->nbody; i++) first[i] = -1;
   if (!st) out->group_start[0] = 0;
   for (size_t k = 0; !st && k < n; k++) {
-    st = read_order_entry(c, s, json_array_get(arr, k), (int)k, first, out);
+    st = read_order_entry(c, s, json_array_get(arr, k), field, (int)k, first, out);
     if (!st) out->group_start[++out->ngroups] = out->n;
   }
   us_free(first);
@@ -369,6 +425,41 @@ static us_Status read_blocked(const us_IoCtx *c, const us_Structure *s, json_t *
   return st;
 }
 
+/* "build" (optional): the buildable part in placement order, as "order". */
+static us_Status read_build(const us_IoCtx *c, const us_Structure *s, json_t *arr,
+                            us_PlanFile *out) {
+  if (!arr) return US_OK;
+  us_PlanFile b;
+  memset(&b, 0, sizeof b);
+  us_Status st = read_order(c, s, arr, "build", &b);
+  out->buildable = b.order;
+  out->build_start = b.group_start;
+  out->nbuildable = b.n;
+  out->nbuild = b.ngroups;
+  return st;
+}
+
+/* "fingerprint" (optional: older files have none): the structure's, or
+ * the file is refused as another structure's plan. */
+static us_Status read_fingerprint(const us_IoCtx *c, const us_Structure *s, json_t *v,
+                                  us_PlanFile *out) {
+  if (!v) return US_OK;
+  const char *text = json_string_value(v);
+  if (!text || strlen(text) != US_FINGERPRINT_CHARS - 1 || strncmp(text, "fnv1a64:", 8))
+    return us_io_bad(c, "", "fingerprint: expected \"fnv1a64:\" and 16 hex digits");
+  uint64_t h;
+  char mine[US_FINGERPRINT_CHARS];
+  us_Status st = us_structure_fingerprint(s, &h, c->err);
+  if (st) return st;
+  us_fingerprint_text(h, mine);
+  snprintf(out->fingerprint, sizeof out->fingerprint, "%s", text);
+  out->has_fingerprint = 1;
+  if (!strcmp(text, mine)) return US_OK;
+  out->other_structure = 1;
+  return us_io_bad(c, "", "fingerprint: a plan for another structure (the plan's %s, the "
+                   "structure's %s)", text, mine);
+}
+
 static us_Status read_removal(const us_IoCtx *c, json_t *v, us_Removal *out) {
   *out = US_REMOVAL_ANY;
   if (v && (!json_is_string(v) || us_removal_parse(json_string_value(v), out)))
@@ -388,14 +479,16 @@ us_Status us_plan_read(const us_Structure *s, const char *path, us_PlanFile *out
   if (!st && !json_is_object(root))
     st = us_io_bad(&c, "", "expected a JSON object at the top level");
   if (!st) st = read_header(&c, root, &out->status);
-  if (!st) st = read_order(&c, s, json_object_get(root, "order"), out);
+  if (!st) st = read_fingerprint(&c, s, json_object_get(root, "fingerprint"), out);
+  if (!st) st = read_order(&c, s, json_object_get(root, "order"), "order", out);
   if (!st) st = read_blocked(&c, s, json_object_get(root, "blocked"), out);
+  if (!st) st = read_build(&c, s, json_object_get(root, "build"), out);
   if (!st) st = read_removal(&c, json_object_get(root, "removal"), &out->removal);
   if (!st) st = us_plan_read_actions(&c, s, root, out);
   json_decref(root);
   us_free(text);
   if (st) {
-    us_plan_file_free(out);
+    us_plan_file_free(out); /* keeps the fingerprint fields for the caller */
     if (err) *err = local;
   }
   return st;
@@ -406,9 +499,11 @@ void us_plan_file_free(us_PlanFile *pf) {
   us_free(pf->order);
   us_free(pf->group_start);
   us_free(pf->blocked);
+  us_free(pf->buildable);
+  us_free(pf->build_start);
   us_free(pf->actions);
   pf->actions = NULL;
   pf->nactions = pf->hands = 0;
-  pf->order = pf->group_start = pf->blocked = NULL;
-  pf->n = pf->ngroups = pf->nblocked = 0;
+  pf->order = pf->group_start = pf->blocked = pf->buildable = pf->build_start = NULL;
+  pf->n = pf->ngroups = pf->nblocked = pf->nbuildable = pf->nbuild = 0;
 }

@@ -65,14 +65,17 @@ typedef struct us_SvgRings {
   int *start;
   int nring, cap_start;
   int curves;       /* curve segments flattened so far */
+  int max_pt;       /* points allowed in all (> 0) */
 } us_SvgRings;
 
 void us_svg_rings_free(us_SvgRings *r);
 /* Start a ring; 0 or -1 on OOM. */
 int us_svg_ring_begin(us_SvgRings *r);
 /* Append m(x, y) to the open ring; consecutive repeats are dropped.
- * 0, -1 OOM, -2 the mapped point is not finite. */
+ * 0, -1 OOM, -2 the mapped point is not finite, -3 r->max_pt reached. */
 int us_svg_ring_point(us_SvgRings *r, const us_SvgMatrix *m, double x, double y);
+/* The error for a failed us_svg_ring_point's code rc. */
+us_Status us_svg_ring_error(const us_SvgRings *r, int rc, us_Error *err);
 /* Close the open ring (its last point dropped when it repeats the first):
  * 1 kept, 0 dropped (closed == 0: an open outline whose ends differ). */
 int us_svg_ring_end(us_SvgRings *r, int closed);
@@ -119,6 +122,10 @@ typedef struct us_SvgDoc {
   double friction;  /* the root's data-friction, or -1 */
   double flatten;
   int skipped;      /* elements skipped with a warning */
+  size_t size;      /* bytes of the file */
+  size_t entity_budget; /* what entity references in attribute values may
+                           add to the whole document (svg_walk.c) */
+  size_t entity_bytes;  /* what they added, checked before the walk */
   void (*warn)(const char *msg, void *user);
   void *warn_user;
 } us_SvgDoc;

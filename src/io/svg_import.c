@@ -31,6 +31,17 @@
 
 #define SNAP_REL 1e-3
 #define DEGENERATE_REL 1e-12
+/* What entity references may add to attribute values in all: 1 MiB plus
+ * 4 bytes per byte of the file (svg_walk.c, docs/svg.md) */
+#define ENTITY_BASE ((size_t)1 << 20)
+#define ENTITY_PER_BYTE 4
+/* The largest drawing read: its tree, rings and structure take up to
+ * about 40 times its size (a 20 MB wall of rects: 750 MB) */
+#define SVG_MAX_BYTES (64 << 20)
+/* Vertices the rings may have in all: 1 Mi plus 4 per byte of the file
+ * (a default circle is about 70 from 25 bytes) */
+#define POINTS_BASE (1 << 20)
+#define POINTS_PER_BYTE 4
 
 us_SvgSettings us_svg_default_settings(void) {
   us_SvgSettings s;
@@ -60,7 +71,7 @@ static us_Status check_settings(const us_SvgSettings *s, const char *name, doubl
                                 us_Error *err) {
   const char *u = s->unit ? s->unit : "m";
   *out_unit = strcmp(u, "user") ? us_svg_unit_metres(u, strlen(u)) : -1;
-  if (!*out_unit) return us_error_set(err, US_ERR_USAGE, "unknown unit '%s' (m, cm, mm, in, pt, pc, px, user)", u);
+  if (*out_unit == 0) return us_error_set(err, US_ERR_USAGE, "unknown unit '%s' (m, cm, mm, in, pt, pc, px, user)", u);
   if (!(s->scale > 0) || !isfinite(s->scale))
     return us_error_set(err, US_ERR_USAGE, "%s: the scale must be a finite number > 0", name);
   if (!(s->flatten > 0 && s->flatten <= 0.5))
@@ -72,9 +83,14 @@ static us_Status check_settings(const us_SvgSettings *s, const char *name, doubl
 
 /* ------------------------------------------------------------------ XML */
 
+static void too_large(const char *name, double bytes, us_Error *err) {
+  us_error_set(err, US_ERR_INPUT, "%s: too large (%.0f bytes): the import reads at most %d MiB "
+               "of SVG, about a million blocks (docs/svg.md)", name, bytes, SVG_MAX_BYTES >> 20);
+}
+
 static xmlDoc *parse_xml(const char *text, size_t len, const char *name, us_Error *err) {
-  if (len > INT_MAX) {
-    us_error_set(err, US_ERR_IO, "%s: too large (over 2 GB)", name);
+  if (len > SVG_MAX_BYTES) {
+    too_large(name, (double)len, err);
     return NULL;
   }
   xmlParserCtxt *ctx = xmlNewParserCtxt();
@@ -82,14 +98,19 @@ static xmlDoc *parse_xml(const char *text, size_t len, const char *name, us_Erro
     us_error_set(err, US_ERR_NOMEM, "out of memory");
     return NULL;
   }
-  int opts = XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING | XML_PARSE_BIG_LINES;
+  /* no network, no DTD loading, entities left as references (svg_walk.c),
+   XML_PARSE_HUGE off (libxml2's size limits hold), short strings in nodes */
+  int opts = XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING | XML_PARSE_BIG_LINES |
+             XML_PARSE_COMPACT;
   xmlDoc *doc = xmlCtxtReadMemory(ctx, text, (int)len, name, NULL, opts);
   if (!doc) {
     const xmlError *e = xmlCtxtGetLastError(ctx);
     char msg[256] = "unknown error";
     if (e && e->message) snprintf(msg, sizeof msg, "%s", e->message);
     msg[strcspn(msg, "\n")] = '\0';
-    us_error_set(err, US_ERR_PARSE, "%s:%d: malformed XML: %s", name, e ? e->line : 0, msg);
+    /* libxml2's amplification guard says "loop" for a bomb too */
+    const char *bomb = e && e->code == XML_ERR_ENTITY_LOOP ? " (or entities that expand too much)" : "";
+    us_error_set(err, US_ERR_PARSE, "%s:%d: malformed XML: %s%s", name, e ? e->line : 0, msg, bomb);
   }
   xmlFreeParserCtxt(ctx);
   return doc;
@@ -171,14 +192,17 @@ static us_Status map_ring(Import *im, int k, double *xy) {
     xy[2 * p + 1] = (im->ground_y - r->xy[2 * (s + p) + 1]) * im->k[1];
   }
   char at[200];
-  for (int p = 0; p < 2 * n; p++)
-    if (!isfinite(xy[p])) {
-      where(im, k, at, sizeof at);
-      return us_error_set(im->err, US_ERR_INPUT, "%s: a coordinate is not finite in the output units", at);
-    }
-  double d = us_poly_diameter(xy, n);
-  if (n >= 3 && fabs(us_poly_signed_area(xy, n)) > DEGENERATE_REL * d * d) return US_OK;
+  int finite = 1;
+  for (int p = 0; p < 2 * n; p++) finite &= isfinite(xy[p]) != 0;
+  double d = finite ? us_poly_diameter(xy, n) : INFINITY, a = finite ? us_poly_signed_area(xy, n) : 0;
   where(im, k, at, sizeof at);
+  if (!finite)
+    return us_error_set(im->err, US_ERR_INPUT, "%s: a coordinate overflows in the output units (not finite)", at);
+  /* area, size squared and the moment of inertia must stay doubles */
+  if (!isfinite(d * d) || !isfinite(a) || !isfinite(us_poly_polar_moment(xy, n)))
+    return us_error_set(im->err, US_ERR_INPUT, "%s: coordinates too large: the shape's area or "
+                        "inertia overflows (its size is %g output units)", at, d);
+  if (n >= 3 && fabs(a) > DEGENERATE_REL * d * d) return US_OK;
   return us_error_set(im->err, US_ERR_INPUT, "%s: degenerate shape (%s)", at,
                       n < 3 ? "fewer than 3 distinct points" : "no area");
 }
@@ -237,6 +261,10 @@ static us_Status finalize(Import *im, us_Structure *s) {
   char msg[sizeof im->err->msg];
   memcpy(msg, im->err->msg, sizeof msg);
   name_lines(im, s, msg, sizeof msg);
+  if (im->info.snapped) /* what snapping did, and how to do without it */
+    return us_error_set(im->err, st, "%s: %s; snapping moved %d vertices before this check "
+                        "(--snap 0: none, --snap TOL: another tolerance)", im->doc.name, msg,
+                        im->info.snapped);
   return us_error_set(im->err, st, "%s: %s", im->doc.name, msg);
 }
 
@@ -268,8 +296,12 @@ static us_Structure *build(Import *im) {
   return s;
 }
 
+/* The XML document is freed as soon as it is walked: the structure is
+ * built from the rings alone, so the two never take memory together. */
 static us_Structure *import(Import *im, xmlDoc *xml, double out_unit) {
-  if (us_svg_walk(&im->doc, xml, im->err)) return NULL;
+  us_Status walked = us_svg_walk(&im->doc, xml, im->err);
+  xmlFreeDoc(xml);
+  if (walked) return NULL;
   im->info.skipped = im->doc.skipped;
   im->info.curves = im->doc.rings.curves;
   if (im->doc.rings.nring == 0) {
@@ -294,6 +326,9 @@ us_Structure *us_structure_parse_svg(const char *text, size_t len, const char *n
   im.err = err ? err : &local;
   im.doc.name = name ? name : "<input>";
   im.doc.flatten = im.set->flatten;
+  im.doc.size = len;
+  im.doc.entity_budget = ENTITY_BASE + ENTITY_PER_BYTE * len;
+  im.doc.rings.max_pt = (int)US_MIN((size_t)POINTS_BASE + POINTS_PER_BYTE * len, (size_t)INT_MAX / 4);
   im.doc.warn = im.set->warn;
   im.doc.warn_user = im.set->warn_user;
   double out_unit;
@@ -304,11 +339,11 @@ us_Structure *us_structure_parse_svg(const char *text, size_t len, const char *n
   if (check_settings(im.set, im.doc.name, &out_unit, im.err)) return NULL;
   xmlDoc *xml = parse_xml(text, len, im.doc.name, im.err);
   us_Structure *s = xml ? import(&im, xml, out_unit) : NULL;
-  xmlFreeDoc(xml);
   for (int k = 0; k < im.ngen; k++) us_free(im.gen[k]);
   us_free(im.gen);
   us_free(im.ids);
   us_svg_doc_free(&im.doc);
+  im.info.entity_bytes = im.doc.entity_bytes;
   if (info) *info = im.info;
   return s;
 }
@@ -317,6 +352,13 @@ us_Structure *us_structure_read_svg(const char *path, const us_SvgSettings *set,
                                     us_Error *err) {
   if (!path) {
     us_error_set(err, US_ERR_USAGE, "us_structure_read_svg: no path");
+    return NULL;
+  }
+  FILE *fp = fopen(path, "rb"); /* too large: refused before it is read */
+  long size = fp && !fseek(fp, 0, SEEK_END) ? ftell(fp) : -1;
+  if (fp) fclose(fp);
+  if (size > SVG_MAX_BYTES) {
+    too_large(path, (double)size, err);
     return NULL;
   }
   size_t len = 0;

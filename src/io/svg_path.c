@@ -54,6 +54,7 @@ static int push_root(us_SvgRings *r, double x, double y) {
   if (!isfinite(x) || !isfinite(y)) return -2;
   int n = r->npt;
   if (n > r->start[r->nring] && r->xy[2 * n - 2] == x && r->xy[2 * n - 1] == y) return 0;
+  if (n >= r->max_pt) return -3;
   if (US_GROW(r->xy, r->cap_pt, 2 * n + 2)) return -1;
   r->xy[2 * n] = x;
   r->xy[2 * n + 1] = y;
@@ -65,6 +66,14 @@ int us_svg_ring_point(us_SvgRings *r, const us_SvgMatrix *m, double x, double y)
   double q[2];
   us_svg_apply(m, x, y, q);
   return push_root(r, q[0], q[1]);
+}
+
+us_Status us_svg_ring_error(const us_SvgRings *r, int rc, us_Error *err) {
+  if (rc == -2) return us_error_set(err, US_ERR_INPUT, "a coordinate overflows after the transforms (not finite)");
+  if (rc == -3)
+    return us_error_set(err, US_ERR_INPUT, "the drawing makes more than %d vertices, the limit for "
+                        "its size (docs/svg.md; curves give fewer with a larger --flatten)", r->max_pt);
+  return us_error_set(err, US_ERR_NOMEM, "out of memory");
 }
 
 /* Drop points within eps of the previous kept one; returns the count. */
@@ -188,8 +197,7 @@ us_Status us_svg_ellipse(us_SvgRings *r, const us_SvgMatrix *m, double cx, doubl
   int rc = us_svg_ring_begin(r);
   if (!rc) rc = us_svg_ring_point(r, m, cx + rx, cy);
   if (!rc) rc = arc_points(r, m, &a, flatten, 1);
-  if (rc == -2) return us_error_set(err, US_ERR_PARSE, "a coordinate is not finite after the transforms");
-  if (rc) return us_error_set(err, US_ERR_NOMEM, "out of memory");
+  if (rc) return us_svg_ring_error(r, rc, err);
   us_svg_ring_end(r, 1);
   return US_OK;
 }
@@ -375,7 +383,6 @@ us_Status us_svg_path(us_SvgRings *r, const char *d, const us_SvgMatrix *m, us_S
     if (p.rc) break;
   }
   if (!p.rc) path_end(&p, 0);
-  if (p.rc == -2) return us_error_set(err, US_ERR_PARSE, "a coordinate is not finite after the transforms");
-  if (p.rc) return us_error_set(err, US_ERR_NOMEM, "out of memory");
+  if (p.rc) return us_svg_ring_error(r, p.rc, err);
   return US_OK;
 }

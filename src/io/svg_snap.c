@@ -14,7 +14,13 @@
  *      other body j, within tol_ij.
  * tol_ij is one given tolerance, or rel times the smaller of the two
  * bodies' bounding-box diagonals (tol_i: rel times i's own), so that
- * adding a body far away changes nothing.
+ * adding a body far away changes nothing. Either way tol_i is at most
+ * SNAP_THICK times body i's thickness 2 area / perimeter (a rectangle
+ * w x h: wh / (w + h), about h when it is thin), so that snapping never
+ * flattens a body: a plank 2000 x 1 keeps its height (its diagonal alone
+ * would allow 2). Its vertices on opposite sides move towards each other
+ * by at most 2 SNAP_THICK of its thickness a pass, 2 SNAP_PASSES
+ * SNAP_THICK = 0.4 of it in all.
  *
  * Why this order: a block drawn a little above its support moves down
  * onto it, the support does not move up, and two corners that nearly meet
@@ -43,6 +49,7 @@
 
 #define SNAP_PASSES 4
 #define SNAP_MIN_REL 1e-9
+#define SNAP_THICK 0.05
 
 typedef struct Snap {
   us_Structure *s;
@@ -53,6 +60,15 @@ typedef struct Snap {
   int *vbase;             /* index of body i's first vertex in moved */
   int *order, *rank;      /* bodies from the lowest; rank[order[r]] = r */
 } Snap;
+
+/* 2 area / perimeter: the inradius of a regular polygon, the smaller
+ * side of a thin rectangle. */
+static double thickness(const us_Body *b) {
+  double per = 0;
+  for (int k = 0; k < b->nvert; k++)
+    per += us_v2_dist(us_poly_vertex(b->verts, b->nvert, k), us_poly_vertex(b->verts, b->nvert, k + 1));
+  return per > 0 ? 2 * fabs(us_poly_signed_area(b->verts, b->nvert)) / per : 0;
+}
 
 static void body_box(const us_Body *b, double t, double *box) {
   us_poly_bbox(b->verts, b->nvert, box);
@@ -167,7 +183,9 @@ static us_Status prepare(Snap *sn, double *tol, double tol_abs, double rel, us_E
   for (int i = 0; i < s->nbody; i++) {
     sn->vbase[i] = nv;
     nv += s->bodies[i].nvert;
-    tol[i] = tol_abs > 0 ? tol_abs : rel * us_poly_diameter(s->bodies[i].verts, s->bodies[i].nvert);
+    const us_Body *b = &s->bodies[i];
+    tol[i] = tol_abs > 0 ? tol_abs : rel * us_poly_diameter(b->verts, b->nvert);
+    tol[i] = US_MIN(tol[i], SNAP_THICK * thickness(b));
   }
   for (int i = 0; i < s->nbody; i++) body_box(&s->bodies[i], 2 * tol[i], sn->box + 4 * i);
   sn->moved = us_calloc((size_t)nv + 1, 1);

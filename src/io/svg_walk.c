@@ -30,6 +30,7 @@
 #define SVG_NS "http://www.w3.org/2000/svg"
 #define INKSCAPE_NS "http://www.inkscape.org/namespaces/inkscape"
 #define PX_METRES (0.0254 / 96)
+#define SVG_ENTITY_DEPTH 40 /* entity references within entities */
 
 /* What an element inherits. */
 typedef struct Ctx {
@@ -62,14 +63,102 @@ static int is_svg(const Walk *w, const xmlNode *n) {
   return !*ns || !strcmp(ns, SVG_NS) || !strcmp(ns, w->root_ns);
 }
 
+/* ---------------------------------------------------------------- entities */
+
+/* Attribute values are expanded here, not by xmlGetNoNsProp: libxml2
+ * expands the entity references of a value only when it is read, outside
+ * its parser's amplification guard, by repeated concatenation (quadratic
+ * time). Ours is linear and bounded. Before the walk, check_entities()
+ * measures every value that holds a reference against one budget for the
+ * whole document, d->entity_budget; each reference costs its expansion
+ * plus one (so that deep chains of empty entities count too). A drawing
+ * over the budget is refused naming the element and the attribute. Past
+ * that check a value costs its size each time it is read, and the walk
+ * reads each attribute of an element a bounded number of times. */
+typedef struct Expand {
+  char *buf;        /* xmlMalloc'ed value; NULL: count only */
+  size_t len, cap;
+  size_t cost;      /* bytes plus references so far */
+  size_t limit;     /* the cost allowed */
+} Expand;
+
+enum { EXP_OK, EXP_OVER, EXP_DEEP, EXP_NOMEM };
+
+static int put(Expand *x, const char *s, size_t n) {
+  if (n > x->limit - x->cost) return EXP_OVER;
+  x->cost += n;
+  if (!x->buf) return EXP_OK;
+  if (x->len + n + 1 > x->cap) {
+    size_t cap = US_MAX(2 * x->cap, x->len + n + 1);
+    char *b = xmlRealloc(x->buf, cap);
+    if (!b) return EXP_NOMEM;
+    x->buf = b, x->cap = cap;
+  }
+  memcpy(x->buf + x->len, s, n);
+  x->len += n;
+  x->buf[x->len] = '\0';
+  return EXP_OK;
+}
+
+static int expand_list(const xmlDoc *doc, const xmlNode *k, Expand *x, int depth) {
+  int r = EXP_OK;
+  for (; k && !r; k = k->next) {
+    if (k->type == XML_TEXT_NODE || k->type == XML_CDATA_SECTION_NODE) {
+      const char *t = k->content ? (const char *)k->content : "";
+      r = put(x, t, strlen(t));
+    } else if (k->type == XML_ENTITY_REF_NODE) {
+      const xmlEntity *e = xmlGetDocEntity(doc, k->name);
+      if (depth >= SVG_ENTITY_DEPTH) return EXP_DEEP;
+      if (x->cost >= x->limit) return EXP_OVER;
+      x->cost++;
+      if (!e) r = k->content ? put(x, (const char *)k->content, strlen((const char *)k->content)) : EXP_OK;
+      else r = expand_list(doc, e->children, x, depth + 1);
+    }
+  }
+  return r;
+}
+
+static int has_reference(const xmlAttr *a) {
+  for (const xmlNode *k = a->children; k; k = k->next)
+    if (k->type == XML_ENTITY_REF_NODE) return 1;
+  return 0;
+}
+
+/* A's value (xmlFree it), at most the whole budget long; NULL when it is
+ * longer (never after check_entities) or out of memory (as libxml2's own
+ * reader: its allocations are not the library's funnel). */
+static char *attr_value(const Walk *w, const xmlAttr *a) {
+  if (!a) return NULL;
+  const xmlNode *k = a->children;
+  if (!k || (!k->next && k->type == XML_TEXT_NODE)) /* the common case: one text */
+    return (char *)xmlStrdup(k && k->content ? k->content : (const xmlChar *)"");
+  Expand x = {xmlMalloc(1), 0, 1, 0, w->d->entity_budget};
+  if (!x.buf) return NULL;
+  x.buf[0] = '\0';
+  if (expand_list(a->doc, k, &x, 0) == EXP_OK) return x.buf;
+  xmlFree(x.buf);
+  return NULL;
+}
+
+/* The attribute `name` of n in namespace ns (NULL: none) as written on
+ * the element: defaults a DTD declares are not looked up (xmlHasNsProp
+ * would, and their values would escape the entity budget). */
+static const xmlAttr *find_attr(const xmlNode *n, const char *name, const char *ns) {
+  for (const xmlAttr *a = n->properties; a; a = a->next)
+    if (!strcmp((const char *)a->name, name) &&
+        (ns ? a->ns && a->ns->href && !strcmp((const char *)a->ns->href, ns) : !a->ns))
+      return a;
+  return NULL;
+}
+
 /* An attribute without namespace (xmlFree it), or NULL. */
-static char *attr(const xmlNode *n, const char *name) {
-  return (char *)xmlGetNoNsProp(n, (const xmlChar *)name);
+static char *attr(const Walk *w, const xmlNode *n, const char *name) {
+  return attr_value(w, find_attr(n, name, NULL));
 }
 
 /* "<rect id='a'>" for messages. */
-static void describe(const xmlNode *n, char *buf, size_t cap) {
-  char *id = attr(n, "id");
+static void describe(const Walk *w, const xmlNode *n, char *buf, size_t cap) {
+  char *id = attr(w, n, "id");
   if (id) snprintf(buf, cap, "<%s id='%s'>", name_of(n), us_id_text(id).s);
   else snprintf(buf, cap, "<%s>", name_of(n));
   xmlFree(id);
@@ -87,7 +176,7 @@ static us_Status fail(Walk *w, const xmlNode *n, us_Status code, const char *fmt
   va_start(ap, fmt);
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
-  describe(n, what, sizeof what);
+  describe(w, n, what, sizeof what);
   return us_error_set(w->err, code, "%s:%ld: %s: %s", w->d->name, xmlGetLineNo(n), what, msg);
 }
 
@@ -102,7 +191,7 @@ static us_Status reframe(Walk *w, const xmlNode *n, us_Status st) {
 static void tell(Walk *w, const xmlNode *n, const char *text) {
   if (!w->d->warn) return;
   char what[160], msg[400];
-  describe(n, what, sizeof what);
+  describe(w, n, what, sizeof what);
   snprintf(msg, sizeof msg, "%s:%ld: %s: %s", w->d->name, xmlGetLineNo(n), what, text);
   w->d->warn(msg, w->d->warn_user);
 }
@@ -117,7 +206,7 @@ static void warn(Walk *w, const xmlNode *n, const char *why) {
 /* A length attribute in user units; absent: *out = dflt. */
 static us_Status length_attr(Walk *w, const xmlNode *n, const char *name, double dflt,
                              double *out) {
-  char *v = attr(n, name);
+  char *v = attr(w, n, name);
   *out = dflt;
   int r = v ? us_svg_length(v, out) : 0;
   xmlFree(v);
@@ -170,9 +259,9 @@ static int id_fixed(const char *id) {
 
 /* class="... fixed ...", data-fixed (anything but "false" / "0"), an
  * inkscape:label whose first word is "fixed", or an id as above. */
-static int marked_fixed(const xmlNode *n) {
-  char *c = attr(n, "class"), *df = attr(n, "data-fixed"), *id = attr(n, "id");
-  char *lab = (char *)xmlGetNsProp(n, (const xmlChar *)"label", (const xmlChar *)INKSCAPE_NS);
+static int marked_fixed(const Walk *w, const xmlNode *n) {
+  char *c = attr(w, n, "class"), *df = attr(w, n, "data-fixed"), *id = attr(w, n, "id");
+  char *lab = attr_value(w, find_attr(n, "label", INKSCAPE_NS));
   int f = (c && has_word(c, "fixed", 0)) || (lab && has_word(lab, "fixed", 1)) ||
           (df && strcmp(df, "false") && strcmp(df, "0")) || id_fixed(id);
   xmlFree(c), xmlFree(df), xmlFree(lab), xmlFree(id);
@@ -183,7 +272,7 @@ static int marked_fixed(const xmlNode *n) {
  * inf_ok; absent: *out unchanged. */
 static us_Status material(Walk *w, const xmlNode *n, const char *name, int positive, int inf_ok,
                           double *out) {
-  char *v = attr(n, name);
+  char *v = attr(w, n, name);
   if (!v) return US_OK;
   const char *p = v;
   double x;
@@ -201,8 +290,8 @@ static us_Status material(Walk *w, const xmlNode *n, const char *name, int posit
 /* --------------------------------------------------------- state per level */
 
 /* display="none" (attribute or style): 1; visibility: sets ctx->hidden. */
-static int display_none(const xmlNode *n, Ctx *c) {
-  char *disp = attr(n, "display"), *vis = attr(n, "visibility"), *style = attr(n, "style");
+static int display_none(const Walk *w, const xmlNode *n, Ctx *c) {
+  char *disp = attr(w, n, "display"), *vis = attr(w, n, "visibility"), *style = attr(w, n, "style");
   char sd[32] = "", sv[32] = ""; /* the style property wins over the attribute */
   if (style) {
     us_svg_style_get(style, "display", sd, sizeof sd);
@@ -217,7 +306,7 @@ static int display_none(const xmlNode *n, Ctx *c) {
 
 /* The element's own contribution to the inherited state. */
 static us_Status enter(Walk *w, const xmlNode *n, Ctx *c) {
-  char *t = attr(n, "transform");
+  char *t = attr(w, n, "transform");
   if (t) {
     us_SvgMatrix m;
     us_Status st = us_svg_transform(t, &m, w->err);
@@ -225,17 +314,20 @@ static us_Status enter(Walk *w, const xmlNode *n, Ctx *c) {
     if (st) return reframe(w, n, st);
     c->m = us_svg_mul(c->m, m);
   }
-  c->fixed |= marked_fixed(n);
+  c->fixed |= marked_fixed(w, n);
   if (material(w, n, "data-density", 1, 0, &c->density)) return US_ERR_INPUT;
   return material(w, n, "data-friction", 0, 1, &c->friction);
 }
 
 /* ---------------------------------------------------------------- shapes */
 
+/* Shape elements by kind (their names outlive the XML document) */
+static const char *const shapes[] = {"rect", "polygon", "polyline", "circle", "ellipse", "path", NULL};
+
 static us_Status ring_status(Walk *w, const xmlNode *n, int rc) {
-  if (rc == -2) return fail(w, n, US_ERR_INPUT, "a coordinate is not finite after the transforms");
-  if (rc) return us_error_set(w->err, US_ERR_NOMEM, "out of memory");
-  return US_OK;
+  if (!rc) return US_OK;
+  us_Status st = us_svg_ring_error(&w->d->rings, rc, w->err);
+  return st == US_ERR_NOMEM ? st : reframe(w, n, st);
 }
 
 static us_Status do_rect(Walk *w, const xmlNode *n, const Ctx *c) {
@@ -254,7 +346,7 @@ static us_Status do_rect(Walk *w, const xmlNode *n, const Ctx *c) {
 }
 
 static us_Status do_points(Walk *w, const xmlNode *n, const Ctx *c, int closed) {
-  char *pts = attr(n, "points");
+  char *pts = attr(w, n, "points");
   if (!pts) return fail(w, n, US_ERR_INPUT, "no points");
   us_SvgRings *r = &w->d->rings;
   int rc = us_svg_ring_begin(r), cnt = 0, k = 0;
@@ -284,7 +376,7 @@ static us_Status do_ellipse(Walk *w, const xmlNode *n, const Ctx *c, int circle)
 }
 
 static us_Status do_path(Walk *w, const xmlNode *n, const Ctx *c) {
-  char *d = attr(n, "d");
+  char *d = attr(w, n, "d");
   if (!d) return fail(w, n, US_ERR_INPUT, "no path data (d)");
   us_SvgPathOpts o = {w->d->flatten, 0};
   us_Status st = us_svg_path(&w->d->rings, d, &c->m, &o, w->err);
@@ -296,15 +388,13 @@ static us_Status do_path(Walk *w, const xmlNode *n, const Ctx *c) {
 
 /* Metadata for the rings from `first` on, made by element n. On failure
  * nothing of it is kept (the caller drops the rings). */
-static us_Status record(Walk *w, const xmlNode *n, const Ctx *c, int first) {
+static us_Status record(Walk *w, const xmlNode *n, const Ctx *c, int kind, int first) {
   us_SvgDoc *d = w->d;
   if (US_GROW(d->shapes, d->cap_shape, d->rings.nring))
     return us_error_set(w->err, US_ERR_NOMEM, "out of memory");
-  /* kind: the element's name lives as long as the XML document */
-  us_SvgShape sh = {NULL, (const char *)n->name, xmlGetLineNo(n), c->fixed, c->density, 0,
-                    c->friction};
+  us_SvgShape sh = {NULL, shapes[kind], xmlGetLineNo(n), c->fixed, c->density, 0, c->friction};
   if (material(w, n, "data-mass", 1, 0, &sh.mass)) return US_ERR_INPUT;
-  char *id = attr(n, "id");
+  char *id = attr(w, n, "id");
   int k = first, oom = 0;
   for (; k < d->rings.nring && !oom; k++) {
     d->shapes[k] = sh;
@@ -323,14 +413,13 @@ static us_Status do_shape(Walk *w, const xmlNode *n, const Ctx *c, int kind) {
                  : kind <= 2 ? do_points(w, n, c, kind == 1)
                  : kind <= 4 ? do_ellipse(w, n, c, kind == 3)
                              : do_path(w, n, c);
-  if (!st && w->d->rings.nring > first) st = record(w, n, c, first);
+  if (!st && w->d->rings.nring > first) st = record(w, n, c, kind, first);
   if (st) us_svg_rings_truncate(&w->d->rings, first);
   return st;
 }
 
 /* ---------------------------------------------------------------- tree */
 
-static const char *const shapes[] = {"rect", "polygon", "polyline", "circle", "ellipse", "path", NULL};
 static const char *const groups[] = {"g", "a", "switch", "svg", NULL};
 static const char *const silent[] = {"defs", "clipPath", "mask", "symbol", "marker", "pattern",
                                      "linearGradient", "radialGradient", "filter", "metadata",
@@ -359,7 +448,7 @@ static us_Status nested_svg(Walk *w, const xmlNode *n, Ctx *c) {
       length_attr(w, n, "width", NAN, &wd) || length_attr(w, n, "height", NAN, &ht))
     return w->err->code;
   us_SvgMatrix t = {1, 0, 0, 1, x, y};
-  char *vb = attr(n, "viewBox");
+  char *vb = attr(w, n, "viewBox");
   const char *p = vb;
   double v[4];
   int k = 0;
@@ -378,7 +467,7 @@ static us_Status walk_element(Walk *w, const xmlNode *n, Ctx c) {
   const char *name = name_of(n);
   if (find(silent, name) >= 0) return US_OK;
   int kind = find(shapes, name), group = find(groups, name);
-  if (display_none(n, &c)) return warn(w, n, "display: none"), US_OK;
+  if (display_none(w, n, &c)) return warn(w, n, "display: none"), US_OK;
   if (kind < 0 && group < 0) return warn(w, n, skip_reason(name)), US_OK;
   if (group == 3 && nested_svg(w, n, &c)) return w->err->code;
   if (enter(w, n, &c)) return w->err->code;
@@ -395,12 +484,37 @@ static us_Status walk_children(Walk *w, const xmlNode *n, const Ctx *c) {
   return US_OK;
 }
 
+/* ---------------------------------------------------------------- entities */
+
+/* Every attribute value that holds an entity reference, of n and the
+ * elements below it, measured against what is left of the budget. */
+static us_Status check_entities(Walk *w, const xmlNode *n) {
+  us_SvgDoc *d = w->d;
+  for (const xmlAttr *a = n->properties; a; a = a->next) {
+    if (!has_reference(a)) continue;
+    Expand x = {NULL, 0, 0, 0, d->entity_budget - d->entity_bytes};
+    int r = expand_list(a->doc, a->children, &x, 0);
+    d->entity_bytes += x.cost;
+    if (r == EXP_DEEP)
+      return fail(w, n, US_ERR_INPUT, "attribute '%s': entities nested deeper than %d levels",
+                  (const char *)a->name, SVG_ENTITY_DEPTH);
+    if (r)
+      return fail(w, n, US_ERR_INPUT,
+                  "attribute '%s': entity references expand past %zu bytes, the limit for "
+                  "this %zu-byte file (an entity bomb?)",
+                  (const char *)a->name, d->entity_budget, d->size);
+  }
+  for (const xmlNode *k = n->children; k; k = k->next)
+    if (k->type == XML_ELEMENT_NODE && check_entities(w, k)) return w->err->code;
+  return US_OK;
+}
+
 /* ---------------------------------------------------------------- root */
 
 /* The root's width or height: the number and its unit's size in metres;
  * absent or 0: *num = 0. */
 static us_Status root_size(Walk *w, const xmlNode *n, const char *name, double *num, double *um) {
-  char *v = attr(n, name);
+  char *v = attr(w, n, name);
   *num = 0, *um = PX_METRES;
   int r = v ? us_svg_length_unit(v, num, um) : 0;
   int pct = v && strchr(v, '%');
@@ -417,7 +531,7 @@ static us_Status root_size(Walk *w, const xmlNode *n, const char *name, double *
 static us_Status root_units(Walk *w, const xmlNode *n) {
   double wd, ht, uw, uh, v[4];
   if (root_size(w, n, "width", &wd, &uw) || root_size(w, n, "height", &ht, &uh)) return w->err->code;
-  char *vb = attr(n, "viewBox"), *par = attr(n, "preserveAspectRatio");
+  char *vb = attr(w, n, "viewBox"), *par = attr(w, n, "preserveAspectRatio");
   const char *p = vb;
   int k = 0;
   while (vb && k < 4 && us_svg_number(&p, &v[k]) == 1) k++, p = us_svg_skip_sep(p);
@@ -441,6 +555,7 @@ us_Status us_svg_walk(us_SvgDoc *d, void *xml_doc, us_Error *err) {
   if (!root) return us_error_set(err, US_ERR_PARSE, "%s: empty document", d->name);
   Walk w = {d, err, ns_of(root)};
   const char *ns = w.root_ns;
+  if (check_entities(&w, root)) return err->code;
   if (strcmp(name_of(root), "svg") || (*ns && strcmp(ns, SVG_NS) && !strchr(ns, '&')))
     return fail(&w, root, US_ERR_PARSE, "not an SVG drawing (the root element must be <svg>%s%s)",
                 *ns ? " in the SVG namespace, not " : "", ns);
@@ -450,7 +565,7 @@ us_Status us_svg_walk(us_SvgDoc *d, void *xml_doc, us_Error *err) {
   if (material(&w, root, "data-friction", 0, 1, &mu)) return err->code;
   d->friction = mu;
   Ctx top = c;
-  if (display_none(root, &top)) return US_OK;
+  if (display_none(&w, root, &top)) return US_OK;
   if (enter(&w, root, &top)) return err->code;
   top.friction = -1; /* the root's friction is the structure's default */
   return walk_children(&w, root, &top);

@@ -100,6 +100,14 @@ static us_Status check_body(const us_Body *b, us_Error *err) {
   return US_OK;
 }
 
+/* The movable bodies (public, unstack.h); here, below its callers in
+ * structure.c and the weight check. */
+int us_structure_movable_count(const us_Structure *s) {
+  int n = 0;
+  for (int i = 0; i < s->nbody; i++) n += !s->bodies[i].fixed;
+  return n;
+}
+
 /* The total weight must be a finite, positive, normal number. */
 static us_Status check_weight(const us_Structure *s, us_Error *err) {
   double m = us_movable_mass(s), g = us_gravity_norm(s->gravity), w = m * g;

@@ -18,9 +18,25 @@
 #include <math.h>
 #include <string.h>
 
+/* What users never see of a structure (us_Structure.internal), allocated
+ * with it in one block. A struct copy of a us_Structure shares it: such a
+ * copy may be read (ids, finalized) but not grown or freed. */
+struct us_StructureInternal {
+  int finalized;
+  int cap_body, cap_contact; /* capacities of bodies, contacts */
+  us_IdMap *id_index;        /* id -> body index, NULL until the first body */
+};
+
+typedef struct Block {
+  us_Structure s;
+  struct us_StructureInternal in;
+} Block;
+
 us_Structure *us_structure_new(int dim) {
-  us_Structure *s = us_calloc(1, sizeof *s);
-  if (!s) return NULL;
+  Block *blk = us_calloc(1, sizeof *blk);
+  if (!blk) return NULL;
+  us_Structure *s = &blk->s;
+  s->internal = &blk->in;
   s->dim = dim;
   s->gravity[0] = 0.0;
   s->gravity[1] = dim == 3 ? 0.0 : -9.81;
@@ -40,19 +56,21 @@ void us_structure_free(us_Structure *s) {
   }
   us_free(s->bodies);
   us_free(s->contacts);
-  if (s->id_index) us_idmap_free(s->id_index);
-  us_free(s->id_index);
-  us_free(s);
+  if (s->internal->id_index) us_idmap_free(s->internal->id_index);
+  us_free(s->internal->id_index);
+  us_free(s); /* the block (its first member) */
 }
 
 int us_structure_find_body(const us_Structure *s, const char *id) {
-  return s->id_index ? us_idmap_get(s->id_index, id) : -1;
+  us_IdMap *m = s->internal->id_index;
+  return m ? us_idmap_get(m, id) : -1;
 }
 
 /* Register body i's id; -1 duplicate, -2 out of memory. */
 static int index_id(us_Structure *s, int i) {
-  if (!s->id_index && !(s->id_index = us_calloc(1, sizeof(us_IdMap)))) return -2;
-  return us_idmap_put(s->id_index, s->bodies[i].id, i);
+  struct us_StructureInternal *in = s->internal;
+  if (!in->id_index && !(in->id_index = us_calloc(1, sizeof(us_IdMap)))) return -2;
+  return us_idmap_put(in->id_index, s->bodies[i].id, i);
 }
 
 /* Append a body with the given id; returns its index or -1. */
@@ -65,7 +83,7 @@ static int add_body(us_Structure *s, const char *id, us_Error *err) {
     us_error_set(err, US_ERR_INPUT, "body id 'ground' is reserved for the ground");
     return -1;
   }
-  if (US_GROW(s->bodies, s->cap_body, s->nbody + 1)) {
+  if (US_GROW(s->bodies, s->internal->cap_body, s->nbody + 1)) {
     us_error_set(err, US_ERR_NOMEM, "out of memory adding body '%s'", us_id_text(id).s);
     return -1;
   }
@@ -80,7 +98,7 @@ static int add_body(us_Structure *s, const char *id, us_Error *err) {
     return -1;
   }
   b->friction = -1.0;
-  s->finalized = 0;
+  s->internal->finalized = 0;
   return s->nbody++;
 }
 
@@ -215,7 +233,7 @@ int us_structure_add_contact(us_Structure *s, int a, int b, const double *p, con
                  us_id_text(s->bodies[b].id).s);
     return -1;
   }
-  if (US_GROW(s->contacts, s->cap_contact, s->ncontact + 1)) {
+  if (US_GROW(s->contacts, s->internal->cap_contact, s->ncontact + 1)) {
     us_error_set(err, US_ERR_NOMEM, "out of memory adding a contact");
     return -1;
   }
@@ -230,12 +248,6 @@ int us_structure_add_contact(us_Structure *s, int a, int b, const double *p, con
   us_contact_frame(dim, c);
   c->mu = mu >= 0 ? mu : us_structure_pair_friction(s, a, b);
   return s->ncontact++;
-}
-
-int us_structure_movable_count(const us_Structure *s) {
-  int n = 0;
-  for (int i = 0; i < s->nbody; i++) n += !s->bodies[i].fixed;
-  return n;
 }
 
 int us_structure_movable_set(const us_Structure *s, us_Bitset *out) {
@@ -336,6 +348,8 @@ us_Status us_structure_finalize(us_Structure *s, us_Error *err) {
     if (st) return st;
   }
   us_model_measure(s); /* weight, and the bbox with contact points */
-  s->finalized = 1;
+  s->internal->finalized = 1;
   return US_OK;
 }
+
+int us_structure_is_finalized(const us_Structure *s) { return s && s->internal->finalized; }

@@ -9,7 +9,7 @@
  * standing (certified stable), lowest first. Fills the placement sequence
  * and its steps. Returns 1 when all of `within` was built, 0 when stuck
  * (built = a maximal buildable sub-assembly reached greedily; being stuck
- * proves nothing by itself, see exact.c), -1 error (err set), -2 limit. */
+ * proves nothing by itself, see exact.c), or a us_Step (error: err set). */
 typedef struct us_Assembly {
   us_Bitset built;
   int *seq, nseq;       /* bodies in placement order */

@@ -56,7 +56,7 @@ static void reconstruct(us_SearchCtx *ctx, const Queue *q, int k) {
 }
 
 /* Expand node k: push every stable child not seen before. Returns 1 when
- * the goal was pushed, 0 to go on, < 0 to stop (-1 error, -2 limit). */
+ * the goal was pushed, 0 to go on, or a us_Step to stop. */
 static int expand(us_SearchCtx *ctx, Queue *q, int k, us_Error *err) {
   memcpy(ctx->cur.w, q->words + (size_t)k * (size_t)q->nwords,
          (size_t)q->nwords * sizeof(uint64_t));
@@ -67,11 +67,11 @@ static int expand(us_SearchCtx *ctx, Queue *q, int k, us_Error *err) {
     us_plan_toggle(&ctx->cur, b);
     int added = us_bitset_set_add(&q->seen, &ctx->cur);
     int goal = us_plan_is_goal(ctx, &ctx->cur);
-    int r = added < 0 ? -1 : added == 0 ? 0 : goal ? 1 : us_plan_node_test(ctx, &ctx->cur, err);
+    int r = added < 0 ? US_STEP_ERROR : added == 0 ? 0 : goal ? 1 : us_plan_node_test(ctx, &ctx->cur, err);
     if (added < 0) us_error_set(err, US_ERR_NOMEM, "out of memory in the search");
     if (added == 0) ctx->st->revisited++;
     if (r == 1 && queue_push(q, &ctx->cur, k, b))
-      r = -1, us_error_set(err, US_ERR_NOMEM, "out of memory in the search");
+      r = US_STEP_ERROR, us_error_set(err, US_ERR_NOMEM, "out of memory in the search");
     us_plan_toggle(&ctx->cur, b);
     if (r < 0) return r;
     if (r == 1 && goal) return 1;
@@ -98,14 +98,14 @@ int us_plan_bfs(us_SearchCtx *ctx, us_Error *err) {
   int status = US_PLAN_NONE;
   if (us_bitset_set_init(&q.seen, ctx->s->nbody) || queue_push(&q, &ctx->cur, -1, -1) ||
       us_bitset_set_add(&q.seen, &ctx->cur) < 0) {
-    status = -1;
+    status = US_STEP_ERROR;
     us_error_set(err, US_ERR_NOMEM, "out of memory in the search");
   }
   if (status == US_PLAN_NONE && us_plan_is_goal(ctx, &ctx->cur)) status = US_PLAN_FOUND;
   for (int k = 0; status == US_PLAN_NONE && k < q.n; k++) {
     if (rescue_due(ctx, &q)) {
       int r = bfs_rescue(ctx, &q, err);
-      status = r == US_PLAN_FOUND ? US_PLAN_FOUND : r == -2 ? US_PLAN_LIMIT : -1;
+      status = r == US_PLAN_FOUND ? US_PLAN_FOUND : r == US_STEP_LIMIT ? US_PLAN_LIMIT : US_STEP_ERROR;
       break;
     }
     int r = expand(ctx, &q, k, err);
@@ -113,7 +113,7 @@ int us_plan_bfs(us_SearchCtx *ctx, us_Error *err) {
       reconstruct(ctx, &q, q.n - 1);
       status = US_PLAN_FOUND;
     } else if (r < 0) {
-      status = r == -2 ? US_PLAN_LIMIT : -1; /* -3 never: no restart budget */
+      status = r == US_STEP_LIMIT ? US_PLAN_LIMIT : US_STEP_ERROR; /* no restart budget here */
     }
   }
   if (status == US_PLAN_FOUND && q.n == 1) ctx->npath = 0;

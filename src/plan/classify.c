@@ -284,7 +284,7 @@ typedef us_Status (*Step)(const us_Structure *, const us_ClassifySettings *, us_
 
 static us_Status check_args(const us_Structure *s, const us_Classification *out, us_Error *err) {
   if (!s || !out) return us_error_set(err, US_ERR_USAGE, "us_classify: NULL argument");
-  if (!s->finalized)
+  if (!us_structure_is_finalized(s))
     return us_error_set(err, US_ERR_USAGE, "us_classify: the structure is not finalized");
   return US_OK;
 }

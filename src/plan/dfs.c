@@ -89,7 +89,7 @@ static int try_child(us_SearchCtx *ctx, int b, int *next, us_Error *err) {
   if (r == 0) {
     int bad = mark_dead(ctx, &ctx->cur, err);
     us_plan_toggle(&ctx->cur, b);
-    return bad ? -1 : 0;
+    return bad ? US_STEP_ERROR : 0;
   }
   ctx->path[ctx->npath++] = b;
   next[ctx->npath] = 0;
@@ -98,8 +98,8 @@ static int try_child(us_SearchCtx *ctx, int b, int *next, us_Error *err) {
   return 1;
 }
 
-/* One depth-first run from ctx->cur: FOUND, NONE, -1 error, -2 limit,
- * -3 restart budget used up. */
+/* One depth-first run from ctx->cur: FOUND, NONE, or a us_Step (restart:
+ * the budget of this run is used up). */
 static int dfs_run(us_SearchCtx *ctx, int *next, us_Error *err) {
   ctx->npath = 0;
   next[0] = 0;
@@ -109,11 +109,11 @@ static int dfs_run(us_SearchCtx *ctx, int *next, us_Error *err) {
     if (b < 0) {
       if (ctx->npath == 0) return US_PLAN_NONE; /* the root is a dead end */
       if (greedy_applies(ctx)) return us_plan_rescue(ctx, 1, err);
-      if (backtrack(ctx, err)) return -1;
+      if (backtrack(ctx, err)) return US_STEP_ERROR;
       continue;
     }
     int r = try_child(ctx, b, next, err);
-    if (r == -3 && greedy_applies(ctx)) {
+    if (r == US_STEP_RESTART && greedy_applies(ctx)) {
       ctx->budget_end = 0; /* the rescue needs no restart */
       return us_plan_rescue(ctx, 1, err);
     }
@@ -123,10 +123,10 @@ static int dfs_run(us_SearchCtx *ctx, int *next, us_Error *err) {
 
 int us_plan_dfs(us_SearchCtx *ctx, us_Error *err) {
   int *next = us_calloc((size_t)ctx->nmov + 2, sizeof(int));
-  if (!next) return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), -1;
+  if (!next) return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), US_STEP_ERROR;
   int r = dfs_run(ctx, next, err);
   us_free(next);
-  return r == -3 ? -1 : r;
+  return r == US_STEP_RESTART ? US_STEP_ERROR : r; /* no budget set: never */
 }
 
 /* ------------------------------------------------------------- random */
@@ -152,14 +152,14 @@ static void shuffle(us_SearchCtx *ctx) {
 
 int us_plan_random(us_SearchCtx *ctx, us_Error *err) {
   int *next = us_calloc((size_t)ctx->nmov + 2, sizeof(int));
-  if (!next) return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), -1;
+  if (!next) return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), US_STEP_ERROR;
   long unit = ctx->ncand > 16 ? ctx->ncand : 16;
-  int r = -3;
-  for (long i = 1; r == -3; i++) {
+  int r = US_STEP_RESTART;
+  for (long i = 1; r == US_STEP_RESTART; i++) {
     shuffle(ctx);
     ctx->budget_end = ctx->st->tests + luby(i) * unit;
     r = dfs_run(ctx, next, err);
-    if (r == -3) {
+    if (r == US_STEP_RESTART) {
       us_plan_rewind(ctx, 0);
       ctx->st->restarts++;
     }

@@ -199,7 +199,7 @@ static int solve_parts(Solver *sv, us_Bitset *scratch, const int *order, const i
     long i = r == 1 ? us_bitset_set_index(&sv->e->keys, scratch) : -1;
     for (int q = first[c]; q < first[c + 1]; q++) us_bitset_clear(scratch, order[q]);
     if (r != 1) return r;
-    if (append_order(sv->e, i)) return -1;
+    if (append_order(sv->e, i)) return US_STEP_ERROR;
   }
   return 1;
 }
@@ -207,9 +207,9 @@ static int solve_parts(Solver *sv, us_Bitset *scratch, const int *order, const i
 /* Try step g out of comp: the rest's components must all be emptied. */
 static int try_step(Solver *sv, const us_Bitset *comp, const int *g, int ng) {
   us_Bitset rest = {0};
-  if (us_bitset_copy(&rest, comp)) return -1;
+  if (us_bitset_copy(&rest, comp)) return US_STEP_ERROR;
   for (int j = 0; j < ng; j++) us_bitset_clear(&rest, g[j]);
-  int *order = NULL, *first = NULL, k = split(sv->ctx, &rest, &order, &first), r = -1;
+  int *order = NULL, *first = NULL, k = split(sv->ctx, &rest, &order, &first), r = US_STEP_ERROR;
   long from = sv->e->work.n;
   if (k >= 0 && !append_step(sv->e, g, ng)) {
     memset(rest.w, 0, (size_t)rest.nwords * sizeof(uint64_t));
@@ -225,7 +225,7 @@ static int try_step(Solver *sv, const us_Bitset *comp, const int *g, int ng) {
 /* Steps of 1..K bodies out of comp (highest bodies first), as combinations
  * of positions in list[0..m). 1 found (its order appended), 0 none, < 0. */
 static int exhaust(Solver *sv, const us_Bitset *comp, int *list, int m) {
-  if (us_plan_sort_highest(sv->ctx->s, list, m)) return -1;
+  if (us_plan_sort_highest(sv->ctx->s, list, m)) return US_STEP_ERROR;
   int idx[64], g[64], r = 0;
   for (int k = 1; k <= sv->e->K && k <= m && r == 0; k++) {
     for (int j = 0; j < k; j++) idx[j] = j;
@@ -298,18 +298,18 @@ static int cut_group(Cut *c) {
   if (!touching) /* only its own contacts: nothing holds its weight, if it has one */
     return us_gravity_norm(c->sv->ctx->s->gravity) > 0 ? 1 : 0;
   us_SearchCtx *ctx = c->sv->ctx;
-  if (us_plan_limit_reached(ctx)) return -2;
+  if (us_plan_limit_reached(ctx)) return US_STEP_LIMIT;
   for (int j = 0; j < c->ng; j++) us_bitset_set(&c->reach, c->grp[j]);
   us_Status st = us_plan_held_test(ctx->stab, &c->reach, c->grp, c->ng, &ctx->res, c->sv->err);
   for (int j = 0; j < c->ng; j++) us_bitset_clear(&c->reach, c->grp[j]);
   ctx->st->held_tests++;
-  return st ? -1 : ctx->res.verdict == US_UNSTABLE;
+  return st ? US_STEP_ERROR : ctx->res.verdict == US_UNSTABLE;
 }
 
 /* The groups of C \ R that extend grp[0..ng): 1 none can stand, 0 one
- * may (left in grp), -3 out of budget, other < 0 stop. */
+ * may (left in grp), US_STEP_CUT_SPENT out of groups, another us_Step stop. */
 static int cut_extend(Cut *c) {
-  if (c->left-- <= 0) return -3;
+  if (c->left-- <= 0) return US_STEP_CUT_SPENT;
   int r = cut_group(c);
   if (r != 1 || c->ng >= c->sv->e->K) return r;
   const us_Graph *g = &c->sv->ctx->g;
@@ -327,7 +327,7 @@ static int cut_extend(Cut *c) {
         c->ng--;
       }
       us_bitset_clear(&c->grp_bits, v);
-      if (fresh < 0) return -1;
+      if (fresh < 0) return US_STEP_ERROR;
     }
   }
   return 1;
@@ -343,7 +343,7 @@ static int cut_seed(Cut *c, int seed) {
     us_bitset_set_free(&c->seen);
     r = us_bitset_set_init(&c->seen, c->sv->ctx->s->nbody) ||
                 us_bitset_set_add(&c->seen, &c->grp_bits) < 0
-            ? -1
+            ? US_STEP_ERROR
             : 0;
   }
   if (r == 0) r = cut_extend(c);
@@ -369,19 +369,19 @@ static int cut(Solver *sv, const us_Bitset *comp, const us_Bitset *built) {
   c.queued = us_calloc((size_t)n + 1, 1);
   if (!c.queue || !c.queued || us_bitset_copy(&c.reach, built) ||
       us_bitset_init(&c.grp_bits, n) || us_bitset_set_init(&c.seen, n))
-    r = -1;
+    r = US_STEP_ERROR;
   for (int b = 0; b < n && r == 0; b++) enqueue(&c, b);
   int spent = 0;
   while (r == 0 && c.nq > 0) {
     int b = c.queue[--c.nq];
     c.queued[b] = 0;
     int q = outside(&c, b) ? cut_seed(&c, b) : 1;
-    if (q == -3) spent = 1;
+    if (q == US_STEP_CUT_SPENT) spent = 1;
     else if (q < 0) r = q;
     if (spent) break;
   }
   if (r == 0 && !spent) r = us_bitset_count(&c.reach) < us_bitset_count(comp); /* R ⊆ C */
-  if (r == -1 && !sv->err->code) us_error_set(sv->err, US_ERR_NOMEM, "out of memory in the search");
+  if (r == US_STEP_ERROR && !sv->err->code) us_error_set(sv->err, US_ERR_NOMEM, "out of memory in the search");
   us_free(c.queue);
   us_free(c.queued);
   us_bitset_free(&c.reach);
@@ -399,7 +399,7 @@ static int greedy(Solver *sv, const us_Bitset *comp, int *proven) {
   *proven = 0;
   if (r == 1) {
     for (int k = a.ngroups - 1; r == 1 && k >= 0; k--)
-      if (append_step(sv->e, a.seq + a.gstart[k], a.gstart[k + 1] - a.gstart[k])) r = -1;
+      if (append_step(sv->e, a.seq + a.gstart[k], a.gstart[k + 1] - a.gstart[k])) r = US_STEP_ERROR;
   } else if (r == 0) {
     int c = cut(sv, comp, &a.built);
     if (c < 0) r = c;
@@ -417,7 +417,7 @@ static int decide(Solver *sv, const us_Bitset *comp) {
   if (r != 0 || proven) return r;
   sv->ctx->st->exhaustive++;
   int n = sv->ctx->s->nbody, m = 0, *list = us_malloc(((size_t)n + 1) * sizeof(int));
-  if (!list) return -1;
+  if (!list) return US_STEP_ERROR;
   for (int i = 0; i < n; i++)
     if (us_bitset_get(comp, i)) list[m++] = i;
   r = exhaust(sv, comp, list, m);
@@ -428,7 +428,7 @@ static int decide(Solver *sv, const us_Bitset *comp) {
 static int solve(Solver *sv, const us_Bitset *comp) {
   long i = us_bitset_set_index(&sv->e->keys, comp);
   if (i >= 0) return sv->e->ok[i];
-  if (sv->depth > 4096) return -2; /* deeper than any search could finish */
+  if (sv->depth > 4096) return US_STEP_LIMIT; /* deeper than any search could finish */
   sv->depth++;
   long from = sv->e->work.n;
   int r = decide(sv, comp);
@@ -437,7 +437,7 @@ static int solve(Solver *sv, const us_Bitset *comp) {
     sv->e->work.n = from;
     return r;
   }
-  return memo_put(sv->e, comp, r, from) ? -1 : r;
+  return memo_put(sv->e, comp, r, from) ? US_STEP_ERROR : r;
 }
 
 int us_exact_solve(us_SearchCtx *ctx, us_Exact *e, const us_Bitset *set, int *order,
@@ -446,7 +446,7 @@ int us_exact_solve(us_SearchCtx *ctx, us_Exact *e, const us_Bitset *set, int *or
   long budget = ctx->set->max_exact_tests;
   int outer = ctx->exact_end > 0; /* nested in another decision: its budget holds */
   if (!outer && budget > 0) ctx->exact_end = ctx->st->tests + budget;
-  int *list = NULL, *first = NULL, k = split(ctx, set, &list, &first), r = -1;
+  int *list = NULL, *first = NULL, k = split(ctx, set, &list, &first), r = US_STEP_ERROR;
   us_Bitset scratch = {0};
   long from = e->work.n;
   if (k >= 0 && !us_bitset_init(&scratch, ctx->s->nbody))
@@ -461,6 +461,7 @@ int us_exact_solve(us_SearchCtx *ctx, us_Exact *e, const us_Bitset *set, int *or
   us_bitset_free(&scratch);
   us_free(list);
   us_free(first);
-  if (r == -1 && err && !err->code) us_error_set(err, US_ERR_NOMEM, "out of memory in the search");
+  if (r == US_STEP_ERROR && err && !err->code)
+    us_error_set(err, US_ERR_NOMEM, "out of memory in the search");
   return r;
 }

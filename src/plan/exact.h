@@ -7,7 +7,7 @@
 /* Steps of at most K bodies. us_exact_solve: 1 when `set` can be emptied
  * through certified-stable sets (its removal order, with step ends marked,
  * in order/step_end when not NULL: capacity nbody), 0 when not known (a
- * proof when no test was undecided, see search.c), -1 error, -2 limit. */
+ * proof when no test was undecided, see search.c), or a us_Step. */
 typedef struct us_Exact us_Exact;
 us_Exact *us_exact_new(int nbody, int K);
 void us_exact_free(us_Exact *e);

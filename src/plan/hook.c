@@ -3,10 +3,11 @@
  * (stable -> unstable or undecided; unstable -> undecided). */
 #include "hook.h"
 
-#include "stability/backend.h"
+#include "stability/stability.h"
 
-static us_PlanTestHook hook_fn;
-static void *hook_user;
+/* per thread: a test's hook never sees another thread's planner */
+static _Thread_local us_PlanTestHook hook_fn;
+static _Thread_local void *hook_user;
 
 void us_plan_set_test_hook(us_PlanTestHook fn, void *user) {
   hook_fn = fn;

@@ -8,8 +8,9 @@
  * `unstable` resting on it). It may only weaken verdicts: a hook that
  * turns an undecided or unstable verdict into stable would let a test
  * claim a certificate that was never checked, so such a change is ignored.
- * The hook is process-wide and not thread-safe: tests set it, run, and
- * clear it (fn NULL). Library users never need it. */
+ * The hook belongs to the calling thread (thread-local): tests set it,
+ * run, and clear it (fn NULL), and the planners of other threads never
+ * see it. Library users never need it. */
 #ifndef US_PLAN_HOOK_H
 #define US_PLAN_HOOK_H
 

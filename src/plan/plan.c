@@ -22,7 +22,7 @@
 #include "exact.h"
 #include "hands.h"
 #include "hook.h"
-#include "stability/backend.h"
+#include "stability/stability.h"
 #include "order.h"
 #include "rules.h"
 #include "searches.h"
@@ -55,6 +55,7 @@ void us_plan_free(us_Plan *p) {
   us_free(p->group_start);
   us_free(p->buildable);
   us_free(p->blocked);
+  us_free(p->build_start);
   for (int k = 0; p->release_certs && k < p->nactions; k++) us_forces_free(&p->release_certs[k]);
   us_free(p->release_certs);
   us_free(p->actions);
@@ -62,8 +63,8 @@ void us_plan_free(us_Plan *p) {
   p->actions = NULL;
   p->nactions = 0;
   p->certs = NULL;
-  p->order = p->group_start = p->buildable = p->blocked = NULL;
-  p->nsteps = p->ngroups = p->nbuildable = p->nblocked = 0;
+  p->order = p->group_start = p->buildable = p->blocked = p->build_start = NULL;
+  p->nsteps = p->ngroups = p->nbuildable = p->nblocked = p->nbuild = 0;
 }
 
 /* ------------------------------------------------------------ set-up */
@@ -176,20 +177,30 @@ static us_Status order_from_exact(const int *order, const unsigned char *end, in
   return US_OK;
 }
 
-/* A maximal buildable sub-assembly (the greedy's) and the bodies outside it. */
-static us_Status report_stuck(const us_SearchCtx *ctx, const us_Bitset *built, us_Plan *out,
+/* The greedy's placements as the plan's build order, in its steps. */
+static void report_build(const us_Assembly *a, us_Plan *out) {
+  for (int q = 0; q < a->nseq; q++) out->buildable[out->nbuildable++] = a->seq[q];
+  for (int g = 0; g <= a->ngroups; g++) out->build_start[g] = a->gstart[g];
+  out->nbuild = a->ngroups;
+}
+
+/* A maximal buildable sub-assembly (the greedy's, in placement order) and
+ * the bodies outside it. */
+static us_Status report_stuck(const us_SearchCtx *ctx, const us_Assembly *a, us_Plan *out,
                               us_Error *err) {
   us_free(out->buildable);
   us_free(out->blocked);
-  out->nbuildable = out->nblocked = 0;
+  us_free(out->build_start);
+  out->nbuildable = out->nblocked = out->nbuild = 0;
   out->buildable = us_malloc(((size_t)ctx->nmov + 1) * sizeof(int));
   out->blocked = us_malloc(((size_t)ctx->nmov + 1) * sizeof(int));
-  if (!out->buildable || !out->blocked) return us_error_set(err, US_ERR_NOMEM, "out of memory");
-  for (int i = 0; i < ctx->s->nbody; i++) {
-    if (ctx->s->bodies[i].fixed) continue;
-    if (us_bitset_get(built, i)) out->buildable[out->nbuildable++] = i;
-    else out->blocked[out->nblocked++] = i;
-  }
+  out->build_start = us_malloc(((size_t)a->ngroups + 2) * sizeof(int));
+  if (!out->buildable || !out->blocked || !out->build_start)
+    return us_error_set(err, US_ERR_NOMEM, "out of memory");
+  report_build(a, out);
+  for (int i = 0; i < ctx->s->nbody; i++)
+    if (!ctx->s->bodies[i].fixed && !us_bitset_get(&a->built, i))
+      out->blocked[out->nblocked++] = i;
   return US_OK;
 }
 
@@ -199,27 +210,26 @@ static int exact_for(us_SearchCtx *ctx, int K, us_Plan *out, us_Error *err) {
   int *order = us_malloc(n * sizeof(int)), len = 0;
   unsigned char *end = us_malloc(n);
   us_Exact *e = us_exact_new(ctx->s->nbody, K);
-  int r = order && end && e ? us_exact_solve(ctx, e, &ctx->full, order, end, &len, err) : -1;
-  if (r == 1 && order_from_exact(order, end, len, out, err)) r = -1;
+  int r = order && end && e ? us_exact_solve(ctx, e, &ctx->full, order, end, &len, err) : US_STEP_ERROR;
+  if (r == 1 && order_from_exact(order, end, len, out, err)) r = US_STEP_ERROR;
   if (e) ctx->st->memo_bytes += us_exact_bytes(e);
   us_exact_free(e);
   us_free(order);
   us_free(end);
-  if (r == -1 && err && !err->code) us_error_set(err, US_ERR_NOMEM, "out of memory in the search");
+  if (r == US_STEP_ERROR && err && !err->code)
+    us_error_set(err, US_ERR_NOMEM, "out of memory in the search");
   return r;
 }
 
-#define ASM_UNSTABLE (-4) /* the full structure does not stand */
-
 /* The full structure's test, once: the assembly search only needs it when
  * the greedy is stuck (a completed assembly proves it stands). 1 stands,
- * ASM_UNSTABLE, or < 0 (error, limit). */
+ * US_STEP_FALLS, or another us_Step (error, limit). */
 static int full_stands(us_SearchCtx *ctx, us_Error *err) {
   if (ctx->full_stable) return 1;
   int r = us_plan_test(ctx, &ctx->full, err);
   if (r < 0) return r;
   ctx->full_stable = r;
-  return r ? 1 : ASM_UNSTABLE;
+  return r ? 1 : US_STEP_FALLS;
 }
 
 /* Steps of at most K: the greedy, then (stuck) the exact decision. */
@@ -228,9 +238,9 @@ static int assemble_with(us_SearchCtx *ctx, int K, us_Plan *out, us_Error *err) 
   int r = us_assemble(ctx, &ctx->full, K, &a, err);
   us_Status st = US_OK;
   if (r == 1) st = order_from_assembly(&a, out, err);
-  if (r == 0) st = report_stuck(ctx, &a.built, out, err);
+  if (r == 0) st = report_stuck(ctx, &a, out, err);
   us_assembly_free(&a);
-  if (st) return -1;
+  if (st) return US_STEP_ERROR;
   if (r == 0) {
     r = full_stands(ctx, err);
     if (r == 1) r = 0;
@@ -256,13 +266,14 @@ static int run_assemble(us_SearchCtx *ctx, us_Plan *out, us_Error *err) {
   int top = ctx->set->max_group > 0 ? K : US_MIN(largest_component(ctx), 64);
   int r = 0;
   for (; K <= top && r == 0; K++) r = assemble_with(ctx, K, out, err);
-  if ((r == 1 || r == ASM_UNSTABLE) && out->buildable) {
+  if ((r == 1 || r == US_STEP_FALLS) && out->buildable) {
     us_free(out->buildable);
     us_free(out->blocked);
-    out->buildable = out->blocked = NULL;
-    out->nbuildable = out->nblocked = 0;
+    us_free(out->build_start);
+    out->buildable = out->blocked = out->build_start = NULL;
+    out->nbuildable = out->nblocked = out->nbuild = 0;
   }
-  return r == 1 ? US_PLAN_FOUND : r == 0 ? US_PLAN_NONE : r == ASM_UNSTABLE ? US_PLAN_UNSTABLE : r;
+  return r == 1 ? US_PLAN_FOUND : r == 0 ? US_PLAN_NONE : r == US_STEP_FALLS ? US_PLAN_UNSTABLE : r;
 }
 
 /* ------------------------------------------------------ graph searches */
@@ -278,7 +289,7 @@ static void append_path(const us_SearchCtx *ctx, us_Plan *out) {
 
 static int search_part(us_SearchCtx *ctx, us_Error *err) {
   if (us_plan_order_candidates(ctx))
-    return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), -1;
+    return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), US_STEP_ERROR;
   ctx->npath = 0;
   int greedy = (ctx->set->rules & US_RULE_GREEDY) && !ctx->kin;
   int live = greedy ? us_plan_node_live(ctx, &ctx->part, NULL, NULL, err) : 1;
@@ -296,12 +307,12 @@ static int search_part(us_SearchCtx *ctx, us_Error *err) {
 
 /* The parts: components of the structure (components rule) or the whole. */
 static int run_graph_search(us_SearchCtx *ctx, us_Plan *out, us_Error *err) {
-  if (alloc_order(out, ctx->nmov, err)) return -1;
+  if (alloc_order(out, ctx->nmov, err)) return US_STEP_ERROR;
   /* with kinematics a part's bodies can block another's: no split */
   int split = (ctx->set->rules & US_RULE_COMPONENTS) && !ctx->kin;
   int k = split ? us_graph_components(&ctx->g, &ctx->full, ctx->comp, ctx->stack) : 1;
   int *label = us_malloc(((size_t)ctx->s->nbody + 1) * sizeof(int));
-  if (!label) return us_error_set(err, US_ERR_NOMEM, "out of memory"), -1;
+  if (!label) return us_error_set(err, US_ERR_NOMEM, "out of memory"), US_STEP_ERROR;
   if (split) memcpy(label, ctx->comp, (size_t)ctx->s->nbody * sizeof(int));
   ctx->st->components = k;
   int r = US_PLAN_FOUND;
@@ -324,15 +335,15 @@ static us_Status name_stuck(us_SearchCtx *ctx, us_Plan *out, us_Error *err) {
   if (ctx->kin) return US_OK;
   us_Assembly a;
   int r = us_assemble(ctx, &ctx->full, 1, &a, err);
-  us_Status st = r == 0 ? report_stuck(ctx, &a.built, out, err) : US_OK;
+  us_Status st = r == 0 ? report_stuck(ctx, &a, out, err) : US_OK;
   us_assembly_free(&a);
-  return r == -1 ? (err && err->code ? err->code : US_ERR_NOMEM) : st;
+  return r == US_STEP_ERROR ? (err && err->code ? err->code : US_ERR_NOMEM) : st;
 }
 
 static int run_search(us_SearchCtx *ctx, us_Plan *out, us_Error *err) {
   if (ctx->set->search == US_SEARCH_ASSEMBLE) return run_assemble(ctx, out, err);
   int r = run_graph_search(ctx, out, err);
-  if (r == US_PLAN_NONE && name_stuck(ctx, out, err)) return -1;
+  if (r == US_PLAN_NONE && name_stuck(ctx, out, err)) return US_STEP_ERROR;
   if (r == US_PLAN_FOUND) out->max_group = 1;
   return r;
 }
@@ -406,7 +417,7 @@ static int downgrade(const us_SearchCtx *ctx, int r) {
 }
 
 /* The search after set-up: the full structure's test, then the search;
- * a status, or < 0 (err set). */
+ * a status, or US_STEP_ERROR (err set). */
 static int run(us_SearchCtx *ctx, us_Plan *out, double *t_search, us_Error *err) {
   /* the assembly search starts from the empty set and tests the full
    * structure only if it gets stuck */
@@ -414,7 +425,7 @@ static int run(us_SearchCtx *ctx, us_Plan *out, double *t_search, us_Error *err)
   out->stats.time_setup = us_now() - ctx->t_start;
   *t_search = us_now();
   int r = full < 0 ? full : full == 0 ? US_PLAN_UNSTABLE : run_search(ctx, out, err);
-  return r == -2 ? US_PLAN_LIMIT : r < 0 ? r : downgrade(ctx, r);
+  return r == US_STEP_LIMIT ? US_PLAN_LIMIT : r < 0 ? US_STEP_ERROR : downgrade(ctx, r);
 }
 
 us_Status us_plan(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
@@ -433,7 +444,7 @@ us_Status us_plan(const us_Structure *s, const us_PlanSettings *set, us_Plan *ou
   ctx.note = out->note;
   ctx.note_sz = sizeof out->note;
   double t_search = us_now();
-  int r = st ? -1 : run(&ctx, out, &t_search, err);
+  int r = st ? US_STEP_ERROR : run(&ctx, out, &t_search, err);
   if (!st && r < 0) st = err->code ? err->code : US_ERR_SOLVER;
   if (!st) out->status = (us_PlanStatus)r;
   if (!st && r != US_PLAN_FOUND) drop_order(out);

@@ -40,7 +40,7 @@ static int root_moves(us_SearchCtx *ctx, int *seq, int *nseq, us_Error *err) {
 int us_plan_rescue(us_SearchCtx *ctx, int top_dead, us_Error *err) {
   int lo = 0, hi = top_dead ? ctx->npath : ctx->npath + 1; /* lo passes, hi unknown */
   int *seq = us_malloc(((size_t)ctx->s->nbody + 1) * sizeof(int)), nseq = 0, r = 0;
-  if (!seq) return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), -1;
+  if (!seq) return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), US_STEP_ERROR;
   while (hi - lo > 1 && r >= 0) {
     int mid = lo + (hi - lo) / 2;
     node_at(ctx, mid);
@@ -53,7 +53,7 @@ int us_plan_rescue(us_SearchCtx *ctx, int top_dead, us_Error *err) {
   /* a verdict that changed on the re-run (an undecided test): the root */
   if (r == 0 && lo > 0) lo = 0;
   if (r >= 0 && lo == 0) r = root_moves(ctx, seq, &nseq, err);
-  if (r == 0) us_error_set(err, US_ERR_SOLVER, "live root check not reproducible"), r = -1;
+  if (r == 0) us_error_set(err, US_ERR_SOLVER, "live root check not reproducible"), r = US_STEP_ERROR;
   if (r == 1) {
     us_plan_rewind(ctx, lo);
     for (int k = 0; k < nseq; k++) {

@@ -61,7 +61,7 @@ static int component_verdict(us_SearchCtx *ctx, int *tested, us_Error *err) {
   *tested = 1;
   us_BitsetSet *memo = r ? &ctx->stable_parts : &ctx->unstable_parts;
   if (us_bitset_set_add(memo, &ctx->scratch) < 0)
-    return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), -1;
+    return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), US_STEP_ERROR;
   return r;
 }
 
@@ -73,7 +73,7 @@ static int test_by_components(us_SearchCtx *ctx, const us_Bitset *node, us_Error
   if (!order || !first) {
     us_free(order);
     us_free(first);
-    return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), -1;
+    return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), US_STEP_ERROR;
   }
   int k = group_by_component(ctx, node, order, first), r = 1, tested = 0;
   for (int c = 0; c < k && r == 1; c++) {
@@ -101,7 +101,7 @@ int us_plan_node_test(us_SearchCtx *ctx, const us_Bitset *node, us_Error *err) {
 int us_plan_node_live(us_SearchCtx *ctx, const us_Bitset *node, int *seq, int *nseq,
                       us_Error *err) {
   if (!ctx->exact && !(ctx->exact = us_exact_new(ctx->s->nbody, 1)))
-    return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), -1;
+    return us_error_set(err, US_ERR_NOMEM, "out of memory in the search"), US_STEP_ERROR;
   ctx->st->exact_checks++;
   return us_exact_solve(ctx, ctx->exact, node, seq, NULL, nseq, err);
 }

@@ -65,10 +65,22 @@ typedef struct us_SearchCtx {
   uint64_t rng;         /* random search */
 } us_SearchCtx;
 
+/* The planner's steps answer in one int: a test 1 (certified stable) or 0
+ * (not known stable), a search or decision its answer (a us_PlanStatus, or
+ * 1 / 0), and any of them stops early with one of these, below 0 and so
+ * apart from every answer. They never leave the planner: us_plan turns
+ * them into a status (limit) or an error. */
+typedef enum us_Step {
+  US_STEP_ERROR = -1,   /* an error, err set */
+  US_STEP_LIMIT = -2,   /* the time limit, the test budget or an exact decision's budget */
+  US_STEP_RESTART = -3, /* random search: this restart's budget is spent */
+  US_STEP_CUT_SPENT = -4, /* exact.c: the cut tried all the groups it may (proves nothing) */
+  US_STEP_FALLS = -5     /* plan.c, assembly search: the full structure does not stand */
+} us_Step;
+
 /* One stability test of `node`: 1 certified stable, 0 not known stable
  * (unstable, or undecided: counted in st->undecided, so that a search
- * ending in none knows its answer is no proof), -1 error, -2 limit, -3
- * restart budget reached (random search). */
+ * ending in none knows its answer is no proof), or a us_Step. */
 int us_plan_test(us_SearchCtx *ctx, const us_Bitset *node, us_Error *err);
 /* 1 when the planner's time limit or test budget is spent. */
 int us_plan_limit_reached(const us_SearchCtx *ctx);

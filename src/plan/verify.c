@@ -13,7 +13,7 @@
 #include "core/core.h"
 #include "contact/kinematics.h"
 #include "hook.h"
-#include "stability/backend.h"
+#include "stability/stability.h"
 
 #include <stdio.h>
 #include <string.h>

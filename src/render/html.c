@@ -13,8 +13,16 @@
  *   blocked   [body, ...]: bodies that cannot be removed (status none)
  *   forces    null, or one entry per position 0..nsteps (the structure
  *             before step k; the last, empty structure too): a flat list
- *             [contact, fx, fy, ...] of the force on body b of each active
- *             contact in world axes (f_n n + f_t t, t = (-n_y, n_x))
+ *             [contact, nx, ny, tx, ty, ...]: at each active contact the
+ *             force the lower body exerts on the upper one (the picture's
+ *             one convention, src/render/forces.c), its normal part (nx,
+ *             ny) and friction part (tx, ty) in world axes
+ *   certs     null, or per position the independent re-check of those
+ *             forces (us_certificate_check, no solver): {ok, force,
+ *             torque, cone, sign} (the residuals relative to the weight;
+ *             null when not finite): a plan file edited by hand shows its
+ *             failing steps as failing, whatever verify says of the order
+ *   force_set the admissible set the forces are ("solver", "margin", ...)
  *   verify    null, or us_VerifyReport's fields (failed_step, unstable_body,
  *             undecided_step: -1 when none)
  *
@@ -32,7 +40,9 @@
  * opened, as do a structure that is not 2D (the 3D viewer is not written)
  * and settings that do not match the structure (US_ERR_USAGE). */
 #include "core/core.h"
+#include "render/render.h"
 #include "render/viewer.h"
+#include "stability/certificate.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -125,7 +135,7 @@ static us_Status check_all(const us_Structure *s, const us_RenderSettings *r,
   if (s->dim != 2)
     return us_error_set(err, US_ERR_INPUT, "render --html: only 2D structures can be shown "
                         "(this one is %dD; the 3D viewer is not written yet)", s->dim);
-  if (!s->finalized)
+  if (!us_structure_is_finalized(s))
     return us_error_set(err, US_ERR_USAGE, "render --html: the structure is not finalized");
   char *seen = us_calloc((size_t)s->nbody + 1, 1);
   if (!seen) return us_error_set(err, US_ERR_NOMEM, "render --html: out of memory");
@@ -224,16 +234,45 @@ static void put_steps(FILE *fp, const us_RenderSettings *r) {
   put_index_list(fp, r ? r->blocked : NULL, r ? r->nblocked : 0);
 }
 
-/* Forces of one position: the force on body b in world axes. */
+/* Forces of one position: each contact's drawn force (lower body on the
+ * upper one), normal and friction parts in world axes. */
 static void put_forces_at(FILE *fp, const us_Structure *s, const us_Forces *f) {
   fputc('[', fp);
   for (int j = 0; j < f->ncontact; j++) {
-    const us_Contact *c = &s->contacts[f->contact[j]];
-    double fn = f->f[2 * j], ft = f->f[2 * j + 1];
-    fprintf(fp, "%s%d,", j ? "," : "", f->contact[j]);
-    put_num(fp, fn * c->n[0] - ft * c->n[1]);
-    fputc(',', fp);
-    put_num(fp, fn * c->n[1] + ft * c->n[0]);
+    us_DrawnForce d;
+    us_drawn_force(s, f, j, &d);
+    double v[4] = {d.normal[0], d.normal[1], d.friction[0], d.friction[1]};
+    fprintf(fp, "%s%d", j ? "," : "", f->contact[j]);
+    for (int q = 0; q < 4; q++) {
+      fputc(',', fp);
+      put_num(fp, isfinite(v[q]) ? v[q] : 0.0);
+    }
+  }
+  fputc(']', fp);
+}
+
+/* A residual of the re-check, null when it is not finite. */
+static void put_residual(FILE *fp, const char *key, double x) {
+  fprintf(fp, ",\"%s\":", key);
+  if (isfinite(x)) put_num(fp, x);
+  else fputs("null", fp);
+}
+
+/* The re-check of every position's forces (ck: nsteps + 1 entries). */
+static void put_certs(FILE *fp, const us_CertCheck *ck, int n) {
+  fputs(",\n\"certs\":", fp);
+  if (!ck) {
+    fputs("null", fp);
+    return;
+  }
+  fputc('[', fp);
+  for (int k = 0; k <= n; k++) {
+    fprintf(fp, "%s{\"ok\":%s", k ? ",\n" : "\n", ck[k].ok ? "true" : "false");
+    put_residual(fp, "force", ck[k].max_force_residual);
+    put_residual(fp, "torque", ck[k].max_torque_residual);
+    put_residual(fp, "cone", ck[k].max_cone_violation);
+    put_residual(fp, "sign", ck[k].max_sign_violation);
+    fputc('}', fp);
   }
   fputc(']', fp);
 }
@@ -272,7 +311,7 @@ static void put_verify(FILE *fp, const us_HtmlSettings *h) {
 }
 
 static void put_data(FILE *fp, const us_Structure *s, const us_RenderSettings *r,
-                     const us_HtmlSettings *h) {
+                     const us_HtmlSettings *h, const us_CertCheck *ck) {
   int with_plan = r && (r->norder > 0 || r->nblocked > 0);
   fputs("{\"title\":", fp);
   put_str(fp, h->title ? h->title : "unstack");
@@ -284,8 +323,42 @@ static void put_data(FILE *fp, const us_Structure *s, const us_RenderSettings *r
   put_contacts(fp, s);
   put_steps(fp, r);
   put_forces(fp, s, h->certs, nsteps_of(r));
+  put_certs(fp, ck, nsteps_of(r));
+  fputs(",\n\"force_set\":", fp);
+  put_str(fp, us_force_set_name(h->force_set));
+  fputs(r && r->force_resultants ? ",\n\"resultants\":true" : ",\n\"resultants\":false", fp);
   put_verify(fp, h);
   fputs("}", fp);
+}
+
+/* ------------------------------------------------------------ re-check */
+
+/* Every position's forces through the library's certificate check (no
+ * solver): position k is the structure before step k. *out gets nsteps + 1
+ * entries. The check's scratch is allocated here once, so that a memory
+ * failure is an error, never a step flagged as failing. */
+static us_Status recheck_certs(const us_Structure *s, const us_RenderSettings *r,
+                               const us_Forces *certs, us_CertCheck **out, us_Error *err) {
+  int n = nsteps_of(r);
+  double tol = us_stability_default_settings().cert_tol;
+  us_Bitset present = {0};
+  double *acc = us_malloc(((size_t)US_CERT_ACC * (size_t)s->nbody + 1) * sizeof *acc);
+  unsigned char *seen = us_malloc((size_t)s->ncontact + 1);
+  *out = us_calloc((size_t)n + 1, sizeof **out);
+  int ok = acc && seen && *out && !us_bitset_init(&present, s->nbody > 0 ? s->nbody : 1);
+  if (ok) us_bitset_fill(&present);
+  for (int k = 0; ok && k <= n; k++) {
+    us_certificate_check_buf(s, &present, &certs[k], tol, acc, seen, &(*out)[k]);
+    for (int q = k < n ? step_first(r, k) : 0; k < n && q < step_first(r, k + 1); q++)
+      us_bitset_clear(&present, r->order[q]);
+  }
+  us_bitset_free(&present);
+  us_free(acc);
+  us_free(seen);
+  if (ok) return US_OK;
+  us_free(*out);
+  *out = NULL;
+  return us_error_set(err, US_ERR_NOMEM, "render --html: out of memory");
 }
 
 /* ------------------------------------------------------------ driver */
@@ -300,10 +373,10 @@ us_HtmlSettings us_html_default_settings(void) {
 
 /* The template around its one marker, then the data in between. */
 static void put_page(FILE *fp, const us_Structure *s, const us_RenderSettings *r,
-                     const us_HtmlSettings *h, const char *mark) {
+                     const us_HtmlSettings *h, const us_CertCheck *ck, const char *mark) {
   const char *page = (const char *)us_viewer_html;
   fwrite(page, 1, (size_t)(mark - page), fp);
-  put_data(fp, s, r, h);
+  put_data(fp, s, r, h, ck);
   fputs(mark + strlen(DATA_MARKER), fp);
 }
 
@@ -319,8 +392,10 @@ us_Status us_render_html(const us_Structure *s, const us_RenderSettings *r,
                                  "data marker (a build error)");
   us_Status st = check_all(s, r, h, err);
   if (st) return st;
+  us_CertCheck *ck = NULL;
+  if (h->certs && recheck_certs(s, r, h->certs, &ck, err)) return err->code;
   us_AtomicFile *af = us_atomic_open(path, err);
-  if (!af) return err->code;
-  put_page((FILE *)us_atomic_stream(af), s, r, h, mark);
-  return us_atomic_commit(af, err);
+  if (af) put_page((FILE *)us_atomic_stream(af), s, r, h, ck, mark);
+  us_free(ck);
+  return af ? us_atomic_commit(af, err) : err->code;
 }

@@ -146,6 +146,14 @@ static void draw_grid(cairo_t *cr, const us_Scene *sc) {
   cairo_stroke(cr);
 }
 
+/* A marked body's outline (failure.c), as the SVG writer's. */
+static void mark_stroke(cairo_t *cr, const us_Scene *sc, int mark) {
+  static const double dash[2] = {6.0, 3.0};
+  set_rgb(cr, sc->mark_color);
+  cairo_set_line_width(cr, US_MAX(2.5, 3.0 * sc->stroke));
+  if (mark == US_MARK_STEP) cairo_set_dash(cr, dash, 2, 0.0);
+}
+
 static void draw_bodies(cairo_t *cr, const us_Scene *sc) {
   for (int i = 0; i < sc->nbody; i++) {
     const us_SceneBody *b = &sc->bodies[i];
@@ -153,7 +161,9 @@ static void draw_bodies(cairo_t *cr, const us_Scene *sc) {
     fill_paint(cr, b->paint);
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_set_line_width(cr, b->npt ? sc->stroke : 1.0);
+    if (b->mark) mark_stroke(cr, sc, b->mark);
     cairo_stroke(cr);
+    cairo_set_dash(cr, NULL, 0, 0.0);
   }
   for (int i = 0; i < sc->nbody; i++)
     if (sc->bodies[i].label.text) draw_text(cr, &sc->bodies[i].label);
@@ -184,9 +194,27 @@ static void draw_arrow(cairo_t *cr, const us_Scene *sc, const double *a) {
 }
 
 static void draw_arrows(cairo_t *cr, const us_Scene *sc) {
-  set_rgb(cr, sc->arrow_color);
   cairo_set_line_width(cr, sc->arrow_width);
-  for (int k = 0; k < sc->narrow; k++) draw_arrow(cr, sc, &sc->arrows[4 * k]);
+  for (int k = 0; k < sc->narrow; k++) {
+    set_rgb(cr, sc->arrow_kind[k] ? sc->friction_color : sc->arrow_color);
+    draw_arrow(cr, sc, &sc->arrows[4 * k]);
+  }
+}
+
+/* The mechanism (failure.c): dashed ghosts, then the velocity arrows. */
+static void draw_mechanism(cairo_t *cr, const us_Scene *sc) {
+  static const double dash[2] = {4.0, 3.0};
+  set_rgb(cr, sc->mark_color);
+  cairo_set_line_width(cr, 1.5);
+  cairo_set_dash(cr, dash, 2, 0.0);
+  for (int g = 0; g < sc->nghost; g++) {
+    for (int k = sc->ghost_start[g]; k < sc->ghost_start[g + 1]; k++)
+      cairo_line_to(cr, sc->ghost_pts[2 * k], sc->ghost_pts[2 * k + 1]);
+    cairo_close_path(cr);
+    cairo_stroke(cr);
+  }
+  cairo_set_dash(cr, NULL, 0, 0.0);
+  for (int k = 0; k < sc->nmech; k++) draw_arrow(cr, sc, &sc->mech[4 * k]);
 }
 
 static void draw_box(cairo_t *cr, const us_SceneBox *b) {
@@ -222,6 +250,7 @@ static void draw_scene(cairo_t *cr, const us_Scene *sc) {
   draw_bodies(cr, sc);
   if (sc->ndot) draw_dots(cr, sc);
   if (sc->narrow) draw_arrows(cr, sc);
+  if (sc->nmech || sc->nghost) draw_mechanism(cr, sc);
   if (sc->has_ramp) draw_ramp(cr, sc);
   for (int i = 0; i < sc->nbox; i++) draw_box(cr, &sc->boxes[i]);
   for (int i = 0; i < sc->ntext; i++) draw_text(cr, &sc->texts[i]);

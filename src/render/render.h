@@ -63,7 +63,11 @@ typedef struct us_SceneBody {
   char num[12];
   double depth;       /* 3D: centroid along the view direction (larger is
                          nearer the viewer); 0 in 2D */
+  int mark;           /* US_MARK_*: the failure marks (SVG classes) */
 } us_SceneBody;
+/* A body that falls (class "falls": a thick red outline); one removed at
+ * the failing step (class "failing-step": a dashed red outline). */
+enum { US_MARK_NONE = 0, US_MARK_FALLS, US_MARK_STEP };
 
 /* An axis-aligned box, for the legend's swatches. */
 typedef struct us_SceneBox {
@@ -71,7 +75,7 @@ typedef struct us_SceneBox {
   us_Paint paint;
 } us_SceneBox;
 
-#define US_SCENE_TEXTS 12
+#define US_SCENE_TEXTS 16
 #define US_SCENE_BOXES 4
 #define US_RAMP_STOPS 21
 
@@ -96,8 +100,18 @@ typedef struct us_Scene {
   us_Rgb dot_color;
   int narrow;
   double *arrows;         /* force arrows (x1, y1, x2, y2), head at (x2, y2) */
+  unsigned char *arrow_kind; /* [narrow] 0 normal part, 1 friction part */
   double arrow_width, arrow_head;
-  us_Rgb arrow_color;
+  us_Rgb arrow_color, friction_color; /* of the two kinds */
+  int nmech;              /* mechanism: velocity arrows (x1, y1, x2, y2) at
+                             the moving bodies' centres, class "mechanism" */
+  double *mech;
+  int nghost;             /* 2D: the moving bodies displaced along the
+                             mechanism, outlines ghost_start[g] ..
+                             ghost_start[g + 1] - 1 of ghost_pts (x, y) */
+  int *ghost_start;
+  double *ghost_pts;
+  us_Rgb mark_color;      /* failure marks, mechanism and ghosts */
   int has_ramp;           /* the legend's ramp strip */
   us_SceneBox ramp_box;
   us_Rgb ramp[US_RAMP_STOPS]; /* us_ramp at evenly spaced t */
@@ -137,6 +151,22 @@ void us_scene3_bounds(const us_Structure *s, const us_SceneView *v, double bb[4]
 void us_scene3_bodies(us_Scene *sc, const us_SceneView *v, const us_Structure *s,
                       us_SceneBody *proto);
 
+/* Failure marks (src/render/failure.c): r->failure checked against s
+ * (US_ERR_USAGE); the body that falls (named, else the mechanism's
+ * fastest, else -1); the mark of body i (step[i]: its 1-based step); the
+ * legend's line; the mechanism's arrays (1 on out of memory); its arrows
+ * and 2D ghosts. */
+us_Status us_scene_check_failure(const us_Structure *s, const us_RenderSettings *r,
+                                 us_Error *err);
+int us_scene_falling(const us_Structure *s, const us_RenderFailure *f);
+int us_scene_mark(const us_RenderSettings *r, const int *step, int i, int falls);
+int us_scene_removed(const us_RenderSettings *r, const int *step, int i); /* by the failure */
+void us_scene_failure_line(char *buf, size_t n, const us_Structure *s,
+                           const us_RenderSettings *r);
+int us_scene_alloc_failure(us_Scene *sc, const us_Structure *s, const us_RenderSettings *r);
+void us_scene_mechanism(us_Scene *sc, const us_SceneView *v, const us_Structure *s,
+                        const us_RenderFailure *f);
+
 /* Largest PNG: sides and area, so that a huge structure gives a bounded
  * picture (about 256 MB of pixels at most). */
 #define US_PNG_MAX_SIDE 16384.0
@@ -149,6 +179,21 @@ void us_scene3_bodies(us_Scene *sc, const us_SceneView *v, const us_Structure *s
 us_Status us_scene_build(us_Scene *sc, const us_Structure *s, const us_RenderSettings *r,
                          double max_side, double max_pixels, us_Error *err);
 void us_scene_free(us_Scene *sc);
+
+/* The force a picture draws at contact k of f (src/render/forces.c): the
+ * force the lower body exerts on the upper one (upper: the side the
+ * normal enters when it points up, against gravity), split into its
+ * normal part (into the upper body) and its friction part, world axes. */
+typedef struct us_DrawnForce {
+  int upper, lower;     /* body indices (lower may be US_GROUND) */
+  double p[3];          /* point of application */
+  double normal[3], friction[3];
+  double fn;            /* the normal component (>= 0 when admissible) */
+} us_DrawnForce;
+void us_drawn_force(const us_Structure *s, const us_Forces *f, int k, us_DrawnForce *out);
+/* One resultant per pair of touching bodies, at the centre of pressure;
+ * out holds f->ncontact entries. The count, or -1 on OOM. */
+int us_drawn_resultants(const us_Structure *s, const us_Forces *f, us_DrawnForce *out);
 
 /* The writers: the scene to an open stream. */
 void us_scene_write_svg(FILE *fp, const us_Scene *sc, const us_Structure *s);

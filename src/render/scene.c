@@ -21,8 +21,10 @@
  * with status none) light red crossed by dark red lines, named "cannot be
  * removed" in the legend; without an order, ids as labels (show_labels);
  * contact points as dots (show_contacts); r->forces as arrows from each
- * contact point along the force on body b of the contact (f_n n + f_t t),
- * the longest 12% of the view's larger side. Labels are sized to fit their
+ * contact point (or, r->force_resultants, one per touching pair), the
+ * force of the lower body on the upper one (src/render/forces.c), its
+ * normal part blue and its friction part orange, the longest 12% of the
+ * view's larger side. Labels are sized to fit their
  * body and left out when under 5 px; dots and outlines thin out with the
  * typical body size, so a wall of a thousand bricks stays legible.
  *
@@ -30,8 +32,8 @@
  * view's right and up axes (us_SceneView; 2D: x and y as they are) before
  * the same fit; the bodies become their visible faces, painted far to near
  * and shaded, with labels at the projected centres of mass, and the ground
- * band becomes a grid on z = 0. Contacts and arrows (f_n n + f_t1 t1 +
- * f_t2 t2) are projected the same way in both dimensions.
+ * band becomes a grid on z = 0. Contacts and arrows are projected the same
+ * way in both dimensions.
  *
  * Errors: bad settings (order or force indices out of range, repeated
  * bodies in the order, sizes out of range) are US_ERR_USAGE; nothing is
@@ -59,7 +61,7 @@ typedef us_SceneView View; /* render.h */
 
 /* The legend's text and layout (legend_layout). */
 typedef struct Legend {
-  char line[4][160];
+  char line[7][160];
   int nline, ramp, swatches;
   double text_x, text_y, swatch_y, height;
 } Legend;
@@ -69,8 +71,12 @@ typedef struct Info {
   int *step;       /* 1-based removal step, 0 not in the order, -1 blocked */
   int nsteps;      /* steps of the order */
   int nfixed, nleft; /* fixed bodies; movable ones neither ordered nor blocked */
-  double fmax;       /* largest force drawn (0: none) */
+  double fmax;       /* largest force part drawn (0: none) */
+  us_DrawnForce *drawn; /* the arrows' forces (ndrawn) */
+  int ndrawn;
   us_SceneBody *proto; /* 3D: each body's paint and label text */
+  us_Labels labels;    /* resolved: IDS, STEPS or NONE */
+  int falls;           /* the body marked as falling, or -1 */
   double title_h;
   Legend legend;
 } Info;
@@ -119,6 +125,8 @@ static us_Status check_rest(const us_Structure *s, const us_RenderSettings *r, i
                           "the order", k);
     step[i] = -1;
   }
+  us_Status st = us_scene_check_failure(s, r, err);
+  if (st) return st;
   const us_Forces *f = r->forces;
   if (f && (f->ncontact < 0 || (f->ncontact > 0 && (!f->contact || !f->f))))
     return us_error_set(err, US_ERR_USAGE, "render: bad forces (%d contacts)", f->ncontact);
@@ -141,6 +149,12 @@ static us_Status check_settings(const us_Structure *s, const us_RenderSettings *
   if (!st) st = check_rest(s, r, in->step, err);
   if (st) return st;
   in->nsteps = r->group_start ? r->ngroups : r->norder;
+  if ((unsigned)r->labels > US_LABELS_NONE)
+    return us_error_set(err, US_ERR_USAGE, "render: bad labels setting %d", (int)r->labels);
+  in->falls = us_scene_falling(s, r->failure);
+  in->labels = !r->show_labels ? US_LABELS_NONE
+               : r->labels == US_LABELS_AUTO ? (r->norder > 0 ? US_LABELS_STEPS : US_LABELS_IDS)
+                                             : r->labels;
   for (int i = 0; i < s->nbody; i++) {
     in->nfixed += s->bodies[i].fixed != 0;
     in->nleft += !s->bodies[i].fixed && in->step[i] == 0;
@@ -270,6 +284,7 @@ static us_Paint body_paint(const us_Structure *s, const us_RenderSettings *r, co
                            int i) {
   if (s->bodies[i].fixed) return hatched(US_HATCH_FIXED);
   if (in->step[i] < 0) return hatched(US_HATCH_BLOCKED);
+  if (us_scene_removed(r, in->step, i)) return solid(kWhite); /* gone when it falls */
   if (r->norder > 0 && in->step[i]) return solid(us_ramp(step_t(in->step[i], in->nsteps)));
   return solid(r->norder > 0 ? kLeftOut : kSandstone);
 }
@@ -278,7 +293,7 @@ static us_Paint body_paint(const us_Structure *s, const us_RenderSettings *r, co
  * mean of its vertices. */
 static void label_point(const us_Structure *s, int i, double *x, double *y) {
   const us_Body *b = &s->bodies[i];
-  if (s->finalized || b->nvert == 0) {
+  if (us_structure_is_finalized(s) || b->nvert == 0) {
     *x = b->com[0];
     *y = b->com[1];
     return;
@@ -289,12 +304,11 @@ static void label_point(const us_Structure *s, int i, double *x, double *y) {
   *y /= (double)b->nvert;
 }
 
-/* Step number (with an order) or id (labels, no order), when it fits. */
-static void body_label(us_SceneBody *sb, const View *v, const us_Structure *s,
-                       const us_RenderSettings *r, const Info *in) {
+/* Step number or id (in->labels), when it fits. */
+static void body_label(us_SceneBody *sb, const View *v, const us_Structure *s, const Info *in) {
   const us_Body *b = &s->bodies[sb->body];
-  int step = in->step[sb->body], numbered = r->norder > 0 && step > 0;
-  if (!numbered && !(r->norder == 0 && r->show_labels)) return;
+  int step = in->step[sb->body], numbered = in->labels == US_LABELS_STEPS && step > 0;
+  if (!numbered && in->labels != US_LABELS_IDS) return;
   snprintf(sb->num, sizeof sb->num, "%d", step);
   const char *text = numbered ? sb->num : b->id;
   int light = us_rgb_lightness(sb->paint.fill) < 0.6 && sb->paint.hatch < 0;
@@ -314,7 +328,8 @@ static void put_bodies3(us_Scene *sc, const View *v, const us_Structure *s,
   for (int i = 0; i < s->nbody; i++) {
     in->proto[i].body = i;
     in->proto[i].paint = body_paint(s, r, in, i);
-    body_label(&in->proto[i], v, s, r, in);
+    in->proto[i].mark = us_scene_mark(r, in->step, i, in->falls);
+    body_label(&in->proto[i], v, s, in);
   }
   us_scene3_bodies(sc, v, s, in->proto);
 }
@@ -335,7 +350,8 @@ static void put_bodies(us_Scene *sc, const View *v, const us_Structure *s,
       sc->pts[2 * first + 1] = px_y(v, b->verts[2 * k + 1]);
     }
     sb->paint = body_paint(s, r, in, i);
-    body_label(sb, v, s, r, in);
+    sb->mark = us_scene_mark(r, in->step, i, in->falls);
+    body_label(sb, v, s, in);
   }
   sc->nbody = s->nbody;
 }
@@ -349,41 +365,46 @@ static void put_dots(us_Scene *sc, const View *v, const us_Structure *s) {
   sc->dot_color = (us_Rgb){34, 34, 34};
 }
 
-/* Force on body b of contact k of f, in world coordinates: f_n n + f_t1 t1
- * (+ f_t2 t2 in 3D; f holds dim components a contact). */
-static void force_vec(const us_Structure *s, const us_Forces *f, int k, double out[3]) {
-  const us_Contact *c = &s->contacts[f->contact[k]];
-  const double *fk = f->f + (size_t)s->dim * (size_t)k;
-  for (int d = 0; d < 3; d++)
-    out[d] = fk[0] * c->n[d] + fk[1] * c->t[0][d] + (s->dim == 3 ? fk[2] * c->t[1][d] : 0.0);
-}
-
 static double norm3(const double *a) { return sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
 
-/* Largest finite force magnitude of f (0: none). */
-static double force_max(const us_Structure *s, const us_Forces *f) {
-  double fmax = 0.0, fv[3];
-  for (int k = 0; f && k < f->ncontact; k++) {
-    force_vec(s, f, k, fv);
-    if (isfinite(norm3(fv))) fmax = US_MAX(fmax, norm3(fv));
+/* The arrows' forces: one per contact, or one per pair (resultants); in
+ * f->ncontact entries of d. The count, or -1 on OOM. */
+static int drawn_forces(const us_Structure *s, const us_RenderSettings *r, us_DrawnForce *d) {
+  const us_Forces *f = r->forces;
+  if (r->force_resultants) return us_drawn_resultants(s, f, d);
+  for (int k = 0; f && k < f->ncontact; k++) us_drawn_force(s, f, k, &d[k]);
+  return f ? f->ncontact : 0;
+}
+
+/* Largest finite part (normal or friction) of the n drawn forces (0: none). */
+static double force_max(const us_DrawnForce *d, int n) {
+  double fmax = 0.0;
+  for (int k = 0; k < n; k++) {
+    double a = norm3(d[k].normal), b = norm3(d[k].friction);
+    if (isfinite(a) && isfinite(b)) fmax = US_MAX(fmax, US_MAX(a, b));
   }
   return fmax;
 }
 
-/* Arrows scaled so the longest (fmax) is 12% of the view; arrows under
- * half a pixel (as drawn, after projection) are left out. */
-static void put_arrows(us_Scene *sc, const View *v, const us_Structure *s, const us_Forces *f,
-                       double fmax) {
-  double scale = 0.12 * v->span / fmax, fv[3];
-  for (int k = 0; k < f->ncontact; k++) {
-    force_vec(s, f, k, fv);
-    if (!isfinite(norm3(fv))) continue;
-    const double *p = s->contacts[f->contact[k]].p;
-    double q[3] = {p[0] + fv[0] * scale, p[1] + fv[1] * scale, p[2] + fv[2] * scale};
-    double *a = &sc->arrows[4 * sc->narrow];
-    us_scene_px(v, p, &a[0], &a[1]);
-    us_scene_px(v, q, &a[2], &a[3]);
-    if (hypot(a[2] - a[0], a[3] - a[1]) >= 0.5) sc->narrow++;
+/* One arrow from p along v (kind 0 normal, 1 friction); under half a pixel
+ * (as drawn, after projection) it is left out. */
+static void put_arrow(us_Scene *sc, const View *v, const double *p, const double *fv,
+                      double scale, unsigned char kind) {
+  double q[3] = {p[0] + fv[0] * scale, p[1] + fv[1] * scale, p[2] + fv[2] * scale};
+  double *a = &sc->arrows[4 * sc->narrow];
+  us_scene_px(v, p, &a[0], &a[1]);
+  us_scene_px(v, q, &a[2], &a[3]);
+  if (hypot(a[2] - a[0], a[3] - a[1]) >= 0.5) sc->arrow_kind[sc->narrow++] = kind;
+}
+
+/* Arrows scaled so the longest part (fmax) is 12% of the view: the normal
+ * part, then the friction part, of each drawn force. */
+static void put_arrows(us_Scene *sc, const View *v, const us_DrawnForce *d, int n, double fmax) {
+  double scale = 0.12 * v->span / fmax;
+  for (int k = 0; k < n; k++) {
+    if (!isfinite(norm3(d[k].normal)) || !isfinite(norm3(d[k].friction))) continue;
+    put_arrow(sc, v, d[k].p, d[k].normal, scale, 0);
+    put_arrow(sc, v, d[k].p, d[k].friction, scale, 1);
   }
 }
 
@@ -415,14 +436,25 @@ static void legend_lines(Legend *lg, const us_Structure *s, const us_RenderSetti
   snprintf(lg->line[n++], sizeof lg->line[0], "%d bodies (%d fixed), %d contacts", s->nbody,
            in->nfixed, s->ncontact);
   if (r->norder > 0 && in->nsteps != r->norder) snprintf(steps, sizeof steps, " (%d steps)", in->nsteps);
-  if (r->norder > 0)
+  if (r->norder > 0 && r->order_builds)
+    snprintf(lg->line[n++], sizeof lg->line[0], "%d in the build order%s", r->norder, steps);
+  else if (r->norder > 0)
     snprintf(lg->line[n++], sizeof lg->line[0], "%d in the removal order, %d not%s", r->norder,
              s->nbody - in->nfixed - r->norder, steps);
+  if (r->failure) us_scene_failure_line(lg->line[n++], sizeof lg->line[0], s, r);
   if (r->nblocked > 0)
     snprintf(lg->line[n++], sizeof lg->line[0], "%d cannot be removed", r->nblocked);
-  if (in->fmax > 0)
-    snprintf(lg->line[n++], sizeof lg->line[0],
-             "arrows: contact forces on body b of each contact, longest %.4g N", in->fmax);
+  if (in->fmax > 0) {
+    snprintf(lg->line[n++], sizeof lg->line[0], "arrows: force of the lower body on the upper "
+             "one %s: blue normal, orange friction; longest %.4g N",
+             r->force_resultants ? "per touching pair" : "at each contact", in->fmax);
+    const char *set = r->force_set == US_FORCESET_MARGIN     ? "the largest smallest normal force"
+                      : r->force_set == US_FORCESET_MIN_SUM  ? "the least total force"
+                      : r->force_set == US_FORCESET_MIN_NORM ? "the least sum of squares"
+                                                             : "the solver's";
+    snprintf(lg->line[n++], sizeof lg->line[0], "one admissible set of forces (%s; forces are "
+             "not unique)", set);
+  }
   lg->nline = n;
   lg->ramp = r->norder > 0;
   lg->swatches = (in->nfixed > 0) + (r->nblocked > 0) +
@@ -462,8 +494,8 @@ static void put_legend(us_Scene *sc, const us_RenderSettings *r, const Info *in)
     sc->has_ramp = 1;
     sc->ramp_box = (us_SceneBox){10.0, y0, 160.0, 12.0, solid(kWhite)};
     for (int i = 0; i < US_RAMP_STOPS; i++) sc->ramp[i] = us_ramp(i / (US_RAMP_STOPS - 1.0));
-    add_text(sc, 10.0, y0 + 26.0, 11.0, -1, 0, "removed first");
-    add_text(sc, 170.0, y0 + 26.0, 11.0, 1, 0, "removed last");
+    add_text(sc, 10.0, y0 + 26.0, 11.0, -1, 0, r->order_builds ? "placed first" : "removed first");
+    add_text(sc, 170.0, y0 + 26.0, 11.0, 1, 0, r->order_builds ? "placed last" : "removed last");
   }
   for (int i = 0; i < lg->nline; i++)
     add_text(sc, lg->text_x, y0 + lg->text_y + LINE_PX * i, 11.0, -1, 0, lg->line[i]);
@@ -484,15 +516,19 @@ static us_Status alloc_parts(us_Scene *sc, const us_Structure *s, const us_Rende
   sc->lines = us_malloc(4 * US_GRID_LINES * sizeof *sc->lines);
   sc->pts = us_malloc((2 * nv + 1) * sizeof *sc->pts);
   sc->dots = us_malloc((2 * (size_t)s->ncontact + 1) * sizeof *sc->dots);
-  sc->arrows = us_malloc((4 * nf + 1) * sizeof *sc->arrows);
-  if (in->step && in->proto && sc->bodies && sc->lines && sc->pts && sc->dots && sc->arrows)
+  sc->arrows = us_malloc((8 * nf + 1) * sizeof *sc->arrows);
+  sc->arrow_kind = us_malloc(2 * nf + 1);
+  in->drawn = us_malloc((nf + 1) * sizeof *in->drawn);
+  if (in->step && in->proto && sc->bodies && sc->lines && sc->pts && sc->dots && sc->arrows &&
+      sc->arrow_kind && in->drawn && !us_scene_alloc_failure(sc, s, r))
     return US_OK;
   return us_error_set(err, US_ERR_NOMEM, "render: out of memory");
 }
 
 static void fill_scene(us_Scene *sc, const View *v, const us_Structure *s,
                        const us_RenderSettings *r, const Info *in) {
-  sc->arrow_color = (us_Rgb){214, 39, 40};
+  sc->arrow_color = (us_Rgb){31, 78, 156};
+  sc->friction_color = (us_Rgb){230, 115, 0};
   sc->arrow_width = 1.5;
   sc->arrow_head = 9.0;
   if (r->title) put_title(sc, r->title);
@@ -502,16 +538,21 @@ static void fill_scene(us_Scene *sc, const View *v, const us_Structure *s,
   if (s->dim == 3) put_bodies3(sc, v, s, r, in);
   else put_bodies(sc, v, s, r, in);
   if (r->show_contacts) put_dots(sc, v, s);
-  if (in->fmax > 0) put_arrows(sc, v, s, r->forces, in->fmax);
+  if (in->fmax > 0) put_arrows(sc, v, in->drawn, in->ndrawn, in->fmax);
+  if (r->failure) us_scene_mechanism(sc, v, s, r->failure);
   put_legend(sc, r, in);
 }
 
 /* The bands around the drawing: title and legend. */
-static void plan_bands(Info *in, const us_Structure *s, const us_RenderSettings *r) {
-  in->fmax = force_max(s, r->forces);
+static us_Status plan_bands(Info *in, const us_Structure *s, const us_RenderSettings *r,
+                            us_Error *err) {
+  in->ndrawn = drawn_forces(s, r, in->drawn);
+  if (in->ndrawn < 0) return us_error_set(err, US_ERR_NOMEM, "render: out of memory");
+  in->fmax = force_max(in->drawn, in->ndrawn);
   in->title_h = r->title ? TITLE_PX : 0.0;
   legend_lines(&in->legend, s, r, in);
   legend_layout(&in->legend, round(r->width_px));
+  return US_OK;
 }
 
 us_Status us_scene_build(us_Scene *sc, const us_Structure *s, const us_RenderSettings *r,
@@ -521,12 +562,13 @@ us_Status us_scene_build(us_Scene *sc, const us_Structure *s, const us_RenderSet
   View v = {0};
   us_Status st = alloc_parts(sc, s, r, &in, err);
   if (!st) st = check_settings(s, r, &in, err);
-  if (!st) plan_bands(&in, s, r);
+  if (!st) st = plan_bands(&in, s, r, err);
   if (!st) st = world_view(s, r, &v, err);
   if (!st) st = fit_view(sc, &v, r, &in, max_side, max_pixels, err);
   if (!st) fill_scene(sc, &v, s, r, &in);
   us_free(in.step);
   us_free(in.proto);
+  us_free(in.drawn);
   if (st) us_scene_free(sc);
   return st;
 }
@@ -536,6 +578,10 @@ void us_scene_free(us_Scene *sc) {
   us_free(sc->pts);
   us_free(sc->dots);
   us_free(sc->arrows);
+  us_free(sc->arrow_kind);
   us_free(sc->lines);
+  us_free(sc->mech);
+  us_free(sc->ghost_start);
+  us_free(sc->ghost_pts);
   memset(sc, 0, sizeof *sc);
 }

@@ -194,12 +194,14 @@ static void collect(us_Scene *sc, const us_SceneView *v, const us_Structure *s,
         const double *n = b->parts[p].planes + 4 * f;
         if (!(dot3(n, v->e) > 1e-9)) continue;
         us_SceneBody *sb = &sc->bodies[sc->nbody++];
-        *sb = (us_SceneBody){.body = i, .paint = shade(proto[i].paint, n, v)};
+        *sb = (us_SceneBody){.body = i, .paint = shade(proto[i].paint, n, v),
+                             .mark = proto[i].mark};
         put_face(sc, sb, v, &b->parts[p], f, &first);
       }
     if (b->npart == 0) {
       us_SceneBody *sb = &sc->bodies[sc->nbody++];
-      *sb = (us_SceneBody){.body = i, .paint = proto[i].paint, .depth = dot3(b->com, v->e)};
+      *sb = (us_SceneBody){.body = i, .paint = proto[i].paint, .depth = dot3(b->com, v->e),
+                           .mark = proto[i].mark};
       us_scene_px(v, b->com, &sb->cx, &sb->cy);
     }
   }
@@ -222,13 +224,13 @@ static void body_box(const us_SceneView *v, const us_Structure *s, const us_Body
   double bb[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
   int n = 0;
   memcpy(c, b->com, 3 * sizeof *c);
-  if (!s->finalized) c[0] = c[1] = c[2] = 0.0;
+  if (!us_structure_is_finalized(s)) c[0] = c[1] = c[2] = 0.0;
   for (int p = 0; p < b->npart; p++)
     for (int k = 0; k < b->parts[p].nvert; k++, n++) {
       grow(bb, v, b->parts[p].verts + 3 * k);
-      for (int d = 0; !s->finalized && d < 3; d++) c[d] += b->parts[p].verts[3 * k + d];
+      for (int d = 0; !us_structure_is_finalized(s) && d < 3; d++) c[d] += b->parts[p].verts[3 * k + d];
     }
-  for (int d = 0; !s->finalized && n && d < 3; d++) c[d] /= n;
+  for (int d = 0; !us_structure_is_finalized(s) && n && d < 3; d++) c[d] /= n;
   *w = n ? (bb[2] - bb[0]) * v->k : 0.0;
   *h = n ? (bb[3] - bb[1]) * v->k : 0.0;
 }

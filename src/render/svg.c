@@ -58,7 +58,7 @@ static void put_fill(FILE *fp, us_Paint p) {
 }
 
 static void put_text(FILE *fp, const us_SceneText *t) {
-  static const char *anchor[3] = {"start", "middle", "end"};
+  static const char *const anchor[3] = {"start", "middle", "end"};
   fprintf(fp, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"%.1f\"", t->x, t->y, t->size);
   if (t->anchor) fprintf(fp, " text-anchor=\"%s\"", anchor[t->anchor + 1]);
   if (t->centred) fputs(" dominant-baseline=\"central\"", fp);
@@ -85,6 +85,14 @@ static void put_pattern(FILE *fp, const us_Hatch *h) {
   fprintf(fp, "\" stroke-width=\"%g\"/></pattern>\n", h->width);
 }
 
+static void put_mech_marker(FILE *fp, const us_Scene *sc) {
+  fputs("<marker id=\"mech-arrow\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" "
+        "markerWidth=\"6\" markerHeight=\"6\" orient=\"auto\"><path d=\"M0,0 L10,5 L0,10 z\" "
+        "fill=\"", fp);
+  put_rgb(fp, sc->mark_color);
+  fputs("\"/></marker>\n", fp);
+}
+
 static void put_header(FILE *fp, const us_Scene *sc) {
   fprintf(fp,
           "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
@@ -93,10 +101,15 @@ static void put_header(FILE *fp, const us_Scene *sc) {
           sc->w, sc->h, sc->w, sc->h);
   for (int i = 0; i < US_NHATCH; i++) put_pattern(fp, &us_hatches[i]);
   /* the head is arrow_head px long: 6 marker units of stroke width 1.5 */
-  fputs("<marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" markerWidth=\"6\" "
-        "markerHeight=\"6\" orient=\"auto\"><path d=\"M0,0 L10,5 L0,10 z\" fill=\"", fp);
-  put_rgb(fp, sc->arrow_color);
-  fputs("\"/></marker>\n<linearGradient id=\"ramp\" x1=\"0\" y1=\"0\" x2=\"1\" y2=\"0\">\n", fp);
+  for (int kind = 0; kind < 2; kind++) {
+    fprintf(fp, "<marker id=\"arrow%s\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" "
+            "markerWidth=\"6\" markerHeight=\"6\" orient=\"auto\"><path d=\"M0,0 L10,5 "
+            "L0,10 z\" fill=\"", kind ? "-friction" : "");
+    put_rgb(fp, kind ? sc->friction_color : sc->arrow_color);
+    fputs("\"/></marker>\n", fp);
+  }
+  if (sc->nmech) put_mech_marker(fp, sc);
+  fputs("<linearGradient id=\"ramp\" x1=\"0\" y1=\"0\" x2=\"1\" y2=\"0\">\n", fp);
   for (int i = 0; sc->has_ramp && i < US_RAMP_STOPS; i++) {
     fprintf(fp, "<stop offset=\"%.3f\" stop-color=\"", i / (US_RAMP_STOPS - 1.0));
     put_rgb(fp, sc->ramp[i]);
@@ -118,11 +131,25 @@ static void put_ground(FILE *fp, const us_Scene *sc) {
           y, sc->w, sc->draw_bottom - y, us_hatches[US_HATCH_GROUND].name, y, sc->w, y);
 }
 
+/* The outline of a marked body (failure.c): thick, in the mark colour;
+ * dashed for the failing step's bodies. Closes the element. */
+static void put_mark_stroke(FILE *fp, const us_Scene *sc, int mark) {
+  fputs(" stroke=\"", fp);
+  put_rgb(fp, sc->mark_color);
+  fprintf(fp, "\" stroke-width=\"%.2f\"%s/>", US_MAX(2.5, 3.0 * sc->stroke),
+          mark == US_MARK_STEP ? " stroke-dasharray=\"6 3\"" : "");
+}
+
+static const char *mark_class(int mark) {
+  return mark == US_MARK_FALLS ? "falls" : mark == US_MARK_STEP ? "failing-step" : "";
+}
+
 static void put_shape(FILE *fp, const us_Scene *sc, const us_SceneBody *b) {
   if (b->npt == 0) {
     fprintf(fp, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%g\" ", b->cx, b->cy, US_POINT_BODY_PX);
     put_fill(fp, b->paint);
-    fputs(" stroke=\"black\"/>", fp);
+    if (b->mark) put_mark_stroke(fp, sc, b->mark);
+    else fputs(" stroke=\"black\"/>", fp);
     return;
   }
   fputs("<polygon points=\"", fp);
@@ -130,14 +157,16 @@ static void put_shape(FILE *fp, const us_Scene *sc, const us_SceneBody *b) {
   for (int k = 0; k < b->npt; k++) fprintf(fp, "%s%.2f,%.2f", k ? " " : "", p[2 * k], p[2 * k + 1]);
   fputs("\" ", fp);
   put_fill(fp, b->paint);
-  fprintf(fp, " stroke=\"black\" stroke-width=\"%.2f\"/>", sc->stroke);
+  if (b->mark) put_mark_stroke(fp, sc, b->mark);
+  else fprintf(fp, " stroke=\"black\" stroke-width=\"%.2f\"/>", sc->stroke);
 }
 
 static void put_bodies(FILE *fp, const us_Scene *sc, const us_Structure *s) {
   fputs("<g class=\"bodies\">\n", fp);
   for (int i = 0; i < sc->nbody; i++) {
     const us_SceneBody *b = &sc->bodies[i];
-    fputs("<g><title>", fp);
+    if (b->mark) fprintf(fp, "<g class=\"%s\"><title>", mark_class(b->mark));
+    else fputs("<g><title>", fp);
     put_escaped(fp, s->bodies[b->body].id);
     fputs("</title>", fp);
     put_shape(fp, sc, b);
@@ -177,16 +206,21 @@ static void put_dots(FILE *fp, const us_Scene *sc) {
   fputs("</g>\n", fp);
 }
 
+/* One group per kind: normal parts (class forces), friction parts. */
 static void put_arrows(FILE *fp, const us_Scene *sc) {
-  fputs("<g class=\"forces\" stroke=\"", fp);
-  put_rgb(fp, sc->arrow_color);
-  fprintf(fp, "\" stroke-width=\"%g\">\n", sc->arrow_width);
-  for (int k = 0; k < sc->narrow; k++) {
-    const double *a = &sc->arrows[4 * k];
-    fprintf(fp, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" "
-            "marker-end=\"url(#arrow)\"/>\n", a[0], a[1], a[2], a[3]);
+  for (int kind = 0; kind < 2; kind++) {
+    fprintf(fp, "<g class=\"%s\" stroke=\"", kind ? "forces friction" : "forces");
+    put_rgb(fp, kind ? sc->friction_color : sc->arrow_color);
+    fprintf(fp, "\" stroke-width=\"%g\">\n", sc->arrow_width);
+    for (int k = 0; k < sc->narrow; k++) {
+      const double *a = &sc->arrows[4 * k];
+      if (sc->arrow_kind[k] == kind)
+        fprintf(fp, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" "
+                "marker-end=\"url(#arrow%s)\"/>\n",
+                a[0], a[1], a[2], a[3], kind ? "-friction" : "");
+    }
+    fputs("</g>\n", fp);
   }
-  fputs("</g>\n", fp);
 }
 
 static void put_box(FILE *fp, const us_SceneBox *b, const char *fill) {
@@ -195,6 +229,26 @@ static void put_box(FILE *fp, const us_SceneBox *b, const char *fill) {
   if (fill) fprintf(fp, "fill=\"%s\"", fill);
   else put_fill(fp, b->paint);
   fputs(" stroke=\"black\" stroke-width=\"0.5\"/>\n", fp);
+}
+
+/* The mechanism (failure.c): velocity arrows and 2D ghosts, dashed. */
+static void put_mechanism(FILE *fp, const us_Scene *sc) {
+  fputs("<g class=\"mechanism\" fill=\"none\" stroke=\"", fp);
+  put_rgb(fp, sc->mark_color);
+  fputs("\" stroke-width=\"1.5\">\n", fp);
+  for (int g = 0; g < sc->nghost; g++) {
+    fputs("<polygon class=\"ghost\" stroke-dasharray=\"4 3\" points=\"", fp);
+    for (int k = sc->ghost_start[g]; k < sc->ghost_start[g + 1]; k++)
+      fprintf(fp, "%s%.2f,%.2f", k > sc->ghost_start[g] ? " " : "", sc->ghost_pts[2 * k],
+              sc->ghost_pts[2 * k + 1]);
+    fputs("\"/>\n", fp);
+  }
+  for (int k = 0; k < sc->nmech; k++) {
+    const double *a = &sc->mech[4 * k];
+    fprintf(fp, "<line class=\"velocity\" x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" "
+            "marker-end=\"url(#mech-arrow)\"/>\n", a[0], a[1], a[2], a[3]);
+  }
+  fputs("</g>\n", fp);
 }
 
 /* Title and legend: the ramp strip, swatches, lines of text. */
@@ -214,6 +268,7 @@ void us_scene_write_svg(FILE *fp, const us_Scene *sc, const us_Structure *s) {
   if (sc->labels_apart) put_labels(fp, sc);
   if (sc->ndot) put_dots(fp, sc);
   if (sc->narrow) put_arrows(fp, sc);
+  if (sc->nmech || sc->nghost) put_mechanism(fp, sc);
   put_texts(fp, sc);
   fputs("</svg>\n", fp);
 }

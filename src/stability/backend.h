@@ -12,6 +12,33 @@
 
 #include "core/core.h"
 #include "equilibrium.h"
+#include "stability.h"
+
+/* What a backend decides: the sub-assembly `sys`. added / removed: bodies
+ * that changed since this backend's previous solve (restart = 1: no
+ * previous state to reuse, e.g. first call). added = removed = NULL with
+ * restart = 0: `sys` is a region system of the local tests (local.h), not
+ * a sub-assembly; a backend may start from whatever it last knew of its
+ * contacts. */
+typedef struct us_BackendProblem {
+  const us_EqSystem *sys;
+  const int *added;
+  int nadded;
+  const int *removed;
+  int nremoved;
+  int restart;
+} us_BackendProblem;
+
+/* What a backend answers: the verdict; on stable, dim * ncontact
+ * normalized forces in the caller's f; its counters added to info; why,
+ * in words, in note. */
+typedef struct us_BackendOut {
+  us_Verdict verdict;
+  double *f;
+  us_StabilityInfo *info;
+  char *note;
+  size_t note_sz;
+} us_BackendOut;
 
 /* A stability backend. The workspace is the backend's own state and may
  * keep the last sub-assembly's solution for reuse. */
@@ -19,16 +46,9 @@ typedef struct us_Backend {
   us_Method method; /* its name is us_method_name(method) */
   void *(*create)(const us_Structure *s, const us_StabilitySettings *set, us_Error *err);
   void (*destroy)(void *ws);
-  /* Decide the sub-assembly `sys`. added / removed: bodies that changed
-   * since this backend's previous solve (restart = 1: no previous state to
-   * reuse, e.g. first call). added = removed = NULL with restart = 0: `sys`
-   * is a region system of the local tests (local.h), not a sub-assembly;
-   * a backend may start from whatever it last knew of its contacts. On stable, write dim * ncontact normalized
-   * forces to f. */
-  us_Status (*solve)(void *ws, const us_EqSystem *sys, const int *added, int nadded,
-                     const int *removed, int nremoved, int restart, us_Verdict *verdict,
-                     double *f, us_StabilityInfo *info, char *note, size_t note_sz,
-                     us_Error *err);
+  /* Decide the problem (us_BackendProblem) into out (us_BackendOut);
+   * errors in err, outcomes in out->verdict. */
+  us_Status (*solve)(void *ws, const us_BackendProblem *pb, us_BackendOut *out, us_Error *err);
   /* Optional (NULL: unknown). After an unstable verdict: the body the
    * backend's evidence points at (e.g. largest virtual motion in a Farkas
    * ray), else -1. */
@@ -41,6 +61,9 @@ typedef struct us_Backend {
    * the last system's rows (y . rhs != 0, every cone generator on one side
    * of it, checked by the backend), its length, or 0 when there is none. */
   int (*farkas_ray)(void *ws, const double **y);
+  /* 1: the front end runs the local tests (local.h) in front of this
+   * backend, which also solves their region systems (CLP only). */
+  int local_tests;
 } us_Backend;
 
 extern const us_Backend us_backend_clp;     /* lp_clp.c */
@@ -53,19 +76,5 @@ extern const us_Backend us_backend_lp_lcp;  /* lp_lcp.c (Lemke on the LP's LCP) 
  * the backend from set->method. */
 us_Stability *us_stability_new_backend(const us_Structure *s, const us_StabilitySettings *set,
                                        const us_Backend *be, us_Error *err);
-
-/* Whether stable results carry their forces (the planner's searches skip
- * them; us_StabilitySettings.skip_forces sets the initial value). */
-void us_stability_set_skip_forces(us_Stability *w, int skip);
-
-/* Can the bodies reg[0..nreg) of `present` stand while every other body
- * of `present` is held still? res->verdict US_UNSTABLE: they cannot, and
- * res->mechanism is their mechanism, checked against the true cones (a
- * proof, whatever the rest does); US_UNDECIDED: not proven. Solved by CLP
- * with the local tests' support LP (local.h) whatever the method, since
- * the proof is the checked mechanism, not the solver's word. Does not
- * count as a test and leaves the reuse state of us_stability_test alone. */
-us_Status us_stability_held(us_Stability *w, const us_Bitset *present, const int *reg, int nreg,
-                            us_StabilityResult *res, us_Error *err);
 
 #endif

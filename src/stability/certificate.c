@@ -439,3 +439,35 @@ int us_mechanism_check(const us_Structure *s, const us_Bitset *present, us_Mecha
   us_free(slot);
   return ok;
 }
+
+/* The farthest vertex of body i from its centre of mass, over L. */
+static double body_reach(const us_Structure *s, const Units *u, int i) {
+  const us_Body *b = &s->bodies[i];
+  double r = 0.0;
+  for (int k = 0; k < b->nvert; k++) {
+    double d[3] = {b->verts[2 * k] - b->com[0], b->verts[2 * k + 1] - b->com[1], 0.0};
+    r = US_MAX(r, fast_norm3(d));
+  }
+  for (int p = 0; p < b->npart; p++)
+    for (int k = 0; k < b->parts[p].nvert; k++) {
+      const double *x = b->parts[p].verts + 3 * (size_t)k;
+      double d[3] = {x[0] - b->com[0], x[1] - b->com[1], x[2] - b->com[2]};
+      r = US_MAX(r, fast_norm3(d));
+    }
+  return r * u->inv_l;
+}
+
+double us_mechanism_margin(const us_Structure *s, const us_Mechanism *m) {
+  Units u = units_of(s);
+  int dof = mech_stride(s), nw = dof == 6 ? 3 : 1;
+  double scale = 0.0;
+  for (int q = 0; q < m->nbody; q++) {
+    int i = m->body[q];
+    const double *v = m->v + (size_t)dof * (size_t)q;
+    double lin[3] = {v[0], v[1], dof == 6 ? v[2] : 0.0};
+    double w[3] = {0.0, 0.0, v[dof - 1]};
+    if (nw == 3) w[0] = v[3], w[1] = v[4];
+    scale += s->bodies[i].mass / u.m * (fast_norm3(lin) + fast_norm3(w) * body_reach(s, &u, i));
+  }
+  return scale > 0 && isfinite(scale) ? 1.0 / scale : 0.0;
+}

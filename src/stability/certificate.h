@@ -5,6 +5,15 @@
 
 #include "core/core.h"
 
+/* The boundary band (docs/planning.md, "The boundary band"): a stable
+ * certificate whose worst measure (each relative to its own body or
+ * contact) exceeds US_BAND_CERT, or an unstable mechanism whose margin
+ * (us_mechanism_margin, relative to the moving bodies) is below
+ * US_BAND_MECH, is within tolerance of tipping, and its verdict is the
+ * referee's, whatever method found it. */
+#define US_BAND_CERT 1e-10
+#define US_BAND_MECH 1e-7
+
 /* Accumulator doubles per body of the check. */
 #define US_CERT_ACC 8
 
@@ -31,6 +40,15 @@ void us_certificate_check_bodies(const us_Structure *s, const us_Bitset *present
  * scratch slot[nbody], all -1 on entry and on return. */
 int us_mechanism_check_list(const us_Structure *s, const us_Bitset *present, us_Mechanism *m,
                             double tol, int *slot, const int *list, int nlist);
+
+/* How clearly a normalized mechanism m (gravity's power 1, as left by
+ * us_mechanism_check) tips: gravity's power over the sum, over its
+ * bodies, of each body's weight times the fastest speed of a point of
+ * that body (|v| + |omega| times its farthest vertex from the centre of
+ * mass). Relative to the moving bodies alone: a block rolling over a
+ * corner its centre of mass is d past gets about d / its own size. 0 for a
+ * mechanism that does not move. */
+double us_mechanism_margin(const us_Structure *s, const us_Mechanism *m);
 
 /* Euclidean distance of the 2D/3D contact force (f_n, |f_t|) from the cone
  * |f_t| <= mu f_n (mu = INFINITY: the half-space f_n >= 0). It does not

@@ -381,8 +381,10 @@ static us_Status fallback(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict,
     us_backend_clp.set_deadline(w->lpws, w->lset.deadline);
   }
   char sub[96] = "";
-  us_Status st = us_backend_clp.solve(w->lpws, sys, NULL, 0, NULL, 0, 1, verdict, f, info, sub,
-                                      sizeof sub, err);
+  us_BackendOut out = {*verdict, f, info, sub, sizeof sub};
+  us_Status st = us_backend_clp.solve(w->lpws, &(us_BackendProblem){.sys = sys, .restart = 1}, &out,
+                                      err);
+  *verdict = out.verdict;
   if (st) return st;
   info->lp_fallbacks++;
   if (*verdict == US_UNSTABLE && us_backend_clp.unstable_body)
@@ -635,11 +637,17 @@ static us_Status decide(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, d
   return settle(w, sys, verdict, f, info, why, note, note_sz, err);
 }
 
-static us_Status lcp_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
-                           const int *removed, int nremoved, int restart, us_Verdict *verdict,
-                           double *f, us_StabilityInfo *info, char *note, size_t note_sz,
+static us_Status lcp_solve(void *ws, const us_BackendProblem *pb, us_BackendOut *out,
                            us_Error *err) {
-  US_UNUSED(added), US_UNUSED(nadded);
+  /* the problem and the output under the names the body reads */
+  const us_EqSystem *sys = pb->sys;
+  const int *removed = pb->removed;
+  int nremoved = pb->nremoved, restart = pb->restart;
+  us_Verdict *verdict = &out->verdict;
+  double *f = out->f;
+  us_StabilityInfo *info = out->info;
+  char *note = out->note;
+  size_t note_sz = out->note_sz;
   LcpWs *w = ws;
   w->last_body = -1;
   if (sys->dim != 2) return us_error_set(err, US_ERR_USAGE, "the LCP backends support 2D only");

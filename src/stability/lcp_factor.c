@@ -43,6 +43,7 @@
 #include <math.h>
 #include <string.h>
 #include <suitesparse/klu.h>
+#include <threads.h>
 
 typedef struct Klu {
   klu_common c;
@@ -50,13 +51,19 @@ typedef struct Klu {
   klu_numeric *num;
 } Klu;
 
-/* SuiteSparse allocates through our funnel (leak checks, OOM tests). */
-static void klu_allocator(void) {
+/* SuiteSparse allocates through our funnel (leak checks, OOM tests). Its
+ * allocator is SuiteSparse's one global: set once, whatever the threads
+ * (writing it at every factor's set-up was a data race). */
+static void set_klu_allocator(void) {
   SuiteSparse_config.malloc_func = us_malloc;
   SuiteSparse_config.calloc_func = us_calloc;
   SuiteSparse_config.realloc_func = us_realloc;
   SuiteSparse_config.free_func = us_free;
 }
+
+static once_flag klu_once = ONCE_FLAG_INIT;
+
+static void klu_allocator(void) { call_once(&klu_once, set_klu_allocator); }
 
 /* ------------------------------------------------------------ life cycle */
 

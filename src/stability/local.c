@@ -449,17 +449,21 @@ static us_Status solve_region(us_Local *L, const us_Bitset *cur, int fixed, us_V
   L->ray_ws = L->bws[0];
   us_Status st = US_OK;
   *v = US_UNDECIDED;
+  /* a region system: no lists, no restart (backend.h) */
+  const us_BackendProblem pb = {.sys = &L->eq};
+  us_BackendOut out = {US_UNDECIDED, L->f, info, res->note, sizeof res->note};
   if (us_small_fits(&L->eq)) {
-    st = us_backend_small.solve(L->small, &L->eq, NULL, 0, NULL, 0, 0, v, L->f, info, res->note,
-                                sizeof res->note, err);
+    st = us_backend_small.solve(L->small, &pb, &out, err);
+    *v = out.verdict;
     if (!st && *v != US_UNDECIDED) {
       L->ray_be = &us_backend_small;
       L->ray_ws = L->small;
     }
   }
-  if (!st && *v == US_UNDECIDED)
-    st = L->be->solve(L->bws[fixed], &L->eq, NULL, 0, NULL, 0, 0, v, L->f, info, res->note,
-                      sizeof res->note, err);
+  if (!st && *v == US_UNDECIDED) {
+    st = L->be->solve(L->bws[fixed], &pb, &out, err);
+    *v = out.verdict;
+  }
   if (L->cones) L->cones->mode = US_CONE_INNER; /* the full system's default */
   return st;
 }

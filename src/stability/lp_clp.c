@@ -195,6 +195,8 @@ static void save_basis(Clp_Simplex *m, ClpWs *w, const us_EqSystem *sys) {
   }
 }
 
+#define CLP_CLOCK_RETRIES 4 /* runs continued after CLP's own clock stopped them early */
+
 /* CLP's time limit counts the process's CPU seconds; the deadline is wall
  * time. On a loaded machine the process gets a share of a core, so the
  * wall time left is scaled by the share measured since the workspace was
@@ -333,10 +335,15 @@ static Clp_Simplex *clp_run(ClpWs *w, const us_EqSystem *sys, int region,
   return m;
 }
 
-static us_Status clp_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
-                           const int *removed, int nremoved, int restart, us_Verdict *verdict,
-                           double *f, us_StabilityInfo *info, char *note, size_t note_sz,
+static us_Status clp_solve(void *ws, const us_BackendProblem *pb, us_BackendOut *out,
                            us_Error *err) {
+  /* the problem and the output under the names the body reads */
+  const us_EqSystem *sys = pb->sys;
+  us_Verdict *verdict = &out->verdict;
+  double *f = out->f;
+  us_StabilityInfo *info = out->info;
+  char *note = out->note;
+  size_t note_sz = out->note_sz;
   ClpWs *w = ws;
   w->last_body = -1;
   w->nray = 0;
@@ -349,15 +356,24 @@ static us_Status clp_solve(void *ws, const us_EqSystem *sys, const int *added, i
     snprintf(note, note_sz, "no active contact");
     return US_OK;
   }
-  int region = !added && !removed; /* a region system (backend.h) */
+  int region = !pb->added && !pb->removed; /* a region system (backend.h) */
   if (w->deadline > 0 && us_now() >= w->deadline) {
     snprintf(note, note_sz, "CLP: time limit");
     *verdict = US_UNDECIDED;
     return US_OK;
   }
-  (void)nadded, (void)nremoved, (void)restart; /* the statuses are keyed: no list needed */
+  /* the statuses are keyed: no list of changes needed */
   Clp_Simplex *m = clp_run(w, sys, region, info);
   if (!m) return us_error_set(err, US_ERR_NOMEM, "CLP could not create a model");
+  /* CLP's clock (CPU seconds, scaled by the share measured so far) may
+     stop it before the wall deadline when the machine's load changes:
+     it goes on with the wall time left, unscaled */
+  for (int k = 0; k < CLP_CLOCK_RETRIES && Clp_status(m) == 3 && Clp_secondaryStatus(m) == 9 &&
+                  w->deadline > 0 && us_now() < w->deadline;
+       k++) {
+    Clp_setMaximumSeconds(m, US_MAX(w->deadline - us_now(), 1e-3));
+    Clp_dual(m, 0);
+  }
   int status = Clp_status(m);
   if (status != 0 && status != 1 && w->deadline > 0 && us_now() >= w->deadline) {
     Clp_deleteModel(m); /* stopped by the deadline: no verdict, no error */
@@ -399,6 +415,7 @@ static int clp_farkas_ray(void *ws, const double **y) {
 
 const us_Backend us_backend_clp = {
     .method = US_METHOD_LP,
+    .local_tests = 1,
     .create = clp_create,
     .destroy = clp_destroy,
     .solve = clp_solve,

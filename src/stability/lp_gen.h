@@ -90,7 +90,7 @@ int us_eq_gen_farkas_body(const us_EqSystem *e, const us_EqGen *g, const double 
                           double slack);
 
 /* The LP settings with every field <= 0 replaced by its default
- * (us_lp_default_settings, stability.c). */
+ * (us_lp_default_settings; both in lp_settings.c). */
 us_LpSettings us_lp_settings_resolve(const us_LpSettings *in);
 
 /* No column at all (no active contact can carry load): the bodies stand

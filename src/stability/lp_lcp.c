@@ -274,9 +274,11 @@ static us_Status clp_decide(LpLcpWs *w, const us_EqSystem *sys, const int *added
     us_backend_clp.set_deadline(w->clp, w->deadline);
   }
   char sub[96] = "";
-  us_Status st = us_backend_clp.solve(w->clp, sys, chain && added ? added : &none, chain ? nadded : 0,
-                                      chain && removed ? removed : &none, chain ? nremoved : 0,
-                                      !chain, verdict, f, info, sub, sizeof sub, err);
+  us_BackendProblem pb = {sys, chain && added ? added : &none, chain ? nadded : 0,
+                          chain && removed ? removed : &none, chain ? nremoved : 0, !chain};
+  us_BackendOut out = {*verdict, f, info, sub, sizeof sub};
+  us_Status st = us_backend_clp.solve(w->clp, &pb, &out, err);
+  *verdict = out.verdict;
   if (st) return st;
   info->lp_fallbacks++;
   w->by_clp = w->clp_chain = 1;
@@ -350,10 +352,17 @@ static int try_run(LpLcpWs *w, const us_EqSystem *sys, int cold, us_Verdict *ver
   return 0;
 }
 
-static us_Status lplcp_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
-                             const int *removed, int nremoved, int restart, us_Verdict *verdict,
-                             double *f, us_StabilityInfo *info, char *note, size_t note_sz,
+static us_Status lplcp_solve(void *ws, const us_BackendProblem *pb, us_BackendOut *out,
                              us_Error *err) {
+  /* the problem and the output under the names the body reads */
+  const us_EqSystem *sys = pb->sys;
+  const int *added = pb->added, *removed = pb->removed;
+  int nadded = pb->nadded, nremoved = pb->nremoved, restart = pb->restart;
+  us_Verdict *verdict = &out->verdict;
+  double *f = out->f;
+  us_StabilityInfo *info = out->info;
+  char *note = out->note;
+  size_t note_sz = out->note_sz;
   LpLcpWs *w = ws;
   int chain = w->clp_chain && !restart;
   w->nray = w->by_clp = w->clp_chain = 0;

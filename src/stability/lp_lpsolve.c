@@ -115,12 +115,14 @@ static int lps_run(const LpsWs *w, lprec *lp, int ncol) {
 
 static void lps_set_deadline(void *ws, double deadline) { ((LpsWs *)ws)->deadline = deadline; }
 
-static us_Status lps_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
-                           const int *removed, int nremoved, int restart, us_Verdict *verdict,
-                           double *f, us_StabilityInfo *info, char *note, size_t note_sz,
+static us_Status lps_solve(void *ws, const us_BackendProblem *pb, us_BackendOut *out,
                            us_Error *err) {
-  US_UNUSED(added), US_UNUSED(nadded), US_UNUSED(removed), US_UNUSED(nremoved);
-  US_UNUSED(restart), US_UNUSED(info);
+  /* the problem and the output under the names the body reads */
+  const us_EqSystem *sys = pb->sys;
+  us_Verdict *verdict = &out->verdict;
+  double *f = out->f;
+  char *note = out->note;
+  size_t note_sz = out->note_sz;
   LpsWs *w = ws;
   if (us_eq_generators(sys, w->set.n_column_mu, &w->gen) || US_GROW(w->sol, w->cap_col, w->gen.ncol + 1))
     return us_error_set(err, US_ERR_NOMEM, "out of memory building the LP");

@@ -175,12 +175,14 @@ static void read_ray(SmallWs *w, int m, int n) {
   w->nray = m;
 }
 
-static us_Status small_solve(void *ws, const us_EqSystem *sys, const int *added, int nadded,
-                             const int *removed, int nremoved, int restart, us_Verdict *verdict,
-                             double *f, us_StabilityInfo *info, char *note, size_t note_sz,
+static us_Status small_solve(void *ws, const us_BackendProblem *pb, us_BackendOut *out,
                              us_Error *err) {
-  US_UNUSED(added), US_UNUSED(nadded), US_UNUSED(removed), US_UNUSED(nremoved);
-  US_UNUSED(restart), US_UNUSED(info);
+  /* the problem and the output under the names the body reads */
+  const us_EqSystem *sys = pb->sys;
+  us_Verdict *verdict = &out->verdict;
+  double *f = out->f;
+  char *note = out->note;
+  size_t note_sz = out->note_sz;
   SmallWs *w = ws;
   w->nray = 0;
   w->last_body = -1;

@@ -8,6 +8,13 @@
  * its normalized forces by the total weight W back to newtons, and re-check
  * them with the independent certificate check.
  *
+ * Boundary band (docs/planning.md, "The boundary band"): a stable claim
+ * whose certificate's worst measure exceeds US_BAND_CERT, or an unstable
+ * one whose mechanism's margin is below US_BAND_MECH (both relative to the
+ * bodies involved, certificate.h), is within tolerance of tipping; such a
+ * test gets the verdict of one fixed referee, a scratch CLP solve of the
+ * whole sub-assembly, so that no verdict depends on the method.
+ *
  * Invariants: a STABLE verdict is only ever returned with a certificate
  * that passed at settings.cert_tol; a backend claim that fails the check
  * becomes UNDECIDED (the rejected forces stay in res->forces for
@@ -52,6 +59,8 @@ struct us_Stability {
   const us_Backend *used_be; /* the backend that decided the last full system */
   void *used_ws;
   double t_created, t_progress; /* us_now() at creation, at the last progress call */
+  void *ref;               /* the boundary band's referee: a CLP workspace, lazily */
+  int refereeing;          /* run_backend serves the referee (scratch, no state kept) */
   us_ConeSet cones;        /* 3D: the polygonal friction cones (lp_gen.h) */
 };
 
@@ -90,30 +99,7 @@ const char *us_verdict_name(us_Verdict v) {
   return "unknown";
 }
 
-/* Default tolerances of the LP backends (us_LpSettings documents them). */
-#define LP_PRIMAL_TOL 1e-9
-#define LP_WARM_ACCEPT 1e-9
-#define LP_FARKAS_SLACK 1e-9
-#define LP_N_COLUMN_MU 1.0
 #define CERT_TOL 1e-6
-
-us_LpSettings us_lp_default_settings(void) {
-  us_LpSettings l;
-  l.primal_tol = LP_PRIMAL_TOL;
-  l.warm_accept = LP_WARM_ACCEPT;
-  l.farkas_slack = LP_FARKAS_SLACK;
-  l.n_column_mu = LP_N_COLUMN_MU;
-  return l;
-}
-
-us_LpSettings us_lp_settings_resolve(const us_LpSettings *in) {
-  us_LpSettings d = us_lp_default_settings(), r = *in;
-  if (!(r.primal_tol > 0)) r.primal_tol = d.primal_tol;
-  if (!(r.warm_accept > 0)) r.warm_accept = d.warm_accept;
-  if (!(r.farkas_slack > 0)) r.farkas_slack = d.farkas_slack;
-  if (!(r.n_column_mu > 0)) r.n_column_mu = d.n_column_mu;
-  return r;
-}
 
 us_StabilitySettings us_stability_default_settings(void) {
   us_StabilitySettings s;
@@ -184,6 +170,7 @@ static const us_Backend *backend_of(us_Method m) {
 void us_stability_free(us_Stability *w) {
   if (!w) return;
   if (w->bws) w->be->destroy(w->bws);
+  if (w->ref) us_backend_clp.destroy(w->ref);
   us_local_free(w->local);
   if (w->small) us_backend_small.destroy(w->small);
   us_eq_free(&w->eq);
@@ -202,7 +189,7 @@ void us_stability_free(us_Stability *w) {
 
 static us_Status check_settings(const us_Structure *s, const us_StabilitySettings *set,
                                 us_Error *err) {
-  if (!s || !s->finalized)
+  if (!s || !us_structure_is_finalized(s))
     return us_error_set(err, US_ERR_USAGE, "stability: the structure is not finalized");
   if (!(set->cert_tol > 0) || !isfinite(set->cert_tol))
     return us_error_set(err, US_ERR_USAGE, "stability: cert_tol must be positive (got %g)",
@@ -260,7 +247,7 @@ us_Stability *us_stability_new_backend(const us_Structure *s, const us_Stability
   w->t_created = us_now();
   w->t_progress = 0.0; /* the first test reports at once */
   /* local tests: the CLP backend itself (never a test's stand-in) */
-  if (be == &us_backend_clp && set->local >= 0) {
+  if (be->local_tests && set->local >= 0) {
     w->local = us_local_new(s, set, be, s->dim == 3 ? &w->cones : NULL, err);
     w->small = w->local ? us_backend_small.create(s, set, err) : NULL;
     if (!w->local || !w->small) {
@@ -281,7 +268,7 @@ us_Stability *us_stability_new(const us_Structure *s, const us_StabilitySettings
     us_error_set(err, US_ERR_USAGE, "stability: unknown method %d", (int)set->method);
     return NULL;
   }
-  if (!s || !s->finalized) {
+  if (!s || !us_structure_is_finalized(s)) {
     us_error_set(err, US_ERR_USAGE, "stability: the structure is not finalized");
     return NULL;
   }
@@ -348,9 +335,11 @@ static us_Status run_backend(us_Stability *w, us_StabilityResult *res, us_Error 
   double t0 = us_now();
   w->used_be = w->be;
   w->used_ws = w->bws;
-  if (w->small && us_small_fits(&w->eq)) { /* tiny: the dense simplex first */
-    us_Status st = us_backend_small.solve(w->small, &w->eq, NULL, 0, NULL, 0, 1, &res->verdict,
-                                          w->f, &w->info, res->note, sizeof res->note, err);
+  if (w->small && !w->refereeing && us_small_fits(&w->eq)) { /* tiny: the dense simplex first */
+    us_BackendOut out = {US_UNDECIDED, w->f, &w->info, res->note, sizeof res->note};
+    us_Status st = us_backend_small.solve(w->small, &(us_BackendProblem){.sys = &w->eq, .restart = 1},
+                                          &out, err);
+    res->verdict = out.verdict;
     if (st || res->verdict != US_UNDECIDED) {
       w->info.solve_time += us_now() - t0;
       w->used_be = &us_backend_small;
@@ -358,9 +347,21 @@ static us_Status run_backend(us_Stability *w, us_StabilityResult *res, us_Error 
       return st;
     }
   }
+  if (w->refereeing) { /* a scratch solve; the method's own state stays */
+    us_BackendOut out = {US_UNDECIDED, w->f, &w->info, res->note, sizeof res->note};
+    us_Status st = us_backend_clp.solve(w->ref, &(us_BackendProblem){.sys = &w->eq, .restart = 1},
+                                        &out, err);
+    res->verdict = out.verdict;
+    w->info.solve_time += us_now() - t0;
+    w->used_be = &us_backend_clp;
+    w->used_ws = w->ref;
+    return st;
+  }
   w->have_last = 0; /* until the backend succeeds, its state is unknown */
-  us_Status st = w->be->solve(w->bws, &w->eq, w->added, nadd, w->removed, nrem, restart,
-                              &res->verdict, w->f, &w->info, res->note, sizeof res->note, err);
+  us_BackendProblem pb = {&w->eq, w->added, nadd, w->removed, nrem, restart};
+  us_BackendOut out = {US_UNDECIDED, w->f, &w->info, res->note, sizeof res->note};
+  us_Status st = w->be->solve(w->bws, &pb, &out, err);
+  res->verdict = out.verdict;
   w->info.solve_time += us_now() - t0;
   if (st) return st;
   memcpy(w->last.w, w->cur.w, (size_t)w->cur.nwords * sizeof(uint64_t));
@@ -547,6 +548,51 @@ static int past_deadline(const us_Stability *w) {
   return w->deadline > 0 && us_now() >= w->deadline;
 }
 
+/* ------------------------------------------------------- boundary band */
+
+/* The worst of a certificate's four measures (certificate.c). */
+static double worst_measure(const us_CertCheck *c) {
+  return US_MAX(US_MAX(c->max_force_residual, c->max_torque_residual),
+                US_MAX(c->max_cone_violation, c->max_sign_violation));
+}
+
+/* Is a verdict's evidence in the boundary band (file head)? */
+static int in_band(const us_Stability *w, const us_StabilityResult *res) {
+  if (res->verdict == US_STABLE) return worst_measure(&res->check) > US_BAND_CERT;
+  if (res->verdict != US_UNSTABLE || res->mechanism.nbody == 0) return 0;
+  return !res->mechanism.ok || us_mechanism_margin(w->s, &res->mechanism) < US_BAND_MECH;
+}
+
+/* The referee decides a sub-assembly in the band: a scratch CLP solve of
+ * the whole system (3D: with the cone refinement), certificate and ray
+ * checked as for any method. */
+static us_Status referee(us_Stability *w, us_StabilityResult *res, us_Error *err) {
+  if (!w->ref) {
+    w->ref = us_backend_clp.create(w->s, &w->set, err);
+    if (!w->ref) return err->code ? err->code : US_ERR_NOMEM;
+  }
+  us_backend_clp.set_deadline(w->ref, w->deadline);
+  if (us_eq_build(&w->eq, &w->cur))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory building the equilibrium system");
+  char was[64];
+  snprintf(was, sizeof was, "%s %s", us_method_name(w->be->method), us_verdict_name(res->verdict));
+  reset_result(res);
+  w->info.band_referee++;
+  w->refereeing = 1;
+  us_Status st = w->s->dim == 3 ? run_cones(w, res, err) : run_backend(w, res, err);
+  w->refereeing = 0;
+  if (!st && res->verdict == US_STABLE) st = certify(w, res, err);
+  if (!st && res->verdict == US_UNSTABLE) st = global_mechanism(w, res, err);
+  if (st) return st;
+  char note[sizeof res->note];
+  int n = snprintf(note, sizeof note, "within tolerance of tipping (%s); referee: ", was);
+  if (n > 0 && (size_t)n < sizeof note)
+    memcpy(note + n, res->note, US_MIN(strlen(res->note) + 1, sizeof note - (size_t)n));
+  note[sizeof note - 1] = '\0';
+  memcpy(res->note, note, sizeof note);
+  return US_OK;
+}
+
 static void report_progress(us_Stability *w) {
   if (!w->set.progress) return;
   double now = us_now();
@@ -569,6 +615,7 @@ us_Status us_stability_test(us_Stability *w, const us_Bitset *present, us_Stabil
   reset_result(res);
   for (int k = 0; k < w->cur.nwords; k++) w->cur.w[k] = present->w[k] & w->movable.w[k];
   us_Status st = past_deadline(w) ? US_OK : decide(w, res, err);
+  if (!st && in_band(w, res)) st = referee(w, res, err);
   if (st) {
     reset_result(res);
     return st;

@@ -33,6 +33,16 @@ run "$CLI" generate pyramid --rows 5 -o "$W/pyramid.json"
 run "$CLI" plan "$W/pyramid.json" --certificates -o "$W/pyramid-plan.json"
 run "$CLI" render "$W/pyramid.json" --plan "$W/pyramid-plan.json" --html -o "$W/pyramid.html"
 
+# the pyramid's plan with its first certificate force made negative
+sed -E '0,/"force": \[[^,]*,/s//"force": [-1000,/' "$W/pyramid-plan.json" >"$W/pyramid-neg-plan.json"
+run "$CLI" render "$W/pyramid.json" --plan "$W/pyramid-neg-plan.json" --html -o "$W/pyramid-neg.html"
+
+# an arch that cannot be taken apart one block at a time (plan status none)
+run "$CLI" generate arch --voussoirs 7 --loose 30 -o "$W/arch.json"
+"$CLI" plan "$W/arch.json" -o "$W/arch-plan.json" >"$W/cmd.log" 2>&1
+[ $? -eq 1 ] || { cat "$W/cmd.log"; die "the arch's plan should be none (exit 1)"; }
+run "$CLI" render "$W/arch.json" --plan "$W/arch-plan.json" --html -o "$W/arch.html"
+
 # a column of three taken apart from the bottom: verify fails after step 1
 cat >"$W/column-bad.json" <<'JSON'
 {"dimension": 2, "ground": true, "bodies": [

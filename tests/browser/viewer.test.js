@@ -29,9 +29,52 @@ function expectedDrawn(structure, plan, p) {
   return n;
 }
 
-// Bodies and force arrows the browser actually lays out (display none has no boxes).
-const visibleCount = (page, sel) =>
-  page.$$eval(sel, (els) => els.filter((e) => e.getClientRects().length > 0).length);
+// A body's polygon from the structure file, its vertex mean (inside a
+// convex body), and a point 60% of the way from there to its first vertex
+// (inside, and clear of the step number drawn at the centre).
+function poly(b) { return b.polygon || b.vertices || []; }
+function centre(b) {
+  const v = poly(b);
+  return [v.reduce((s, p) => s + p[0], 0) / v.length, v.reduce((s, p) => s + p[1], 0) / v.length];
+}
+function probe(b) { const c = centre(b), v = poly(b)[0]; return [c[0] + 0.6 * (v[0] - c[0]), c[1] + 0.6 * (v[1] - c[1])]; }
+
+// World points to page pixels, by the view the canvas reports (data-view:
+// x, -top, width, height in world units, fitted and centred).
+async function toScreen(page, pts) {
+  return page.$eval("#view", (c, pts) => {
+    const r = c.getBoundingClientRect(), v = c.dataset.view.split(" ").map(Number);
+    const k = Math.min(r.width / v[2], r.height / v[3]);
+    const ox = (r.width - v[2] * k) / 2 - v[0] * k, oy = (r.height - v[3] * k) / 2 - v[1] * k;
+    return pts.map((p) => [r.left + ox + k * p[0], r.top + oy - k * p[1]]);
+  }, pts);
+}
+// The canvas's pixels at page points (after the pending frame is drawn).
+async function pixels(page, pts) {
+  await page.evaluate(() => new Promise((res) => requestAnimationFrame(() => requestAnimationFrame(res))));
+  return page.$eval("#view", (c, pts) => {
+    const r = c.getBoundingClientRect(), s = c.width / r.width, g = c.getContext("2d");
+    return pts.map((p) => Array.from(g.getImageData(Math.floor((p[0] - r.left) * s), Math.floor((p[1] - r.top) * s), 1, 1).data));
+  }, pts);
+}
+const white = (px) => px[3] < 128 || (px[0] >= 250 && px[1] >= 250 && px[2] >= 250); // nothing painted, or background
+// Which bodies of the structure file have paint at their probe point.
+async function drawnBodies(page, structure) {
+  const px = await pixels(page, await toScreen(page, structure.bodies.map(probe)));
+  return px.map((p) => !white(p));
+}
+// Pixels of the canvas near an arrow colour (blue: normal parts).
+async function countColour(page, rgb) {
+  await page.evaluate(() => new Promise((res) => requestAnimationFrame(() => requestAnimationFrame(res))));
+  return page.$eval("#view", (c, rgb) => {
+    const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4)
+      if (Math.abs(d[i] - rgb[0]) + Math.abs(d[i + 1] - rgb[1]) + Math.abs(d[i + 2] - rgb[2]) < 12) n++;
+    return n;
+  }, rgb);
+}
+const BLUE = [31, 78, 156];
 
 async function open(browser, file, viewport, touch) {
   const ctx = await browser.newContext({ viewport, hasTouch: !!touch, isMobile: !!touch });
@@ -51,67 +94,81 @@ async function setSlider(page, p) {
   }, p);
 }
 
-// Slider at every position: the bodies drawn are those the plan leaves.
+// Slider at every position: the bodies painted are those the plan leaves.
 async function testSteps(page, structure, plan) {
   const n = plan.order.length;
   check(await page.$eval("#slider", (s) => +s.max) === n, "slider has one position per step", n);
   const bad = [];
   for (let p = 0; p <= n; p++) {
     await setSlider(page, p);
-    const drawn = await visibleCount(page, "#bodies .body");
-    if (drawn !== expectedDrawn(structure, plan, p)) bad.push(`step ${p}: ${drawn} drawn, ${expectedDrawn(structure, plan, p)} expected`);
+    const drawn = (await drawnBodies(page, structure)).filter(Boolean).length;
+    if (drawn !== expectedDrawn(structure, plan, p)) bad.push(`step ${p}: ${drawn} painted, ${expectedDrawn(structure, plan, p)} expected`);
   }
-  check(bad.length === 0, `bodies drawn match the plan at all ${n + 1} positions`, bad.join("; "));
+  check(bad.length === 0, `bodies painted match the plan at all ${n + 1} positions`, bad.join("; "));
 }
 
-// Play from the start: the step advances on its own to the end and stops.
+// Play from the start: the step advances on its own to the end and stops;
+// the speed control divides the interval between steps.
 async function testPlay(page, structure, plan) {
   const n = plan.order.length;
+  const interval = () => page.$eval("#play", (b) => +b.dataset.interval);
+  const base = await interval();
+  await page.selectOption("#speed", "4");
+  const fast = await interval();
+  check(fast < base && Math.abs(4 * fast - base) <= 4, "speed 4x plays four times as many steps a second", `${base} -> ${fast} ms`);
+  await page.selectOption("#speed", "1");
   await setSlider(page, 0);
   await page.click("#play");
   await page.waitForFunction(() => +document.getElementById("view").dataset.step >= 2, null, { timeout: 30000 });
-  // step and count read in one script turn, so the timer cannot step between them
-  const now = await page.evaluate(() => ({
-    step: +document.getElementById("view").dataset.step,
-    drawn: Array.from(document.querySelectorAll("#bodies .body")).filter((e) => e.getClientRects().length > 0).length,
-  }));
-  check(now.drawn === expectedDrawn(structure, plan, now.step), "while playing, the bodies drawn follow the step",
-        `${now.drawn} at step ${now.step}`);
+  await page.selectOption("#speed", "8");
+  check(await page.$eval("#play", (b) => b.dataset.playing) === "1", "changing the speed while playing keeps playing");
   await page.screenshot({ path: path.join(shots, "pyramid-playing.png") });
   await page.waitForFunction((m) => +document.getElementById("view").dataset.step === m &&
                              document.getElementById("play").dataset.playing === "0", n, { timeout: 120000 });
-  check(await visibleCount(page, "#bodies .body") === expectedDrawn(structure, plan, n),
+  check((await drawnBodies(page, structure)).filter(Boolean).length === expectedDrawn(structure, plan, n),
         "play runs to the end and stops with every removable body gone");
+  await page.selectOption("#speed", "1");
 }
 
 // Forces: none shown until toggled; arrows at the contacts of the full structure.
 async function testForces(page) {
   await setSlider(page, 0);
-  check(await visibleCount(page, "#forces .force") === 0, "no arrows before the force toggle");
+  check(await countColour(page, BLUE) === 0, "no arrows before the force toggle");
   await page.click("#toggle-forces");
-  const arrows = await visibleCount(page, "#forces .force");
-  check(arrows > 0, "the force toggle shows arrows", arrows);
-  const box = await page.$eval("#forces .force", (e) => { const r = e.getBoundingClientRect(); return r.width + r.height; });
-  check(box > 2, "an arrow has a visible length on screen", box);
+  const blue = await countColour(page, BLUE);
+  check(blue > 20, "the force toggle draws blue normal-force arrows", blue);
+  check(+(await page.$eval("#view", (v) => v.dataset.arrows)) > 0, "the page counts the arrows it drew");
   await page.screenshot({ path: path.join(shots, "pyramid-forces.png") });
+  await page.selectOption("#force-style", "resultants");
+  const perPair = +(await page.$eval("#view", (v) => v.dataset.arrows));
+  await page.selectOption("#force-style", "contacts");
+  const perContact = +(await page.$eval("#view", (v) => v.dataset.arrows));
+  check(perPair > 0 && perPair < perContact, "resultants: fewer arrows, one per touching pair", `${perPair} < ${perContact}`);
   await page.click("#toggle-forces");
-  check(await visibleCount(page, "#forces .force") === 0, "toggling off removes the arrows");
+  check(await countColour(page, BLUE) === 0, "toggling off removes the arrows");
 }
 
-// Hover over a body: its id in the info box.
-async function testHover(page, structure, index) {
+// Hover the centre of every body, forces drawn: its id in the info box
+// (arrows and numbers never catch the pointer).
+async function testHover(page, structure) {
   await setSlider(page, 0);
-  const poly = (await page.$$("#bodies .body"))[index];
-  await poly.hover();
-  const info = await page.$eval("#info", (e) => (e.hidden ? "" : e.textContent));
-  check(info.includes(structure.bodies[index].id), "hover shows the body's id", JSON.stringify(info));
-  check(/mass/.test(info) && /contacts/.test(info), "hover shows mass and contacts", JSON.stringify(info));
+  await page.click("#toggle-forces");
+  const at = await toScreen(page, structure.bodies.map(centre));
+  const missed = [];
+  for (let i = 0; i < structure.bodies.length; i++) {
+    await page.mouse.move(at[i][0], at[i][1]);
+    const info = await page.$eval("#info", (e) => (e.hidden ? "" : e.textContent));
+    if (!info.includes(structure.bodies[i].id) || !/mass/.test(info) || !/contacts/.test(info)) missed.push(structure.bodies[i].id);
+  }
+  check(missed.length === 0, `hovering the centre of each of the ${at.length} bodies, forces on, shows its id, mass and contacts`, missed.join(", "));
   await page.screenshot({ path: path.join(shots, "pyramid-hover.png") });
+  await page.click("#toggle-forces");
+  await page.mouse.move(1, 1);
 }
 
-// Zoom and pan change the view box; fit brings it back.
+// Zoom and pan change the view; fit brings it back.
 async function testZoom(page) {
-  const vb = () => page.$eval("#view", (v) => v.getAttribute("viewBox"));
+  const vb = () => page.$eval("#view", (v) => v.dataset.view);
   const start = await vb();
   await page.click("#zin");
   const zoomed = (await vb()).split(" ").map(Number);
@@ -119,6 +176,7 @@ async function testZoom(page) {
   const r = await page.$eval("#view", (v) => { const b = v.getBoundingClientRect(); return [b.x + b.width / 2, b.y + b.height / 2]; });
   await page.mouse.move(r[0], r[1]);
   await page.mouse.wheel(0, 400);
+  await page.waitForFunction((w) => +document.getElementById("view").dataset.view.split(" ")[2] > w, zoomed[2], { timeout: 5000 }).catch(() => {});
   check((await vb()).split(" ").map(Number)[2] > zoomed[2], "the wheel zooms out");
   const before = await vb();
   await page.mouse.move(r[0] + 5, r[1] + 5);
@@ -136,7 +194,7 @@ async function testPyramid(browser) {
   await page.screenshot({ path: path.join(shots, "pyramid-start.png") });
   await testSteps(page, structure, plan);
   await testForces(page);
-  await testHover(page, structure, 3);
+  await testHover(page, structure);
   await testZoom(page);
   await testPlay(page, structure, plan);
   await page.screenshot({ path: path.join(shots, "pyramid-end.png") });
@@ -146,7 +204,7 @@ async function testPyramid(browser) {
 
 // A plan verify rejects: its failing step is shown in red.
 async function testInvalid(browser) {
-  const plan = readJson("column-bad-plan.json");
+  const plan = readJson("column-bad-plan.json"), structure = readJson("column-bad.json");
   const { ctx, page, errors } = await open(browser, "column-bad.html", { width: 800, height: 600 });
   await setSlider(page, 0);
   check(await page.$eval("#banner", (b) => b.hidden), "no failure shown before the failing step");
@@ -154,11 +212,50 @@ async function testInvalid(browser) {
   const banner = await page.$eval("#banner", (b) => ({ hidden: b.hidden, text: b.textContent, bg: getComputedStyle(b).backgroundColor }));
   check(!banner.hidden && /do not stand/.test(banner.text), "the failing step names what falls", banner.text);
   check(banner.bg === "rgb(198, 40, 40)", "the failure banner is red", banner.bg);
-  const falls = await page.$$eval("#bodies .body.falls", (els) => els.filter((e) => e.getClientRects().length > 0).length);
-  check(falls === readJson("column-bad.json").bodies.length - 1, "the bodies that fall are outlined", falls);
   check(await page.$eval("#stepinfo", (s) => getComputedStyle(s).color) === "rgb(198, 40, 40)", "the step counter is red at the failing step");
+  check((await drawnBodies(page, structure)).filter(Boolean).length === structure.bodies.length - 1, "the bodies that fall are still drawn at the failing step");
   check(plan.order.length === 3, "the bad plan removes the three blocks");
   await page.screenshot({ path: path.join(shots, "column-bad.png") });
+  check(errors.length === 0, "no script errors", errors.join("; "));
+  await ctx.close();
+}
+
+// Certificates edited in the plan file (a negative normal force at the
+// first step): that step is flagged and its forces not drawn; the others are.
+async function testTampered(browser) {
+  const { ctx, page, errors } = await open(browser, "pyramid-neg.html", { width: 1000, height: 700 });
+  await setSlider(page, 0);
+  const first = await page.$eval("#banner", (b) => ({ hidden: b.hidden, text: b.textContent }));
+  check(!first.hidden && /FAIL/.test(first.text), "the edited step says its forces fail their check", first.text);
+  check(/FAIL/.test(await page.$eval("#stepinfo", (s) => s.textContent)), "the step counter says FAIL at the edited step");
+  check(/FAIL/.test(await page.$eval("#summary", (s) => s.textContent)), "the header names the failing forces");
+  await page.click("#toggle-forces");
+  check(await countColour(page, BLUE) === 0, "the failing forces are not drawn");
+  await setSlider(page, 1);
+  check(await page.$eval("#banner", (b) => b.hidden), "the next step, untouched, is not flagged");
+  check(await countColour(page, BLUE) > 20, "the next step's forces are drawn");
+  await page.screenshot({ path: path.join(shots, "pyramid-neg.png") });
+  check(errors.length === 0, "no script errors", errors.join("; "));
+  await ctx.close();
+}
+
+// A plan with status none: the slider takes apart the buildable part; the
+// bodies that cannot be removed stay drawn at every step.
+async function testNone(browser) {
+  const structure = readJson("arch.json"), plan = readJson("arch-plan.json");
+  const { ctx, page, errors } = await open(browser, "arch.html", { width: 1000, height: 700 });
+  const ids = structure.bodies.map((b) => b.id), blocked = new Set(plan.blocked.map((id) => ids.indexOf(id)));
+  const movable = structure.bodies.filter((b) => !b.fixed).length;
+  check(await page.$eval("#slider", (s) => +s.max) === movable - blocked.size,
+        "the slider has one position per body of the buildable part", movable - blocked.size);
+  await setSlider(page, 0);
+  const atStart = await drawnBodies(page, structure);
+  check(atStart.every(Boolean), "every body is drawn at the start");
+  await setSlider(page, movable - blocked.size);
+  const atEnd = await drawnBodies(page, structure);
+  const wrong = atEnd.map((d, i) => (d !== (blocked.has(i) || !!structure.bodies[i].fixed) ? ids[i] : null)).filter((x) => x);
+  check(wrong.length === 0, "at the end only the bodies that cannot be removed (and fixed ones) are left", wrong.join(", "));
+  await page.screenshot({ path: path.join(shots, "arch-none.png") });
   check(errors.length === 0, "no script errors", errors.join("; "));
   await ctx.close();
 }
@@ -169,9 +266,9 @@ async function testIds(browser) {
   const { ctx, page, errors } = await open(browser, "ids.html", { width: 800, height: 600 });
   check(!(await page.evaluate(() => window.pwned)), "an id cannot run a script");
   check(await page.$$eval("script", (s) => s.length) === 2, "the page has its two script elements only");
-  const got = [];
+  const got = [], at = await toScreen(page, structure.bodies.map(centre));
   for (let i = 0; i < structure.bodies.length; i++) {
-    await (await page.$$("#bodies .body"))[i].hover();
+    await page.mouse.move(at[i][0], at[i][1]);
     got.push(await page.$eval("#info div", (d) => d.textContent.replace(/^id /, "")));
   }
   const want = structure.bodies.map((b) => b.id);
@@ -187,10 +284,10 @@ async function testPhone(browser) {
   const { ctx, page, errors } = await open(browser, "pyramid.html", { width: 390, height: 740 }, true);
   const wide = await page.evaluate(() => document.documentElement.scrollWidth);
   check(wide <= 390, "nothing wider than a phone's screen", wide);
-  const svgBox = await page.$eval("#view", (v) => { const r = v.getBoundingClientRect(); return [r.width, r.height]; });
-  check(svgBox[0] >= 350 && svgBox[1] >= 200, "the drawing fills the phone's screen", svgBox.join("x"));
-  const b = await (await page.$$("#bodies .body"))[0].boundingBox();
-  await page.touchscreen.tap(b.x + b.width / 2, b.y + b.height / 2);
+  const box = await page.$eval("#view", (v) => { const r = v.getBoundingClientRect(); return [r.width, r.height]; });
+  check(box[0] >= 350 && box[1] >= 200, "the drawing fills the phone's screen", box.join("x"));
+  const at = (await toScreen(page, [centre(structure.bodies[0])]))[0];
+  await page.touchscreen.tap(at[0], at[1]);
   const info = await page.$eval("#info", (e) => (e.hidden ? "" : e.textContent));
   check(info.includes(structure.bodies[0].id), "a tap shows the body's id", JSON.stringify(info));
   await page.screenshot({ path: path.join(shots, "phone.png") });
@@ -211,6 +308,8 @@ async function main() {
   try {
     await testPyramid(browser);
     await testInvalid(browser);
+    await testTampered(browser);
+    await testNone(browser);
     await testIds(browser);
     await testPhone(browser);
   } catch (e) {

@@ -63,19 +63,34 @@ expect 0 "classify arch" -- "$CLI" classify "$T/arch.json"
 contains "$T/out" 'sequence: none; blocked: "b3", "b4", "b5", "b6", "b7", "b8"' "arch: crown blocked"
 contains "$T/out" "group: smallest K = 6" "arch: K = 6"
 contains "$T/out" "top-down: no" "arch: not top-down"
-# 30 voussoirs need K = 20: the exact decision is cut by the time limit (3 s:
-# the sequence decision needs about 80 tests, well inside it even under ASan)
+# 30 voussoirs need K = 20, found by the cut in about 0.05 s: the time
+# limit is only a ceiling, hundreds of times the normal time
 "$CLI" generate arch --voussoirs 30 -o "$T/arch30.json" >/dev/null
 expect 0 "classify arch30" -- "$CLI" classify "$T/arch30.json" --time-limit 30
 contains "$T/out" "sequence: none; blocked:" "arch30: K = 1 decided"
 contains "$T/out" "group: smallest K = 20" "arch30: the middle 20 voussoirs go at once"
+# the bevelled dome: one voussoir at a time is none, proven by the cut in
+# 50 tests (decided by a test budget, not a clock: no time limit here)
 "$CLI" generate dome --courses 5 --segments 8 -o "$T/dome58.json" >/dev/null
+expect 1 "dome: one voussoir at a time is none" -- "$CLI" plan "$T/dome58.json" --max-group 1
+contains "$T/out" "cannot be removed with steps of up to 1 body" "dome: K = 1 decided"
+# with a time limit of 1 s: the group search (K >= 7 runs for minutes) is
+# cut; the sequence search and the friction bisection may or may not end
+# in time on a busy machine, so only what holds either way is asserted
 expect 0 "classify a dome with a time limit" -- "$CLI" classify "$T/dome58.json" --time-limit 1
-contains "$T/out" "sequence: none; blocked:" "dome: K = 1 decided"
-contains "$T/out" "group: unknown (time limit of 1 s; K > " "dome: K unknown, bound given"
-contains "$T/out" "friction: unknown (time limit of 1 s" "dome: the friction bisection stops at the limit too"
+contains "$T/out" "group: unknown (time limit of 1 s" "dome: K unknown at the limit"
+if grep -q "^sequence: none; blocked:" "$T/out"; then
+  contains "$T/out" "group: unknown (time limit of 1 s; K > " "dome: K = 1 decided in time, so a bound is given"
+else
+  contains "$T/out" "sequence: unknown (time limit of 1 s" "dome: the sequence search cut too"
+fi
+if grep -q "^friction: unknown" "$T/out"; then
+  contains "$T/out" "friction: unknown (time limit of 1 s" "dome: the friction bisection stops at the limit"
+else
+  contains "$T/out" "friction: stands only with friction" "dome: the friction bisection ended in time"
+fi
 expect 0 "classify the dome --json with a time limit" -- "$CLI" classify "$T/dome58.json" --time-limit 1 --json
-json_is "$T/out" '.min_group == null and .group_status == "limit" and .group_bound >= 1 and .sequence == false' "dome: JSON limit"
+json_is "$T/out" '.min_group == null and .group_status == "limit" and ((.sequence == false and .sequence_status == "none" and .group_bound >= 1) or (.sequence_status == "limit" and .group_bound == 0))' "dome: JSON limit"
 
 # a plank that tips: no K at all
 cat >"$T/overhang.json" <<'EOF'

@@ -51,6 +51,16 @@ got=$(order "$T/tri-plan.json")
 expect 0 "quiet: no warnings" -- "$CLI" import-svg "$EX/inkscape_trilithon.svg" -q -o "$T/tri2.json"
 [ -s "$T/err" ] && bad "warnings printed with -q" || ok "no warnings with -q"
 
+# --- a thin plank on the ground (2000 x 1 px): snapping keeps its height
+printf '%s\n' "<svg xmlns='http://www.w3.org/2000/svg' width='2000' height='100'>" \
+  "<rect id='plank' x='0' y='99' width='2000' height='1'/></svg>" >"$T/plank.svg"
+for snap in "" "--snap 5"; do
+  expect 0 "plank imports ${snap:-(default snap)}" -- "$CLI" import-svg "$T/plank.svg" $snap --unit px -o "$T/plank.json"
+  contains "$T/plank.json" '[[0, 1], [0, 0], [2000, 0], [2000, 1]]' "plank keeps its height ${snap:-(default snap)}"
+  expect 0 "plank stands ${snap:-(default snap)}" -- "$CLI" check "$T/plank.json"
+  contains "$T/out" "stable: 1 bodies" "plank: stable ${snap:-(default snap)}"
+done
+
 # --- options
 printf '%s\n' "<svg xmlns='http://www.w3.org/2000/svg' width='100mm' height='50mm' viewBox='0 0 200 100'>" \
   "<rect id='a' x='0' y='80' width='20' height='20'/></svg>" >"$T/unit.svg"
@@ -83,7 +93,38 @@ bad_svg degenerate "<svg xmlns='http://www.w3.org/2000/svg'>
 <polygon id='line' points='0,0 5,5 10,10'/></svg>" "degenerate.svg:2: <polygon id='line'>: degenerate shape"
 bad_svg infinite "<svg xmlns='http://www.w3.org/2000/svg'>
 <rect width='1e999' height='1'/></svg>" "infinite.svg:2: <rect>: width is not finite"
+bad_svg overflow "<svg xmlns='http://www.w3.org/2000/svg'>
+<rect x='1e308' width='1' height='1' transform='scale(10)'/></svg>" "overflow.svg:2: <rect>: a coordinate overflows"
+bad_svg huge "<svg xmlns='http://www.w3.org/2000/svg'>
+<rect width='1e200' height='1e200'/></svg>" "huge.svg:2: <rect>: coordinates too large: the shape's area or inertia overflows"
 bad_svg empty "<svg xmlns='http://www.w3.org/2000/svg'><text>hello</text></svg>" "no shapes to import"
+# entity bombs (issue 24): one 20 kB entity 6,000 times in a class (38 kB of
+# file, 120 MB expanded) and 35,000 times (160 kB), refused before any
+# expansion; under a memory cap where the build allows one (not ASan)
+bomb() { # NAME REFS
+  { printf "<?xml version='1.0'?>\n<!DOCTYPE svg [<!ENTITY e '"; head -c 20000 /dev/zero | tr '\0' x
+    printf "'>]>\n<svg xmlns='http://www.w3.org/2000/svg'>\n<g>\n<rect id='r' class='"
+    yes '&e;' | head -n "$2" | tr '\n' ' '; printf "' width='10' height='10'/></g></svg>\n"; } >"$T/$1.svg"
+}
+capped() { bash -c "$cap; exec \"\$0\" \"\$@\"" "$@"; }
+cap="ulimit -v 250000"
+capped "$CLI" import-svg "$EX/column.svg" -q -o "$T/capped.json" >/dev/null 2>&1 || cap=true
+[ "$cap" = true ] && echo "(no memory cap in this build)"
+for b in "bomb38 6000" "bomb160 35000"; do
+  set -- $b
+  bomb "$1" "$2"
+  expect 2 "$1: exit 2" -- capped "$CLI" import-svg "$T/$1.svg" -o "$T/$1.json"
+  contains "$T/err" "$1.svg:5: <rect id='r'>: attribute 'class': entity references expand past" "$1: says where and why"
+  [ -e "$T/$1.json" ] && bad "$1: output written" || ok "$1: nothing written"
+done
+# over 64 MiB: refused before it is read (a sparse file)
+truncate -s 65M "$T/huge65.svg"
+expect 2 "65 MiB drawing: exit 2" -- "$CLI" import-svg "$T/huge65.svg" -o "$T/huge65.json"
+contains "$T/err" "huge65.svg: too large (68157440 bytes): the import reads at most 64 MiB" "65 MiB drawing: says why"
+laughs="<!ENTITY l0 'lol'>"
+for i in 1 2 3 4 5 6 7 8 9; do laughs="$laughs<!ENTITY l$i '$(printf "&l$((i - 1));%.0s" 1 2 3 4 5 6 7 8 9 10)'>"; done
+bad_svg laughs "<!DOCTYPE svg [$laughs]>
+<svg xmlns='http://www.w3.org/2000/svg'><rect class='&l9;' width='1' height='1'/></svg>" "entities that expand too much"
 # an existing output stays as it was
 echo keep >"$T/kept.json"
 expect 2 "bad drawing over an existing file" -- "$CLI" import-svg "$T/overlap.svg" -o "$T/kept.json"

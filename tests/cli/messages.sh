@@ -7,6 +7,10 @@
 "$CLI" generate pyramid --rows 3 -o "$T/p6.json" >/dev/null
 "$CLI" plan "$T/p6.json" -o "$T/plan6.json" >/dev/null
 expect 2 "verify a plan for another structure" -- "$CLI" verify "$T/c3.json" "$T/plan6.json"
+contains "$T/err" "plan of another structure, not of $T/c3.json" "names both files (fingerprint)"
+# without its fingerprint (an older file) the first unknown id says it
+sed -i '/"fingerprint"/d' "$T/plan6.json"
+expect 2 "verify an older plan for another structure" -- "$CLI" verify "$T/c3.json" "$T/plan6.json"
 contains "$T/err" "unknown body id 'b" "names an unknown id"
 contains "$T/err" "another structure" "suggests another structure"
 if grep -q "more entries" "$T/err"; then bad "still says 'more entries'"; else ok "no 'more entries'"; fi

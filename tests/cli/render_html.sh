@@ -12,6 +12,7 @@ page_has() { contains "$1" "$2" "$3"; }
 "$CLI" generate pyramid --rows 4 -o "$T/p.json" >/dev/null
 "$CLI" plan "$T/p.json" --certificates -o "$T/plan.json" >/dev/null
 "$CLI" plan "$T/p.json" -o "$T/plain.json" >/dev/null
+"$CLI" generate tower --blocks 3 -o "$T/p3.json" >/dev/null
 expect 0 "render --html with certificates" -- "$CLI" render "$T/p.json" --plan "$T/plan.json" --html -o "$T/a.html"
 page_has "$T/a.html" '"forces":[' "the page holds the plan's forces"
 page_has "$T/a.html" '"verify":{"ok":true' "the page holds verify's report"
@@ -34,6 +35,42 @@ expect 1 "an invalid order: written, exit 1" -- "$CLI" render "$T/col.json" --pl
 page_has "$T/d.html" '"failed_step":0' "the page names the failing step"
 contains "$T/err" "invalid" "stderr says the order is invalid"
 
+# certificates edited in the file: the page re-checks them itself and
+# flags the edited step (the order stays valid: verify re-solves it)
+sed -E '0,/"force": \[[^,]*,/s//"force": [-1000,/' "$T/plan.json" >"$T/neg.json"
+expect 0 "a negative normal force in the file: written" -- "$CLI" render "$T/p.json" --plan "$T/neg.json" -o "$T/neg.html"
+if grep -A1 -F '"certs":[' "$T/neg.html" | tail -1 | grep -qF '{"ok":false'; then
+  ok "the page flags the first step, whose force was made negative"
+else bad "the page flags the first step, whose force was made negative"; fi
+n=$(grep -o '{"ok":false' "$T/neg.html" | wc -l)
+[ "$n" -eq 1 ] && ok "only that step is flagged" || bad "only that step is flagged: $n flagged"
+sed -E '0,/"force": \[[^,]*,/s//"force": [1e308,/' "$T/plan.json" >"$T/huge.json"
+expect 0 "a 1e308 force in the file: written" -- "$CLI" render "$T/p.json" --plan "$T/huge.json" -o "$T/huge.html"
+page_has "$T/huge.html" '{"ok":false' "the page flags the step with a 1e308 force"
+page_has "$T/plan.json" '"check": {"ok": true' "the untouched plan's steps pass"
+if grep -q '{"ok":false' "$T/a.html"; then bad "the untouched plan's page flags nothing"
+else ok "the untouched plan's page flags nothing"; fi
+
+# forces: a representative set per step, certified in the page
+expect 0 "--force-set margin with a plan" -- "$CLI" render "$T/p.json" --plan "$T/plan.json" --force-set margin --html -o "$T/m.html"
+page_has "$T/m.html" '"force_set":"margin"' "the page names the force set"
+if grep -q '{"ok":false' "$T/m.html"; then bad "the margin forces pass the re-check"
+else ok "the margin forces pass the re-check"; fi
+expect 0 "an SVG of margin resultants" -- "$CLI" render "$T/p.json" --forces resultants --force-set margin -o "$T/m.svg"
+contains "$T/m.svg" "the largest smallest normal force" "the legend names the margin set"
+contains "$T/m.svg" "per touching pair" "the legend says resultants"
+expect 0 "min-norm forces in SVG" -- "$CLI" render "$T/p.json" --forces --force-set min-norm -o "$T/n.svg"
+contains "$T/n.svg" "the least sum of squares" "the legend names the min-norm set"
+expect 0 "a 3D PNG of margin forces" -- "$CLI" render "$T/p3.json" --forces --force-set margin -o "$T/m3.png"
+expect 2 "an unknown --force-set" -- "$CLI" render "$T/p.json" --forces --force-set best -o "$T/x.svg"
+contains "$T/err" "margin" "the message lists the sets"
+
+# a none plan: the page takes apart the buildable part
+"$CLI" generate arch --voussoirs 7 --loose 30 -o "$T/arch.json" >/dev/null
+"$CLI" plan "$T/arch.json" -o "$T/arch-plan.json" >/dev/null
+expect 0 "a none plan" -- "$CLI" render "$T/arch.json" --plan "$T/arch-plan.json" -o "$T/arch.html"
+if grep -q '"steps":\[\]' "$T/arch.html"; then bad "a none plan has steps"; else ok "a none plan has steps"; fi
+
 # bad input: exit 2, the old output kept
 echo old >"$T/keep.html"
 expect 2 "a plan for another structure" -- "$CLI" render "$T/col.json" --plan "$T/plan.json" -o "$T/keep.html"
@@ -42,7 +79,6 @@ sed 's/"point": \[/"point": [7/' "$T/plan.json" >"$T/tampered.json"
 expect 2 "a certificate at a point the structure has no contact" -- "$CLI" render "$T/p.json" --plan "$T/tampered.json" -o "$T/e.html"
 contains "$T/err" "steps[0].certificate.contacts[0]" "the message names the JSON path"
 absent "$T/e.html" "tampered certificates"
-"$CLI" generate tower --blocks 3 -o "$T/p3.json" >/dev/null
 expect 2 "a 3D file" -- "$CLI" render "$T/p3.json" --html -o "$T/f.html"
 contains "$T/err" "3D viewer is not written yet" "the message says why"
 absent "$T/f.html" "3D"

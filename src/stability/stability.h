@@ -1,0 +1,24 @@
+/* The stability module's surface for the layers above it (the planner,
+ * plan verification): workspace controls that are not public API. Only
+ * this header of src/stability is theirs; the backend interface
+ * (backend.h) stays inside the module and its tests. */
+#ifndef US_STABILITY_STABILITY_H
+#define US_STABILITY_STABILITY_H
+
+#include "core/core.h"
+
+/* Whether stable results carry their forces (the planner's searches skip
+ * them; us_StabilitySettings.skip_forces sets the initial value). */
+void us_stability_set_skip_forces(us_Stability *w, int skip);
+
+/* Can the bodies reg[0..nreg) of `present` stand while every other body
+ * of `present` is held still? res->verdict US_UNSTABLE: they cannot, and
+ * res->mechanism is their mechanism, checked against the true cones (a
+ * proof, whatever the rest does); US_UNDECIDED: not proven. Solved by CLP
+ * with the local tests' support LP (local.h) whatever the method, since
+ * the proof is the checked mechanism, not the solver's word. Does not
+ * count as a test and leaves the reuse state of us_stability_test alone. */
+us_Status us_stability_held(us_Stability *w, const us_Bitset *present, const int *reg, int nreg,
+                            us_StabilityResult *res, us_Error *err);
+
+#endif
