@@ -85,7 +85,8 @@ typedef struct {
   us_BitsetSet seen;         /* exact search: expanded states */
   us_Bitset key, none;       /* key: 2 * 64 * nwords bits; none: empty held set */
   int *comp, ncomp;          /* comp[i]: component of movable body i, else -1 */
-  int one_none;              /* the caller proved H = 1 impossible (auto skips it) */
+  const us_Plan *one;        /* auto: today's plan for H = 1 (us_plan's, or a
+                                proven none from the caller) */
   int exact_only;            /* tests: fixed H by the exact search alone */
   Actions path;              /* actions of the search under way */
 } Hands;
@@ -605,26 +606,20 @@ static us_Status fill_plan(Hands *h, Part *parts, us_Plan *out, us_Error *err) {
 
 /* H = 1 by today's planner: its status; a found order into parts. */
 static int one_hand(Hands *h, Part *parts, us_Error *err) {
-  us_PlanSettings s1 = *h->set;
-  s1.hands = 1;
-  s1.certificates = 0;
-  s1.time_limit = h->set->time_limit > 0 ? h->set->time_limit - (us_now() - h->t_start) : 0;
-  if (h->set->time_limit > 0 && s1.time_limit <= 0) return US_PLAN_LIMIT;
-  us_Plan p1;
-  if (us_plan(h->s, &s1, &p1, err)) return -1;
+  const us_Plan *p1 = h->one;
+  if (!p1) return US_PLAN_LIMIT; /* not planned: nothing known */
   us_PlanStats *st = h->st;
-  st->tests += p1.stats.tests, st->stable += p1.stats.stable;
-  st->unstable += p1.stats.unstable, st->undecided += p1.stats.undecided;
-  st->cuts += p1.stats.cuts, st->held_tests += p1.stats.held_tests;
-  if (p1.stats.undecided && !h->note[0]) snprintf(h->note, h->note_sz, "%s", p1.note);
-  int r = p1.status;
-  for (int q = p1.nsteps - 1; r == US_PLAN_FOUND && q >= 0; q--) {
-    Actions *a = &parts[h->comp[p1.order[q]]].plan;
-    if (push(a, US_ACTION_PLACE, p1.order[q]) || push(a, US_ACTION_RELEASE, p1.order[q]))
+  st->tests += p1->stats.tests, st->stable += p1->stats.stable;
+  st->unstable += p1->stats.unstable, st->undecided += p1->stats.undecided;
+  st->cuts += p1->stats.cuts, st->held_tests += p1->stats.held_tests;
+  if (p1->stats.undecided && !h->note[0]) snprintf(h->note, h->note_sz, "%s", p1->note);
+  int r = (int)p1->status;
+  for (int q = p1->nsteps - 1; r == US_PLAN_FOUND && q >= 0; q--) {
+    Actions *a = &parts[h->comp[p1->order[q]]].plan;
+    if (push(a, US_ACTION_PLACE, p1->order[q]) || push(a, US_ACTION_RELEASE, p1->order[q]))
       r = oom(err);
   }
   for (int k = 0; r == US_PLAN_FOUND && k < h->ncomp; k++) parts[k].H = 1;
-  us_plan_free(&p1);
   return r;
 }
 
@@ -649,7 +644,7 @@ static int auto_exact(Hands *h, Part *parts, int *lower, us_Error *err) {
 
 /* hands 0: the smallest H (proven or bounded). A status or < 0. */
 static int run_auto(Hands *h, Part *parts, int *lower, us_Error *err) {
-  int r = h->one_none ? US_PLAN_NONE : one_hand(h, parts, err);
+  int r = one_hand(h, parts, err);
   *lower = r == US_PLAN_NONE ? 2 : 1;
   if (r < 0 || r == US_PLAN_FOUND || r == US_PLAN_UNSTABLE) return r;
   int ub = 0;
@@ -770,8 +765,22 @@ static int run(Hands *h, Part *parts, us_Plan *out, us_Error *err) {
   return r;
 }
 
-static us_Status plan_hands(const us_Structure *s, const us_PlanSettings *set, int one_none,
-                            int exact_only, us_Plan *out, us_Error *err) {
+/* What this file put into out, freed (on an error; us_plan_free is
+ * plan.c's, which calls this file). */
+static void drop_plan(us_Plan *out) {
+  for (int k = 0; out->release_certs && k < out->nactions; k++)
+    us_forces_free(&out->release_certs[k]);
+  us_free(out->release_certs);
+  us_free(out->actions);
+  us_free(out->order);
+  us_free(out->blocked);
+  out->release_certs = NULL, out->actions = NULL;
+  out->order = out->blocked = NULL;
+  out->nactions = out->nsteps = out->ngroups = out->nblocked = 0;
+}
+
+static us_Status plan_hands(const us_Structure *s, const us_PlanSettings *set,
+                            const us_Plan *one, int exact_only, us_Plan *out, us_Error *err) {
   if (set->hands < 0 || set->hands > 64 || (exact_only && set->hands < 1))
     return us_error_set(err, US_ERR_USAGE, "plan settings: hands must be 0 (auto) to 64, got %d",
                         set->hands);
@@ -781,7 +790,7 @@ static us_Status plan_hands(const us_Structure *s, const us_PlanSettings *set, i
   Hands h;
   Part *parts = NULL;
   us_Status st = hands_init(&h, s, set, out, err);
-  h.one_none = one_none && set->hands == 0;
+  h.one = one;
   h.exact_only = exact_only;
   if (!st && !(parts = us_calloc((size_t)h.ncomp + 1, sizeof *parts)))
     st = us_error_set(err, US_ERR_NOMEM, "out of memory (hands)");
@@ -793,22 +802,26 @@ static us_Status plan_hands(const us_Structure *s, const us_PlanSettings *set, i
   us_free(parts);
   hands_free(&h);
   out->stats.time_total = us_now() - h.t_start;
-  if (st) us_plan_free(out);
+  if (st) drop_plan(out);
   return st;
 }
 
-us_Status us_plan_hands(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
-                        us_Error *err) {
-  return plan_hands(s, set, 0, 0, out, err);
+us_Status us_plan_hands(const us_Structure *s, const us_PlanSettings *set, const us_Plan *one,
+                        us_Plan *out, us_Error *err) {
+  return plan_hands(s, set, one, 0, out, err);
 }
 
 us_Status us_plan_hands_after_none(const us_Structure *s, const us_PlanSettings *set,
                                    us_Plan *out, us_Error *err) {
-  return plan_hands(s, set, 1, 0, out, err);
+  us_Plan none;
+  memset(&none, 0, sizeof none);
+  none.status = US_PLAN_NONE;
+  memset(out, 0, sizeof *out);
+  return plan_hands(s, set, &none, 0, out, err);
 }
 
 us_Status us_plan_hands_exact(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
                               us_Error *err) {
   memset(out, 0, sizeof *out);
-  return plan_hands(s, set, 0, 1, out, err);
+  return plan_hands(s, set, NULL, 1, out, err);
 }

@@ -7,9 +7,11 @@
 /* The planner for set->hands != 1 (us_plan calls it): status found with
  * out->actions and out->order (the reverse of the placements), none (no
  * plan with set->hands hands: proven), limit or undecided, unstable.
- * set->hands 0: the smallest H, out->hands_lower saying what is proven. */
-us_Status us_plan_hands(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
-                        us_Error *err);
+ * set->hands 0: the smallest H, out->hands_lower saying what is proven;
+ * `one` is today's plan for H = 1 (us_plan's answer, which plan.c makes
+ * first, so that this file never calls back into plan.c), NULL otherwise. */
+us_Status us_plan_hands(const us_Structure *s, const us_PlanSettings *set, const us_Plan *one,
+                        us_Plan *out, us_Error *err);
 
 /* The same for hands 0 (auto) when the caller has proven that no
  * one-at-a-time order exists (classify's sequence class): H = 1 is not
