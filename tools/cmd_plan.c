@@ -59,8 +59,10 @@ static void print_hands(FILE *fp, const us_Structure *s, const us_Plan *p, int a
   if (p->status == US_PLAN_FOUND && asked == 0 && p->hands_lower >= p->hands)
     fprintf(fp, "  %d hand%s: the minimum (proven)\n", p->hands, p->hands == 1 ? "" : "s");
   else if (p->status == US_PLAN_FOUND && asked == 0)
-    fprintf(fp, "  %d hands, not proven minimal: %d to %d not proven impossible (budget: "
-            "--exact-tests, --time-limit)\n", p->hands, p->hands_lower, p->hands - 1);
+    fprintf(fp, "  %d hands, not proven minimal: %d%s%.0d not proven impossible (budget: "
+            "--exact-tests, --time-limit)\n", p->hands, p->hands_lower,
+            p->hands - 1 > p->hands_lower ? " to " : "",
+            p->hands - 1 > p->hands_lower ? p->hands - 1 : 0);
   else if (p->status == US_PLAN_NONE && p->blocked) {
     fprintf(fp, "  proven: %d hand%s cannot build the part of ", asked, asked == 1 ? "" : "s");
     print_ids(fp, s, p->blocked, p->nblocked, 20);
