@@ -19,7 +19,9 @@
 #                 ratios of issue 24;
 #   scaling.csv   walls and pyramids from 100 to 100,000 blocks, the
 #                 stacker's random stacks from 100 to about 9,000: plan and verify time, tests, peak memory,
-#                 and the fitted exponent from 1,000 blocks up.
+#                 and the fitted exponent from 1,000 blocks up;
+#   hands-*.csv   plan --hands auto on arches of 6 to 30 voussoirs and the
+#                 default dome (bench/hands.sh): H, proven or not, time.
 # Usage: bench/run.sh BUILD_DIR   (env QUICK=1, BENCH_OUT=dir, BENCH_LIMIT=s)
 set -uo pipefail
 B=${1:-build}
@@ -329,6 +331,10 @@ if [ "$QUICK" != 1 ]; then # about 5 minutes: the full run only
   LCPFB_LIMIT=60 bash "$(dirname "$0")/lcp_fallbacks.sh" "$B" >"$OUT/lcp-fallbacks-$tag.md"
   say "Per workload, both searches: [table](lcp-fallbacks-$tag.md) (bench/lcp_fallbacks.sh; docs/lcp.md explains the causes)."
 fi
+say ""
+say "## Hands: plan --hands auto (docs/planning.md, \"Hands\")"
+say ""
+bash "$(dirname "$0")/hands.sh" "$B" "$OUT" "$tag" | tee -a "$MD"
 say ""
 say "Whole benchmark: $(($(date +%s) - START)) s."
 echo "wrote $MD"

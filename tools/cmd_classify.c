@@ -18,6 +18,8 @@ static const char head[] =
     "  top-down     does 'remove the highest body' work? (the source's plain DFS)\n"
     "  sequence     does a one-at-a-time removal order exist? (if not: the blocked bodies)\n"
     "  group        the smallest K such that steps of at most K bodies suffice\n"
+    "  buttressing  without a sequence: the smallest number of hands holding bodies\n"
+    "               still that builds it (plan --hands auto), proven or bounded\n"
     "  count        connected sub-assemblies containing the ground (bound on tests)\n";
 static const char tail[] =
     "exit: 0 classified, 2 usage or input error, 3 some class is undecided (a\n"
@@ -225,6 +227,21 @@ static void text_count(const us_Classification *c) {
     printf("count: refused (%s)\n", c->count_note);
 }
 
+/* 7. needs buttressing: only when no one-at-a-time sequence exists. */
+static void text_hands(const us_Classification *c) {
+  if (c->sequence_status != US_PLAN_NONE) return;
+  if (c->hands_status == US_PLAN_FOUND && c->hands_lower >= c->hands)
+    printf("buttressing: needed: the smallest number of hands holding bodies still is %d "
+           "(proven: %d cannot build it; plan --hands auto, %ld tests)\n", c->hands,
+           c->hands - 1, c->hands_tests);
+  else if (c->hands_status == US_PLAN_FOUND)
+    printf("buttressing: needed: %d hands suffice; %d to %d not proven impossible (plan "
+           "--hands auto, %ld tests)\n", c->hands, c->hands_lower, c->hands - 1, c->hands_tests);
+  else
+    printf("buttressing: needed; the number of hands is unknown (%s)\n",
+           us_plan_status_name(c->hands_status));
+}
+
 static void print_text(const us_Structure *s, const us_Classification *c, const ClassifyArgs *a) {
   const char *method = us_method_name(us_method_resolve(a->set.stability.method, s));
   text_stands(s, c, method);
@@ -233,6 +250,7 @@ static void print_text(const us_Structure *s, const us_Classification *c, const 
   text_topdown(c);
   text_sequence(s, c, a);
   text_group(c, a);
+  text_hands(c);
   text_count(c);
   printf("time: %.3f s (%d bodies, %d contacts)\n", c->seconds, c->nbody, s->ncontact);
 }
@@ -312,6 +330,9 @@ static void print_json(const us_Structure *s, const us_Classification *c, const 
   printf(", \"time_limit\": %g", a->set.time_limit);
   json_sequence(s, c);
   json_group(c);
+  if (c->sequence_status == US_PLAN_NONE)
+    printf(", \"hands\": %d, \"hands_lower\": %d, \"hands_status\": \"%s\"", c->hands,
+           c->hands_lower, us_plan_status_name(c->hands_status));
   json_count(c);
   printf(", \"undecided\": %s", json_bool(c->undecided));
   printf(", \"seconds\": %.6f, \"times\": {\"stands\": %.6f, \"friction\": %.6f, \"topdown\": %.6f, "

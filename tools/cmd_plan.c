@@ -54,11 +54,29 @@ static void print_undecided(FILE *fp, const us_Structure *s, const us_Plan *p) {
   fprintf(fp, "\n");
 }
 
+/* What is proven about the number of hands. */
+static void print_hands(FILE *fp, const us_Structure *s, const us_Plan *p, int asked) {
+  if (p->status == US_PLAN_FOUND && asked == 0 && p->hands_lower >= p->hands)
+    fprintf(fp, "  %d hand%s: the minimum (proven)\n", p->hands, p->hands == 1 ? "" : "s");
+  else if (p->status == US_PLAN_FOUND && asked == 0)
+    fprintf(fp, "  %d hands, not proven minimal: %d%s%.0d not proven impossible (budget: "
+            "--exact-tests, --time-limit)\n", p->hands, p->hands_lower,
+            p->hands - 1 > p->hands_lower ? " to " : "",
+            p->hands - 1 > p->hands_lower ? p->hands - 1 : 0);
+  else if (p->status == US_PLAN_NONE && p->blocked) {
+    fprintf(fp, "  proven: %d hand%s cannot build the part of ", asked, asked == 1 ? "" : "s");
+    print_ids(fp, s, p->blocked, p->nblocked, 20);
+    fprintf(fp, "\n");
+  }
+}
+
 static void print_summary(FILE *fp, const us_Structure *s, const us_Plan *p, const CliCommon *c,
                           const char *out) {
   const us_PlanStats *st = &p->stats;
   fprintf(fp, "%s", us_plan_status_name(p->status));
-  if (p->status == US_PLAN_FOUND && p->ngroups == p->nsteps)
+  if (p->status == US_PLAN_FOUND && p->actions)
+    fprintf(fp, ": %d actions with %d hand%s", p->nactions, p->hands, p->hands == 1 ? "" : "s");
+  else if (p->status == US_PLAN_FOUND && p->ngroups == p->nsteps)
     fprintf(fp, ": %d removals", p->nsteps);
   else if (p->status == US_PLAN_FOUND)
     fprintf(fp, ": %d removals in %d step%s of up to %d bodies", p->nsteps, p->ngroups,
@@ -80,6 +98,7 @@ static void print_summary(FILE *fp, const us_Structure *s, const us_Plan *p, con
     fprintf(fp, "\n");
   }
   if (p->status == US_PLAN_UNDECIDED) print_undecided(fp, s, p);
+  if (c->plan.hands != 1) print_hands(fp, s, p, c->plan.hands);
   if (p->status == US_PLAN_NONE && p->blocked) {
     fprintf(fp, "  cannot be removed with steps of up to %d bod%s: ", p->max_group > 0 ? p->max_group : 1,
            p->max_group > 1 ? "ies" : "y");
@@ -141,6 +160,15 @@ static int set_max_group(const char *v, void *dst, const char *cmd) {
   return *(int *)dst = (int)n, 0;
 }
 
+/* --hands H: 'auto' (0) or 1..64. */
+static int set_hands(const char *v, void *dst, const char *cmd) {
+  long n;
+  if (!strcmp(v, "auto")) return *(int *)dst = 0, 0;
+  if (cli_parse_long(v, &n) || n < 1 || n > 64)
+    return cli_fail(cmd, "--hands needs 'auto' or an integer from 1 to 64, got '%s'", v);
+  return *(int *)dst = (int)n, 0;
+}
+
 static int set_rules(const char *v, void *dst, const char *cmd) {
   if (us_rules_parse(v, dst))
     return cli_fail(cmd, "unknown rules '%s' (all, none, or a comma list of memo, ground, union, "
@@ -163,6 +191,10 @@ static int parse(int argc, char **argv, CliCommon *c, PlanArgs *a) {
       CLI_CALL("--max-group", "K", &p->max_group, set_max_group,
                "steps of up to K bodies at once (assemble); 'auto': the smallest K that gives an "
                "order (default 1)"),
+      CLI_CALL("--hands", "H", &p->hands, set_hands,
+               "build with up to H bodies held still at once (place, grab, release; "
+               "docs/planning.md, \"Hands\"); 'auto': the smallest H, proven where the budget "
+               "allows (default 1: one body at a time)"),
       CLI_ENUM("--removal", "R", &p->removal,
                "any (default), up (lifted straight up without hitting a body that stays), free "
                "(some translation frees it); up and free need a graph search",

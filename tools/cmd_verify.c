@@ -128,6 +128,46 @@ static int check_removals(const us_Structure *s, const us_PlanFile *pf, us_Error
   return CLI_EXIT_NO;
 }
 
+/* An action plan's order must be its placements reversed. */
+static int order_matches(const us_PlanFile *pf, us_Error *err) {
+  int q = pf->n;
+  for (int k = 0; k < pf->nactions; k++)
+    if (pf->actions[k].verb == US_ACTION_PLACE && (--q < 0 || pf->order[q] != pf->actions[k].body))
+      return us_error_set(err, US_ERR_INPUT, "\"order\" is not the reverse of the placements "
+                          "(action %d)", k), 0;
+  if (q != 0) return us_error_set(err, US_ERR_INPUT, "\"order\" is not the reverse of the "
+                                  "placements"), 0;
+  return 1;
+}
+
+/* A plan with hands: the actions replayed (verify_actions.c). */
+static int verify_hands(const us_Structure *s, CliCommon *c, const us_PlanFile *pf,
+                        us_Error *err) {
+  us_VerifyReport rep;
+  if (!order_matches(pf, err)) return CLI_EXIT_ERR;
+  c->stab.time_limit = cli_time_left(c->stab.time_limit);
+  if (us_verify_actions(s, &c->stab, pf->hands, pf->actions, pf->nactions, &rep, err))
+    return CLI_EXIT_ERR;
+  if (rep.ok) {
+    printf("valid: %d actions with at most %d hands, %d releases re-checked; worst certificate "
+           "residuals: force %.2e, torque %.2e (relative)\n", pf->nactions, pf->hands,
+           rep.steps_checked, rep.max_force_residual, rep.max_torque_residual);
+    return CLI_EXIT_OK;
+  }
+  if (rep.failed_step >= 0) {
+    const us_Action *a = &pf->actions[rep.failed_step];
+    printf("invalid: action %d (release '%s'): the %d placed bodies do not stand with the held "
+           "ones fixed", rep.failed_step, us_id_text(s->bodies[a->body].id).s, rep.remaining);
+    if (rep.unstable_body >= 0) printf(" ('%s' cannot be held)",
+                                       us_id_text(s->bodies[rep.unstable_body].id).s);
+    printf("\n");
+    return CLI_EXIT_NO;
+  }
+  printf("undecided: action %d (release '%s'): undecided (%s)\n", rep.undecided_step,
+         us_id_text(s->bodies[pf->actions[rep.undecided_step].body].id).s, rep.note);
+  return CLI_EXIT_UNDECIDED;
+}
+
 /* us_verify_steps with the progress line (on a terminal). */
 static us_Status verify_with_progress(const us_Structure *s, CliCommon *c, const us_PlanFile *pf,
                                       us_VerifyReport *rep, us_Error *err) {
@@ -163,6 +203,8 @@ int cmd_verify(int argc, char **argv) {
       printf("invalid: the plan's status is \"%s\": it holds no complete order\n",
              us_plan_status_name(pf.status));
       code = CLI_EXIT_NO;
+    } else if (pf.hands > 0) {
+      code = verify_hands(s, &c, &pf, &err);
     } else if (verify_with_progress(s, &c, &pf, &rep, &err) == US_OK) {
       code = report(s, &pf, &rep);
       if (code == CLI_EXIT_OK && pf.removal != US_REMOVAL_ANY)

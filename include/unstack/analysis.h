@@ -128,6 +128,9 @@ US_API us_Status us_critical_friction(const us_Structure *s, const us_Bitset *pr
  *      (the searches of 3-5 stop at time_limit: the class is then unknown);
  *   6. frictionless, strong and weak stability coincide (Gauss's principle,
  *      docs/classify.md): reported, not computed;
+ *   7. needs buttressing: no sequence (4), and the smallest number of
+ *      hands holding bodies still that builds it (plan --hands auto),
+ *      proven or bounded;
  * and the count of connected sub-assemblies containing the ground, an upper
  * bound on the tests of a search with the ground rule and a memo. */
 typedef struct us_ClassifySettings {
@@ -199,6 +202,14 @@ typedef struct us_Classification {
   char count_note[128];    /* why the count was refused */
   double seconds;          /* the whole classification */
   double t_stands, t_friction, t_topdown, t_sequence, t_group, t_count;
+  /* 7. needs buttressing (docs/planning.md, "Hands"): when no one-at-a-time
+     sequence exists, plan --hands auto: found with hands (the smallest when
+     hands_lower == hands, else an upper bound: hands_lower .. hands - 1
+     unproven), or its status (limit, undecided); 0 when not asked */
+  us_PlanStatus hands_status;
+  int hands, hands_lower;
+  long hands_tests;
+  double t_hands;
 } us_Classification;
 
 /* Classify structure s (finalized). set NULL: the defaults. Every class is

@@ -575,6 +575,17 @@ US_API const char *us_rule_name(int bit); /* one US_RULE_* bit */
 /* "all", "none" or a comma-separated list of rule names. */
 US_API int us_rules_parse(const char *list, unsigned *out);
 
+/* Assembly actions with hands: place b (b enters held), grab a placed
+ * body, release a held one (after which the placed bodies must stand with
+ * the held ones fixed). */
+typedef enum us_ActionVerb { US_ACTION_PLACE = 0, US_ACTION_GRAB, US_ACTION_RELEASE } us_ActionVerb;
+typedef struct us_Action {
+  us_ActionVerb verb;
+  int body;
+} us_Action;
+US_API const char *us_action_name(us_ActionVerb v);
+US_API int us_action_parse(const char *w, us_ActionVerb *out);
+
 typedef struct us_PlanSettings {
   us_Search search;
   us_Order order;        /* graph searches: which body to try first */
@@ -592,6 +603,9 @@ typedef struct us_PlanSettings {
                             <= 0: unlimited) */
   int certificates;      /* keep a certificate per step */
   us_StabilitySettings stability;
+  int hands;             /* bodies held at once (docs/planning.md, "Hands"): 1
+                            (default) today's one-at-a-time plan; >= 2 an
+                            action plan; 0: auto, the smallest that gives one */
 } us_PlanSettings;
 US_API us_PlanSettings us_plan_default_settings(void);
 
@@ -647,6 +661,16 @@ typedef struct us_Plan {
   /* with buildable: buildable is the greedy's placement order, in nbuild
      steps, build_start[nbuild + 1] offsets into it */
   int nbuild, *build_start;
+  /* hands != 1 in the settings: the assembly actions (found) */
+  int hands;             /* largest number of bodies held at once (found), or
+                            the bound searched (none) */
+  int hands_lower;       /* every H < hands_lower is proven impossible; the
+                            minimum is proven when hands_lower == hands */
+  int nactions;
+  us_Action *actions;    /* [nactions] in assembly order */
+  us_Forces *release_certs; /* with certificates: [nactions], action k's forces
+                            when it is a release (the placed bodies, the held
+                            ones fixed), else empty */
 } us_Plan;
 US_API void us_plan_free(us_Plan *p);
 
@@ -686,6 +710,17 @@ US_API us_Status us_verify_order(const us_Structure *s, const us_StabilitySettin
 US_API us_Status us_verify_steps(const us_Structure *s, const us_StabilitySettings *set, const int *order,
                           int n, const int *group_start, int ngroups, us_VerifyReport *rep,
                           us_Error *err);
+
+/* Re-check an action plan (docs/format.md): never more than `hands`
+ * bodies held, every body placed once, a release only of a held body, all
+ * placed and none held at the end (else US_ERR_INPUT naming the action's
+ * index), and after every release a fresh stability test of the placed
+ * bodies with the held ones fixed, its certificate re-checked. rep as in
+ * us_verify_order with failed_step the 0-based index of the action whose
+ * release falls (undecided_step likewise; -1 the full structure). */
+US_API us_Status us_verify_actions(const us_Structure *s, const us_StabilitySettings *set,
+                                   int hands, const us_Action *actions, int n,
+                                   us_VerifyReport *rep, us_Error *err);
 
 /* Removal kinematics of an order (one body a step): before each removal the
  * body must be able to leave past the bodies still there (docs/kinematics.md).
@@ -876,6 +911,9 @@ typedef struct us_PlanFile {
                           "order"), else 0 */
   int *buildable, *build_start; /* [nbuildable], [nbuild + 1] offsets */
   int nbuild;          /* steps of the build */
+  int hands;          /* "hands" (0: absent, an order-only plan) */
+  int nactions;       /* "actions": ids checked, sequence checked by verify */
+  us_Action *actions;
 } us_PlanFile;
 US_API us_Status us_plan_read(const us_Structure *s, const char *path, us_PlanFile *out, us_Error *err);
 US_API void us_plan_file_free(us_PlanFile *pf);

@@ -19,11 +19,12 @@
 #include <string.h>
 
 #include "io.h"
+#include "plan_actions.h"
 
 static const char *const plan_keys[] = {
     "format",    "version",   "status",  "order",   "method",    "search",     "order_heuristic",
     "direction", "removal",   "max_group", "buildable", "blocked", "steps", "statistics",
-    "fingerprint", "build", NULL};
+    "fingerprint", "build", "hands",     "hands_lower", "actions", "release_certificates", NULL};
 
 /* ------------------------------------------------------------------ write */
 
@@ -249,6 +250,7 @@ static us_Status write_plan(FILE *fp, const us_Structure *s, const us_Plan *p,
   us_fingerprint_text(h, fpt);
   us_JsonOut o = {fp, 0, 0};
   write_header(&o, s, p, set, fpt);
+  us_plan_write_actions(&o, s, p);
   if (p->certs) st = write_steps(&o, s, p, set ? set->stability.cert_tol : 1e-6);
   if (!st) write_stats(&o, &p->stats);
   us_jo_raw(&o, "}\n");
@@ -482,6 +484,7 @@ us_Status us_plan_read(const us_Structure *s, const char *path, us_PlanFile *out
   if (!st) st = read_blocked(&c, s, json_object_get(root, "blocked"), out);
   if (!st) st = read_build(&c, s, json_object_get(root, "build"), out);
   if (!st) st = read_removal(&c, json_object_get(root, "removal"), &out->removal);
+  if (!st) st = us_plan_read_actions(&c, s, root, out);
   json_decref(root);
   us_free(text);
   if (st) {
@@ -498,6 +501,9 @@ void us_plan_file_free(us_PlanFile *pf) {
   us_free(pf->blocked);
   us_free(pf->buildable);
   us_free(pf->build_start);
+  us_free(pf->actions);
+  pf->actions = NULL;
+  pf->nactions = pf->hands = 0;
   pf->order = pf->group_start = pf->blocked = pf->buildable = pf->build_start = NULL;
   pf->n = pf->ngroups = pf->nblocked = pf->nbuildable = pf->nbuild = 0;
 }

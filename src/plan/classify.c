@@ -53,6 +53,7 @@
  * Every step writes its own fields of the classification and its time;
  * the first error stops the driver and empties the result. */
 #include "core/core.h"
+#include "hands.h"
 #include "hook.h"
 
 #include <math.h>
@@ -236,6 +237,27 @@ static us_Status classify_group(const us_Structure *s, const us_ClassifySettings
   return st;
 }
 
+/* ----------------------------------------------- 7. needs buttressing */
+
+/* No one-at-a-time sequence (step 4 says none): the smallest number of
+ * hands (src/plan/hands.c), proven (hands_lower == hands) or bounded. */
+static us_Status classify_hands(const us_Structure *s, const us_ClassifySettings *set,
+                                us_Classification *out, us_Error *err) {
+  if (out->sequence_status != US_PLAN_NONE) return US_OK;
+  us_PlanSettings p = probe_settings(set, US_SEARCH_ASSEMBLE, 1);
+  p.hands = 0;
+  us_Plan plan;
+  memset(&plan, 0, sizeof plan);
+  us_Status st = us_plan_hands_after_none(s, &p, &plan, err); /* step 4 proved H = 1 none */
+  if (st) return st;
+  out->hands_status = plan.status;
+  out->hands = plan.status == US_PLAN_FOUND ? plan.hands : 0;
+  out->hands_lower = plan.hands_lower;
+  out->hands_tests = plan.stats.tests;
+  us_plan_free(&plan);
+  return US_OK;
+}
+
 /* -------------------------------------------------------------- count */
 
 static us_Status classify_count(const us_Structure *s, const us_ClassifySettings *set,
@@ -282,7 +304,8 @@ us_Status us_classify(const us_Structure *s, const us_ClassifySettings *set,
     double *t;
   } steps[] = {{classify_stands, &out->t_stands},     {classify_friction, &out->t_friction},
                {classify_topdown, &out->t_topdown},   {classify_sequence, &out->t_sequence},
-               {classify_group, &out->t_group},       {classify_count, &out->t_count}};
+               {classify_group, &out->t_group},       {classify_hands, &out->t_hands},
+               {classify_count, &out->t_count}};
   double t0 = us_now();
   out->nbody = us_structure_movable_count(s);
   for (size_t k = 0; k < sizeof steps / sizeof steps[0] && !st; k++) {

@@ -9,6 +9,7 @@ static const char *const search_names[] = {"assemble", "dfs", "bfs", "random"};
 static const char *const order_names[] = {"highest", "lowest", "input"};
 static const char *const direction_names[] = {"down", "up"};
 static const char *const removal_names[] = {"any", "up", "free"};
+static const char *const action_names[] = {"place", "grab", "release"};
 static const char *const rule_names[] = {"memo", "ground", "union", "components", "greedy"};
 
 static const char *name_of(const char *const *t, int n, int v) {
@@ -35,6 +36,7 @@ US_NAMES(search, us_Search, search_names, 4)
 US_NAMES(order, us_Order, order_names, 3)
 US_NAMES(direction, us_Direction, direction_names, 2)
 US_NAMES(removal, us_Removal, removal_names, 3)
+US_NAMES(action, us_ActionVerb, action_names, 3)
 
 const char *us_rule_name(int bit) {
   for (int i = 0; i < 5; i++)

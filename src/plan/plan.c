@@ -20,6 +20,7 @@
  * length); those tests are counted in the statistics like the others. */
 #include "assemble.h"
 #include "exact.h"
+#include "hands.h"
 #include "hook.h"
 #include "stability/stability.h"
 #include "order.h"
@@ -40,6 +41,7 @@ us_PlanSettings us_plan_default_settings(void) {
   p.rules = US_RULE_ALL;
   p.seed = 1;
   p.max_exact_tests = 100000;
+  p.hands = 1;
   p.stability = us_stability_default_settings();
   return p;
 }
@@ -54,6 +56,12 @@ void us_plan_free(us_Plan *p) {
   us_free(p->buildable);
   us_free(p->blocked);
   us_free(p->build_start);
+  for (int k = 0; p->release_certs && k < p->nactions; k++) us_forces_free(&p->release_certs[k]);
+  us_free(p->release_certs);
+  us_free(p->actions);
+  p->release_certs = NULL;
+  p->actions = NULL;
+  p->nactions = 0;
   p->certs = NULL;
   p->order = p->group_start = p->buildable = p->blocked = p->build_start = NULL;
   p->nsteps = p->ngroups = p->nbuildable = p->nblocked = p->nbuild = 0;
@@ -420,6 +428,24 @@ static int run(us_SearchCtx *ctx, us_Plan *out, double *t_search, us_Error *err)
   return r == US_STEP_LIMIT ? US_PLAN_LIMIT : r < 0 ? US_STEP_ERROR : downgrade(ctx, r);
 }
 
+/* hands != 1 (hands.c): auto first asks today's planner for H = 1, the
+ * time it took coming off the hands search's limit. */
+static us_Status plan_with_hands(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
+                                 us_Error *err) {
+  us_Plan one;
+  memset(&one, 0, sizeof one);
+  us_PlanSettings sh = *set, s1 = *set;
+  s1.hands = 1;
+  s1.certificates = 0;
+  us_Status st = set->hands == 0 ? us_plan(s, &s1, &one, err) : US_OK;
+  if (!st && sh.time_limit > 0) /* what is left, never 0 (that is no limit) */
+    sh.time_limit = US_MAX(set->time_limit - one.stats.time_total, 1e-9);
+  if (!st) st = us_plan_hands(s, &sh, set->hands == 0 ? &one : NULL, out, err);
+  if (!st) out->stats.time_total += one.stats.time_total;
+  us_plan_free(&one);
+  return st;
+}
+
 us_Status us_plan(const us_Structure *s, const us_PlanSettings *set, us_Plan *out,
                   us_Error *err) {
   us_Error local;
@@ -430,6 +456,7 @@ us_Status us_plan(const us_Structure *s, const us_PlanSettings *set, us_Plan *ou
   if (!s || !set) return us_error_set(err, US_ERR_USAGE, "us_plan: NULL argument");
   us_Status st = check_settings(set, err);
   if (st) return st;
+  if (set->hands != 1) return plan_with_hands(s, set, out, err);
   us_SearchCtx ctx;
   st = ctx_init(&ctx, s, set, &out->stats, err);
   ctx.note = out->note;

@@ -4,14 +4,16 @@
  *
  * Dependencies inside src/plan run one way (no cycles); each file
  * includes the headers of the files it calls:
- *   plan.c     -> searches.h (dfs.c, bfs.c), rules.h, exact.h, assemble.h,
+ *   plan.c     -> hands.h (hands.c -> hook.h),
+ *                 searches.h (dfs.c, bfs.c), rules.h, exact.h, assemble.h,
  *                 order.h, search.h, hook.h
  *   dfs.c, bfs.c -> rescue.h, rules.h, search.h
  *   rescue.c   -> rules.h, search.h
  *   rules.c    -> exact.h, assemble.h, search.h
  *   exact.c    -> assemble.h, order.h, search.h, hook.h
  *   assemble.c, order.c -> search.h
- *   search.c, verify.c, classify.c -> hook.h
+ *   classify.c -> hands.h, hook.h; verify_actions.c -> hands.h, hook.h
+ *   search.c, verify.c -> hook.h
  *   search.h, graph.h and hook.h call nothing in src/plan. */
 #ifndef US_SEARCH_H
 #define US_SEARCH_H

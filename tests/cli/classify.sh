@@ -113,7 +113,7 @@ cat >"$T/weird.json" <<'EOF'
 EOF
 expect 0 "classify odd ids" -- "$CLI" classify "$T/weird.json"
 contains "$T/out" 'blocked: "le\"ft\\", "ri\u0001g\u000aht\u0009' "text: ids escaped"
-[ "$(wc -l <"$T/out")" -eq 8 ] && ok "no raw newline from an id" || bad "an id broke a line"
+[ "$(wc -l <"$T/out")" -eq 9 ] && ok "no raw newline from an id" || bad "an id broke a line"
 expect 0 "classify odd ids --json" -- "$CLI" classify "$T/weird.json" --json
 json_is "$T/out" '.blocked == ["le\"ft\\", "ri\u0001g\nht\t\u00e9"]' "json: ids round-trip"
 
