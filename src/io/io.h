@@ -69,6 +69,11 @@ void us_jo_vecn(us_JsonOut *o, const double *v, int n); /* [x, y(, z)] */
 /* "a": id|"ground", "b": id, "point": [x, y], "normal": [nx, ny] of a
  * contact ([x, y, z] and [nx, ny, nz] in a 3D structure). */
 void us_jo_contact_fields(us_JsonOut *o, const us_Structure *s, const us_Contact *c);
+/* One certificate contact, force j of f: {contact fields, "force" in the
+ * contact frame, "force_xyz": f_n n + f_t1 t1 [+ f_t2 t2], the force on b in
+ * world axes}, so a reader can sum forces and torques per body without
+ * rebuilding the tangent frames (plan steps and release certificates). */
+void us_jo_cert_contact(us_JsonOut *o, const us_Structure *s, const us_Forces *f, int j);
 void us_jo_raw(us_JsonOut *o, const char *s);
 
 

@@ -77,3 +77,18 @@ void us_jo_contact_fields(us_JsonOut *o, const us_Structure *s, const us_Contact
   us_jo_raw(o, ", \"normal\": ");
   us_jo_vecn(o, c->n, s->dim == 3 ? 3 : 2);
 }
+
+void us_jo_cert_contact(us_JsonOut *o, const us_Structure *s, const us_Forces *f, int j) {
+  const us_Contact *c = &s->contacts[f->contact[j]];
+  const double *fc = f->f + (size_t)s->dim * (size_t)j;
+  double w[3];
+  for (int k = 0; k < 3; k++)
+    w[k] = fc[0] * c->n[k] + fc[1] * c->t[0][k] + (s->dim == 3 ? fc[2] * c->t[1][k] : 0.0);
+  us_jo_raw(o, "{");
+  us_jo_contact_fields(o, s, c);
+  us_jo_raw(o, ", \"force\": ");
+  us_jo_vecn(o, fc, s->dim);
+  us_jo_raw(o, ", \"force_xyz\": ");
+  us_jo_vecn(o, w, s->dim);
+  us_jo_raw(o, "}");
+}

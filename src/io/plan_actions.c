@@ -8,23 +8,6 @@
 #include <math.h>
 #include <string.h>
 
-/* One certificate contact: its fields, the force in the contact frame
- * and the same force on b in world axes (as plan_io.c's steps). */
-static void write_contact(us_JsonOut *o, const us_Structure *s, const us_Forces *f, int j) {
-  const us_Contact *c = &s->contacts[f->contact[j]];
-  const double *fc = f->f + (size_t)s->dim * (size_t)j;
-  double w[3];
-  for (int k = 0; k < 3; k++)
-    w[k] = fc[0] * c->n[k] + fc[1] * c->t[0][k] + (s->dim == 3 ? fc[2] * c->t[1][k] : 0.0);
-  us_jo_raw(o, j ? ",\n      {" : "\n      {");
-  us_jo_contact_fields(o, s, c);
-  us_jo_raw(o, ", \"force\": ");
-  us_jo_vecn(o, fc, s->dim);
-  us_jo_raw(o, ", \"force_xyz\": ");
-  us_jo_vecn(o, w, s->dim);
-  us_jo_raw(o, "}");
-}
-
 /* "release_certificates": per release, its index, the bodies held after
  * it and the forces of the placed bodies with those fixed. */
 static void write_certs(us_JsonOut *o, const us_Structure *s, const us_Plan *p) {
@@ -41,7 +24,10 @@ static void write_certs(us_JsonOut *o, const us_Structure *s, const us_Plan *p) 
     for (int i = 0, m = 0; i < s->nbody; i++)
       if (held[i]) us_jo_raw(o, m++ ? ", " : ""), us_jo_string(o, s->bodies[i].id);
     us_jo_raw(o, "], \"contacts\": [");
-    for (int j = 0; j < p->release_certs[k].ncontact; j++) write_contact(o, s, &p->release_certs[k], j);
+    for (int j = 0; j < p->release_certs[k].ncontact; j++) {
+      us_jo_raw(o, j ? ",\n      " : "\n      ");
+      us_jo_cert_contact(o, s, &p->release_certs[k], j);
+    }
     us_jo_raw(o, "]}");
   }
   us_jo_raw(o, "],\n");

@@ -76,25 +76,6 @@ static void write_stats(us_JsonOut *o, const us_PlanStats *st) {
   us_jo_raw(o, "    }\n  }\n");
 }
 
-/* One certificate contact: its sides, point and normal, the force in the
- * contact frame ("force") and the same force in world axes ("force_xyz":
- * f_n n + f_t1 t1 [+ f_t2 t2], the force on b), so that a reader can sum
- * forces and torques per body without rebuilding the tangent frames. */
-static void write_cert_contact(us_JsonOut *o, const us_Structure *s, const us_Forces *f, int j) {
-  const us_Contact *c = &s->contacts[f->contact[j]];
-  const double *fc = f->f + (size_t)s->dim * (size_t)j;
-  double w[3];
-  for (int k = 0; k < 3; k++)
-    w[k] = fc[0] * c->n[k] + fc[1] * c->t[0][k] + (s->dim == 3 ? fc[2] * c->t[1][k] : 0.0);
-  us_jo_raw(o, "          {");
-  us_jo_contact_fields(o, s, c);
-  us_jo_raw(o, ", \"force\": ");
-  us_jo_vecn(o, fc, s->dim);
-  us_jo_raw(o, ", \"force_xyz\": ");
-  us_jo_vecn(o, w, s->dim);
-  us_jo_raw(o, "}");
-}
-
 static void write_check(us_JsonOut *o, const us_CertCheck *ck) {
   us_jo_raw(o, ck->ok ? "        \"check\": {\"ok\": true" : "        \"check\": {\"ok\": false");
   us_jo_raw(o, ", \"force_residual\": ");
@@ -132,7 +113,8 @@ static void write_step(us_JsonOut *o, const us_Structure *s, const us_Plan *p, i
   us_jo_raw(o, ",\n      \"certificate\": {\n        \"contacts\": [");
   for (int j = 0; j < f->ncontact; j++) {
     us_jo_raw(o, j ? ",\n" : "\n");
-    write_cert_contact(o, s, f, j);
+    us_jo_raw(o, "          ");
+    us_jo_cert_contact(o, s, f, j);
   }
   us_jo_raw(o, f->ncontact ? "\n        ],\n" : "],\n");
   us_CertCheck ck = us_certificate_check(s, present, f, tol);

@@ -471,3 +471,16 @@ double us_mechanism_margin(const us_Structure *s, const us_Mechanism *m) {
   }
   return scale > 0 && isfinite(scale) ? 1.0 / scale : 0.0;
 }
+
+int us_forces_reserve(us_Forces *f, int n) {
+  if (n <= f->cap) return 0;
+  int cap = US_MAX(n, 8);
+  int *c = us_realloc(f->contact, (size_t)cap * sizeof(int));
+  if (!c) return -1;
+  f->contact = c;
+  double *v = us_realloc(f->f, (size_t)cap * 3 * sizeof(double));
+  if (!v) return -1;
+  f->f = v;
+  f->cap = cap;
+  return 0;
+}

@@ -14,6 +14,11 @@
 #define US_BAND_CERT 1e-10
 #define US_BAND_MECH 1e-7
 
+/* Room for n forces in f (0, or -1 out of memory). Three components per
+ * force whatever the dimension, so that a result reused across 2D and 3D
+ * structures stays large enough. */
+int us_forces_reserve(us_Forces *f, int n);
+
 /* Accumulator doubles per body of the check. */
 #define US_CERT_ACC 8
 

@@ -180,24 +180,11 @@ static int rep_solve(Clp_Simplex *m, RepLp *p, us_ForceSet kind) {
   return rep_stage(m, p, 0);
 }
 
-static int forces_reserve(us_Forces *f, int n) {
-  if (n <= f->cap) return 0;
-  int cap = US_MAX(n, 8);
-  int *c = us_realloc(f->contact, (size_t)cap * sizeof(int));
-  if (!c) return -1;
-  f->contact = c;
-  double *v = us_realloc(f->f, (size_t)cap * 3 * sizeof(double));
-  if (!v) return -1;
-  f->f = v;
-  f->cap = cap;
-  return 0;
-}
-
 /* The LP's generator weights into res->forces (newtons), then the check. */
 static us_Status rep_certify(const us_EqSystem *e, const RepLp *p, const double *l,
                              const us_Bitset *present, double tol, us_StabilityResult *res,
                              us_Error *err) {
-  if (forces_reserve(&res->forces, e->ncontact))
+  if (us_forces_reserve(&res->forces, e->ncontact))
     return us_error_set(err, US_ERR_NOMEM, "out of memory storing contact forces");
   res->forces.ncontact = e->ncontact;
   for (int c = 0; c < e->ncontact; c++) res->forces.contact[c] = e->contact[c];

@@ -296,22 +296,6 @@ static void diff_last(us_Stability *w, int *nadded, int *nremoved) {
   }
 }
 
-/* Room for n forces in r->forces. Three components per force whatever the
- * dimension, so that a result reused across 2D and 3D structures stays
- * large enough. */
-static int forces_reserve(us_Forces *f, int n) {
-  if (n <= f->cap) return 0;
-  int cap = US_MAX(n, 8);
-  int *c = us_realloc(f->contact, (size_t)cap * sizeof(int));
-  if (!c) return -1;
-  f->contact = c;
-  double *v = us_realloc(f->f, (size_t)cap * 3 * sizeof(double));
-  if (!v) return -1;
-  f->f = v;
-  f->cap = cap;
-  return 0;
-}
-
 static void reset_result(us_StabilityResult *res) {
   res->verdict = US_UNDECIDED;
   res->forces.ncontact = 0;
@@ -439,7 +423,7 @@ static void certificate_failed(us_StabilityResult *res, const char *who) {
 static us_Status certify(us_Stability *w, us_StabilityResult *res, us_Error *err) {
   const us_EqSystem *e = &w->eq;
   int dim = w->s->dim;
-  if (forces_reserve(&res->forces, e->ncontact))
+  if (us_forces_reserve(&res->forces, e->ncontact))
     return us_error_set(err, US_ERR_NOMEM, "out of memory storing contact forces");
   res->forces.ncontact = e->ncontact;
   for (int c = 0; c < e->ncontact; c++) res->forces.contact[c] = e->contact[c];
