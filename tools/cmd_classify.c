@@ -242,6 +242,28 @@ static void text_hands(const us_Classification *c) {
            us_plan_status_name(c->hands_status));
 }
 
+/* 8. stands only with equality constraints (bilateral joints). */
+static void text_equality(const us_Structure *s, const us_Classification *c) {
+  printf("equality constraints: ");
+  if (c->stands) {
+    printf("no, it stands already with unilateral contacts\n");
+  } else if (c->equality > 0) {
+    printf("yes, stands only with equality constraints (bilateral joints: contact forces free "
+           "in sign, as with mortar)\n");
+  } else if (c->equality < 0) {
+    printf("unknown (%s)\n", c->stands_undecided ? "the unilateral test is undecided"
+                                                   : "the bilateral test is undecided");
+  } else {
+    printf("no, it does not stand even with bilateral joints: ");
+    if (c->bilateral_loose) printf("body "), put_body(s, c->bilateral_body), printf(" touches nothing");
+    else if (c->bilateral_mechanism) printf("a mechanism moves without opening or sliding a joint");
+    else printf("no forces balance gravity");
+    if (!c->bilateral_loose && c->bilateral_body >= 0)
+      printf(" (moving most: "), put_body(s, c->bilateral_body), printf(")");
+    printf("\n");
+  }
+}
+
 static void print_text(const us_Structure *s, const us_Classification *c, const ClassifyArgs *a) {
   const char *method = us_method_name(us_method_resolve(a->set.stability.method, s));
   text_stands(s, c, method);
@@ -251,6 +273,7 @@ static void print_text(const us_Structure *s, const us_Classification *c, const 
   text_sequence(s, c, a);
   text_group(c, a);
   text_hands(c);
+  text_equality(s, c);
   text_count(c);
   printf("time: %.3f s (%d bodies, %d contacts)\n", c->seconds, c->nbody, s->ncontact);
 }
@@ -310,6 +333,20 @@ static void json_group(const us_Classification *c) {
          group_word(c->group_status), c->group_bound, c->group_tests);
 }
 
+static void json_equality(const us_Structure *s, const us_Classification *c) {
+  const char *why = c->equality != 0 || c->stands ? "null"
+                    : c->bilateral_loose          ? "\"loose body\""
+                    : c->bilateral_mechanism      ? "\"mechanism\""
+                                                  : "\"infeasible\"";
+  printf(", \"equality\": %s, \"stands_bilateral\": %s, \"equality_reason\": ",
+         c->equality < 0 ? "null" : json_bool(c->equality),
+         c->stands_bilateral < 0 ? "null" : json_bool(c->stands_bilateral));
+  if (c->stands) printf("\"stands\"");
+  else printf("%s", why);
+  printf(", \"bilateral_body\": ");
+  json_body_or_null(s, c->bilateral_body);
+}
+
 static void json_count(const us_Classification *c) {
   printf(", \"count\": ");
   if (c->count) put_string(c->count);
@@ -333,11 +370,13 @@ static void print_json(const us_Structure *s, const us_Classification *c, const 
   if (c->sequence_status == US_PLAN_NONE)
     printf(", \"hands\": %d, \"hands_lower\": %d, \"hands_status\": \"%s\"", c->hands,
            c->hands_lower, us_plan_status_name(c->hands_status));
+  json_equality(s, c);
   json_count(c);
   printf(", \"undecided\": %s", json_bool(c->undecided));
   printf(", \"seconds\": %.6f, \"times\": {\"stands\": %.6f, \"friction\": %.6f, \"topdown\": %.6f, "
-         "\"sequence\": %.6f, \"group\": %.6f, \"count\": %.6f}}\n", c->seconds, c->t_stands,
-         c->t_friction, c->t_topdown, c->t_sequence, c->t_group, c->t_count);
+         "\"sequence\": %.6f, \"group\": %.6f, \"equality\": %.6f, \"count\": %.6f}}\n",
+         c->seconds, c->t_stands, c->t_friction, c->t_topdown, c->t_sequence, c->t_group,
+         c->t_equality, c->t_count);
 }
 
 int cmd_classify(int argc, char **argv) {

@@ -210,6 +210,19 @@ typedef struct us_Classification {
   int hands, hands_lower;
   long hands_tests;
   double t_hands;
+  /* 8. stands only with equality constraints (docs/classify.md): when it
+     does not stand, one test of the full structure with bilateral joints
+     (every contact force component free in sign, no friction cone):
+     equality 1 it stands so, 0 it stands already or not even so, -1
+     unknown (a test undecided); stands_bilateral the second test's verdict
+     (1, 0, -1 undecided or not run); when not even bilateral:
+     bilateral_body the body its evidence names (-1: none),
+     bilateral_loose 1 when that body touches nothing, bilateral_mechanism
+     1 when a mechanism (every joint closed, gravity doing work) was
+     checked without the solver */
+  int equality, stands_bilateral;
+  int bilateral_body, bilateral_loose, bilateral_mechanism;
+  double t_equality;
 } us_Classification;
 
 /* Classify structure s (finalized). set NULL: the defaults. Every class is

@@ -35,6 +35,13 @@
  *   exponential in K: 92 s for K = 10 on a 30-voussoir arch, in 422
  *   tests); a class cut there is unknown, with what was proven before the
  *   cut (K > group_bound).
+ *   8. stands only with equality constraints (the source's "made stable
+ *      only if their inequality constraints are made into equality
+ *      constraints"): when class 1 says it does not stand, one test of
+ *      the full structure with bilateral joints (us_stability_set_bilateral:
+ *      every contact force component free in sign, no cone), on CLP (or
+ *      lpsolve when asked). Its certificate is re-checked in that mode;
+ *      a "no" carries a checked mechanism that keeps every joint closed.
  *   6. frictionless, strong stability (every solution of the contact LCP
  *      has zero accelerations) and weak stability (some has) coincide:
  *      docs/classify.md gives the proof (Gauss's principle of least
@@ -54,6 +61,7 @@
  * the first error stops the driver and empties the result. */
 #include "core/core.h"
 #include "hands.h"
+#include "stability/stability.h"
 #include "hook.h"
 
 #include <math.h>
@@ -80,6 +88,8 @@ static void reset(us_Classification *c) {
   c->topdown = -1;
   c->dfs_status = c->sequence_status = c->group_status = US_PLAN_LIMIT;
   c->count_status = US_COUNT_REFUSED_TIME;
+  c->stands_bilateral = -1;
+  c->bilateral_body = -1;
 }
 
 void us_classification_free(us_Classification *c) {
@@ -258,6 +268,49 @@ static us_Status classify_hands(const us_Structure *s, const us_ClassifySettings
   return US_OK;
 }
 
+/* ------------------------------------ 8. only with equality constraints */
+
+/* Does any contact touch body b? */
+static int touches(const us_Structure *s, int b) {
+  for (int c = 0; c < s->ncontact; c++)
+    if (s->contacts[c].a == b || s->contacts[c].b == b) return 1;
+  return 0;
+}
+
+/* The full structure with bilateral joints, when it does not stand with
+ * unilateral contacts (class 1); the verdict's evidence into out. */
+static us_Status classify_equality(const us_Structure *s, const us_ClassifySettings *set,
+                                   us_Classification *out, us_Error *err) {
+  if (out->stands || out->stands_undecided) {
+    out->equality = out->stands ? 0 : -1;
+    return US_OK;
+  }
+  us_StabilitySettings stab = set->stability;
+  if (stab.method != US_METHOD_LPSOLVE) stab.method = US_METHOD_LP; /* an LP with +-columns */
+  us_Bitset full = {0};
+  if (us_structure_movable_set(s, &full))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory classifying");
+  us_Stability *w = us_stability_new(s, &stab, err);
+  us_StabilityResult res;
+  memset(&res, 0, sizeof res);
+  us_Status st = w ? US_OK : failed(err);
+  if (!st && us_stability_set_bilateral(w, 1))
+    st = us_error_set(err, US_ERR_USAGE, "classify: bilateral joints need an LP method");
+  if (!st) st = us_stability_test(w, &full, &res, err);
+  if (!st) {
+    int fell = res.verdict == US_UNSTABLE;
+    out->stands_bilateral = res.verdict == US_STABLE ? 1 : fell ? 0 : -1;
+    out->equality = out->stands_bilateral;
+    out->bilateral_body = fell ? res.unstable_body : -1;
+    out->bilateral_mechanism = fell && res.mechanism.nbody > 0 && res.mechanism.ok;
+    out->bilateral_loose = fell && res.unstable_body >= 0 && !touches(s, res.unstable_body);
+  }
+  us_stability_result_free(&res);
+  us_stability_free(w);
+  us_bitset_free(&full);
+  return st;
+}
+
 /* -------------------------------------------------------------- count */
 
 static us_Status classify_count(const us_Structure *s, const us_ClassifySettings *set,
@@ -305,7 +358,7 @@ us_Status us_classify(const us_Structure *s, const us_ClassifySettings *set,
   } steps[] = {{classify_stands, &out->t_stands},     {classify_friction, &out->t_friction},
                {classify_topdown, &out->t_topdown},   {classify_sequence, &out->t_sequence},
                {classify_group, &out->t_group},       {classify_hands, &out->t_hands},
-               {classify_count, &out->t_count}};
+               {classify_equality, &out->t_equality}, {classify_count, &out->t_count}};
   double t0 = us_now();
   out->nbody = us_structure_movable_count(s);
   for (size_t k = 0; k < sizeof steps / sizeof steps[0] && !st; k++) {
@@ -316,7 +369,8 @@ us_Status us_classify(const us_Structure *s, const us_ClassifySettings *set,
   out->seconds = us_now() - t0;
   out->undecided = out->stands_undecided || out->friction_undecided > 0 ||
                    out->dfs_undecided > 0 || out->sequence_status == US_PLAN_UNDECIDED ||
-                   out->group_status == US_PLAN_UNDECIDED;
+                   out->group_status == US_PLAN_UNDECIDED ||
+                   (!out->stands && !out->stands_undecided && out->equality < 0);
   if (st) us_classification_free(out);
   return st;
 }

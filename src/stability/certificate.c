@@ -159,7 +159,7 @@ static void body_residuals(const us_Structure *s, const Units *u, int i, const d
 /* Cone and sign measures of one force (normalized); F gets the normalized
  * force vector. Returns 0, or -1 if a component is not finite. */
 static int one_force(const us_Structure *s, const Units *u, const us_Contact *k, const double *f,
-                     double *F, double *cone, double *sign) {
+                     int bilateral, double *F, double *cone, double *sign) {
   int dim = s->dim;
   double fc[3] = {0.0, 0.0, 0.0};
   int zero = 1;
@@ -179,6 +179,7 @@ static int one_force(const us_Structure *s, const Units *u, const us_Contact *k,
   double scale = fast_norm3(F) + contact_floor(s, u, k);
   *cone = us_cone_distance(fc[0], dim == 2 ? fabs(fc[1]) : hypot(fc[1], fc[2]), k->mu) / scale;
   *sign = US_MAX(-fc[0], 0.0) / scale;
+  if (bilateral) *cone = *sign = 0.0; /* a joint: any force (docs/classify.md) */
   return 0;
 }
 
@@ -195,7 +196,8 @@ static us_CertCheck failed_check(void) {
 /* Pass 1: forces into the accumulators; cone and sign measures. Returns 0,
  * or -1 (r->worst_contact set) for an unusable contact or bad value. */
 static int add_forces(const us_Structure *s, const Units *u, const us_Bitset *present,
-                      const us_Forces *f, double *acc, unsigned char *seen, us_CertCheck *r) {
+                      const us_Forces *f, int bilateral, double *acc, unsigned char *seen,
+                      us_CertCheck *r) {
   double worst = 0.0; /* -1 unless something is violated */
   for (int i = 0; i < f->ncontact; i++) {
     int c = f->contact[i];
@@ -206,7 +208,7 @@ static int add_forces(const us_Structure *s, const Units *u, const us_Bitset *pr
     seen[c] = 1;
     const us_Contact *k = &s->contacts[c];
     double F[3], cone, sign;
-    if (one_force(s, u, k, f->f + (size_t)i * (size_t)s->dim, F, &cone, &sign)) {
+    if (one_force(s, u, k, f->f + (size_t)i * (size_t)s->dim, bilateral, F, &cone, &sign)) {
       r->worst_contact = c;
       return -1;
     }
@@ -243,6 +245,12 @@ static void residuals(const us_Structure *s, const Units *u, const us_Bitset *pr
 int us_certificate_check_buf(const us_Structure *s, const us_Bitset *present,
                              const us_Forces *f, double tol, double *acc, unsigned char *seen,
                              us_CertCheck *out) {
+  return us_certificate_check_mode(s, present, f, tol, 0, acc, seen, out);
+}
+
+int us_certificate_check_mode(const us_Structure *s, const us_Bitset *present,
+                              const us_Forces *f, double tol, int bilateral, double *acc,
+                              unsigned char *seen, us_CertCheck *out) {
   us_CertCheck r;
   memset(&r, 0, sizeof r);
   r.worst_body = r.worst_contact = -1;
@@ -253,7 +261,7 @@ int us_certificate_check_buf(const us_Structure *s, const us_Bitset *present,
     return -1;
   }
   Units u = units_of(s);
-  if (add_forces(s, &u, present, f, acc, seen, &r)) {
+  if (add_forces(s, &u, present, f, bilateral, acc, seen, &r)) {
     int c = r.worst_contact;
     *out = failed_check();
     out->worst_contact = c;
@@ -277,7 +285,7 @@ static void check_one_body(const us_Structure *s, const Units *u, const us_Bitse
     if (!usable(s, present, c)) continue;
     const us_Contact *k = &s->contacts[c];
     double F[3], cone, sign;
-    if (one_force(s, u, k, fc + (size_t)c * (size_t)s->dim, F, &cone, &sign)) {
+    if (one_force(s, u, k, fc + (size_t)c * (size_t)s->dim, 0, F, &cone, &sign)) {
       cone = sign = INFINITY;
       F[0] = F[1] = F[2] = 0.0;
     }
@@ -359,7 +367,8 @@ static void point_velocity(const us_Structure *s, const Units *u, const us_Mecha
  * velocity vr (of b against a): the normal part minus mu times the
  * tangential part's length, over the generator's length (the circular
  * cone in 3D, exactly; mu = INFINITY the half-space). */
-static double least_power(const us_Contact *k, const double *vr) {
+static double least_power(const us_Contact *k, const double *vr, int bilateral) {
+  if (bilateral) return -norm3(vr); /* a joint: the unit force against vr */
   double pn = k->n[0] * vr[0] + k->n[1] * vr[1] + k->n[2] * vr[2];
   double t[3] = {vr[0] - pn * k->n[0], vr[1] - pn * k->n[1], vr[2] - pn * k->n[2]};
   double pt = norm3(t);
@@ -374,7 +383,7 @@ static double least_power(const us_Contact *k, const double *vr) {
  * a moving body. */
 static double worst_contact_power(const us_Structure *s, const Units *u, const us_Bitset *present,
                                   const us_Mechanism *m, const int *slot, const int *list,
-                                  int nlist) {
+                                  int nlist, int bilateral) {
   double worst = 0.0;
   int n = list ? nlist : s->ncontact;
   for (int j = 0; j < n; j++) {
@@ -386,7 +395,7 @@ static double worst_contact_power(const us_Structure *s, const Units *u, const u
     if (qa >= 0) point_velocity(s, u, m, qa, k->p, va);
     if (qb >= 0) point_velocity(s, u, m, qb, k->p, vb);
     double vr[3] = {vb[0] - va[0], vb[1] - va[1], vb[2] - va[2]};
-    double p = least_power(k, vr);
+    double p = least_power(k, vr, bilateral);
     if (!isfinite(p)) return -INFINITY;
     worst = US_MIN(worst, p);
   }
@@ -410,21 +419,32 @@ static int normalize_mechanism(const us_Structure *s, const Units *u, const us_B
   return 0;
 }
 
-int us_mechanism_check_list(const us_Structure *s, const us_Bitset *present, us_Mechanism *m,
-                            double tol, int *slot, const int *list, int nlist) {
+static int mechanism_check_slots(const us_Structure *s, const us_Bitset *present, us_Mechanism *m,
+                                 double tol, int *slot, const int *list, int nlist,
+                                 int bilateral) {
   Units u = units_of(s);
   m->ok = 0;
   m->worst_power = INFINITY;
   if (m->nbody <= 0 || normalize_mechanism(s, &u, present, m)) return 0;
   for (int q = 0; q < m->nbody; q++) slot[m->body[q]] = q;
-  m->worst_power = worst_contact_power(s, &u, present, m, slot, list, nlist);
+  m->worst_power = worst_contact_power(s, &u, present, m, slot, list, nlist, bilateral);
   for (int q = 0; q < m->nbody; q++) slot[m->body[q]] = -1;
   m->ok = m->worst_power >= -tol;
   return m->ok;
 }
 
+int us_mechanism_check_list(const us_Structure *s, const us_Bitset *present, us_Mechanism *m,
+                            double tol, int *slot, const int *list, int nlist) {
+  return mechanism_check_slots(s, present, m, tol, slot, list, nlist, 0);
+}
+
 int us_mechanism_check(const us_Structure *s, const us_Bitset *present, us_Mechanism *m,
                        double tol) {
+  return us_mechanism_check_mode(s, present, m, tol, 0);
+}
+
+int us_mechanism_check_mode(const us_Structure *s, const us_Bitset *present, us_Mechanism *m,
+                            double tol, int bilateral) {
   if (!s || !present || !m) return 0;
   m->ok = 0;
   m->worst_power = INFINITY;
@@ -435,7 +455,7 @@ int us_mechanism_check(const us_Structure *s, const us_Bitset *present, us_Mecha
   int *slot = us_malloc((size_t)(s->nbody > 0 ? s->nbody : 1) * sizeof(int));
   if (!slot) return 0;
   for (int i = 0; i < s->nbody; i++) slot[i] = -1;
-  int ok = us_mechanism_check_list(s, present, m, tol, slot, NULL, 0);
+  int ok = mechanism_check_slots(s, present, m, tol, slot, NULL, 0, bilateral);
   us_free(slot);
   return ok;
 }

@@ -29,6 +29,19 @@ int us_certificate_check_buf(const us_Structure *s, const us_Bitset *present,
                              const us_Forces *f, double tol, double *acc, unsigned char *seen,
                              us_CertCheck *out);
 
+/* The check in a given mode: bilateral 1 checks the equilibrium residuals
+ * only (joints: every force component free in sign, no cone; classify's
+ * equality constraints); 0 is us_certificate_check_buf. */
+int us_certificate_check_mode(const us_Structure *s, const us_Bitset *present,
+                              const us_Forces *f, double tol, int bilateral, double *acc,
+                              unsigned char *seen, us_CertCheck *out);
+
+/* us_mechanism_check in a given mode: bilateral 1 asks every active
+ * contact touching a moving body for zero relative velocity (a joint can
+ * give any force, so any slip or separation lets it do negative work). */
+int us_mechanism_check_mode(const us_Structure *s, const us_Bitset *present, us_Mechanism *m,
+                            double tol, int bilateral);
+
 /* The local re-check of the local tests (local.c), with the same
  * measures: the equilibrium of each listed present movable body under the
  * forces fc (normalized by the total weight; dim components per

@@ -227,7 +227,27 @@ static int edge_count(const us_EqSystem *e, int ci) {
   return cs && cs->ang[c] ? cs->nang[c] : US_CONE_START;
 }
 
+/* Bilateral joints: +-n, +-t1 (+-t2), slots 0 .. 2 dim - 1, so every
+ * force component is free in sign whatever mu (classify's "stands only
+ * with equality constraints", docs/classify.md). */
+static void gen_bilateral(const us_EqSystem *e, us_EqGen *g, int ci) {
+  for (int k = 0; k < 2 * e->dim; k++) {
+    double cf[3] = {0.0, 0.0, 0.0};
+    cf[k / 2] = k % 2 ? -1.0 : 1.0;
+    gen_column(e, g, ci, k, cf);
+  }
+}
+
 int us_eq_generators(const us_EqSystem *e, double n_column_mu, us_EqGen *g) {
+  if (e->bilateral) {
+    int ncol = 2 * e->dim * e->ncontact;
+    if (gen_reserve(g, ncol, ncol * 2 * e->nw)) return -1;
+    g->ncol = 0;
+    g->nrow = e->nbody * e->nw;
+    g->start[0] = 0;
+    for (int c = 0; c < e->ncontact; c++) gen_bilateral(e, g, c);
+    return 0;
+  }
   int ncol = 0;
   for (int c = 0; c < e->ncontact; c++) {
     int k = gen_kinds(e->mu[c], n_column_mu);
@@ -253,7 +273,7 @@ int us_eq_generators(const us_EqSystem *e, double n_column_mu, us_EqGen *g) {
 
 int us_eq_gen_slot(const us_EqGen *g, int j) { return g->col_slot[j]; }
 
-int us_eq_gen_slots(int dim) { return dim == 2 ? 3 : 1 + US_CONE_MAX_EDGES; }
+int us_eq_gen_slots(int dim) { return dim == 2 ? 4 : 1 + US_CONE_MAX_EDGES; } /* 4: bilateral */
 
 void us_eq_gen_forces(const us_EqSystem *e, const us_EqGen *g, const double *l, double *f) {
   memset(f, 0, (size_t)e->ncontact * (size_t)e->dim * sizeof(double));

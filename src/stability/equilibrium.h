@@ -47,6 +47,9 @@ typedef struct us_EqSystem {
   double length_scale; /* torque rows are divided by this */
   const struct us_ConeSet *cones; /* 3D: the LP backends' polygonal cones
                                      (lp_gen.h); NULL: the inner ones */
+  int bilateral;       /* 1: bilateral joints (a contact's whole force is
+                          free in sign: +-n, +-t generators); set by the
+                          caller after us_eq_init, kept by the builds */
   int cap_body, cap_contact;
 } us_EqSystem;
 

@@ -30,6 +30,10 @@
  * side of the outer one there; stability.c alternates the two LPs and
  * refines where the outer forces leave the circle (docs/cones3d.md).
  *
+ * Bilateral joints (e->bilateral, classify's equality constraints): every
+ * contact gets +-n, +-t1 (+-t2) instead (slots 0 .. 2 dim - 1), so its
+ * force is free in sign and mu plays no part.
+ *
  * Slots: a column's key among its contact's columns (0: n), stable
  * between builds, so backends can keep a basis status per (contact, slot);
  * us_eq_gen_slots(dim) bounds them.

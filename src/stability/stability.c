@@ -62,6 +62,7 @@ struct us_Stability {
   void *ref;               /* the boundary band's referee: a CLP workspace, lazily */
   int refereeing;          /* run_backend serves the referee (scratch, no state kept) */
   us_ConeSet cones;        /* 3D: the polygonal friction cones (lp_gen.h) */
+  int bilateral;           /* bilateral joints (us_stability_set_bilateral) */
 };
 
 /* ------------------------------------------------------------ small API */
@@ -145,6 +146,14 @@ const us_StabilityInfo *us_stability_info(const us_Stability *w) { return &w->in
 
 void us_stability_set_skip_forces(us_Stability *w, int skip) {
   if (w) w->set.skip_forces = skip != 0;
+}
+
+int us_stability_set_bilateral(us_Stability *w, int on) {
+  if (!w) return -1;
+  if (on && w->be != &us_backend_clp && w->be != &us_backend_lpsolve) return -1;
+  w->bilateral = w->eq.bilateral = on != 0;
+  w->have_last = 0; /* the backend's columns change meaning */
+  return 0;
 }
 
 void us_stability_set_deadline(us_Stability *w, double deadline) {
@@ -429,8 +438,8 @@ static us_Status certify(us_Stability *w, us_StabilityResult *res, us_Error *err
   for (int c = 0; c < e->ncontact; c++) res->forces.contact[c] = e->contact[c];
   for (int j = 0; j < e->ncontact * dim; j++) res->forces.f[j] = w->f[j] * e->force_scale;
   double t0 = us_now();
-  us_certificate_check_buf(w->s, &w->cur, &res->forces, w->set.cert_tol, w->acc, w->seen,
-                           &res->check);
+  us_certificate_check_mode(w->s, &w->cur, &res->forces, w->set.cert_tol, w->bilateral, w->acc,
+                            w->seen, &res->check);
   w->info.check_time += us_now() - t0;
   if (!res->check.ok) certificate_failed(res, us_method_name(w->be->method));
   return US_OK;
@@ -488,7 +497,24 @@ static us_Status global_mechanism(us_Stability *w, us_StabilityResult *res, us_E
   if (!ny || !y) return US_OK;
   if (us_mechanism_from_ray(&res->mechanism, &w->eq, y, ny))
     return us_error_set(err, US_ERR_NOMEM, "out of memory storing a mechanism");
-  us_mechanism_check(w->s, &w->cur, &res->mechanism, w->set.cert_tol);
+  us_mechanism_check_mode(w->s, &w->cur, &res->mechanism, w->set.cert_tol, w->bilateral);
+  return US_OK;
+}
+
+/* Bilateral joints: the mechanism of a loose body (touching nothing), a
+ * fall along gravity, as a ray of w->eq (row block r), checked. */
+static us_Status loose_mechanism(us_Stability *w, int r, us_StabilityResult *res,
+                                 us_Error *err) {
+  const us_EqSystem *e = &w->eq;
+  size_t n = (size_t)e->nbody * (size_t)e->nw;
+  double *y = us_calloc(n, sizeof(double));
+  if (!y) return us_error_set(err, US_ERR_NOMEM, "out of memory storing a mechanism");
+  for (int k = 0; k < e->nw; k++) /* rhs is minus gravity's wrench */
+    y[(size_t)r * (size_t)e->nw + (size_t)k] = -e->rhs[(size_t)r * (size_t)e->nw + (size_t)k];
+  int bad = us_mechanism_from_ray(&res->mechanism, e, y, (int)n);
+  us_free(y);
+  if (bad) return us_error_set(err, US_ERR_NOMEM, "out of memory storing a mechanism");
+  us_mechanism_check_mode(w->s, &w->cur, &res->mechanism, w->set.cert_tol, w->bilateral);
   return US_OK;
 }
 
@@ -501,7 +527,7 @@ static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err)
     w->eq.ncontact = 0;
     return certify(w, res, err);
   }
-  if (w->local && !w->local_held_only) {
+  if (w->local && !w->local_held_only && !w->bilateral) { /* local tests: unilateral */
     int r = decide_local(w, res, err);
     if (r) return r < 0 ? (err->code ? err->code : US_ERR_NOMEM) : US_OK;
   }
@@ -512,9 +538,10 @@ static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err)
     res->verdict = US_UNSTABLE;
     res->unstable_body = loose;
     snprintf(res->note, sizeof res->note, "a body with weight touches nothing");
-    return US_OK;
+    return w->bilateral ? loose_mechanism(w, w->eq.row_of_body[loose], res, err) : US_OK;
   }
-  us_Status st = w->s->dim == 3 ? run_cones(w, res, err) : run_backend(w, res, err);
+  int cones = w->s->dim == 3 && !w->bilateral; /* joints have no cones */
+  us_Status st = cones ? run_cones(w, res, err) : run_backend(w, res, err);
   if (st) return st;
   if (res->verdict == US_STABLE) {
     st = certify(w, res, err);
@@ -563,7 +590,8 @@ static us_Status referee(us_Stability *w, us_StabilityResult *res, us_Error *err
   reset_result(res);
   w->info.band_referee++;
   w->refereeing = 1;
-  us_Status st = w->s->dim == 3 ? run_cones(w, res, err) : run_backend(w, res, err);
+  int cones = w->s->dim == 3 && !w->bilateral;
+  us_Status st = cones ? run_cones(w, res, err) : run_backend(w, res, err);
   w->refereeing = 0;
   if (!st && res->verdict == US_STABLE) st = certify(w, res, err);
   if (!st && res->verdict == US_UNSTABLE) st = global_mechanism(w, res, err);

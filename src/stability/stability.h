@@ -11,6 +11,15 @@
  * them; us_StabilitySettings.skip_forces sets the initial value). */
 void us_stability_set_skip_forces(us_Stability *w, int skip);
 
+/* Bilateral joints (on 1) for the workspace's later tests: every contact
+ * force component free in sign, no friction cone (the LP's generators
+ * +-n, +-t, lp_gen.h); certificates are checked in that mode (residuals
+ * only) and mechanisms must keep every contact closed and unslipping.
+ * The local tests are skipped. Only the LP methods (lp, lpsolve): -1 for
+ * any other, the workspace unchanged. classify's "stands only with
+ * equality constraints" (docs/classify.md). */
+int us_stability_set_bilateral(us_Stability *w, int on);
+
 /* Can the bodies reg[0..nreg) of `present` stand while every other body
  * of `present` is held still? res->verdict US_UNSTABLE: they cannot, and
  * res->mechanism is their mechanism, checked against the true cones (a
