@@ -7,11 +7,17 @@
  * dynamic programme over subsets, the count by ground connectivity),
  * the claim of docs/classify.md that frictionless strong and weak
  * stability coincide (LP and LCP verdicts on every sub-assembly, and the
- * LCP's accelerations from different starting points), argument errors
- * and out-of-memory paths. */
+ * LCP's accelerations from different starting points), the class "stands
+ * only with equality constraints" on known answers and against lp_solve on
+ * every sub-assembly of random piles (tests/piles.h), argument errors and
+ * out-of-memory paths. */
+#include "piles.h"
 #include "plan/hook.h"
 #include "scenes.h"
 #include "test.h"
+
+#include "stability/certificate.h" /* the bilateral re-check, run again here */
+#include "stability/stability.h"   /* us_stability_set_bilateral */
 
 #include "stability/lcp.h" /* the LCP solver, driven directly by the Gauss tests */
 #include "stability/lcp_sys.h"
@@ -246,6 +252,198 @@ static void overhang_stands_for_no_mu(void) {
   CHECK(c.count && !strcmp(c.count, "3"));
   us_classification_free(&c);
   us_structure_free(s);
+}
+
+/* ------------------------------------ stands only with equality constraints */
+
+/* Class 8 of one structure: equality, stands_bilateral (0 when it stands:
+ * the bilateral test is not run, -1 then). */
+static void check_equality(us_Structure *s, int stands, int equality, int bilateral) {
+  CHECK(s);
+  us_Classification c;
+  CHECK(classify(s, NULL, &c));
+  CHECK_INT(c.stands, ==, stands);
+  CHECK_INT(c.equality, ==, equality);
+  CHECK_INT(c.stands_bilateral, ==, bilateral);
+  CHECK(!c.undecided);
+  if (bilateral == 0) /* not even bilateral: the evidence was checked */
+    CHECK(c.bilateral_loose || c.bilateral_mechanism);
+  us_classification_free(&c);
+  us_structure_free(s);
+}
+
+/* Hand-derived answers. Bilateral joints: every contact point carries a
+ * free force (normal and tangential, either sign); a face contact is two
+ * such points (its ends), so it transmits any force and moment: two bodies
+ * on a face act as one rigid body; a single point transmits no moment. */
+static void equality_known_answers(void) {
+  /* the overhang: plank [0.2, 2.7] x [1, 1.2] on the pier [0, 1]^2; the
+     plank's centre x = 1.45 is past the pier's corner x = 1, so it tips
+     (no push at x in [0.2, 1] has a moment about its centre of the right
+     sign). Bilateral: moments about x = 1: the joint at x = 0.2 pulls down
+     with 0.45 / 0.8 of the plank's weight; the pier and plank (centre
+     (0.5 * 1 + 1.45 * 0.5) / 1.5 = 0.82 in [0, 1]) stand on the ground
+     -> yes */
+  check_equality(overhang(), 0, 1, 1);
+  /* a column stands already -> no */
+  check_equality(scene_column(5), 1, 0, -1);
+  /* the arch of arch_needs_a_group stands -> no */
+  check_equality(arch(10, 3.0, 0.5, 0.5), 1, 0, -1);
+  /* an overhang stack (no counterweight): 1 x 0.25 blocks at x0 = 0, 0.6,
+     1.2: the top's centre 1.7 is past the middle's edge 1.6, so it tips;
+     bilateral: every joint is a face (overlaps of 0.4), so the stack is
+     one rigid body held by the ground face [0, 1] -> yes */
+  us_Structure *s = us_structure_new(2);
+  for (int i = 0; i < 3; i++) {
+    char id[8];
+    snprintf(id, sizeof id, "s%d", i);
+    scene_box(s, id, 0.6 * i, 0.25 * i, 1.0, 0.25, 1.0);
+  }
+  check_equality(scene_seal(s), 0, 1, 1);
+  /* a block touching nothing (the pier stands, the cloud 2 away from
+     everything falls whatever joints are) -> no, a loose body */
+  s = us_structure_new(2);
+  scene_box(s, "pier", 0, 0, 1, 1, 1.0);
+  scene_box(s, "cloud", 3, 3, 1, 1, 1.0);
+  s = scene_seal(s);
+  CHECK(s);
+  us_Classification c;
+  CHECK(classify(s, NULL, &c));
+  CHECK(!c.stands && c.equality == 0 && c.stands_bilateral == 0 && c.bilateral_loose);
+  CHECK_INT(c.bilateral_body, ==, us_structure_find_body(s, "cloud"));
+  us_classification_free(&c);
+  us_structure_free(s);
+  /* a quadrilateral on its vertex (0, 0): the one point joint gives a
+     force through (0, 0) and no moment; the centre of mass is off the
+     vertical through it (x = -0.03 from the area-weighted triangles), so
+     gravity turns it about (0, 0): a mechanism even bilateral -> no */
+  s = us_structure_new(2);
+  const double quad[8] = {0, 0, 1, 1, 0.2, 2, -1.3, 1};
+  scene_polygon(s, "d", 4, quad, 0);
+  s = scene_seal(s);
+  CHECK(s && s->ncontact == 1);
+  CHECK(fabs(s->bodies[0].com[0]) > 0.01);
+  CHECK(classify(s, NULL, &c));
+  CHECK(!c.stands && c.equality == 0 && c.stands_bilateral == 0 && !c.bilateral_loose);
+  CHECK(c.bilateral_mechanism);
+  us_classification_free(&c);
+  us_structure_free(s);
+}
+
+/* The overhang's bilateral certificate pulls (a negative normal): it
+ * passes the bilateral re-check and fails the unilateral one; the LCP
+ * methods refuse bilateral joints. */
+static void bilateral_certificate_modes(void) {
+  us_Structure *s = overhang();
+  CHECK(s);
+  us_StabilitySettings set = us_stability_default_settings();
+  us_Stability *w = us_stability_new(s, &set, NULL);
+  CHECK(w && us_stability_set_bilateral(w, 1) == 0);
+  us_StabilityResult res;
+  us_stability_result_init(&res);
+  CHECK(us_stability_test_full(w, &res, NULL) == US_OK);
+  CHECK_INT(res.verdict, ==, US_STABLE);
+  CHECK(res.check.ok && res.forces.ncontact > 0);
+  us_Bitset all = {0};
+  CHECK(us_structure_movable_set(s, &all) == 0);
+  double acc[US_CERT_ACC * 2];
+  unsigned char seen[16];
+  CHECK(s->ncontact <= 16);
+  us_CertCheck bi, uni = us_certificate_check(s, &all, &res.forces, set.cert_tol);
+  us_certificate_check_mode(s, &all, &res.forces, set.cert_tol, 1, acc, seen, &bi);
+  CHECK(bi.ok && !uni.ok);
+  CHECK(uni.max_sign_violation > set.cert_tol); /* the pull, refused */
+  us_bitset_free(&all);
+  us_stability_result_free(&res);
+  us_stability_free(w);
+  set.method = US_METHOD_LCP;
+  w = us_stability_new(s, &set, NULL);
+  CHECK(w && us_stability_set_bilateral(w, 1) == -1);
+  us_stability_free(w);
+  us_structure_free(s);
+}
+
+/* The verdicts of every subset (n <= 10) with joints (bilateral 1) or
+ * contacts; with joints, every stable claim's forces re-checked here in
+ * that mode and (CLP) every unstable one carrying a checked mechanism. */
+static signed char *joint_verdicts(const us_Structure *s, us_Method method, int bilateral,
+                                   int *bad) {
+  unsigned N = 1u << s->nbody;
+  signed char *v = us_malloc(N);
+  us_StabilitySettings set = us_stability_default_settings();
+  set.method = method;
+  us_Stability *w = us_stability_new(s, &set, NULL);
+  if (!v || !w || us_stability_set_bilateral(w, bilateral)) {
+    us_free(v);
+    us_stability_free(w);
+    return NULL;
+  }
+  us_StabilityResult res;
+  us_stability_result_init(&res);
+  us_Bitset b;
+  us_bitset_init(&b, s->nbody);
+  double *acc = us_malloc(US_CERT_ACC * (size_t)s->nbody * sizeof(double));
+  unsigned char *seen = us_malloc((size_t)s->ncontact + 1);
+  for (unsigned m = 0; m < N; m++) {
+    b.w[0] = m;
+    v[m] = us_stability_test(w, &b, &res, NULL) == US_OK ? res.verdict == US_STABLE : -1;
+    if (res.verdict == US_UNDECIDED) v[m] = -1;
+    if (!bilateral) continue;
+    if (res.verdict == US_STABLE) {
+      us_CertCheck ck;
+      us_certificate_check_mode(s, &b, &res.forces, set.cert_tol, 1, acc, seen, &ck);
+      *bad += !ck.ok;
+    }
+    if (res.verdict == US_UNSTABLE && method == US_METHOD_LP) /* lp_solve gives no ray */
+      *bad += !(res.mechanism.nbody > 0 && res.mechanism.ok);
+  }
+  us_free(acc);
+  us_free(seen);
+  us_bitset_free(&b);
+  us_stability_result_free(&res);
+  us_stability_free(w);
+  return v;
+}
+
+/* On every sub-assembly of random piles: joints stand whenever contacts
+ * do (a superset: a unilateral solution is a bilateral one), CLP and
+ * lp_solve (the independent reference) agree on the bilateral verdict,
+ * every bilateral certificate and mechanism passes the re-check; and the
+ * case "joints only" occurs. */
+static void bilateral_superset_on_piles(void) {
+  unsigned long long rng = 0x5eedb11a7e1aULL;
+  long subsets = 0, only_joints = 0, neither = 0;
+  int bad = 0, disagree = 0, lost = 0, undecided = 0;
+  for (int t = 0; t < BRUTE_TRIALS / 10; t++) {
+    us_Structure *s = pile_random(&rng, 4 + t % 5);
+    if (!s) continue;
+    signed char *uni = joint_verdicts(s, US_METHOD_LP, 0, &bad);
+    signed char *clp = joint_verdicts(s, US_METHOD_LP, 1, &bad);
+    signed char *lps = joint_verdicts(s, US_METHOD_LPSOLVE, 1, &bad);
+    CHECK(uni && clp && lps);
+    for (unsigned m = 0; uni && clp && lps && m < (1u << s->nbody); m++) {
+      subsets++;
+      if (uni[m] < 0 || clp[m] < 0 || lps[m] < 0) {
+        undecided++;
+        continue;
+      }
+      lost += uni[m] && !clp[m];
+      disagree += clp[m] != lps[m];
+      only_joints += !uni[m] && clp[m];
+      neither += !clp[m];
+    }
+    us_free(uni);
+    us_free(clp);
+    us_free(lps);
+    us_structure_free(s);
+  }
+  printf("  %ld subsets: %ld stand only with joints, %ld not even so\n", subsets, only_joints,
+         neither);
+  CHECK_INT(lost, ==, 0);
+  CHECK_INT(disagree, ==, 0);
+  CHECK_INT(bad, ==, 0);
+  CHECK_INT(undecided, ==, 0);
+  CHECK(only_joints > 0 && neither > 0);
 }
 
 /* The probe's limit: unknown only when no move failed before it. */
@@ -898,7 +1096,8 @@ static void out_of_memory_is_clean(void) {
 
 US_TEST_MAIN(T(column_is_topdown), T(cantilever_needs_backtracking),
              T(leaning_slabs_need_friction_and_pairs), T(arch_needs_a_group),
-             T(ramp_needs_tan_alpha), T(overhang_stands_for_no_mu), T(topdown_probe_limit), T(time_limit_leaves_classes_unknown), T(count_refusal_is_reported),
+             T(ramp_needs_tan_alpha), T(overhang_stands_for_no_mu), T(equality_known_answers),
+             T(bilateral_certificate_modes), T(bilateral_superset_on_piles), T(topdown_probe_limit), T(time_limit_leaves_classes_unknown), T(count_refusal_is_reported),
              T(classes_match_brute_force), T(frictionless_verdicts_agree),
              T(frictionless_accelerations_unique), T(argument_errors), T(undecided_tests_decide_no_class),
              T(out_of_memory_is_clean))

@@ -39,9 +39,10 @@
  *      only if their inequality constraints are made into equality
  *      constraints"): when class 1 says it does not stand, one test of
  *      the full structure with bilateral joints (us_stability_set_bilateral:
- *      every contact force component free in sign, no cone), on CLP (or
- *      lpsolve when asked). Its certificate is re-checked in that mode;
- *      a "no" carries a checked mechanism that keeps every joint closed.
+ *      every contact force component free in sign, no cone), on CLP
+ *      whatever the method (its Farkas ray is the mechanism). Its
+ *      certificate is re-checked in that mode; a "no" carries a checked
+ *      mechanism that keeps every joint closed, or a body touching nothing.
  *   6. frictionless, strong stability (every solution of the contact LCP
  *      has zero accelerations) and weak stability (some has) coincide:
  *      docs/classify.md gives the proof (Gauss's principle of least
@@ -286,7 +287,7 @@ static us_Status classify_equality(const us_Structure *s, const us_ClassifySetti
     return US_OK;
   }
   us_StabilitySettings stab = set->stability;
-  if (stab.method != US_METHOD_LPSOLVE) stab.method = US_METHOD_LP; /* an LP with +-columns */
+  stab.method = US_METHOD_LP; /* an LP with +-columns; CLP's Farkas ray is the mechanism */
   us_Bitset full = {0};
   if (us_structure_movable_set(s, &full))
     return us_error_set(err, US_ERR_NOMEM, "out of memory classifying");

@@ -33,7 +33,8 @@ contains "$T/out" "top-down: yes" "column is top-down"
 contains "$T/out" "sequence: yes" "column has a sequence"
 contains "$T/out" "group: smallest K = 1" "column: K = 1"
 contains "$T/out" "count: 6 connected" "column: count 6"
-[ "$(wc -l <"$T/out")" -eq 8 ] && ok "one line per class and a time line" || bad "$(wc -l <"$T/out") lines"
+contains "$T/out" "equality constraints: no, it stands already" "column: no equality class"
+[ "$(wc -l <"$T/out")" -eq 9 ] && ok "one line per class and a time line" || bad "$(wc -l <"$T/out") lines"
 
 # the cantilever: highest first fails, the DFS finds an order
 expect 0 "classify cantilever" -- "$CLI" classify "$DATA/cantilever.json"
@@ -102,8 +103,30 @@ expect 0 "classify overhang" -- "$CLI" classify "$T/overhang.json"
 contains "$T/out" 'stands: no (lp: body "plank" cannot be held)' "overhang: the plank named"
 contains "$T/out" "stands for no mu up to 1000" "overhang: no mu"
 contains "$T/out" "group: no sequence for any K: the full structure does not stand" "overhang: no K"
+# stands only with equality constraints: the joint at x = 0.2 can pull
+# (tests/test_plan_classify.c, equality_known_answers)
+contains "$T/out" "equality constraints: yes, stands only with equality constraints" "overhang: joints hold it"
 expect 0 "classify overhang --json" -- "$CLI" classify "$T/overhang.json" --json
 json_is "$T/out" '.stands == false and .unstable_body == "plank" and .mu_critical == null and .min_group == null and .group_status == "unstable" and .topdown == false' "overhang: JSON"
+json_is "$T/out" '.equality == true and .stands_bilateral == true and .equality_reason == null' "overhang: JSON equality"
+
+# not even with joints: a block touching nothing, a block on one vertex
+cat >"$T/cloud.json" <<'EOF'
+{"friction": 0.5, "bodies": [
+  {"id": "pier", "polygon": [[0, 0], [1, 0], [1, 1], [0, 1]]},
+  {"id": "cloud", "polygon": [[3, 3], [4, 3], [4, 4], [3, 4]]}]}
+EOF
+expect 0 "classify a loose block" -- "$CLI" classify "$T/cloud.json"
+contains "$T/out" 'equality constraints: no, it does not stand even with bilateral joints: body "cloud" touches nothing' "loose: named"
+expect 0 "classify a loose block --json" -- "$CLI" classify "$T/cloud.json" --json
+json_is "$T/out" '.equality == false and .stands_bilateral == false and .equality_reason == "loose body" and .bilateral_body == "cloud"' "loose: JSON"
+cat >"$T/vertex.json" <<'EOF'
+{"friction": 0.5, "bodies": [{"id": "d", "polygon": [[0, 0], [1, 1], [0.2, 2], [-1.3, 1]]}]}
+EOF
+expect 0 "classify a block on a vertex" -- "$CLI" classify "$T/vertex.json" --json
+json_is "$T/out" '.equality == false and .equality_reason == "mechanism" and .stands == false' "vertex: a mechanism even with joints"
+expect 0 "classify leaning --json: stands, so no" -- "$CLI" classify "$DATA/leaning.json" --json
+json_is "$T/out" '.equality == false and .stands_bilateral == null and .equality_reason == "stands"' "leaning: stands already"
 
 # ids with quotes, backslashes and control characters are escaped
 cat >"$T/weird.json" <<'EOF'
@@ -113,7 +136,7 @@ cat >"$T/weird.json" <<'EOF'
 EOF
 expect 0 "classify odd ids" -- "$CLI" classify "$T/weird.json"
 contains "$T/out" 'blocked: "le\"ft\\", "ri\u0001g\u000aht\u0009' "text: ids escaped"
-[ "$(wc -l <"$T/out")" -eq 9 ] && ok "no raw newline from an id" || bad "an id broke a line"
+[ "$(wc -l <"$T/out")" -eq 10 ] && ok "no raw newline from an id" || bad "an id broke a line"
 expect 0 "classify odd ids --json" -- "$CLI" classify "$T/weird.json" --json
 json_is "$T/out" '.blocked == ["le\"ft\\", "ri\u0001g\nht\t\u00e9"]' "json: ids round-trip"
 
