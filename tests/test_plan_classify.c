@@ -11,6 +11,7 @@
  * only with equality constraints" on known answers and against lp_solve on
  * every sub-assembly of random piles (tests/piles.h), argument errors and
  * out-of-memory paths. */
+#include "extrude.h"
 #include "piles.h"
 #include "plan/hook.h"
 #include "scenes.h"
@@ -327,6 +328,19 @@ static void equality_known_answers(void) {
   CHECK(!c.stands && c.equality == 0 && c.stands_bilateral == 0 && !c.bilateral_loose);
   CHECK(c.bilateral_mechanism);
   us_classification_free(&c);
+  /* 3D, the same extruded 1 deep and turned: the overhang's joint is a
+     face (four corners) -> yes; the quadrilateral rests on an edge (two
+     points on one line, no moment about it) -> no, a mechanism */
+  us_Structure *o = overhang();
+  CHECK(o);
+  check_equality(test_extrude(o, 1.0, 0.3, 0.0, 0.0), 0, 1, 1);
+  us_structure_free(o);
+  us_Structure *e = test_extrude(s, 1.0, 0.3, 0.0, 0.0);
+  CHECK(e);
+  CHECK(classify(e, NULL, &c));
+  CHECK(!c.stands && c.equality == 0 && c.stands_bilateral == 0 && c.bilateral_mechanism);
+  us_classification_free(&c);
+  us_structure_free(e);
   us_structure_free(s);
 }
 
