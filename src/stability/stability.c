@@ -153,6 +153,7 @@ int us_stability_set_bilateral(us_Stability *w, int on) {
   if (on && w->be != &us_backend_clp && w->be != &us_backend_lpsolve) return -1;
   w->bilateral = w->eq.bilateral = on != 0;
   w->have_last = 0; /* the backend's columns change meaning */
+  if (w->local) us_local_forget(w->local); /* its base forces were of the other mode */
   return 0;
 }
 
@@ -545,7 +546,7 @@ static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err)
   if (st) return st;
   if (res->verdict == US_STABLE) {
     st = certify(w, res, err);
-    if (!st && w->local && !w->local_held_only && res->verdict == US_STABLE)
+    if (!st && w->local && !w->local_held_only && !w->bilateral && res->verdict == US_STABLE)
       us_local_set_base(w->local, &w->cur, &w->eq, w->f);
     return st;
   }
