@@ -56,6 +56,7 @@ const us_Hatch us_hatches[US_NHATCH] = {
 
 static const us_Rgb kSandstone = {217, 199, 163}, kLeftOut = {228, 228, 228};
 static const us_Rgb kBlack = {0, 0, 0}, kWhite = {255, 255, 255};
+static const us_Rgb kUnplaced = {246, 246, 246}, kHand = {196, 0, 150};
 
 typedef us_SceneView View; /* render.h */
 
@@ -77,6 +78,7 @@ typedef struct Info {
   us_SceneBody *proto; /* 3D: each body's paint and label text */
   us_Labels labels;    /* resolved: IDS, STEPS or NONE */
   int falls;           /* the body marked as falling, or -1 */
+  int nstate[3];       /* bodies per US_HAND_* (r->hand_state) */
   double title_h;
   Legend legend;
 } Info;
@@ -155,6 +157,12 @@ static us_Status check_settings(const us_Structure *s, const us_RenderSettings *
   in->labels = !r->show_labels ? US_LABELS_NONE
                : r->labels == US_LABELS_AUTO ? (r->norder > 0 ? US_LABELS_STEPS : US_LABELS_IDS)
                                              : r->labels;
+  for (int i = 0; r->hand_state && i < s->nbody; i++) {
+    if (r->hand_state[i] > US_HAND_HELD)
+      return us_error_set(err, US_ERR_USAGE, "render: bad hand state %d of body '%s'",
+                          r->hand_state[i], us_id_text(s->bodies[i].id).s);
+    in->nstate[r->hand_state[i]] += !s->bodies[i].fixed;
+  }
   for (int i = 0; i < s->nbody; i++) {
     in->nfixed += s->bodies[i].fixed != 0;
     in->nleft += !s->bodies[i].fixed && in->step[i] == 0;
@@ -283,10 +291,31 @@ static double step_t(int step, int n) {
 static us_Paint body_paint(const us_Structure *s, const us_RenderSettings *r, const Info *in,
                            int i) {
   if (s->bodies[i].fixed) return hatched(US_HATCH_FIXED);
+  if (r->hand_state && r->hand_state[i] == US_HAND_UNPLACED) return solid(kUnplaced);
   if (in->step[i] < 0) return hatched(US_HATCH_BLOCKED);
   if (us_scene_removed(r, in->step, i)) return solid(kWhite); /* gone when it falls */
   if (r->norder > 0 && in->step[i]) return solid(us_ramp(step_t(in->step[i], in->nsteps)));
   return solid(r->norder > 0 ? kLeftOut : kSandstone);
+}
+
+/* A failure's mark, else held by a hand. */
+static int body_mark(const us_RenderSettings *r, const Info *in, int i) {
+  int m = us_scene_mark(r, in->step, i, in->falls);
+  return !m && r->hand_state && r->hand_state[i] == US_HAND_HELD ? US_MARK_HELD : m;
+}
+
+/* Hand marks (rings) at the held bodies' centres of mass, around their
+ * labels, sized from the dots. */
+static void put_hands(us_Scene *sc, const View *v, const us_Structure *s,
+                      const us_RenderSettings *r) {
+  sc->hand_color = kHand;
+  sc->hand_r = US_MAX(7.0, 6.0 * sc->dot_r);
+  for (int i = 0; i < s->nbody; i++)
+    if (r->hand_state[i] == US_HAND_HELD && !s->bodies[i].fixed) {
+      double p[3] = {s->bodies[i].com[0], s->bodies[i].com[1], s->dim == 3 ? s->bodies[i].com[2] : 0.0};
+      us_scene_px(v, p, &sc->hands[2 * sc->nhand], &sc->hands[2 * sc->nhand + 1]);
+      sc->nhand++;
+    }
 }
 
 /* Where a body's label goes: its centre of mass once finalized, else the
@@ -305,8 +334,10 @@ static void label_point(const us_Structure *s, int i, double *x, double *y) {
 }
 
 /* Step number or id (in->labels), when it fits. */
-static void body_label(us_SceneBody *sb, const View *v, const us_Structure *s, const Info *in) {
+static void body_label(us_SceneBody *sb, const View *v, const us_Structure *s,
+                       const us_RenderSettings *r, const Info *in) {
   const us_Body *b = &s->bodies[sb->body];
+  if (r->hand_state && r->hand_state[sb->body] == US_HAND_UNPLACED && !b->fixed) return;
   int step = in->step[sb->body], numbered = in->labels == US_LABELS_STEPS && step > 0;
   if (!numbered && in->labels != US_LABELS_IDS) return;
   snprintf(sb->num, sizeof sb->num, "%d", step);
@@ -328,8 +359,8 @@ static void put_bodies3(us_Scene *sc, const View *v, const us_Structure *s,
   for (int i = 0; i < s->nbody; i++) {
     in->proto[i].body = i;
     in->proto[i].paint = body_paint(s, r, in, i);
-    in->proto[i].mark = us_scene_mark(r, in->step, i, in->falls);
-    body_label(&in->proto[i], v, s, in);
+    in->proto[i].mark = body_mark(r, in, i);
+    body_label(&in->proto[i], v, s, r, in);
   }
   us_scene3_bodies(sc, v, s, in->proto);
 }
@@ -350,8 +381,8 @@ static void put_bodies(us_Scene *sc, const View *v, const us_Structure *s,
       sc->pts[2 * first + 1] = px_y(v, b->verts[2 * k + 1]);
     }
     sb->paint = body_paint(s, r, in, i);
-    sb->mark = us_scene_mark(r, in->step, i, in->falls);
-    body_label(sb, v, s, in);
+    sb->mark = body_mark(r, in, i);
+    body_label(sb, v, s, r, in);
   }
   sc->nbody = s->nbody;
 }
@@ -442,6 +473,10 @@ static void legend_lines(Legend *lg, const us_Structure *s, const us_RenderSetti
     snprintf(lg->line[n++], sizeof lg->line[0], "%d in the removal order, %d not%s", r->norder,
              s->nbody - in->nfixed - r->norder, steps);
   if (r->failure) us_scene_failure_line(lg->line[n++], sizeof lg->line[0], s, r);
+  if (r->hand_state)
+    snprintf(lg->line[n++], sizeof lg->line[0], "at this action: %d placed, %d of them held "
+             "(hand marks), %d not placed yet (faint)", in->nstate[US_HAND_PLACED] +
+             in->nstate[US_HAND_HELD], in->nstate[US_HAND_HELD], in->nstate[US_HAND_UNPLACED]);
   if (r->nblocked > 0)
     snprintf(lg->line[n++], sizeof lg->line[0], "%d cannot be removed", r->nblocked);
   if (in->fmax > 0) {
@@ -518,9 +553,10 @@ static us_Status alloc_parts(us_Scene *sc, const us_Structure *s, const us_Rende
   sc->dots = us_malloc((2 * (size_t)s->ncontact + 1) * sizeof *sc->dots);
   sc->arrows = us_malloc((8 * nf + 1) * sizeof *sc->arrows);
   sc->arrow_kind = us_malloc(2 * nf + 1);
+  sc->hands = us_malloc((2 * (size_t)s->nbody + 1) * sizeof *sc->hands);
   in->drawn = us_malloc((nf + 1) * sizeof *in->drawn);
   if (in->step && in->proto && sc->bodies && sc->lines && sc->pts && sc->dots && sc->arrows &&
-      sc->arrow_kind && in->drawn && !us_scene_alloc_failure(sc, s, r))
+      sc->arrow_kind && sc->hands && in->drawn && !us_scene_alloc_failure(sc, s, r))
     return US_OK;
   return us_error_set(err, US_ERR_NOMEM, "render: out of memory");
 }
@@ -540,6 +576,7 @@ static void fill_scene(us_Scene *sc, const View *v, const us_Structure *s,
   if (r->show_contacts) put_dots(sc, v, s);
   if (in->fmax > 0) put_arrows(sc, v, in->drawn, in->ndrawn, in->fmax);
   if (r->failure) us_scene_mechanism(sc, v, s, r->failure);
+  if (r->hand_state) put_hands(sc, v, s, r);
   put_legend(sc, r, in);
 }
 
@@ -583,5 +620,6 @@ void us_scene_free(us_Scene *sc) {
   us_free(sc->mech);
   us_free(sc->ghost_start);
   us_free(sc->ghost_pts);
+  us_free(sc->hands);
   memset(sc, 0, sizeof *sc);
 }
