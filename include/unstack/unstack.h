@@ -1009,6 +1009,10 @@ typedef struct us_HtmlSettings {
                                r's order, shown in the page (a failing step in
                                red) */
   us_VerifyReport verify;
+  int hands;                /* a plan with hands: the slider steps through its
+                               nactions actions (docs/viewer.md, "Hands") */
+  const us_Action *actions;
+  int nactions;
 } us_HtmlSettings;
 US_API us_HtmlSettings us_html_default_settings(void); /* no title, found, nothing verified */
 /* r: the order, steps and blocked bodies (the drawing fields are not used);
