@@ -38,6 +38,24 @@ contains "$T/w.svg" "hands: 2 (proven minimal)" "the title names H and its proof
   bad "hand marks without --action"
 expect 0 "render --action as PNG" -- "$CLI" render "$T/arch.json" --plan "$T/plan.json" --action 3 -o "$T/a.png"
 
+# actions that let the arch fall (one hand, each voussoir released at
+# once): exit 1, the picture written, the title names the failing action
+python3 - "$T/plan.json" "$T/fall.json" <<'PY' || bad "write the falling plan"
+import json, sys
+p = json.load(open(sys.argv[1]))
+placed = [b for v, b in p["actions"] if v == "place"]
+p["hands"], p["hands_lower"] = 1, 1
+p["actions"] = [a for b in placed for a in (["place", b], ["release", b])]
+json.dump(p, open(sys.argv[2], "w"))
+PY
+expect 1 "render of actions that let the arch fall" -- "$CLI" render "$T/arch.json" --plan "$T/fall.json" -o "$T/fall.svg"
+contains "$T/fall.svg" "the actions fail at action" "the title names the failing action"
+contains "$T/err" "the actions are invalid" "stderr says the actions are invalid"
+
+# the viewer page of a hands plan carries H and the actions
+expect 0 "render --html of a hands plan" -- "$CLI" render "$T/arch.json" --plan "$T/plan.json" -o "$T/h.html"
+contains "$T/h.html" '"actions":[["place",' "the page carries the actions"
+
 # 3D: a dome planned with 2 hands
 "$CLI" generate dome --courses 2 --segments 6 -o "$T/dome.json" >/dev/null || bad "generate dome"
 "$CLI" plan "$T/dome.json" --hands 2 -o "$T/dplan.json" >/dev/null || bad "plan dome --hands 2"
