@@ -36,7 +36,9 @@ static const char head[] =
     "structure that does not stand has the body that falls outlined red and its\n"
     "mechanism drawn (arrows, and in 2D a dashed ghost of the moving bodies). A\n"
     "found plan is verified: an invalid order is drawn with its failing step\n"
-    "marked. A plan of another structure (its fingerprint) is refused.\n";
+    "marked. A plan of another structure (its fingerprint) is refused. A plan\n"
+    "with hands is numbered as placed; --action K draws it after K actions, held\n"
+    "bodies marked (docs/render.md, \"Hands\").\n";
 static const char tail[] =
     "exit: 0 written, 1 --forces given but the structure does not stand, or verify\n"
     "finds the plan's order invalid (written, the failing step marked),\n"
@@ -131,7 +133,9 @@ static int parse(int argc, char **argv, CliCommon *c, RenderArgs *a) {
                    "the interactive viewer, one self-contained page (also chosen by an output "
                    "name ending in .html; docs/viewer.md)"),
       CLI_TEXT("--plan", "PLAN.json", &a->plan, "colour and number bodies by removal order"),
-      CLI_INT("--action", "K", &a->action, "a plan with hands: the state after its first K actions (0 to their number): placed bodies drawn, held ones marked, the rest faint", CLI_ATLEAST(0), .given = &a->action_given, .need = "a whole number of actions, 0 or more"),
+      CLI_INT("--action", "K", &a->action, "a plan with hands: the state after its first K "
+              "actions (0 to their number): placed bodies drawn, held ones marked, the rest faint",
+              CLI_ATLEAST(0), .given = &a->action_given, .need = "a whole number, 0 or more"),
       CLI_CALL("--forces", NULL, a, set_forces,
                "draw the contact forces that hold the structure: one arrow per contact "
                "(contacts, the default), or one per pair of touching bodies at the resultant's "
@@ -269,7 +273,8 @@ static void hands_title(char *what, size_t n, const us_Structure *s, const us_Pl
   }
   if (pf->hands_lower >= pf->hands) snprintf(proof, sizeof proof, "proven minimal");
   else if (pf->hands_lower <= 0) snprintf(proof, sizeof proof, "not proven minimal");
-  else if (pf->hands_lower == pf->hands - 1) snprintf(proof, sizeof proof, "%d unproven", pf->hands - 1);
+  else if (pf->hands_lower == pf->hands - 1)
+    snprintf(proof, sizeof proof, "%d unproven", pf->hands - 1);
   else snprintf(proof, sizeof proof, "%d to %d unproven", pf->hands_lower, pf->hands - 1);
   snprintf(what, n, "plan found, %d actions (numbered as placed); hands: %d (%s)", pf->nactions,
            pf->hands, proof);
@@ -432,17 +437,18 @@ static int outcome(const RenderArgs *a, const us_StabilityResult *res, const Pla
 
 /* --action K needs a plan with actions, K in 0..their number; exit 2 else. */
 static int check_action(const RenderArgs *a, const us_PlanFile *pf, us_Error *err) {
-  if (!a->plan) return us_error_set(err, US_ERR_USAGE, "--action needs --plan with a plan of hands"), CLI_EXIT_ERR;
-  if (pf->nactions == 0)
-    return us_error_set(err, US_ERR_USAGE, "%s: --action needs a plan with actions (plan --hands H|auto)",
-                    a->plan), CLI_EXIT_ERR;
-  if (a->format == FMT_HTML)
-    return us_error_set(err, US_ERR_USAGE, "--action draws one picture (SVG or PNG); the viewer steps "
-                    "through every action"), CLI_EXIT_ERR;
-  if (a->action > pf->nactions)
-    return us_error_set(err, US_ERR_USAGE, "--action %d: %s has %d actions (0 to %d)", a->action, a->plan,
-                    pf->nactions, pf->nactions), CLI_EXIT_ERR;
-  return 0;
+  if (!a->plan) us_error_set(err, US_ERR_USAGE, "--action needs --plan with a plan of hands");
+  else if (pf->nactions == 0)
+    us_error_set(err, US_ERR_USAGE, "%s: --action needs a plan with actions (plan --hands H|auto)",
+                 a->plan);
+  else if (a->format == FMT_HTML)
+    us_error_set(err, US_ERR_USAGE, "--action draws one picture (SVG or PNG); the viewer steps "
+                 "through every action");
+  else if (a->action > pf->nactions)
+    us_error_set(err, US_ERR_USAGE, "--action %d: %s has %d actions (0 to %d)", a->action, a->plan,
+                 pf->nactions, pf->nactions);
+  else return 0;
+  return CLI_EXIT_ERR;
 }
 
 int cmd_render(int argc, char **argv) {

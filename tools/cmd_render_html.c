@@ -167,7 +167,8 @@ int cli_render_html(const us_Structure *s, const char *plan, const us_PlanFile *
   us_certs_free(certs, plan ? pf->ngroups + 1 : 0);
   if (st) return CLI_EXIT_ERR;
   if (invalid && h.nactions)
-    fprintf(stderr, "unstack render: verify: the actions are invalid (unstack verify says where)\n");
+    fprintf(stderr, "unstack render: verify: the actions are invalid (unstack verify says "
+            "where)\n");
   else if (invalid)
     fprintf(stderr, "unstack render: verify: the order is invalid (shown in red in the page)\n");
   else if (h.verified && h.verify.undecided)

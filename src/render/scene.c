@@ -312,7 +312,8 @@ static void put_hands(us_Scene *sc, const View *v, const us_Structure *s,
   sc->hand_r = US_MAX(7.0, 6.0 * sc->dot_r);
   for (int i = 0; i < s->nbody; i++)
     if (r->hand_state[i] == US_HAND_HELD && !s->bodies[i].fixed) {
-      double p[3] = {s->bodies[i].com[0], s->bodies[i].com[1], s->dim == 3 ? s->bodies[i].com[2] : 0.0};
+      const double *c = s->bodies[i].com;
+      double p[3] = {c[0], c[1], s->dim == 3 ? c[2] : 0.0};
       us_scene_px(v, p, &sc->hands[2 * sc->nhand], &sc->hands[2 * sc->nhand + 1]);
       sc->nhand++;
     }
