@@ -923,15 +923,16 @@ static void build_order(void) {
   us_free(svg);
 }
 
-/* Hand states (a plan with hands at one action): one hand mark per held
- * body, a held outline, the unplaced body faint and unlabelled, the
- * legend's counts; a state out of range is US_ERR_USAGE. */
+/* Hand states (a plan with hands at one action; the fixed pier ignores
+ * its own): one hand mark per held body, a held outline, the unplaced body
+ * faint and unlabelled, the legend's counts; a state out of range is
+ * US_ERR_USAGE. */
 static void hands(void) {
   us_Error err;
   us_Structure *s = scene(&err);
   CHECK(s != NULL);
   int order[3] = {0, 1, 2};
-  unsigned char state[3] = {US_HAND_PLACED, US_HAND_HELD, US_HAND_UNPLACED};
+  unsigned char state[4] = {US_HAND_PLACED, US_HAND_HELD, US_HAND_UNPLACED, US_HAND_UNPLACED};
   us_RenderSettings r = us_render_default_settings();
   r.order = order, r.norder = 3, r.order_builds = 1, r.hand_state = state;
   char *svg = svg_of(s, &r, "hands.svg");
