@@ -64,6 +64,7 @@ typedef struct us_SceneBody {
   double depth;       /* 3D: centroid along the view direction (larger is
                          nearer the viewer); 0 in 2D */
   int mark;           /* US_MARK_*: the failure marks (SVG classes) */
+  int hidden;         /* 3D proto: 1 leaves the body out (not placed yet) */
 } us_SceneBody;
 /* A body that falls (class "falls": a thick red outline); one removed at
  * the failing step (class "failing-step": a dashed red outline); one held

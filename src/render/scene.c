@@ -27,6 +27,9 @@
  * view's larger side. Labels are sized to fit their
  * body and left out when under 5 px; dots and outlines thin out with the
  * typical body size, so a wall of a thousand bricks stays legible.
+ * r->hand_state (a plan with hands at one action): bodies not placed yet
+ * faint and unlabelled (3D: left out), their contact dots left out; held
+ * bodies outlined in magenta with a ring (the hand mark) at their centre.
  *
  * 3D structures (src/render/scene3.c): world points are projected onto the
  * view's right and up axes (us_SceneView; 2D: x and y as they are) before
@@ -288,10 +291,15 @@ static double step_t(int step, int n) {
   return n > 1 ? (double)(step - 1) / (double)(n - 1) : 0.0;
 }
 
+/* Not placed yet at this action (a plan with hands): faint, or in 3D left out. */
+static int unplaced(const us_Structure *s, const us_RenderSettings *r, int i) {
+  return i >= 0 && r->hand_state && r->hand_state[i] == US_HAND_UNPLACED && !s->bodies[i].fixed;
+}
+
 static us_Paint body_paint(const us_Structure *s, const us_RenderSettings *r, const Info *in,
                            int i) {
   if (s->bodies[i].fixed) return hatched(US_HATCH_FIXED);
-  if (r->hand_state && r->hand_state[i] == US_HAND_UNPLACED) return solid(kUnplaced);
+  if (unplaced(s, r, i)) return solid(kUnplaced);
   if (in->step[i] < 0) return hatched(US_HATCH_BLOCKED);
   if (us_scene_removed(r, in->step, i)) return solid(kWhite); /* gone when it falls */
   if (r->norder > 0 && in->step[i]) return solid(us_ramp(step_t(in->step[i], in->nsteps)));
@@ -338,7 +346,7 @@ static void label_point(const us_Structure *s, int i, double *x, double *y) {
 static void body_label(us_SceneBody *sb, const View *v, const us_Structure *s,
                        const us_RenderSettings *r, const Info *in) {
   const us_Body *b = &s->bodies[sb->body];
-  if (r->hand_state && r->hand_state[sb->body] == US_HAND_UNPLACED && !b->fixed) return;
+  if (unplaced(s, r, sb->body)) return;
   int step = in->step[sb->body], numbered = in->labels == US_LABELS_STEPS && step > 0;
   if (!numbered && in->labels != US_LABELS_IDS) return;
   snprintf(sb->num, sizeof sb->num, "%d", step);
@@ -361,6 +369,7 @@ static void put_bodies3(us_Scene *sc, const View *v, const us_Structure *s,
     in->proto[i].body = i;
     in->proto[i].paint = body_paint(s, r, in, i);
     in->proto[i].mark = body_mark(r, in, i);
+    in->proto[i].hidden = unplaced(s, r, i);
     body_label(&in->proto[i], v, s, r, in);
   }
   us_scene3_bodies(sc, v, s, in->proto);
@@ -390,10 +399,15 @@ static void put_bodies(us_Scene *sc, const View *v, const us_Structure *s,
 
 /* -------------------------------------------------------- dots, arrows */
 
-static void put_dots(us_Scene *sc, const View *v, const us_Structure *s) {
-  for (int c = 0; c < s->ncontact; c++)
-    us_scene_px(v, s->contacts[c].p, &sc->dots[2 * c], &sc->dots[2 * c + 1]);
-  sc->ndot = s->ncontact;
+/* Contact points, but those of bodies not placed yet. */
+static void put_dots(us_Scene *sc, const View *v, const us_Structure *s,
+                     const us_RenderSettings *r) {
+  for (int c = 0; c < s->ncontact; c++) {
+    const us_Contact *k = &s->contacts[c];
+    if (unplaced(s, r, k->a) || unplaced(s, r, k->b)) continue;
+    us_scene_px(v, k->p, &sc->dots[2 * sc->ndot], &sc->dots[2 * sc->ndot + 1]);
+    sc->ndot++;
+  }
   sc->dot_color = (us_Rgb){34, 34, 34};
 }
 
@@ -476,8 +490,9 @@ static void legend_lines(Legend *lg, const us_Structure *s, const us_RenderSetti
   if (r->failure) us_scene_failure_line(lg->line[n++], sizeof lg->line[0], s, r);
   if (r->hand_state)
     snprintf(lg->line[n++], sizeof lg->line[0], "at this action: %d placed, %d of them held "
-             "(hand marks), %d not placed yet (faint)", in->nstate[US_HAND_PLACED] +
-             in->nstate[US_HAND_HELD], in->nstate[US_HAND_HELD], in->nstate[US_HAND_UNPLACED]);
+             "(hand marks), %d not placed yet (%s)", in->nstate[US_HAND_PLACED] +
+             in->nstate[US_HAND_HELD], in->nstate[US_HAND_HELD], in->nstate[US_HAND_UNPLACED],
+             s->dim == 3 ? "left out" : "faint");
   if (r->nblocked > 0)
     snprintf(lg->line[n++], sizeof lg->line[0], "%d cannot be removed", r->nblocked);
   if (in->fmax > 0) {
@@ -574,7 +589,7 @@ static void fill_scene(us_Scene *sc, const View *v, const us_Structure *s,
   line_sizes(sc, v, s);
   if (s->dim == 3) put_bodies3(sc, v, s, r, in);
   else put_bodies(sc, v, s, r, in);
-  if (r->show_contacts) put_dots(sc, v, s);
+  if (r->show_contacts) put_dots(sc, v, s, r);
   if (in->fmax > 0) put_arrows(sc, v, in->drawn, in->ndrawn, in->fmax);
   if (r->failure) us_scene_mechanism(sc, v, s, r->failure);
   if (r->hand_state) put_hands(sc, v, s, r);

@@ -67,6 +67,10 @@ for k,(v,b) in enumerate(a,1):
 set -- $k
 expect 0 "3D render --action $1" -- "$CLI" render "$T/dome.json" --plan "$T/dplan.json" --action "$1" -o "$T/d.svg"
 [ "$(grep -o 'class="held"' "$T/d.svg" | wc -l)" -eq "$2" ] && ok "3D: $2 hand marks" || bad "3D: hand marks"
+"$CLI" render "$T/dome.json" --plan "$T/dplan.json" --action 0 -o "$T/d0.svg" || bad "3D --action 0"
+[ "$(grep -c '<polygon' "$T/d0.svg")" -eq 0 ] && ok "3D: nothing placed, no faces drawn" ||
+  bad "3D: faces drawn before anything is placed"
+[ "$(grep -c '<polygon' "$T/d.svg")" -gt 0 ] && ok "3D: the placed bodies' faces drawn" || bad "3D: no faces"
 expect 0 "3D render --action as PNG" -- "$CLI" render "$T/dome.json" --plan "$T/dplan.json" --action "$1" -o "$T/d.png"
 
 # bad --action values: exit 2, nothing written
