@@ -923,7 +923,39 @@ static void build_order(void) {
   us_free(svg);
 }
 
+/* Hand states (a plan with hands at one action; the fixed pier ignores
+ * its own): one hand mark per held body, a held outline, the unplaced body
+ * faint and unlabelled, the legend's counts; a state out of range is
+ * US_ERR_USAGE. */
+static void hands(void) {
+  us_Error err;
+  us_Structure *s = scene(&err);
+  CHECK(s != NULL);
+  int order[3] = {0, 1, 2};
+  unsigned char state[4] = {US_HAND_PLACED, US_HAND_HELD, US_HAND_UNPLACED, US_HAND_UNPLACED};
+  us_RenderSettings r = us_render_default_settings();
+  r.order = order, r.norder = 3, r.order_builds = 1, r.hand_state = state;
+  char *svg = svg_of(s, &r, "hands.svg");
+  CHECK(svg != NULL);
+  CHECK_INT(count(svg, "class=\"held\""), ==, 1);
+  CHECK_INT(count(svg, "class=\"held-body\""), ==, 1);
+  CHECK(strstr(svg, "2 placed, 1 of them held") && strstr(svg, "1 not placed yet"));
+  CHECK(strstr(svg, ">2</text>") && !strstr(svg, ">3</text>"));
+  CHECK(strstr(svg, "fill=\"#f6f6f6\"") != NULL);
+  us_free(svg);
+  state[2] = US_HAND_HELD;
+  svg = svg_of(s, &r, "hands2.svg");
+  CHECK(svg && count(svg, "class=\"held\"") == 2);
+  us_free(svg);
+  state[0] = 7;
+  char path[128];
+  CHECK(test_tmp_path("hands-bad.svg", path, sizeof path));
+  CHECK_INT(us_render_svg(s, &r, path, &err), ==, US_ERR_USAGE);
+  CHECK(access(path, F_OK) != 0);
+  us_structure_free(s);
+}
+
 US_TEST_MAIN(T(checker), T(plain), T(with_order), T(with_forces), T(errors), T(point_bodies), T(empty), T(hostile_ids),
              T(png_plan_colours), T(ramp_lightness), T(png_forces_arrows), T(png_none_blocked),
              T(png_sizes), T(png_errors), T(labels), T(unstable_marked), T(failing_step),
-             T(build_order))
+             T(build_order), T(hands))

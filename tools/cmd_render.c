@@ -36,7 +36,9 @@ static const char head[] =
     "structure that does not stand has the body that falls outlined red and its\n"
     "mechanism drawn (arrows, and in 2D a dashed ghost of the moving bodies). A\n"
     "found plan is verified: an invalid order is drawn with its failing step\n"
-    "marked. A plan of another structure (its fingerprint) is refused.\n";
+    "marked. A plan of another structure (its fingerprint) is refused. A plan\n"
+    "with hands is numbered as placed; --action K draws it after K actions, held\n"
+    "bodies marked (docs/render.md, \"Hands\").\n";
 static const char tail[] =
     "exit: 0 written, 1 --forces given but the structure does not stand, or verify\n"
     "finds the plan's order invalid (written, the failing step marked),\n"
@@ -58,6 +60,7 @@ static const struct {
 typedef struct {
   const char *file, *out, *plan, *title;
   int forces, time_limit_given;
+  int action, action_given; /* --action K: the state after K actions */
   us_ForceSet force_set;
   int format; /* a Format */
   us_RenderSettings r;
@@ -69,6 +72,7 @@ typedef struct {
   us_VerifyReport rep;
   us_StabilityResult rest; /* the remainder after the failing step */
   us_RenderFailure fail;
+  int hands_invalid; /* a plan with actions: verify_actions' failure (rep) */
 } PlanCheck;
 
 /* --labels ids|steps|none. */
@@ -129,6 +133,9 @@ static int parse(int argc, char **argv, CliCommon *c, RenderArgs *a) {
                    "the interactive viewer, one self-contained page (also chosen by an output "
                    "name ending in .html; docs/viewer.md)"),
       CLI_TEXT("--plan", "PLAN.json", &a->plan, "colour and number bodies by removal order"),
+      CLI_INT("--action", "K", &a->action, "a plan with hands: the state after its first K "
+              "actions (0 to their number): placed bodies drawn, held ones marked, the rest faint",
+              CLI_ATLEAST(0), .given = &a->action_given, .need = "a whole number, 0 or more"),
       CLI_CALL("--forces", NULL, a, set_forces,
                "draw the contact forces that hold the structure: one arrow per contact "
                "(contacts, the default), or one per pair of touching bodies at the resultant's "
@@ -224,12 +231,64 @@ static int representative(const us_Structure *s, RenderArgs *a, const CliCommon 
   return st ? -1 : 0;
 }
 
+/* A plan with hands (docs/render.md, "Hands"): placements in order, and
+ * each body's US_HAND_* state after the first --action actions. */
+typedef struct HandsView {
+  int *placed, nplaced;
+  unsigned char *state; /* NULL without --action */
+  int held;
+} HandsView;
+
+static int hands_view(const us_Structure *s, const us_PlanFile *pf, const RenderArgs *a,
+                      HandsView *hv, us_Error *err) {
+  hv->placed = us_malloc(((size_t)pf->nactions + 1) * sizeof *hv->placed);
+  hv->state = a->action_given ? us_calloc((size_t)s->nbody + 1, 1) : NULL;
+  if (!hv->placed || (a->action_given && !hv->state))
+    return us_error_set(err, US_ERR_NOMEM, "render: out of memory"), -1;
+  for (int k = 0; k < pf->nactions; k++) {
+    const us_Action *x = &pf->actions[k];
+    if (x->verb == US_ACTION_PLACE) hv->placed[hv->nplaced++] = x->body;
+    if (hv->state && k < a->action)
+      hv->state[x->body] = x->verb == US_ACTION_RELEASE ? US_HAND_PLACED : US_HAND_HELD;
+  }
+  for (int i = 0; hv->state && i < s->nbody; i++) hv->held += hv->state[i] == US_HAND_HELD;
+  return 0;
+}
+
+/* "arch.json — 10 bodies, action 3 of 20: place b8; 1 of H=2 hands held",
+ * or the whole plan with its number of hands and whether it is minimal. */
+static void hands_title(char *what, size_t n, const us_Structure *s, const us_PlanFile *pf,
+                        const RenderArgs *a, const PlanCheck *pc, const HandsView *hv) {
+  char proof[64];
+  if (pc->hands_invalid) {
+    snprintf(what, n, "the actions fail at action %d of %d", pc->rep.failed_step, pf->nactions);
+    return;
+  }
+  if (a->action_given) {
+    const us_Action *x = a->action > 0 ? &pf->actions[a->action - 1] : NULL;
+    snprintf(what, n, "action %d of %d: %s %s; %d of H=%d hands held", a->action, pf->nactions,
+             x ? us_action_name(x->verb) : "nothing", x ? us_id_text(s->bodies[x->body].id).s
+                                                        : "placed", hv->held, pf->hands);
+    return;
+  }
+  if (pf->hands_lower >= pf->hands) snprintf(proof, sizeof proof, "proven minimal");
+  else if (pf->hands_lower <= 0) snprintf(proof, sizeof proof, "not proven minimal");
+  else if (pf->hands_lower == pf->hands - 1)
+    snprintf(proof, sizeof proof, "%d unproven", pf->hands - 1);
+  else snprintf(proof, sizeof proof, "%d to %d unproven", pf->hands_lower, pf->hands - 1);
+  snprintf(what, n, "plan found, %d actions (numbered as placed); hands: %d (%s)", pf->nactions,
+           pf->hands, proof);
+}
+
 /* "pyramid.json — 91 bodies, plan found, 91 steps" */
 static void make_title(char *buf, size_t n, const RenderArgs *a, const us_Structure *s,
-                       const us_PlanFile *pf, const us_StabilityResult *res, const PlanCheck *pc) {
+                       const us_PlanFile *pf, const us_StabilityResult *res, const PlanCheck *pc,
+                       const HandsView *hv) {
   const char *base = strrchr(a->file, '/');
-  char what[128];
-  if (pc->invalid && pc->rep.failed_step >= 0)
+  char what[160];
+  if (a->plan && pf->nactions > 0)
+    hands_title(what, sizeof what, s, pf, a, pc, hv);
+  else if (pc->invalid && pc->rep.failed_step >= 0)
     snprintf(what, sizeof what, "the plan fails at step %d of %d", pc->rep.failed_step + 1,
              pf->ngroups);
   else if (pc->invalid && pc->rep.full_unstable)
@@ -295,6 +354,13 @@ static int test_rest(const us_Structure *s, const us_PlanFile *pf, int k, const 
 static int check_plan(const us_Structure *s, const us_PlanFile *pf, CliCommon *c, PlanCheck *pc,
                       us_Error *err) {
   if (pf->status != US_PLAN_FOUND) return 0;
+  if (pf->nactions > 0) { /* the actions replayed, as `unstack verify` does */
+    if (us_verify_actions(s, &c->stab, pf->hands, pf->actions, pf->nactions, &pc->rep, err))
+      return -1;
+    pc->verified = 1;
+    pc->hands_invalid = !pc->rep.ok && !pc->rep.undecided;
+    return 0;
+  }
   int r = cli_verify_plan(s, pf, c, &pc->rep, err);
   if (r < 0) return -1;
   pc->verified = 1;
@@ -308,8 +374,17 @@ static int check_plan(const us_Structure *s, const us_PlanFile *pf, CliCommon *c
   return 0;
 }
 
-/* The order to number: the plan's, or a none plan's build order. */
-static void set_order(us_RenderSettings *r, const us_PlanFile *pf, int html) {
+/* The order to number: the plan's, a none plan's build order, or a hands
+ * plan's placements. */
+static void set_order(us_RenderSettings *r, const us_PlanFile *pf, int html, const HandsView *hv) {
+  if (!html && hv->placed) {
+    r->order = hv->placed;
+    r->norder = r->ngroups = hv->nplaced;
+    r->group_start = NULL;
+    r->order_builds = 1;
+    r->hand_state = hv->state;
+    return;
+  }
   int build = !html && pf->status == US_PLAN_NONE && pf->nbuildable > 0;
   r->order = build ? pf->buildable : pf->order;
   r->norder = build ? pf->nbuildable : pf->n;
@@ -320,10 +395,11 @@ static void set_order(us_RenderSettings *r, const us_PlanFile *pf, int html) {
 
 /* Settings from the plan, forces and title; then the output. */
 static int draw(RenderArgs *a, const us_Structure *s, const us_PlanFile *pf,
-                const us_StabilityResult *res, PlanCheck *pc, CliCommon *c, us_Error *err) {
+                const us_StabilityResult *res, PlanCheck *pc, const HandsView *hv, CliCommon *c,
+                us_Error *err) {
   char title[512];
-  make_title(title, sizeof title, a, s, pf, res, pc);
-  set_order(&a->r, pf, a->format == FMT_HTML);
+  make_title(title, sizeof title, a, s, pf, res, pc, hv);
+  set_order(&a->r, pf, a->format == FMT_HTML, hv);
   if (a->format != FMT_HTML) a->r.failure = failure_of(a, res, pc);
   a->r.blocked = pf->blocked;
   a->r.nblocked = pf->nblocked;
@@ -336,6 +412,11 @@ static int draw(RenderArgs *a, const us_Structure *s, const us_PlanFile *pf,
 /* Exit code once the picture is written: an invalid order, --forces that
  * could not be drawn. */
 static int outcome(const RenderArgs *a, const us_StabilityResult *res, const PlanCheck *pc) {
+  if (pc->hands_invalid) {
+    fprintf(stderr, "unstack render: verify: the actions are invalid (action %d)\n",
+            pc->rep.failed_step);
+    return CLI_EXIT_NO;
+  }
   if (pc->invalid) {
     fprintf(stderr, "unstack render: verify: the order is invalid (%s; marked in the picture)\n",
             pc->rep.failed_step >= 0 ? "a failing step" : pc->rep.full_unstable
@@ -352,6 +433,22 @@ static int outcome(const RenderArgs *a, const us_StabilityResult *res, const Pla
   }
   fprintf(stderr, "unstack render: stability undecided (%s): no forces drawn\n", res->note);
   return CLI_EXIT_UNDECIDED;
+}
+
+/* --action K needs a plan with actions, K in 0..their number; exit 2 else. */
+static int check_action(const RenderArgs *a, const us_PlanFile *pf, us_Error *err) {
+  if (!a->plan) us_error_set(err, US_ERR_USAGE, "--action needs --plan with a plan of hands");
+  else if (pf->nactions == 0)
+    us_error_set(err, US_ERR_USAGE, "%s: --action needs a plan with actions (plan --hands H|auto)",
+                 a->plan);
+  else if (a->format == FMT_HTML)
+    us_error_set(err, US_ERR_USAGE, "--action draws one picture (SVG or PNG); the viewer steps "
+                 "through every action");
+  else if (a->action > pf->nactions)
+    us_error_set(err, US_ERR_USAGE, "--action %d: %s has %d actions (0 to %d)", a->action, a->plan,
+                 pf->nactions, pf->nactions);
+  else return 0;
+  return CLI_EXIT_ERR;
 }
 
 int cmd_render(int argc, char **argv) {
@@ -379,17 +476,22 @@ int cmd_render(int argc, char **argv) {
   memset(&pc, 0, sizeof pc);
   us_stability_result_init(&pc.rest);
   int code = CLI_EXIT_OK;
+  HandsView hv = {0};
   if (a.plan && cli_read_plan("render", s, a.file, a.plan, &pf, &err)) code = CLI_EXIT_ERR;
+  if (!code && a.action_given) code = check_action(&a, &pf, &err);
+  if (!code && pf.nactions > 0 && hands_view(s, &pf, &a, &hv, &err)) code = CLI_EXIT_ERR;
   int verdict_needed = a.forces || (!a.plan && a.format != FMT_HTML);
   if (!code && verdict_needed && full_test(s, &a, &c, &res, &err)) code = CLI_EXIT_ERR;
   if (!code && a.plan && a.format != FMT_HTML && check_plan(s, &pf, &c, &pc, &err))
     code = CLI_EXIT_ERR;
   if (!code && representative(s, &a, &c, &res, &err)) code = CLI_EXIT_ERR;
-  if (!code) code = draw(&a, s, &pf, &res, &pc, &c, &err);
+  if (!code) code = draw(&a, s, &pf, &res, &pc, &hv, &c, &err);
   if (code == CLI_EXIT_ERR) cli_error("render", &err);
   else if (code == CLI_EXIT_OK) code = outcome(&a, &res, &pc);
   us_stability_result_free(&pc.rest);
   us_stability_result_free(&res);
+  us_free(hv.placed);
+  us_free(hv.state);
   us_plan_file_free(&pf);
   us_structure_free(s);
   return code;

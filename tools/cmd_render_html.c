@@ -139,7 +139,14 @@ int cli_render_html(const us_Structure *s, const char *plan, const us_PlanFile *
   us_RenderSettings rr = *r;
   us_Forces *certs = NULL;
   int invalid = 0, *order = NULL;
-  if (plan) {
+  if (plan && pf->nactions > 0) { /* hands: the actions replayed, no step forces */
+    h.status = pf->status;
+    h.hands = pf->hands, h.actions = pf->actions, h.nactions = pf->nactions;
+    us_VerifyReport rep;
+    if (us_verify_actions(s, &c->stab, pf->hands, pf->actions, pf->nactions, &rep, err))
+      return CLI_EXIT_ERR;
+    invalid = !rep.ok && !rep.undecided;
+  } else if (plan) {
     h.status = pf->status;
     if (us_plan_read_certs(s, plan, pf, &certs, err)) return CLI_EXIT_ERR;
     h.certs = certs;
@@ -159,7 +166,10 @@ int cli_render_html(const us_Structure *s, const char *plan, const us_PlanFile *
   us_free(order);
   us_certs_free(certs, plan ? pf->ngroups + 1 : 0);
   if (st) return CLI_EXIT_ERR;
-  if (invalid)
+  if (invalid && h.nactions)
+    fprintf(stderr, "unstack render: verify: the actions are invalid (unstack verify says "
+            "where)\n");
+  else if (invalid)
     fprintf(stderr, "unstack render: verify: the order is invalid (shown in red in the page)\n");
   else if (h.verified && h.verify.undecided)
     fprintf(stderr, "unstack render: verify: undecided (%s); shown in the page\n", h.verify.note);

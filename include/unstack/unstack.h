@@ -912,6 +912,7 @@ typedef struct us_PlanFile {
   int *buildable, *build_start; /* [nbuildable], [nbuild + 1] offsets */
   int nbuild;          /* steps of the build */
   int hands;          /* "hands" (0: absent, an order-only plan) */
+  int hands_lower;    /* "hands_lower" (0: absent): smaller H proven impossible */
   int nactions;       /* "actions": ids checked, sequence checked by verify */
   us_Action *actions;
 } us_PlanFile;
@@ -976,7 +977,12 @@ typedef struct us_RenderSettings {
                              buildable part of a none plan, numbered 1 =
                              placed first */
   const us_RenderFailure *failure; /* why it does not stand (NULL: no mark) */
+  const unsigned char *hand_state; /* NULL, or per body at one action of a
+                             plan with hands: US_HAND_* (docs/render.md) */
 } us_RenderSettings;
+/* A body at one action: not placed yet (drawn faint, unlabelled), placed,
+ * held (outlined, and a hand mark at its centre: SVG class "held"). */
+enum { US_HAND_UNPLACED = 0, US_HAND_PLACED, US_HAND_HELD };
 US_API us_RenderSettings us_render_default_settings(void);
 /* Draw s (docs/render.md) as SVG or PNG, written atomically: on any error
  * (bad settings: US_ERR_USAGE, before the file is opened) nothing is
@@ -1003,6 +1009,10 @@ typedef struct us_HtmlSettings {
                                r's order, shown in the page (a failing step in
                                red) */
   us_VerifyReport verify;
+  int hands;                /* a plan with hands: the slider steps through its
+                               nactions actions (docs/viewer.md, "Hands") */
+  const us_Action *actions;
+  int nactions;
 } us_HtmlSettings;
 US_API us_HtmlSettings us_html_default_settings(void); /* no title, found, nothing verified */
 /* r: the order, steps and blocked bodies (the drawing fields are not used);

@@ -84,9 +84,8 @@ us_Status us_plan_read_actions(const us_IoCtx *c, const us_Structure *s, json_t 
   if (!h && !arr) return US_OK;
   if (!h || !arr) return us_io_bad(c, "", "\"hands\" and \"actions\" go together");
   us_Status st = read_count(c, h, "hands", 1, 64, &out->hands);
-  int lower;
   json_t *lo = json_object_get(root, "hands_lower");
-  if (!st && lo) st = read_count(c, lo, "hands_lower", 1, 65, &lower);
+  if (!st && lo) st = read_count(c, lo, "hands_lower", 1, 65, &out->hands_lower);
   if (!st && !json_is_array(arr)) st = us_io_bad(c, "", "actions: expected an array");
   if (st) return st;
   size_t n = json_array_size(arr);

@@ -25,6 +25,9 @@
  *   force_set the admissible set the forces are ("solver", "margin", ...)
  *   verify    null, or us_VerifyReport's fields (failed_step, unstable_body,
  *             undecided_step: -1 when none)
+ *   hands     a plan with hands: its H (0 without actions)
+ *   actions   null, or [[verb, body]] in assembly order (place, grab,
+ *             release): the slider then steps through them
  *
  * Safety invariant: the JSON sits in a <script type="application/json">
  * element, whose content ends at the first "</script" (any case) and
@@ -145,6 +148,10 @@ static us_Status check_all(const us_Structure *s, const us_RenderSettings *r,
   if (!st) st = check_certs(s, h->certs, n, err);
   if (!st) st = check_verify(s, h, n, err);
   if (!st) st = check_numbers(s, h->certs, n, err);
+  for (int k = 0; !st && k < h->nactions; k++)
+    if (!h->actions || h->actions[k].body < 0 || h->actions[k].body >= s->nbody ||
+        (unsigned)h->actions[k].verb > US_ACTION_RELEASE)
+      st = us_error_set(err, US_ERR_USAGE, "render --html: action %d is not a verb on a body", k);
   return st;
 }
 
@@ -310,6 +317,19 @@ static void put_verify(FILE *fp, const us_HtmlSettings *h) {
   fputc('}', fp);
 }
 
+/* A plan with hands: H and its actions as [verb, body]. */
+static void put_actions(FILE *fp, const us_HtmlSettings *h) {
+  fprintf(fp, ",\n\"hands\":%d,\n\"actions\":", h->nactions > 0 ? h->hands : 0);
+  if (h->nactions <= 0) {
+    fputs("null", fp);
+    return;
+  }
+  for (int k = 0; k < h->nactions; k++)
+    fprintf(fp, "%s[\"%s\",%d]", k ? "," : "[", us_action_name(h->actions[k].verb),
+            h->actions[k].body);
+  fputc(']', fp);
+}
+
 static void put_data(FILE *fp, const us_Structure *s, const us_RenderSettings *r,
                      const us_HtmlSettings *h, const us_CertCheck *ck) {
   int with_plan = r && (r->norder > 0 || r->nblocked > 0);
@@ -328,6 +348,7 @@ static void put_data(FILE *fp, const us_Structure *s, const us_RenderSettings *r
   put_str(fp, us_force_set_name(h->force_set));
   fputs(r && r->force_resultants ? ",\n\"resultants\":true" : ",\n\"resultants\":false", fp);
   put_verify(fp, h);
+  put_actions(fp, h);
   fputs("}", fp);
 }
 

@@ -149,7 +149,7 @@ static void draw_grid(cairo_t *cr, const us_Scene *sc) {
 /* A marked body's outline (failure.c), as the SVG writer's. */
 static void mark_stroke(cairo_t *cr, const us_Scene *sc, int mark) {
   static const double dash[2] = {6.0, 3.0};
-  set_rgb(cr, sc->mark_color);
+  set_rgb(cr, mark == US_MARK_HELD ? sc->hand_color : sc->mark_color);
   cairo_set_line_width(cr, US_MAX(2.5, 3.0 * sc->stroke));
   if (mark == US_MARK_STEP) cairo_set_dash(cr, dash, 2, 0.0);
 }
@@ -217,6 +217,17 @@ static void draw_mechanism(cairo_t *cr, const us_Scene *sc) {
   for (int k = 0; k < sc->nmech; k++) draw_arrow(cr, sc, &sc->mech[4 * k]);
 }
 
+/* Hand marks, as the SVG writer's: rings around the held bodies' labels. */
+static void draw_hands(cairo_t *cr, const us_Scene *sc) {
+  cairo_set_line_width(cr, 2.5);
+  set_rgb(cr, sc->hand_color);
+  for (int k = 0; k < sc->nhand; k++) {
+    cairo_new_sub_path(cr);
+    cairo_arc(cr, sc->hands[2 * k], sc->hands[2 * k + 1], sc->hand_r, 0.0, 2.0 * PI);
+  }
+  cairo_stroke(cr);
+}
+
 static void draw_box(cairo_t *cr, const us_SceneBox *b) {
   cairo_rectangle(cr, b->x, b->y, b->w, b->h);
   fill_paint(cr, b->paint);
@@ -251,6 +262,7 @@ static void draw_scene(cairo_t *cr, const us_Scene *sc) {
   if (sc->ndot) draw_dots(cr, sc);
   if (sc->narrow) draw_arrows(cr, sc);
   if (sc->nmech || sc->nghost) draw_mechanism(cr, sc);
+  if (sc->nhand) draw_hands(cr, sc);
   if (sc->has_ramp) draw_ramp(cr, sc);
   for (int i = 0; i < sc->nbox; i++) draw_box(cr, &sc->boxes[i]);
   for (int i = 0; i < sc->ntext; i++) draw_text(cr, &sc->texts[i]);

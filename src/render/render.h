@@ -64,10 +64,12 @@ typedef struct us_SceneBody {
   double depth;       /* 3D: centroid along the view direction (larger is
                          nearer the viewer); 0 in 2D */
   int mark;           /* US_MARK_*: the failure marks (SVG classes) */
+  int hidden;         /* 3D proto: 1 leaves the body out (not placed yet) */
 } us_SceneBody;
 /* A body that falls (class "falls": a thick red outline); one removed at
- * the failing step (class "failing-step": a dashed red outline). */
-enum { US_MARK_NONE = 0, US_MARK_FALLS, US_MARK_STEP };
+ * the failing step (class "failing-step": a dashed red outline); one held
+ * by a hand (class "held-body": a thick outline in the hand colour). */
+enum { US_MARK_NONE = 0, US_MARK_FALLS, US_MARK_STEP, US_MARK_HELD };
 
 /* An axis-aligned box, for the legend's swatches. */
 typedef struct us_SceneBox {
@@ -112,6 +114,10 @@ typedef struct us_Scene {
   int *ghost_start;
   double *ghost_pts;
   us_Rgb mark_color;      /* failure marks, mechanism and ghosts */
+  int nhand;              /* hand marks (x, y): discs of radius hand_r at the
+                             held bodies' centres, class "held" */
+  double *hands, hand_r;
+  us_Rgb hand_color;      /* hand marks and held bodies' outlines */
   int has_ramp;           /* the legend's ramp strip */
   us_SceneBox ramp_box;
   us_Rgb ramp[US_RAMP_STOPS]; /* us_ramp at evenly spaced t */

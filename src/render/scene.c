@@ -27,6 +27,9 @@
  * view's larger side. Labels are sized to fit their
  * body and left out when under 5 px; dots and outlines thin out with the
  * typical body size, so a wall of a thousand bricks stays legible.
+ * r->hand_state (a plan with hands at one action): bodies not placed yet
+ * faint and unlabelled (3D: left out), their contact dots left out; held
+ * bodies outlined in magenta with a ring (the hand mark) at their centre.
  *
  * 3D structures (src/render/scene3.c): world points are projected onto the
  * view's right and up axes (us_SceneView; 2D: x and y as they are) before
@@ -56,6 +59,7 @@ const us_Hatch us_hatches[US_NHATCH] = {
 
 static const us_Rgb kSandstone = {217, 199, 163}, kLeftOut = {228, 228, 228};
 static const us_Rgb kBlack = {0, 0, 0}, kWhite = {255, 255, 255};
+static const us_Rgb kUnplaced = {246, 246, 246}, kHand = {196, 0, 150};
 
 typedef us_SceneView View; /* render.h */
 
@@ -77,6 +81,7 @@ typedef struct Info {
   us_SceneBody *proto; /* 3D: each body's paint and label text */
   us_Labels labels;    /* resolved: IDS, STEPS or NONE */
   int falls;           /* the body marked as falling, or -1 */
+  int nstate[3];       /* bodies per US_HAND_* (r->hand_state) */
   double title_h;
   Legend legend;
 } Info;
@@ -155,6 +160,12 @@ static us_Status check_settings(const us_Structure *s, const us_RenderSettings *
   in->labels = !r->show_labels ? US_LABELS_NONE
                : r->labels == US_LABELS_AUTO ? (r->norder > 0 ? US_LABELS_STEPS : US_LABELS_IDS)
                                              : r->labels;
+  for (int i = 0; r->hand_state && i < s->nbody; i++) {
+    if (r->hand_state[i] > US_HAND_HELD)
+      return us_error_set(err, US_ERR_USAGE, "render: bad hand state %d of body '%s'",
+                          r->hand_state[i], us_id_text(s->bodies[i].id).s);
+    in->nstate[r->hand_state[i]] += !s->bodies[i].fixed;
+  }
   for (int i = 0; i < s->nbody; i++) {
     in->nfixed += s->bodies[i].fixed != 0;
     in->nleft += !s->bodies[i].fixed && in->step[i] == 0;
@@ -280,13 +291,40 @@ static double step_t(int step, int n) {
   return n > 1 ? (double)(step - 1) / (double)(n - 1) : 0.0;
 }
 
+/* Not placed yet at this action (a plan with hands): faint, or in 3D left out. */
+static int unplaced(const us_Structure *s, const us_RenderSettings *r, int i) {
+  return i >= 0 && r->hand_state && r->hand_state[i] == US_HAND_UNPLACED && !s->bodies[i].fixed;
+}
+
 static us_Paint body_paint(const us_Structure *s, const us_RenderSettings *r, const Info *in,
                            int i) {
   if (s->bodies[i].fixed) return hatched(US_HATCH_FIXED);
+  if (unplaced(s, r, i)) return solid(kUnplaced);
   if (in->step[i] < 0) return hatched(US_HATCH_BLOCKED);
   if (us_scene_removed(r, in->step, i)) return solid(kWhite); /* gone when it falls */
   if (r->norder > 0 && in->step[i]) return solid(us_ramp(step_t(in->step[i], in->nsteps)));
   return solid(r->norder > 0 ? kLeftOut : kSandstone);
+}
+
+/* A failure's mark, else held by a hand. */
+static int body_mark(const us_RenderSettings *r, const Info *in, int i) {
+  int m = us_scene_mark(r, in->step, i, in->falls);
+  return !m && r->hand_state && r->hand_state[i] == US_HAND_HELD ? US_MARK_HELD : m;
+}
+
+/* Hand marks (rings) at the held bodies' centres of mass, around their
+ * labels, sized from the dots. */
+static void put_hands(us_Scene *sc, const View *v, const us_Structure *s,
+                      const us_RenderSettings *r) {
+  sc->hand_color = kHand;
+  sc->hand_r = US_MAX(7.0, 6.0 * sc->dot_r);
+  for (int i = 0; i < s->nbody; i++)
+    if (r->hand_state[i] == US_HAND_HELD && !s->bodies[i].fixed) {
+      const double *c = s->bodies[i].com;
+      double p[3] = {c[0], c[1], s->dim == 3 ? c[2] : 0.0};
+      us_scene_px(v, p, &sc->hands[2 * sc->nhand], &sc->hands[2 * sc->nhand + 1]);
+      sc->nhand++;
+    }
 }
 
 /* Where a body's label goes: its centre of mass once finalized, else the
@@ -305,8 +343,10 @@ static void label_point(const us_Structure *s, int i, double *x, double *y) {
 }
 
 /* Step number or id (in->labels), when it fits. */
-static void body_label(us_SceneBody *sb, const View *v, const us_Structure *s, const Info *in) {
+static void body_label(us_SceneBody *sb, const View *v, const us_Structure *s,
+                       const us_RenderSettings *r, const Info *in) {
   const us_Body *b = &s->bodies[sb->body];
+  if (unplaced(s, r, sb->body)) return;
   int step = in->step[sb->body], numbered = in->labels == US_LABELS_STEPS && step > 0;
   if (!numbered && in->labels != US_LABELS_IDS) return;
   snprintf(sb->num, sizeof sb->num, "%d", step);
@@ -328,8 +368,9 @@ static void put_bodies3(us_Scene *sc, const View *v, const us_Structure *s,
   for (int i = 0; i < s->nbody; i++) {
     in->proto[i].body = i;
     in->proto[i].paint = body_paint(s, r, in, i);
-    in->proto[i].mark = us_scene_mark(r, in->step, i, in->falls);
-    body_label(&in->proto[i], v, s, in);
+    in->proto[i].mark = body_mark(r, in, i);
+    in->proto[i].hidden = unplaced(s, r, i);
+    body_label(&in->proto[i], v, s, r, in);
   }
   us_scene3_bodies(sc, v, s, in->proto);
 }
@@ -350,18 +391,23 @@ static void put_bodies(us_Scene *sc, const View *v, const us_Structure *s,
       sc->pts[2 * first + 1] = px_y(v, b->verts[2 * k + 1]);
     }
     sb->paint = body_paint(s, r, in, i);
-    sb->mark = us_scene_mark(r, in->step, i, in->falls);
-    body_label(sb, v, s, in);
+    sb->mark = body_mark(r, in, i);
+    body_label(sb, v, s, r, in);
   }
   sc->nbody = s->nbody;
 }
 
 /* -------------------------------------------------------- dots, arrows */
 
-static void put_dots(us_Scene *sc, const View *v, const us_Structure *s) {
-  for (int c = 0; c < s->ncontact; c++)
-    us_scene_px(v, s->contacts[c].p, &sc->dots[2 * c], &sc->dots[2 * c + 1]);
-  sc->ndot = s->ncontact;
+/* Contact points, but those of bodies not placed yet. */
+static void put_dots(us_Scene *sc, const View *v, const us_Structure *s,
+                     const us_RenderSettings *r) {
+  for (int c = 0; c < s->ncontact; c++) {
+    const us_Contact *k = &s->contacts[c];
+    if (unplaced(s, r, k->a) || unplaced(s, r, k->b)) continue;
+    us_scene_px(v, k->p, &sc->dots[2 * sc->ndot], &sc->dots[2 * sc->ndot + 1]);
+    sc->ndot++;
+  }
   sc->dot_color = (us_Rgb){34, 34, 34};
 }
 
@@ -442,6 +488,11 @@ static void legend_lines(Legend *lg, const us_Structure *s, const us_RenderSetti
     snprintf(lg->line[n++], sizeof lg->line[0], "%d in the removal order, %d not%s", r->norder,
              s->nbody - in->nfixed - r->norder, steps);
   if (r->failure) us_scene_failure_line(lg->line[n++], sizeof lg->line[0], s, r);
+  if (r->hand_state)
+    snprintf(lg->line[n++], sizeof lg->line[0], "at this action: %d placed, %d of them held "
+             "(hand marks), %d not placed yet (%s)", in->nstate[US_HAND_PLACED] +
+             in->nstate[US_HAND_HELD], in->nstate[US_HAND_HELD], in->nstate[US_HAND_UNPLACED],
+             s->dim == 3 ? "left out" : "faint");
   if (r->nblocked > 0)
     snprintf(lg->line[n++], sizeof lg->line[0], "%d cannot be removed", r->nblocked);
   if (in->fmax > 0) {
@@ -518,9 +569,10 @@ static us_Status alloc_parts(us_Scene *sc, const us_Structure *s, const us_Rende
   sc->dots = us_malloc((2 * (size_t)s->ncontact + 1) * sizeof *sc->dots);
   sc->arrows = us_malloc((8 * nf + 1) * sizeof *sc->arrows);
   sc->arrow_kind = us_malloc(2 * nf + 1);
+  sc->hands = us_malloc((2 * (size_t)s->nbody + 1) * sizeof *sc->hands);
   in->drawn = us_malloc((nf + 1) * sizeof *in->drawn);
   if (in->step && in->proto && sc->bodies && sc->lines && sc->pts && sc->dots && sc->arrows &&
-      sc->arrow_kind && in->drawn && !us_scene_alloc_failure(sc, s, r))
+      sc->arrow_kind && sc->hands && in->drawn && !us_scene_alloc_failure(sc, s, r))
     return US_OK;
   return us_error_set(err, US_ERR_NOMEM, "render: out of memory");
 }
@@ -537,9 +589,10 @@ static void fill_scene(us_Scene *sc, const View *v, const us_Structure *s,
   line_sizes(sc, v, s);
   if (s->dim == 3) put_bodies3(sc, v, s, r, in);
   else put_bodies(sc, v, s, r, in);
-  if (r->show_contacts) put_dots(sc, v, s);
+  if (r->show_contacts) put_dots(sc, v, s, r);
   if (in->fmax > 0) put_arrows(sc, v, in->drawn, in->ndrawn, in->fmax);
   if (r->failure) us_scene_mechanism(sc, v, s, r->failure);
+  if (r->hand_state) put_hands(sc, v, s, r);
   put_legend(sc, r, in);
 }
 
@@ -583,5 +636,6 @@ void us_scene_free(us_Scene *sc) {
   us_free(sc->mech);
   us_free(sc->ghost_start);
   us_free(sc->ghost_pts);
+  us_free(sc->hands);
   memset(sc, 0, sizeof *sc);
 }

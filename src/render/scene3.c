@@ -189,6 +189,7 @@ static void collect(us_Scene *sc, const us_SceneView *v, const us_Structure *s,
   sc->nbody = 0;
   for (int i = 0; i < s->nbody; i++) {
     const us_Body *b = &s->bodies[i];
+    if (proto[i].hidden) continue;
     for (int p = 0; p < b->npart; p++)
       for (int f = 0; f < b->parts[p].nface; f++) {
         const double *n = b->parts[p].planes + 4 * f;

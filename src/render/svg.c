@@ -135,13 +135,14 @@ static void put_ground(FILE *fp, const us_Scene *sc) {
  * dashed for the failing step's bodies. Closes the element. */
 static void put_mark_stroke(FILE *fp, const us_Scene *sc, int mark) {
   fputs(" stroke=\"", fp);
-  put_rgb(fp, sc->mark_color);
+  put_rgb(fp, mark == US_MARK_HELD ? sc->hand_color : sc->mark_color);
   fprintf(fp, "\" stroke-width=\"%.2f\"%s/>", US_MAX(2.5, 3.0 * sc->stroke),
           mark == US_MARK_STEP ? " stroke-dasharray=\"6 3\"" : "");
 }
 
 static const char *mark_class(int mark) {
-  return mark == US_MARK_FALLS ? "falls" : mark == US_MARK_STEP ? "failing-step" : "";
+  return mark == US_MARK_FALLS ? "falls" : mark == US_MARK_STEP ? "failing-step"
+         : mark == US_MARK_HELD ? "held-body" : "";
 }
 
 static void put_shape(FILE *fp, const us_Scene *sc, const us_SceneBody *b) {
@@ -251,6 +252,17 @@ static void put_mechanism(FILE *fp, const us_Scene *sc) {
   fputs("</g>\n", fp);
 }
 
+/* Hand marks: a ring in the hand colour around each held body's label. */
+static void put_hands(FILE *fp, const us_Scene *sc) {
+  fputs("<g class=\"hands\" fill=\"none\" stroke=\"", fp);
+  put_rgb(fp, sc->hand_color);
+  fputs("\" stroke-width=\"2.5\">\n", fp);
+  for (int k = 0; k < sc->nhand; k++)
+    fprintf(fp, "<circle class=\"held\" cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\"/>\n",
+            sc->hands[2 * k], sc->hands[2 * k + 1], sc->hand_r);
+  fputs("</g>\n", fp);
+}
+
 /* Title and legend: the ramp strip, swatches, lines of text. */
 static void put_texts(FILE *fp, const us_Scene *sc) {
   fputs("<g class=\"legend\">\n", fp);
@@ -269,6 +281,7 @@ void us_scene_write_svg(FILE *fp, const us_Scene *sc, const us_Structure *s) {
   if (sc->ndot) put_dots(fp, sc);
   if (sc->narrow) put_arrows(fp, sc);
   if (sc->nmech || sc->nghost) put_mechanism(fp, sc);
+  if (sc->nhand) put_hands(fp, sc);
   put_texts(fp, sc);
   fputs("</svg>\n", fp);
 }

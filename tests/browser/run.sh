@@ -43,6 +43,11 @@ run "$CLI" generate arch --voussoirs 7 --loose 30 -o "$W/arch.json"
 [ $? -eq 1 ] || { cat "$W/cmd.log"; die "the arch's plan should be none (exit 1)"; }
 run "$CLI" render "$W/arch.json" --plan "$W/arch-plan.json" --html -o "$W/arch.html"
 
+# the same arch without loose blocks, planned with hands (--hands auto)
+run "$CLI" generate arch --voussoirs 7 -o "$W/arch-hands.json"
+run "$CLI" plan "$W/arch-hands.json" --hands auto -o "$W/arch-hands-plan.json"
+run "$CLI" render "$W/arch-hands.json" --plan "$W/arch-hands-plan.json" --html -o "$W/arch-hands.html"
+
 # a column of three taken apart from the bottom: verify fails after step 1
 cat >"$W/column-bad.json" <<'JSON'
 {"dimension": 2, "ground": true, "bodies": [

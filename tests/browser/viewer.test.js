@@ -260,6 +260,43 @@ async function testNone(browser) {
   await ctx.close();
 }
 
+// A plan with hands: the slider steps through its actions; at each the
+// counter names the action and the bodies held after it (counted here from
+// the plan file's actions), and only the placed bodies are painted.
+async function testHands(browser) {
+  const structure = readJson("arch-hands.json"), plan = readJson("arch-hands-plan.json");
+  const { ctx, page, errors } = await open(browser, "arch-hands.html", { width: 1000, height: 700 });
+  const ids = structure.bodies.map((b) => b.id), n = plan.actions.length;
+  check(await page.$eval("#slider", (s) => +s.max) === n, "the slider has one position per action", n);
+  const held = new Set(), placed = new Set(), bad = [], counts = new Set();
+  for (let p = 0; p <= n; p++) {
+    if (p > 0) {
+      const [verb, id] = plan.actions[p - 1];
+      if (verb === "release") held.delete(id); else held.add(id);
+      if (verb === "place") placed.add(id);
+    }
+    await setSlider(page, p);
+    const text = await page.$eval("#stepinfo", (e) => e.textContent);
+    const want = `action ${p}/${n}: ` + (p ? plan.actions[p - 1].join(" ") : "nothing placed") + ` \u2014 held ${held.size}/${plan.hands}`;
+    if (!text.startsWith(want)) bad.push(`${p}: '${text}', wanted '${want}'`);
+    const drawn = await drawnBodies(page, structure);
+    const wrong = drawn.map((d, i) => (d !== (placed.has(ids[i]) || !!structure.bodies[i].fixed) ? ids[i] : null)).filter((x) => x);
+    if (wrong.length) bad.push(`${p}: painted wrongly: ${wrong.join(", ")}`);
+    counts.add(held.size);
+  }
+  check(bad.length === 0, `counter and painted bodies match the actions at all ${n + 1} positions`, bad.join("; "));
+  check(counts.has(2) && counts.has(0), "stepping changes the held count (0 and 2 seen)", [...counts].join(","));
+  await setSlider(page, 0);
+  const t0 = await page.$eval("#stepinfo", (e) => e.textContent);
+  await page.click("#next");
+  await page.click("#next");
+  const t2 = await page.$eval("#stepinfo", (e) => e.textContent);
+  check(t0 !== t2 && t2.startsWith(`action 2/${n}`), "the next button steps through actions", t2);
+  await page.screenshot({ path: path.join(shots, "arch-hands.png") });
+  check(errors.length === 0, "no script errors", errors.join("; "));
+  await ctx.close();
+}
+
 // Hostile ids: nothing runs, the ids read back as text.
 async function testIds(browser) {
   const structure = readJson("ids.json");
@@ -310,6 +347,7 @@ async function main() {
     await testInvalid(browser);
     await testTampered(browser);
     await testNone(browser);
+    await testHands(browser);
     await testIds(browser);
     await testPhone(browser);
   } catch (e) {
