@@ -17,6 +17,9 @@
 
 #include "piles.h"
 
+#include <stdio.h>
+#include <stdlib.h>
+
 #ifdef US_TEST_SANITIZED
 #define HAND_PILES 120
 #else
@@ -235,6 +238,28 @@ static int exact_search_agrees(const us_Structure *s, int want) {
 
 /* ---- differential test ---- */
 
+/* With US_HANDS_DUMP=DIR (tests/cli/hands_piles.sh), each pile and its auto
+ * plan with certificates go to DIR/pile-K.json and DIR/pile-K-plan.json,
+ * for the independent Python checker to replay; 0, or -1 when not written. */
+static int dump_pile(const us_Structure *s, int k) {
+  const char *dir = getenv("US_HANDS_DUMP");
+  if (!dir || !*dir) return 0;
+  char sp[512], pp[512];
+  snprintf(sp, sizeof sp, "%s/pile-%d.json", dir, k);
+  snprintf(pp, sizeof pp, "%s/pile-%d-plan.json", dir, k);
+  us_PlanSettings set = hands_settings(0);
+  set.certificates = 1;
+  us_Plan p;
+  us_Error err;
+  int r = us_structure_write(s, sp, &err) == US_OK && us_plan(s, &set, &p, &err) == US_OK ? 0 : -1;
+  if (!r) {
+    r = us_plan_write(s, &p, &set, pp, &err) == US_OK ? 0 : -1;
+    us_plan_free(&p);
+  }
+  if (r) fprintf(stderr, "dump of pile %d: %s\n", k, err.msg);
+  return r;
+}
+
 static void minimum_agrees_with_exhaustive_reference(void) {
   unsigned long long rng = 0x5eed4a11d5ULL;
   int count[5] = {0}, piles = 0;
@@ -256,6 +281,7 @@ static void minimum_agrees_with_exhaustive_reference(void) {
       ok = want > 0 && minimum_is(s, want) && exact_search_agrees(s, want);
     }
     if (!ok) fprintf(stderr, "pile %d (%d bodies): reference %d hands\n", trial, n, want);
+    if (want > 0) CHECK_INT(dump_pile(s, piles), ==, 0);
     us_structure_free(s);
     CHECK(ok);
     count[want < 4 ? want : 4]++;
