@@ -236,7 +236,7 @@ static void finalize_deadline(void) {
   CHECK_INT(us_structure_finalize_until(s, 1e-9, &err), ==, US_ERR_TIME_LIMIT);
   CHECK(strstr(err.msg, "convex hull of body 'ball'") != NULL);
   CHECK_INT(us_structure_finalize_until(s, us_now() + 1e6, &err), ==, US_OK);
-  CHECK(s->finalized && s->bodies[0].parts[0].nface > 0);
+  CHECK(us_structure_is_finalized(s) && s->bodies[0].parts[0].nface > 0);
   us_structure_free(s);
   free(x);
 }
