@@ -295,6 +295,19 @@ static us_Status keep_forces(Drops *d, const us_Structure *s, const us_Forces *f
   return US_OK;
 }
 
+/* The carried forces as w's base: `all` gets the boxes 0..kn-1; *taken
+ * is 1 when they matched s's contacts and passed the workspace's check. */
+static us_Status seed_base(const Drops *d, const us_Structure *s, us_Stability *w, us_Bitset *all,
+                           int *taken, us_Error *err) {
+  size_t nc = (size_t)(s->ncontact > 0 ? s->ncontact : 1);
+  us_Forces f = {0, s->ncontact, us_malloc(nc * sizeof(int)), us_malloc(nc * 3 * sizeof(double))};
+  us_Status st = f.contact && f.f ? US_OK : us_error_set(err, US_ERR_NOMEM, "random3d: out of memory");
+  for (int i = 0; !st && i < d->kn; i++) us_bitset_set(all, i);
+  if (!st && !carry_forces(d, s, &f)) st = us_stability_seed(w, all, &f, taken, err);
+  us_forces_free(&f);
+  return st;
+}
+
 /* Does the whole (the kept boxes plus the candidate) stand? The kept
  * boxes 0..kn-1 of the last whole test that stood are handed to the
  * workspace with that test's forces (re-checked there) as the local
@@ -309,35 +322,27 @@ static us_Status whole_stands(Drops *d, int *stable, us_Error *err) {
   set.local = d->reference ? -1 : 1;
   us_Stability *w = us_stability_new(s, &set, err);
   us_Bitset all = {0};
-  us_Forces f = {0};
   us_StabilityResult res;
   us_stability_result_init(&res);
   us_Status st = w ? US_OK : err->code;
   if (!st && us_bitset_init(&all, s->nbody)) st = us_error_set(err, US_ERR_NOMEM, "random3d: out of memory");
-  size_t nc = (size_t)(s->ncontact > 0 ? s->ncontact : 1);
-  if (!st && !d->reference && d->kn > 0) { /* the carried base: boxes 0..kn-1 */
-    f.contact = us_malloc(nc * sizeof *f.contact), f.f = us_malloc(nc * 3 * sizeof *f.f);
-    f.cap = s->ncontact;
-    if (!f.contact || !f.f) st = us_error_set(err, US_ERR_NOMEM, "random3d: out of memory");
-    int taken = 0;
-    for (int i = 0; !st && i < d->kn; i++) us_bitset_set(&all, i);
-    if (!st && !carry_forces(d, s, &f)) st = us_stability_seed(w, &all, &f, &taken, err);
-    if (d->stats) d->stats->seeded += taken;
-  }
+  int taken = 0;
+  if (!st && !d->reference && d->kn > 0) st = seed_base(d, s, w, &all, &taken, err);
   /* the boxes kept since without a whole test (plumb lines, the ground)
      one by one, so that the candidate's test adds it alone */
-  for (int i = d->kn; !st && d->kn > 0 && i < d->n; i++) {
+  for (int i = d->kn; !st && taken && i < d->n; i++) {
     us_bitset_set(&all, i);
     st = us_stability_test(w, &all, &res, err);
   }
   for (int i = 0; !st && i < s->nbody; i++) us_bitset_set(&all, i);
   if (!st) st = us_stability_test(w, &all, &res, err);
   *stable = !st && res.verdict == US_STABLE;
-  if (!st && d->stats) d->stats->whole_tests++, d->stats->full_lps += us_stability_info(w)->local_global +
-                                                   (set.local < 0);
-  if (!st && *stable) st = keep_forces(d, s, &res.forces, err);
+  if (!st && d->stats) {
+    d->stats->whole_tests++, d->stats->seeded += taken;
+    d->stats->full_lps += d->reference ? 1 : us_stability_info(w)->local_global;
+  }
+  if (!st && *stable && !d->reference) st = keep_forces(d, s, &res.forces, err);
   us_stability_result_free(&res);
-  us_forces_free(&f);
   us_bitset_free(&all);
   us_stability_free(w);
   us_structure_free(s);
