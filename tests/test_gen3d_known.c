@@ -2,6 +2,7 @@
  * dome.c, jenga.c, random3d.c): the layouts' contacts and volumes from
  * independent formulas, and the statics each structure must show, decided
  * by the library's stability test and planner. */
+#include "gen/gen.h"
 #include "scenes.h"
 #include "test.h"
 
@@ -419,6 +420,36 @@ static void random3d_seeded(void) {
   CHECK(column);
 }
 
+/* Whole tests that start from the last standing whole's forces (the local
+ * tests' base, carried over) keep the boxes the slow path keeps (every
+ * whole tested from scratch on the full system), with the same number of
+ * whole tests, and send at most half of them to the full system. */
+static void random3d_carried_forces(void) {
+  int seeds = US_TEST_SANITIZED ? 1 : 3;
+  long whole = 0, seeded = 0, full = 0;
+  for (int seed = 1; seed <= seeds; seed++) {
+    us_GenSettings g = us_gen_default_settings();
+    us_Error err;
+    g.n = 90, g.width = 8, g.seed = (unsigned long)seed, g.max_tries = 1000;
+    us_Random3dStats fast, slow;
+    us_Structure *a = us_gen_random3d_stats(&g, 0, &fast, &err);
+    us_Structure *b = us_gen_random3d_stats(&g, 1, &slow, &err);
+    CHECK(a && b);
+    int same = a && b && a->nbody == b->nbody && a->ncontact == b->ncontact;
+    for (int i = 0; same && i < a->nbody; i++)
+      same = !memcmp(a->bodies[i].com, b->bodies[i].com, sizeof a->bodies[i].com);
+    us_structure_free(a), us_structure_free(b);
+    CHECK(same);
+    CHECK_INT(fast.whole_tests, ==, slow.whole_tests);
+    CHECK_INT(slow.full_lps, ==, slow.whole_tests);
+    CHECK_INT(slow.seeded, ==, 0);
+    whole += fast.whole_tests, seeded += fast.seeded, full += fast.full_lps;
+  }
+  CHECK(whole > 10);      /* the cheap tests leave some drops to the whole test */
+  CHECK(seeded >= whole - seeds); /* every whole test after a seed's first starts from forces */
+  CHECK(2 * full <= whole);
+}
+
 static void random3d_bad_settings(void) {
   us_Error err;
   us_GenSettings g = us_gen_default_settings();
@@ -462,5 +493,6 @@ static void wall3d_corner_plans(void) {
 
 US_TEST_MAIN(T(dome_layout), T(dome_cap), T(dome_stands), T(dome_one_at_a_time), T(dome_chamfer), T(dome_default_none), T(dome_none_one_at_a_time), T(dome_bad_settings),
              T(jenga_layout), T(jenga_removals), T(jenga_ids), T(jenga_bad_settings),
-             T(random3d_stands), T(random3d_fewer), T(random3d_seeded), T(random3d_bad_settings),
+             T(random3d_stands), T(random3d_fewer), T(random3d_seeded), T(random3d_carried_forces),
+             T(random3d_bad_settings),
              T(wall3d_corner_plans))

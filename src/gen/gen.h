@@ -62,6 +62,16 @@ us_Status us_gen_check_blocks(const us_GenSettings *g, const char *what, int n, 
 /* wall3d with g->returns != 0: the wall with corner returns (corner.c). */
 us_Structure *us_gen_wall3d_returns(const us_GenSettings *g, us_Error *err);
 
+/* random3d with its counters (tests): whole tests (drops no cheap test
+ * settled), those that started from carried forces, and those that went
+ * to the full system (an LP over every box); reference = 1 tests each
+ * whole from scratch, the full system every time (the slow path). */
+typedef struct us_Random3dStats {
+  long whole_tests, seeded, full_lps;
+} us_Random3dStats;
+us_Structure *us_gen_random3d_stats(const us_GenSettings *g, int reference, us_Random3dStats *stats,
+                                    us_Error *err);
+
 /* Random numbers: us_rng_next / us_rng_below (src/core/rng.c), seeded
  * with g->seed, so a seed gives the same structure on every platform. */
 

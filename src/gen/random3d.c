@@ -45,18 +45,32 @@
  * those boxes only. So the outputs are the same as testing every drop
  * whole.
  *
+ * Whole tests start from forces: the last whole that stood left its
+ * checked forces; they are carried to the new structure (same boxes, same
+ * contacts) and handed to its workspace as the local tests' base
+ * (us_stability_seed re-checks them), the boxes kept since without a
+ * whole test (plumb lines, the ground) are added one by one, then the
+ * candidate: each test is decided on a region around what it adds
+ * (docs/local.md), exactly, and goes to the full system only when the
+ * region cannot decide (about one whole test in four on W = 8).
+ *
  * Cost: a drop the cheap tests do not settle rebuilds and finalizes the
- * structure (contact detection, O(k log k) for k boxes) and solves one LP
- * over k bodies; those LPs dominate, so a run is about quadratic in n
- * (measured figures in docs/format.md). g->deadline (a us_now() time;
+ * structure (contact detection, O(k log k) for k boxes); its region LPs
+ * are small, and the full-system LPs over k bodies that remain dominate.
+ * Past about 150 boxes on W = 8 some of them sit on the boundary of the
+ * friction cones: the 3D cone refinement (docs/cones3d.md) then runs its
+ * 60 rounds over the whole (10 to 50 s each) and ends undecided, so the
+ * drop is discarded (measured figures in docs/format.md). g->deadline (a us_now() time;
  * 0: none) is read before every drop: past it, US_ERR_TIME_LIMIT.
  * Randomness: splitmix64 seeded with g->seed, so a seed gives the same
  * structure on every platform. Bodies "b1", "b2", ... in the
  * order they were kept. */
 #include "gen.h"
+#include "stability/stability.h"
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 typedef struct Drops {
   const us_GenSettings *g;
@@ -70,6 +84,13 @@ typedef struct Drops {
   int *owner;       /* [side * side] the box on top of each cell, or -1 */
   int *below;       /* [16 * n_wanted] per box and cell: the box under it in
                        contact (its top at the box's level), or -1 */
+  int reference;    /* 1: every whole test from scratch (no carried forces) */
+  us_Random3dStats *stats; /* counters, or NULL */
+  /* the last whole test that stood: its structure's contacts and forces
+     (newtons, 3 per contact, 0 when inactive), the boxes 0..kn-1 */
+  int kn, nkc;
+  us_Contact *kc;
+  double *kf;
 } Drops;
 
 static us_Status check_random3d(const us_GenSettings *g, us_Error *err) {
@@ -237,20 +258,107 @@ static us_Status candidate_column(const Drops *d, int *stable, us_Error *err) {
   return st;
 }
 
+/* The carried forces as forces of s (the kept boxes plus the candidate):
+ * s's contacts among boxes 0..kn-1 are, in order, the contacts of the
+ * structure they were found on (the same boxes, built the same way),
+ * checked field by field. 0, or 1 when they do not match (no seed). */
+static int carry_forces(const Drops *d, const us_Structure *s, us_Forces *f) {
+  int k = 0;
+  f->ncontact = 0;
+  for (int c = 0; c < s->ncontact; c++) {
+    const us_Contact *a = &s->contacts[c];
+    if (a->a >= d->kn || a->b >= d->kn) continue;
+    if (k >= d->nkc) return 1;
+    const us_Contact *b = &d->kc[k];
+    if (a->a != b->a || a->b != b->b || memcmp(a->p, b->p, sizeof a->p) ||
+        memcmp(a->n, b->n, sizeof a->n) || memcmp(a->t, b->t, sizeof a->t) || a->mu != b->mu)
+      return 1;
+    f->contact[f->ncontact] = c;
+    memcpy(f->f + 3 * (size_t)f->ncontact++, d->kf + 3 * (size_t)k++, 3 * sizeof(double));
+  }
+  return k != d->nkc;
+}
+
+/* Keep the forces of a whole test that stood (the boxes 0..d->n). */
+static us_Status keep_forces(Drops *d, const us_Structure *s, const us_Forces *f, us_Error *err) {
+  size_t nc = (size_t)s->ncontact;
+  us_Contact *kc = us_realloc(d->kc, (nc ? nc : 1) * sizeof *kc);
+  if (kc) d->kc = kc;
+  double *kf = kc ? us_realloc(d->kf, (nc ? nc : 1) * 3 * sizeof *kf) : NULL;
+  if (kf) d->kf = kf;
+  if (!kc || !kf) return us_error_set(err, US_ERR_NOMEM, "random3d: out of memory");
+  memcpy(d->kc, s->contacts, nc * sizeof *kc);
+  memset(d->kf, 0, nc * 3 * sizeof *kf);
+  for (int j = 0; j < f->ncontact; j++)
+    memcpy(d->kf + 3 * (size_t)f->contact[j], f->f + 3 * (size_t)j, 3 * sizeof(double));
+  d->nkc = s->ncontact, d->kn = d->n + 1;
+  return US_OK;
+}
+
+/* The carried forces as w's base: `all` gets the boxes 0..kn-1; *taken
+ * is 1 when they matched s's contacts and passed the workspace's check. */
+static us_Status seed_base(const Drops *d, const us_Structure *s, us_Stability *w, us_Bitset *all,
+                           int *taken, us_Error *err) {
+  size_t nc = (size_t)(s->ncontact > 0 ? s->ncontact : 1);
+  us_Forces f = {0, s->ncontact, us_malloc(nc * sizeof(int)), us_malloc(nc * 3 * sizeof(double))};
+  us_Status st = f.contact && f.f ? US_OK : us_error_set(err, US_ERR_NOMEM, "random3d: out of memory");
+  for (int i = 0; !st && i < d->kn; i++) us_bitset_set(all, i);
+  if (!st && !carry_forces(d, s, &f)) st = us_stability_seed(w, all, &f, taken, err);
+  us_forces_free(&f);
+  return st;
+}
+
+/* Does the whole (the kept boxes plus the candidate) stand? The kept
+ * boxes 0..kn-1 of the last whole test that stood are handed to the
+ * workspace with that test's forces (re-checked there) as the local
+ * tests' base, so the test is decided on a region around what was added
+ * since (docs/local.md): the boxes kept by plumb lines or on the ground,
+ * and the candidate. Exact either way; the full system when the region
+ * cannot decide. */
+static us_Status whole_stands(Drops *d, int *stable, us_Error *err) {
+  us_Structure *s = build(d, d->n + 1, NULL, err);
+  if (!s) return err->code;
+  us_StabilitySettings set = us_stability_default_settings();
+  set.local = d->reference ? -1 : 1;
+  us_Stability *w = us_stability_new(s, &set, err);
+  us_Bitset all = {0};
+  us_StabilityResult res;
+  us_stability_result_init(&res);
+  us_Status st = w ? US_OK : err->code;
+  if (!st && us_bitset_init(&all, s->nbody)) st = us_error_set(err, US_ERR_NOMEM, "random3d: out of memory");
+  int taken = 0;
+  if (!st && !d->reference && d->kn > 0) st = seed_base(d, s, w, &all, &taken, err);
+  /* the boxes kept since without a whole test (plumb lines, the ground)
+     one by one, so that the candidate's test adds it alone */
+  for (int i = d->kn; !st && taken && i < d->n; i++) {
+    us_bitset_set(&all, i);
+    st = us_stability_test(w, &all, &res, err);
+  }
+  for (int i = 0; !st && i < s->nbody; i++) us_bitset_set(&all, i);
+  if (!st) st = us_stability_test(w, &all, &res, err);
+  *stable = !st && res.verdict == US_STABLE;
+  if (!st && d->stats) {
+    d->stats->whole_tests++, d->stats->seeded += taken;
+    d->stats->full_lps += d->reference ? 1 : us_stability_info(w)->local_global;
+  }
+  if (!st && *stable && !d->reference) st = keep_forces(d, s, &res.forces, err);
+  us_stability_result_free(&res);
+  us_bitset_free(&all);
+  us_stability_free(w);
+  us_structure_free(s);
+  return st;
+}
+
 /* Does the candidate (box d->n, already written into q and level) keep
  * the whole standing? Boxes on the ground always do; a candidate that
  * cannot stand with its neighbours held still never does. */
-static us_Status candidate_stands(const Drops *d, int *stable, us_Error *err) {
+static us_Status candidate_stands(Drops *d, int *stable, us_Error *err) {
   *stable = 1;
   if (d->level[d->n] == 0 || plumb_line(d, d->n)) return US_OK;
   us_Status st0 = candidate_alone(d, stable, err);
   if (!st0 && *stable) st0 = candidate_column(d, stable, err);
   if (st0 || !*stable) return st0;
-  us_Structure *s = build(d, d->n + 1, NULL, err);
-  if (!s) return err->code;
-  us_Status st = us_gen_stands(s, stable, err);
-  us_structure_free(s);
-  return st;
+  return whole_stands(d, stable, err);
 }
 
 /* One drop: *kept = 1 when the box was kept (height map raised). */
@@ -282,11 +390,17 @@ static us_Status run(Drops *d, us_Error *err) {
 }
 
 us_Structure *us_gen_random3d(const us_GenSettings *g, us_Error *err) {
+  return us_gen_random3d_stats(g, 0, NULL, err);
+}
+
+us_Structure *us_gen_random3d_stats(const us_GenSettings *g, int reference, us_Random3dStats *stats,
+                                    us_Error *err) {
   us_Error local;
   if (!err) err = &local; /* the steps below read err->code */
   if (check_random3d(g, err)) return NULL;
+  if (stats) memset(stats, 0, sizeof *stats);
   Drops d = {g, (uint64_t)g->seed, (long)floor(4.0 * (g->width - 1.0)) + 1, 0, NULL, 0, NULL, NULL,
-             NULL, NULL};
+             NULL, NULL, reference, stats, 0, 0, NULL, NULL};
   d.side = d.nq + 3;
   d.top = us_calloc((size_t)(d.side * d.side), sizeof *d.top);
   d.owner = us_malloc((size_t)(d.side * d.side) * sizeof *d.owner);
@@ -303,5 +417,7 @@ us_Structure *us_gen_random3d(const us_GenSettings *g, us_Error *err) {
   us_free(d.level);
   us_free(d.owner);
   us_free(d.below);
+  us_free(d.kc);
+  us_free(d.kf);
   return s;
 }

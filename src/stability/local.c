@@ -271,6 +271,18 @@ void us_local_set_base(us_Local *L, const us_Bitset *cur, const us_EqSystem *e,
   L->have_base = 1;
 }
 
+void us_local_seed_base(us_Local *L, const us_Bitset *cur, const us_Forces *f) {
+  size_t dim = (size_t)L->dim;
+  us_plumb_drop(&L->plumb); /* pending loads belong to the old base */
+  us_plumb_flush(&L->plumb);
+  memset(L->fbase, 0, (size_t)L->s->ncontact * dim * sizeof(double));
+  for (int j = 0; j < f->ncontact; j++)
+    for (size_t k = 0; k < dim; k++)
+      L->fbase[(size_t)f->contact[j] * dim + k] = f->f[(size_t)j * dim + k] / L->eq.force_scale;
+  memcpy(L->base.w, cur->w, (size_t)cur->nwords * sizeof(uint64_t));
+  L->have_base = 1;
+}
+
 int us_local_forces(us_Local *L, const us_Bitset *cur, us_Forces *out) {
   const us_Structure *s = L->s;
   if (us_plumb_materialize(&L->plumb, L->fbase)) return -1;

@@ -47,6 +47,12 @@ int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
 void us_local_set_base(us_Local *L, const us_Bitset *cur, const us_EqSystem *e,
                        const double *f);
 
+/* The base becomes cur with forces f (newtons per structure contact, as
+ * us_local_forces gives them; other contacts 0), checked by the caller:
+ * a certificate found elsewhere, e.g. on an earlier structure with the
+ * same bodies and contacts. */
+void us_local_seed_base(us_Local *L, const us_Bitset *cur, const us_Forces *f);
+
 /* Forget the base (after an error). */
 void us_local_forget(us_Local *L);
 

@@ -645,6 +645,29 @@ us_Status us_stability_test(us_Stability *w, const us_Bitset *present, us_Stabil
   return US_OK;
 }
 
+us_Status us_stability_seed(us_Stability *w, const us_Bitset *present, const us_Forces *f,
+                            int *taken, us_Error *err) {
+  us_Error local;
+  if (!err) err = &local;
+  *taken = 0;
+  if (!w || !present || !f) return us_error_set(err, US_ERR_USAGE, "us_stability_seed: NULL argument");
+  if (present->nbits != w->s->nbody || !present->w)
+    return us_error_set(err, US_ERR_USAGE, "us_stability_seed: sub-assembly has %d bits, "
+                        "the structure %d bodies", present->nbits, w->s->nbody);
+  if (!w->local || w->local_held_only) return US_OK;
+  for (int j = 0; j < f->ncontact; j++)
+    if (f->contact[j] < 0 || f->contact[j] >= w->s->ncontact)
+      return us_error_set(err, US_ERR_USAGE, "us_stability_seed: contact %d out of range", f->contact[j]);
+  for (int k = 0; k < w->cur.nwords; k++) w->cur.w[k] = present->w[k] & w->movable.w[k];
+  /* the forces must be a certificate of present here, whatever their origin */
+  us_CertCheck check;
+  us_certificate_check_buf(w->s, &w->cur, f, w->set.cert_tol, w->acc, w->seen, &check);
+  if (!check.ok) return US_OK;
+  us_local_seed_base(w->local, &w->cur, f);
+  *taken = 1;
+  return US_OK;
+}
+
 us_Status us_stability_held(us_Stability *w, const us_Bitset *present, const int *reg, int nreg,
                             us_StabilityResult *res, us_Error *err) {
   reset_result(res);

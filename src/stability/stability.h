@@ -30,4 +30,15 @@ int us_stability_set_bilateral(us_Stability *w, int on);
 us_Status us_stability_held(us_Stability *w, const us_Bitset *present, const int *reg, int nreg,
                             us_StabilityResult *res, us_Error *err);
 
+/* Start the local tests from `present` standing with forces f (newtons,
+ * as in us_StabilityResult.forces; e.g. an earlier structure's forces
+ * carried over to this one, which has the same bodies and more), as if a
+ * test of `present` had found them: the next test that differs from it by
+ * a few bodies is decided on a region around them. The forces are
+ * re-checked first (the certificate check, cert_tol); *taken is 1 when
+ * they passed and became the base, 0 when not or when the workspace has
+ * no local tests (the next test then goes as it would have). */
+us_Status us_stability_seed(us_Stability *w, const us_Bitset *present, const us_Forces *f,
+                            int *taken, us_Error *err);
+
 #endif
