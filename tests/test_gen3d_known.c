@@ -423,7 +423,8 @@ static void random3d_seeded(void) {
 /* Whole tests that start from the last standing whole's forces (the local
  * tests' base, carried over) keep the boxes the slow path keeps (every
  * whole tested from scratch on the full system), with the same number of
- * whole tests, and send at most half of them to the full system. */
+ * whole tests, and send at most half of them to the full system; both
+ * keep to the cone refinement budget of the drop tests. */
 static void random3d_carried_forces(void) {
   int seeds = US_TEST_SANITIZED ? 1 : 3;
   long whole = 0, seeded = 0, full = 0;
@@ -443,6 +444,8 @@ static void random3d_carried_forces(void) {
     CHECK_INT(fast.whole_tests, ==, slow.whole_tests);
     CHECK_INT(slow.full_lps, ==, slow.whole_tests);
     CHECK_INT(slow.seeded, ==, 0);
+    CHECK_INT(fast.cone_rounds_max, <=, US_RANDOM3D_CONE_ROUNDS); /* the drop tests' budget */
+    CHECK_INT(slow.cone_rounds_max, <=, US_RANDOM3D_CONE_ROUNDS);
     whole += fast.whole_tests, seeded += fast.seeded, full += fast.full_lps;
   }
   CHECK(whole > 10);      /* the cheap tests leave some drops to the whole test */

@@ -10,6 +10,7 @@
  *   - the planner plans a 3D tower top-down; the LCP methods refuse 3D. */
 #include "stability/backend.h"
 #include "stability/lp_gen.h"
+#include "stability/stability.h"
 #include "extrude.h"
 #include "test.h"
 
@@ -154,6 +155,59 @@ static void pyramid_would_be_wrong(void) {
     us_structure_free(st);
     us_structure_free(sl);
   }
+}
+
+/* The full LP's verdict with a budget of cone refinement rounds (-1: the
+ * default) into *v; *rounds gets the most rounds the test ran. A stable
+ * verdict's certificate must pass whatever the budget. */
+static void verdict_budget(const us_Structure *s, int budget, us_Verdict *v, int *rounds) {
+  *v = US_UNDECIDED, *rounds = -1;
+  us_StabilitySettings set = us_stability_default_settings();
+  set.local = -1;
+  us_Error err;
+  us_Stability *w = us_stability_new(s, &set, &err);
+  CHECK(w);
+  if (budget >= 0) us_stability_set_cone_rounds(w, budget);
+  us_StabilityResult r;
+  us_stability_result_init(&r);
+  us_Status st = us_stability_test_full(w, &r, &err);
+  CHECK_OK(st, &err);
+  if (r.verdict == US_STABLE) CHECK(r.check.ok && r.check.max_cone_violation <= 1e-6);
+  *v = r.verdict, *rounds = us_stability_cone_rounds_max(w);
+  us_stability_result_free(&r);
+  us_stability_free(w);
+}
+
+/* us_stability_set_cone_rounds caps the refinement (what random3d's drop
+ * tests use): planks standing 1e-6 inside their cones need some rounds by
+ * default; with one round less the test runs at most that many and never
+ * calls them unstable (undecided, or stable with a passed certificate),
+ * with exactly as many it decides them stable again. */
+static void cone_rounds_budget(void) {
+  unsigned long long rng = 23 * 0x9E3779B97F4A7C15ull;
+  int capped = 0;
+  for (int trial = 0; trial < 12; trial++) {
+    double alpha = (5.0 + 50.0 * test_rnd(&rng)) * PI / 180.0;
+    double phi = 2.0 * PI * test_rnd(&rng);
+    us_Structure *s = plank(alpha, phi, tan(alpha) * (1.0 + 1e-6), 0.1);
+    CHECK(s);
+    us_Verdict v;
+    int r0, r;
+    verdict_budget(s, -1, &v, &r0);
+    CHECK_INT(v, ==, US_STABLE);
+    CHECK_INT(r0, <=, 60);
+    if (r0 > 0) {
+      verdict_budget(s, r0 - 1, &v, &r);
+      CHECK_INT(r, <=, r0 - 1);
+      CHECK_INT(v, !=, US_UNSTABLE);
+      capped += v == US_UNDECIDED;
+      verdict_budget(s, r0, &v, &r);
+      CHECK_INT(v, ==, US_STABLE);
+      CHECK_INT(r, ==, r0);
+    }
+    us_structure_free(s);
+  }
+  CHECK(capped > 0); /* some plank needed its last round */
 }
 
 /* Zero and infinite friction are exact cones: a level block stands with
@@ -539,6 +593,7 @@ static void counterweight_backtracks(void) {
   us_structure_free(s);
 }
 
-US_TEST_MAIN(T(tilted_plank_critical), T(pyramid_would_be_wrong), T(exact_cones),
+US_TEST_MAIN(T(tilted_plank_critical), T(pyramid_would_be_wrong), T(cone_rounds_budget),
+             T(exact_cones),
              T(backends_agree), T(tower_plans),
              T(extrusion_invariance), T(transform_invariance), T(counterweight_backtracks))

@@ -68,7 +68,12 @@ us_Structure *us_gen_wall3d_returns(const us_GenSettings *g, us_Error *err);
  * whole from scratch, the full system every time (the slow path). */
 typedef struct us_Random3dStats {
   long whole_tests, seeded, full_lps;
+  int cone_rounds_max; /* the most 3D cone refinement rounds one test ran */
 } us_Random3dStats;
+
+/* The 3D cone refinement budget of random3d's whole tests (rounds; the
+ * stability default is 60): an undecided drop is discarded anyway. */
+#define US_RANDOM3D_CONE_ROUNDS 8
 us_Structure *us_gen_random3d_stats(const us_GenSettings *g, int reference, us_Random3dStats *stats,
                                     us_Error *err);
 

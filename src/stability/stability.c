@@ -35,6 +35,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#define CONE_ROUNDS 60 /* 3D cone refinement rounds of one test at most (default) */
+
 struct us_Stability {
   const us_Structure *s;
   us_StabilitySettings set;
@@ -63,6 +65,8 @@ struct us_Stability {
   int refereeing;          /* run_backend serves the referee (scratch, no state kept) */
   us_ConeSet cones;        /* 3D: the polygonal friction cones (lp_gen.h) */
   int bilateral;           /* bilateral joints (us_stability_set_bilateral) */
+  int cone_rounds;         /* 3D: refinement rounds of one test at most */
+  int cone_rounds_max;     /* 3D: the most rounds one test ran */
 };
 
 /* ------------------------------------------------------------ small API */
@@ -146,6 +150,14 @@ const us_StabilityInfo *us_stability_info(const us_Stability *w) { return &w->in
 
 void us_stability_set_skip_forces(us_Stability *w, int skip) {
   if (w) w->set.skip_forces = skip != 0;
+}
+
+void us_stability_set_cone_rounds(us_Stability *w, int rounds) {
+  if (w) w->cone_rounds = rounds > 0 ? rounds : 0;
+}
+
+int us_stability_cone_rounds_max(const us_Stability *w) {
+  return w ? w->cone_rounds_max : 0;
 }
 
 int us_stability_set_bilateral(us_Stability *w, int on) {
@@ -244,6 +256,7 @@ us_Stability *us_stability_new_backend(const us_Structure *s, const us_Stability
   w->s = s;
   w->set = *set;
   w->be = be;
+  w->cone_rounds = CONE_ROUNDS;
   if (alloc_arrays(w)) {
     us_stability_free(w);
     us_error_set(err, US_ERR_NOMEM, "out of memory creating a stability workspace");
@@ -371,11 +384,11 @@ static us_Status run_backend(us_Stability *w, us_StabilityResult *res, us_Error 
  * its tangential force (a vertex of the inner polygon, a tangent side of
  * the outer one), and the two LPs run again. When no direction can be
  * added (every violating polygon full, or the violation within
- * CONE_SLACK) the outer forces are the claim: the certificate check
+ * CONE_SLACK, or w->cone_rounds rounds done) the outer forces are the
+ * claim: the certificate check
  * tests the circular cones, so a claim it rejects is UNDECIDED, never
  * stable. Directions stay for later tests. */
 #define CONE_SLACK 1e-9   /* relative excess |f_t| - mu f_n left unrefined */
-#define CONE_ROUNDS 60    /* refinement rounds of one test at most */
 
 /* Add the directions of the outer forces that leave their circles: the
  * number added, or -1 (OOM). */
@@ -407,7 +420,8 @@ static us_Status run_cones(us_Stability *w, us_StabilityResult *res, us_Error *e
     st = run_backend(w, res, err);
     w->cones.mode = US_CONE_INNER;
     if (st || res->verdict != US_STABLE) return st; /* unstable (exact), or no verdict */
-    int added = round < CONE_ROUNDS ? refine_cones(w) : 0;
+    int added = round < w->cone_rounds ? refine_cones(w) : 0;
+    if (added > 0 && round + 1 > w->cone_rounds_max) w->cone_rounds_max = round + 1;
     if (added < 0) return us_error_set(err, US_ERR_NOMEM, "out of memory refining friction cones");
     if (added == 0) {
       w->info.cone3_open++;

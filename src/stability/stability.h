@@ -11,6 +11,15 @@
  * them; us_StabilitySettings.skip_forces sets the initial value). */
 void us_stability_set_skip_forces(us_Stability *w, int skip);
 
+/* 3D friction cones: refinement rounds of one test at most (default
+ * CONE_ROUNDS, 60; 0: none), after which the outer polygons' forces are
+ * the claim and the certificate decides (stable or UNDECIDED, never a
+ * stable without a passed check). The random3d generator's drop tests use
+ * a small budget: an undecided drop is simply discarded. And the most
+ * rounds one test of the workspace ran (its tests' counter). */
+void us_stability_set_cone_rounds(us_Stability *w, int rounds);
+int us_stability_cone_rounds_max(const us_Stability *w);
+
 /* Bilateral joints (on 1) for the workspace's later tests: every contact
  * force component free in sign, no friction cone (the LP's generators
  * +-n, +-t, lp_gen.h); certificates are checked in that mode (residuals
