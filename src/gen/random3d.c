@@ -64,8 +64,8 @@
  * US_RANDOM3D_CONE_ROUNDS (8) rounds (us_stability_set_cone_rounds): past
  * them the outer polygons' forces are the claim, kept only if their
  * certificate passes, else the drop is undecided and discarded. Budgets of
- * 4 to 12 give the outputs of 60 (2 and 0 do not; measured figures in
- * docs/format.md). g->deadline (a us_now() time;
+ * 4 to 12 give the outputs of 60 up to 150 boxes on W = 8 (2 and 0 do
+ * not), not at 200 (measured figures in docs/format.md). g->deadline (a us_now() time;
  * 0: none) is read before every drop: past it, US_ERR_TIME_LIMIT.
  * Randomness: splitmix64 seeded with g->seed, so a seed gives the same
  * structure on every platform. Bodies "b1", "b2", ... in the
