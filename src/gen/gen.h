@@ -73,7 +73,7 @@ typedef struct us_Random3dStats {
 
 /* The 3D cone refinement budget of random3d's whole tests (rounds; the
  * stability default is 60): an undecided drop is discarded anyway. */
-#define US_RANDOM3D_CONE_ROUNDS 8
+#define US_RANDOM3D_CONE_ROUNDS 2
 us_Structure *us_gen_random3d_stats(const us_GenSettings *g, int reference, us_Random3dStats *stats,
                                     us_Error *err);
 

@@ -61,11 +61,11 @@
  * friction cones: the 3D cone refinement (docs/cones3d.md) would run its
  * 60 rounds over the whole (10 to 50 s each) and end undecided. A drop
  * needs no proof of falling, so whole tests refine at most
- * US_RANDOM3D_CONE_ROUNDS (8) rounds (us_stability_set_cone_rounds): past
+ * US_RANDOM3D_CONE_ROUNDS (2) rounds (us_stability_set_cone_rounds): past
  * them the outer polygons' forces are the claim, kept only if their
- * certificate passes, else the drop is undecided and discarded. Budgets of
- * 4 to 12 give the outputs of 60 up to 150 boxes on W = 8 (2 and 0 do
- * not), not at 200 (measured figures in docs/format.md). g->deadline (a us_now() time;
+ * certificate passes, else the drop is undecided and discarded. A budget
+ * decides a few drops otherwise than 60 rounds would (kept or discarded,
+ * never kept uncertified); measured figures in docs/format.md. g->deadline (a us_now() time;
  * 0: none) is read before every drop: past it, US_ERR_TIME_LIMIT.
  * Randomness: splitmix64 seeded with g->seed, so a seed gives the same
  * structure on every platform. Bodies "b1", "b2", ... in the
