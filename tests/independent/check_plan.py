@@ -669,12 +669,10 @@ def load_actions(path, P, dim):
     P["_rcerts"] = rc
 
 
-def check_actions(S, P, order, tol, base_tol, quiet, emit):
-    """Replay an action plan: never more than "hands" held, each body placed
-    once, releases of held bodies, all placed and none held at the end,
-    "order" the placements reversed, and after every release its
-    certificate: the placed bodies balanced with the held ones as supports."""
-    bodies = S["bodies"]
+def tally(emit):
+    """The failures and the worst measures of a check: (fails, worst, fail,
+    note), fail(msg) recording and printing a failure, note(kind, val,
+    where) keeping the largest value of each measure."""
     fails = []
     worst = {"force": (0.0, ""), "torque": (0.0, ""), "cone": (0.0, ""), "normal": (0.0, ""),
              "frame": (0.0, ""), "geometry": (0.0, "")}
@@ -686,6 +684,17 @@ def check_actions(S, P, order, tol, base_tol, quiet, emit):
     def note(kind, val, where):
         if val > worst[kind][0]:
             worst[kind] = (val, where)
+
+    return fails, worst, fail, note
+
+
+def check_actions(S, P, order, tol, base_tol, quiet, emit):
+    """Replay an action plan: never more than "hands" held, each body placed
+    once, releases of held bodies, all placed and none held at the end,
+    "order" the placements reversed, and after every release its
+    certificate: the placed bodies balanced with the held ones as supports."""
+    bodies = S["bodies"]
+    fails, worst, fail, note = tally(emit)
 
     H, rc = P["hands"], P["_rcerts"]
     placed, pset, held = [], set(), set()
@@ -866,17 +875,7 @@ def check_step(S, present, held, cl, sname, tol, base_tol, quiet, emit, fails, f
 
 def check_steps(S, P, order, steps, tol, base_tol, quiet, emit):
     bodies = S["bodies"]
-    fails = []
-    worst = {"force": (0.0, ""), "torque": (0.0, ""), "cone": (0.0, ""), "normal": (0.0, ""),
-             "frame": (0.0, ""), "geometry": (0.0, "")}
-
-    def fail(msg):
-        fails.append(msg)
-        emit("FAIL " + msg)
-
-    def note(kind, val, where):
-        if val > worst[kind][0]:
-            worst[kind] = (val, where)
+    fails, worst, fail, note = tally(emit)
 
     status = P["status"]
     # what the plan claims
