@@ -1,7 +1,7 @@
 /* unstack render: draw a structure, optionally with a plan and forces, as
  * SVG or PNG (docs/render.md), or as the interactive HTML viewer
  * (--html, cmd_render_html.c, docs/viewer.md). 3D structures are drawn
- * axonometrically (--view AZ,EL) as SVG or PNG; the viewer is 2D only.
+ * axonometrically (--view AZ,EL) as SVG or PNG, or in the HTML viewer.
  *
  * The flow: parse, check the output can be written, pick the format
  * (--format or --html, else the output's extension), load the structure

@@ -1,7 +1,7 @@
   // The plan viewer's 3D view (docs/viewer.md, "3D"). src/render/html.c
   // puts this file into the script of src/render/viewer.html, inside its
   // closure, for a 3D structure only; view3() then replaces the 2D view's
-  // functions (fit, draw, bodyAt, zoomAt, panBy, dragBy, flat), and all the
+  // functions (fit, draw, bodyAt, zoomAt, panBy, dragBy, flat, seen), and all the
   // rest of the page (steps, hands, forces, verify, info box, controls) is
   // the 2D page's own, with the dimension as a parameter.
   //
@@ -18,8 +18,9 @@
   // then face), each face outlined right after it is filled so that nearer
   // faces cover the outlines behind them. Its limits are scene3.c's (a
   // long face beside a short one, cyclic overlaps). Labels and contact
-  // dots are drawn only where their own body is the nearest surface, force
-  // arrows over everything (they are between bodies, mostly inside).
+  // dots are drawn only where their own body is the nearest surface; force
+  // arrows over everything, faint where their point is hidden that way
+  // (most contacts are inside, between two bodies).
   //
   // The pointer: the face under it with the nearest plane there (exact for
   // convex parts: the depth of the plane n . x = d along the view ray),
@@ -221,6 +222,10 @@
       canvas.dataset.faces = fr.list.length;
     };
     flat = function (v) { return [dot(v, R), dot(v, U)]; };
+    seen = function (e) {
+      var s = px(e.p), h = hit(s[0], s[1]);
+      return !h || h.f.i === e.ab[0] || h.f.i === e.ab[1];
+    };
 
     // ---- the view: fit, zoom about a point, pan, orbit about the centre
     function setView() {
