@@ -17,10 +17,11 @@
   // depth of their vertex centroid (the painter's algorithm, ties by body
   // then face), each face outlined right after it is filled so that nearer
   // faces cover the outlines behind them. Its limits are scene3.c's (a
-  // long face beside a short one, cyclic overlaps). Labels and contact
-  // dots are drawn only where their own body is the nearest surface; force
-  // arrows over everything, faint where their point is hidden that way
-  // (most contacts are inside, between two bodies).
+  // long face beside a short one, cyclic overlaps). A body's number sits
+  // on its largest face that is seen at its centre; contact dots are drawn
+  // where no face is nearer than the point; force arrows everywhere, faint
+  // where their point is hidden so (most contacts are inside, between two
+  // bodies).
   //
   // The pointer: the face under it with the nearest plane there (exact for
   // convex parts: the depth of the plane n . x = d along the view ray),
@@ -84,7 +85,8 @@
     }
 
     // ---- a frame: the front faces of the bodies present, far to near,
-    // in screen pixels, with a grid of their boxes for the pointer
+    // in screen pixels, with a grid of their boxes for the pointer and
+    // each body's list
     var G = 24, frameKey = "", F = null;
     function frame() {
       var key = [pos, V.az, V.el, V.k, V.ox, V.oy, cw, ch].join(" ");
@@ -102,14 +104,15 @@
         list.push({f: f, fi: fi, xy: xy, z: dot(f.c, E), box: [x0, y0, x1, y1]});
       });
       list.sort(function (a, b) { return a.z - b.z || a.f.i - b.f.i || a.fi - b.fi; });
-      var cells = [];
+      var cells = [], byBody = [];
       list.forEach(function (e, q) {
+        (byBody[e.f.i] || (byBody[e.f.i] = [])).push(e);
         var c = [cellX(e.box[0]), cellY(e.box[1]), cellX(e.box[2]), cellY(e.box[3])];
         for (var gx = c[0]; gx <= c[2]; gx++)
           for (var gy = c[1]; gy <= c[3]; gy++) (cells[gy * G + gx] || (cells[gy * G + gx] = [])).push(q);
       });
       frameKey = key;
-      F = {list: list, cells: cells};
+      F = {list: list, cells: cells, byBody: byBody};
       return F;
     }
     function cellX(x) { return Math.min(G - 1, Math.max(0, Math.floor(x / cw * G))); }
@@ -121,7 +124,8 @@
             x < (xy[j] - xy[k]) * (y - xy[k + 1]) / (xy[j + 1] - xy[k + 1]) + xy[k]) c = !c;
       return c;
     }
-    // the nearest face at canvas pixel (x, y), or null
+    // the nearest face at canvas pixel (x, y) ({e: entry, z: its depth
+    // there}), or null
     function hit(x, y) {
       var fr = frame(), best = null, bz = -Infinity;
       if (x < 0 || y < 0 || x > cw || y > ch) return null;
@@ -132,7 +136,12 @@
         var z = (e.f.d - a * dot(n, R) - c * dot(n, U)) / dot(n, E);
         if (z > bz) { bz = z; best = e; }
       });
-      return best;
+      return best ? {e: best, z: bz} : null;
+    }
+    // a world point on a surface is seen when no face is nearer there
+    function visible(p) {
+      var s = px(p), h = hit(s[0], s[1]);
+      return !h || dot(p, E) >= h.z - 1e-6 * span;
     }
 
     // ---- drawing
@@ -170,18 +179,33 @@
         ctx.stroke();
       });
     }
-    // a body's number at its centre where the body itself is seen there
-    function drawLabels() {
+    // a body's number on its largest face that is seen at its centre
+    // (never over a nearer body), sized to the body and to that face
+    function area(xy) {
+      var a = 0;
+      for (var k = 0, j = xy.length - 2; k < xy.length; j = k, k += 2) a += xy[j] * xy[k + 1] - xy[k] * xy[j + 1];
+      return Math.abs(a) / 2;
+    }
+    function labelAt(fr, i) {
+      var best = null;
+      (fr.byBody[i] || []).forEach(function (e) {
+        var s = px(e.f.c), h = hit(s[0], s[1]), a = area(e.xy);
+        if (h && h.e === e && (!best || a > best.a)) best = {s: s, a: a};
+      });
+      return best;
+    }
+    function drawLabels(fr) {
       ctx.textAlign = "center"; ctx.textBaseline = "middle";
       var n = 0;
       for (var i = 0; i < NB; i++) {
         if (!present(i) || step[i] < 0) continue;
-        var s = px(D.bodies[i].c), h = hit(s[0], s[1]), text = String(step[i] + 1);
-        var fs = Math.round(2 * Math.min(0.45 * ext[i] * V.k, 0.9 * ext[i] * V.k / (0.6 * text.length))) / 2;
-        if (!h || h.f.i !== i || !(fs >= 5)) continue;
+        var text = String(step[i] + 1), at = labelAt(fr, i);
+        var size = at ? Math.min(ext[i] * V.k, Math.sqrt(at.a)) : 0;
+        var fs = Math.round(2 * Math.min(0.45 * size, 0.9 * size / (0.6 * text.length))) / 2;
+        if (!(fs >= 5)) continue;
         ctx.font = fs + "px sans-serif";
         ctx.fillStyle = stepT(step[i]) < 0.6 ? "#fff" : "#000";
-        ctx.fillText(text, s[0], s[1]);
+        ctx.fillText(text, at.s[0], at.s[1]);
         n++;
       }
       canvas.dataset.labels = n;
@@ -195,7 +219,7 @@
       });
       ctx.strokeStyle = INK.hand; ctx.lineWidth = 2.5; ctx.stroke();
     }
-    // contact points where one of the two bodies is the nearest surface
+    // contact points where no face is nearer
     function drawDots() {
       var r = Math.min(typical * 0.04 * V.k, 4);
       if (!(r >= 0.7)) return;
@@ -203,8 +227,8 @@
       for (var j = 0; j < NC; j++) {
         var c = D.contacts[j];
         if (!contactOn(c)) continue;
-        var s = px(pointOf(c)), h = hit(s[0], s[1]);
-        if (h && h.f.i !== c[0] && h.f.i !== c[1]) continue;
+        var p = pointOf(c), s = px(p);
+        if (!visible(p)) continue;
         ctx.moveTo(s[0] + r, s[1]); ctx.arc(s[0], s[1], r, 0, 2 * Math.PI);
       }
       ctx.fillStyle = INK.dot; ctx.fill();
@@ -215,17 +239,14 @@
       ctx.clearRect(0, 0, cw, ch);
       grid();
       drawFaces(fr, failing);
-      drawLabels();
+      drawLabels(fr);
       drawHands();
       drawDots();
       drawForces({k: V.k, ox: V.ox, oy: V.oy});
       canvas.dataset.faces = fr.list.length;
     };
     flat = function (v) { return [dot(v, R), dot(v, U)]; };
-    seen = function (e) {
-      var s = px(e.p), h = hit(s[0], s[1]);
-      return !h || h.f.i === e.ab[0] || h.f.i === e.ab[1];
-    };
+    seen = function (e) { return visible(e.p); };
 
     // ---- the view: fit, zoom about a point, pan, orbit about the centre
     function setView() {
@@ -269,7 +290,7 @@
     };
     bodyAt = function (clientX, clientY) {
       var r = canvas.getBoundingClientRect(), h = hit(clientX - r.left, clientY - r.top);
-      return h ? h.f.i : null;
+      return h ? h.e.f.i : null;
     };
     canvas.addEventListener("contextmenu", function (e) { e.preventDefault(); });
   }
