@@ -53,8 +53,9 @@ async function countColour(page, rgb) {
 const BLUE = [31, 78, 156], MAGENTA = [196, 0, 150], RED = [198, 40, 40];
 const dataset = (page, key) => page.$eval("#view", (c, key) => c.dataset[key], key);
 
-async function open(browser, file) {
-  const ctx = await browser.newContext({ viewport: { width: 1000, height: 700 } });
+async function open(browser, file, touch) {
+  const ctx = await browser.newContext(touch ? { viewport: { width: 390, height: 740 }, hasTouch: true, isMobile: true }
+                                             : { viewport: { width: 1000, height: 700 } });
   const page = await ctx.newPage();
   const errors = [];
   page.on("pageerror", (e) => errors.push(String(e)));
@@ -250,6 +251,23 @@ async function testTampered(browser) {
   await ctx.close();
 }
 
+// A phone: a tap on a body's top face pins its id; a tap off the bodies unpins.
+async function testPhone(browser) {
+  const structure = readJson("pyr3.json"), top = structure.bodies[structure.bodies.length - 1];
+  const { ctx, page, errors } = await open(browser, "pyr3.html", true);
+  check(await page.evaluate(() => document.documentElement.scrollWidth) <= 390, "nothing wider than a phone's screen");
+  const at = (await toScreen(page, [topCentre(top)]))[0];
+  await page.touchscreen.tap(at[0], at[1]);
+  await frames(page);
+  const info = await page.$eval("#info", (e) => (e.hidden ? "" : e.textContent));
+  check(info.startsWith("id " + top.id), "a tap shows the body's id", JSON.stringify(info));
+  const corner = await page.$eval("#view", (v) => { const r = v.getBoundingClientRect(); return [r.left + 5, r.bottom - 5]; });
+  await page.touchscreen.tap(corner[0], corner[1]);
+  check(await page.$eval("#info", (e) => e.hidden), "a tap on empty space unpins it");
+  check(errors.length === 0, "no script errors", errors.join("; "));
+  await ctx.close();
+}
+
 async function main() {
   const { chromium } = require(path.join(pwDir, "node_modules", "playwright-core"));
   let browser;
@@ -264,6 +282,7 @@ async function main() {
     await testHands(browser);
     await testInvalid(browser);
     await testTampered(browser);
+    await testPhone(browser);
   } catch (e) {
     check(false, "the browser session ran to the end", String(e.stack || e));
   } finally {
