@@ -5,8 +5,11 @@
  * every position as world vectors equal to f_n n + f_t t recomputed here
  * from the structure's own tangent basis. Hostile ids (script end tags,
  * comment openers, quotes, U+2028, controls, invalid UTF-8) leave no '<'
- * in the data and read back exactly (invalid bytes as U+FFFD). Bad input
- * (3D, bad order, bad forces) is refused before any file is written, an
+ * in the data and read back exactly (invalid bytes as U+FFFD). A 3D page
+ * carries each body's convex parts (vertices and faces as in the
+ * structure), 3D contacts and forces (normal and both tangent parts), the
+ * view and the 3D script, which a 2D page does not carry. Bad input
+ * (4D, a bad 3D view, bad order, bad forces) is refused before any file is written, an
  * allocation failure at any point leaves no file, and certificates read
  * back from a written plan equal the planner's. The page in a browser is
  * tests/browser (ctest browser.viewer). */
@@ -67,6 +70,12 @@ static us_Structure *pyramid(int rows) {
   return us_gen_pyramid(&g, NULL);
 }
 
+static us_Structure *pyramid3d(int rows) {
+  us_GenSettings g = us_gen_default_settings();
+  g.n = rows;
+  return us_gen_pyramid3d(&g, NULL);
+}
+
 static us_Status plan_with_certs(const us_Structure *s, us_Plan *p) {
   us_PlanSettings set = us_plan_default_settings();
   set.certificates = 1;
@@ -124,7 +133,8 @@ static void json_parses_back(void) {
   char *page = NULL;
   json_t *d = page_data(s, &r, &h, "p.html", &page);
   int nsteps = p.group_start ? p.ngroups : p.nsteps;
-  int ok = d && page && !strstr(page, "@US_DATA@") && strstr(page, "<meta name=\"viewport\"");
+  int ok = d && page && !strstr(page, "@US_DATA@") && strstr(page, "<meta name=\"viewport\"") &&
+           !strstr(page, "function view3") && !strstr(page, "@US_VIEW3@");
   ok = ok && json_array_size(json_object_get(d, "bodies")) == (size_t)s->nbody;
   ok = ok && json_array_size(json_object_get(d, "contacts")) == (size_t)s->ncontact;
   ok = ok && json_array_size(json_object_get(d, "steps")) == (size_t)nsteps;
@@ -146,6 +156,93 @@ static void json_parses_back(void) {
   }
   for (int k = 0; ok && k <= nsteps; k++)
     ok = forces_match(s, json_array_get(json_object_get(d, "forces"), (size_t)k), &p.certs[k]) &&
+         cert_ok(d, k);
+  json_decref(d);
+  us_free(page);
+  us_plan_free(&p);
+  us_structure_free(s);
+  CHECK(ok);
+}
+
+/* forces[k] of a 3D page = [contact, normal (3), friction (3), ...]: as
+ * forces_match, up being +z and the friction f_t1 t1 + f_t2 t2. */
+static int forces_match3(const us_Structure *s, json_t *list, const us_Forces *f) {
+  if (json_array_size(list) != 7 * (size_t)f->ncontact) return 0;
+  for (int j = 0; j < f->ncontact; j++) {
+    const us_Contact *c = &s->contacts[f->contact[j]];
+    const double *fc = f->f + 3 * j;
+    double sg = c->n[2] > 1e-9 || (fabs(c->n[2]) <= 1e-9 && (c->n[0] > 1e-9 ||
+                (fabs(c->n[0]) <= 1e-9 && c->n[1] > 0))) ? 1.0 : -1.0;
+    double tol = 1e-7 * (fabs(fc[0]) + fabs(fc[1]) + fabs(fc[2]) + 1e-12);
+    if (json_number_value(json_array_get(list, 7 * (size_t)j)) != f->contact[j]) return 0;
+    for (int q = 0; q < 3; q++) {
+      double n = sg * fc[0] * c->n[q], t = sg * (fc[1] * c->t[0][q] + fc[2] * c->t[1][q]);
+      if (fabs(json_number_value(json_array_get(list, 7 * (size_t)j + 1 + (size_t)q)) - n) > tol ||
+          fabs(json_number_value(json_array_get(list, 7 * (size_t)j + 4 + (size_t)q)) - t) > tol)
+        return 0;
+    }
+  }
+  return 1;
+}
+
+/* A body's parts in the page: every vertex and every face as in s. */
+static int parts_match(const us_Body *b, json_t *parts) {
+  if (json_array_size(parts) != (size_t)b->npart) return 0;
+  for (int p = 0; p < b->npart; p++) {
+    const us_Polyhedron *h = &b->parts[p];
+    json_t *v = json_object_get(json_array_get(parts, (size_t)p), "v");
+    json_t *f = json_object_get(json_array_get(parts, (size_t)p), "f");
+    if (json_array_size(v) != 3 * (size_t)h->nvert || json_array_size(f) != (size_t)h->nface) return 0;
+    for (int q = 0; q < 3 * h->nvert; q++)
+      if (fabs(json_number_value(json_array_get(v, (size_t)q)) - h->verts[q]) > 1e-8 * (1 + fabs(h->verts[q])))
+        return 0;
+    for (int k = 0; k < h->nface; k++) {
+      json_t *face = json_array_get(f, (size_t)k);
+      int a = h->face_start[k], n = h->face_start[k + 1] - a;
+      if (json_array_size(face) != (size_t)n) return 0;
+      for (int q = 0; q < n; q++)
+        if (json_number_value(json_array_get(face, (size_t)q)) != h->face_vert[a + q]) return 0;
+    }
+  }
+  return 1;
+}
+
+/* A 3D plan's page: parts, 3D contacts and forces, the view, the 3D
+ * script; every step's forces pass the re-check. */
+static void json_parses_back_3d(void) {
+  us_Structure *s = pyramid3d(3);
+  CHECK(s);
+  us_Plan p;
+  memset(&p, 0, sizeof p);
+  us_Error err;
+  CHECK_OK(plan_with_certs(s, &p), &err);
+  CHECK_INT(p.status, ==, US_PLAN_FOUND);
+  us_RenderSettings r = order_of(&p);
+  r.view_az = 120, r.view_el = 40;
+  us_HtmlSettings h = us_html_default_settings();
+  h.certs = p.certs;
+  char *page = NULL;
+  json_t *d = page_data(s, &r, &h, "p3.html", &page);
+  int nsteps = p.group_start ? p.ngroups : p.nsteps;
+  json_t *view = json_object_get(d, "view");
+  int ok = d && page && strstr(page, "function view3") && !strstr(page, "@US_VIEW3@") &&
+           json_integer_value(json_object_get(d, "dim")) == 3 &&
+           json_number_value(json_array_get(view, 0)) == 120 && json_number_value(json_array_get(view, 1)) == 40;
+  ok = ok && json_array_size(json_object_get(d, "bodies")) == (size_t)s->nbody &&
+       json_array_size(json_object_get(d, "forces")) == (size_t)nsteps + 1;
+  for (int i = 0; ok && i < s->nbody; i++) {
+    json_t *b = json_array_get(json_object_get(d, "bodies"), (size_t)i);
+    ok = !strcmp(json_string_value(json_object_get(b, "id")), s->bodies[i].id) &&
+         !json_object_get(b, "xy") && json_array_size(json_object_get(b, "c")) == 3 &&
+         parts_match(&s->bodies[i], json_object_get(b, "parts"));
+  }
+  for (int c = 0; ok && c < s->ncontact; c++) {
+    json_t *k = json_array_get(json_object_get(d, "contacts"), (size_t)c);
+    ok = json_array_size(k) == 8 && json_number_value(json_array_get(k, 4)) == s->contacts[c].p[2] &&
+         json_number_value(json_array_get(k, 7)) == s->contacts[c].n[2];
+  }
+  for (int k = 0; ok && k <= nsteps; k++)
+    ok = forces_match3(s, json_array_get(json_object_get(d, "forces"), (size_t)k), &p.certs[k]) &&
          cert_ok(d, k);
   json_decref(d);
   us_free(page);
@@ -281,51 +378,68 @@ static void bad_input_refused(void) {
   h = us_html_default_settings();
   h.verified = 1, h.verify.failed_step = 5;
   refused(s, NULL, &h, US_ERR_USAGE, &bad);     /* a step the order does not have */
-  s->dim = 3;
-  refused(s, NULL, NULL, US_ERR_INPUT, &bad);   /* 3D: not yet */
+  s->dim = 4;
+  refused(s, NULL, NULL, US_ERR_INPUT, &bad);   /* neither 2D nor 3D */
   s->dim = 2;
+  us_structure_free(s);
+  s = pyramid3d(2);
+  CHECK(s);
+  r = us_render_default_settings();
+  r.view_el = 95;
+  refused(s, &r, NULL, US_ERR_USAGE, &bad);     /* a 3D view past the pole */
+  r.view_el = 25, r.view_az = NAN;
+  refused(s, &r, NULL, US_ERR_USAGE, &bad);     /* a 3D view not a number */
+  s->bodies[1].parts[0].verts[4] = INFINITY;
+  refused(s, NULL, NULL, US_ERR_INPUT, &bad);   /* a 3D vertex not finite */
   us_structure_free(s);
   CHECK(!bad);
 }
 
-static void out_of_memory_leaves_nothing(void) {
-  us_Structure *s = scene_column(3);
-  CHECK(s);
-  us_Plan p;
-  memset(&p, 0, sizeof p);
-  us_Error err;
-  CHECK_OK(plan_with_certs(s, &p), &err);
-  char path[128];
-  test_tmp_path("oom.html", path, sizeof path);
+/* Every allocation failing in turn: no file, until the page is written;
+ * *ok is cleared on any file left by a failure or no page at the end. */
+static void oom_sweep(const us_Structure *s, const us_Plan *p, const char *path, int *ok) {
   for (int with_plan = 0; with_plan <= 1; with_plan++) {
-    us_RenderSettings r = order_of(&p);
+    us_RenderSettings r = order_of(p);
     us_HtmlSettings h = us_html_default_settings();
-    h.certs = p.certs; /* the per-step re-check allocates too */
+    h.certs = p->certs; /* the per-step re-check allocates too */
     us_Status st = US_ERR_NOMEM;
-    int n = 0, bad = 0;
-    for (; st == US_ERR_NOMEM && n < 1000; n++) {
+    for (int n = 0; st == US_ERR_NOMEM && n < 1000; n++) {
       us_alloc_fail_after(n);
       st = with_plan ? us_render_html(s, &r, &h, path, NULL) : us_render_html(s, NULL, NULL, path, NULL);
       us_alloc_fail_after(-1);
-      if (st == US_ERR_NOMEM && access(path, F_OK) == 0) bad = 1;
+      if (st == US_ERR_NOMEM && access(path, F_OK) == 0) *ok = 0;
     }
-    int written = st == US_OK && access(path, F_OK) == 0;
+    if (st != US_OK || access(path, F_OK) != 0) *ok = 0;
     unlink(path);
-    CHECK(!bad);
-    CHECK(written);
   }
-  us_plan_free(&p);
-  us_structure_free(s);
+}
+
+/* The sweep on a 2D column and a 3D pyramid, each with its plan. */
+static void out_of_memory_leaves_nothing(void) {
+  char path[128];
+  test_tmp_path("oom.html", path, sizeof path);
+  int ok = 1;
+  for (int dim = 2; dim <= 3; dim++) {
+    us_Structure *s = dim == 2 ? scene_column(3) : pyramid3d(2);
+    us_Plan p;
+    memset(&p, 0, sizeof p);
+    if (!s || plan_with_certs(s, &p)) ok = 0;
+    else oom_sweep(s, &p, path, &ok);
+    us_plan_free(&p);
+    us_structure_free(s);
+  }
+  CHECK(ok);
 }
 
 /* ------------------------------------------------ plan certificates */
 
-static int same_forces(const us_Forces *a, const us_Forces *b) {
+static int same_forces(const us_Forces *a, const us_Forces *b, int dim) {
   if (a->ncontact != b->ncontact) return 0;
-  for (int j = 0; j < a->ncontact; j++)
-    if (a->contact[j] != b->contact[j] || a->f[2 * j] != b->f[2 * j] ||
-        a->f[2 * j + 1] != b->f[2 * j + 1])
-      return 0;
+  for (int j = 0; j < a->ncontact; j++) {
+    if (a->contact[j] != b->contact[j]) return 0;
+    for (int d = 0; d < dim; d++)
+      if (a->f[dim * j + d] != b->f[dim * j + d]) return 0;
+  }
   return 1;
 }
 
@@ -354,13 +468,23 @@ static void certs_check_round_trip(const us_Structure *s, int *ok) {
   int n = 0;
   *ok = plan_with_certs(s, &p) == US_OK && p.status == US_PLAN_FOUND &&
         round_trip(s, &p, "certs.json", &certs, &n, &err) == US_OK && certs;
-  for (int k = 0; *ok && k <= n; k++) *ok = same_forces(&certs[k], &p.certs[k]);
+  for (int k = 0; *ok && k <= n; k++) *ok = same_forces(&certs[k], &p.certs[k], s->dim);
   us_certs_free(certs, n + 1);
   us_plan_free(&p);
 }
 
 static void certs_read_back(void) {
   us_Structure *s = pyramid(5);
+  CHECK(s);
+  int ok = 0;
+  certs_check_round_trip(s, &ok);
+  us_structure_free(s);
+  CHECK(ok);
+}
+
+/* 3D certificates (three components a contact) read back exactly. */
+static void certs_read_back_3d(void) {
+  us_Structure *s = pyramid3d(3);
   CHECK(s);
   int ok = 0;
   certs_check_round_trip(s, &ok);
@@ -422,7 +546,7 @@ static void certs_absent_or_tampered(void) {
       refused_all = 0;
     }
   }
-  s->dim = 3; /* 3D certificates (three components a contact) are not read yet */
+  s->dim = 3; /* a 2D certificate (two components) on a 3D structure */
   us_Status three = us_plan_read_certs(s, path, &pf, &certs, &err);
   s->dim = 2;
   us_plan_file_free(&pf);
@@ -433,6 +557,6 @@ static void certs_absent_or_tampered(void) {
   CHECK_INT(three, ==, US_ERR_INPUT);
 }
 
-US_TEST_MAIN(T(json_parses_back), T(tampered_forces_flagged), T(hostile_ids_escaped), T(steps_and_verify), T(bad_input_refused),
-             T(out_of_memory_leaves_nothing), T(certs_read_back), T(certs_shared_points),
+US_TEST_MAIN(T(json_parses_back), T(json_parses_back_3d), T(tampered_forces_flagged), T(hostile_ids_escaped), T(steps_and_verify), T(bad_input_refused),
+             T(out_of_memory_leaves_nothing), T(certs_read_back), T(certs_read_back_3d), T(certs_shared_points),
              T(certs_absent_or_tampered))

@@ -1,7 +1,7 @@
 /* unstack render: draw a structure, optionally with a plan and forces, as
  * SVG or PNG (docs/render.md), or as the interactive HTML viewer
  * (--html, cmd_render_html.c, docs/viewer.md). 3D structures are drawn
- * axonometrically (--view AZ,EL) as SVG or PNG; the viewer is 2D only.
+ * axonometrically (--view AZ,EL) as SVG or PNG, or in the HTML viewer.
  *
  * The flow: parse, check the output can be written, pick the format
  * (--format or --html, else the output's extension), load the structure
@@ -130,8 +130,8 @@ static int parse(int argc, char **argv, CliCommon *c, RenderArgs *a) {
       CLI_CALL("--format", "svg|png|html", &a->format, set_format,
                "the format, whatever the output's name"),
       CLI_FLAG_VAL("--html", &a->format, FMT_HTML,
-                   "the interactive viewer, one self-contained page (also chosen by an output "
-                   "name ending in .html; docs/viewer.md)"),
+                   "the interactive viewer, one self-contained page, 2D or 3D (also chosen by an "
+                   "output name ending in .html; docs/viewer.md)"),
       CLI_TEXT("--plan", "PLAN.json", &a->plan, "colour and number bodies by removal order"),
       CLI_INT("--action", "K", &a->action, "a plan with hands: the state after its first K "
               "actions (0 to their number): placed bodies drawn, held ones marked, the rest faint",
@@ -163,7 +163,7 @@ static int parse(int argc, char **argv, CliCommon *c, RenderArgs *a) {
                .need = "a number of pixels in [16, 100000]"),
       CLI_CALL("--view", "AZ,EL", &a->r, set_view,
                "3D: azimuth and elevation of the view in degrees (default 35,25; EL in [-90, "
-               "90]; docs/render.md)"),
+               "90]; docs/render.md; with --html the page's first view)"),
       CLI_OPT_CONTACT_TOL(c),
       CLI_END};
   const CliSpec spec = {"render", head, tail, opts, &a->file, 1, "more than one FILE given"};

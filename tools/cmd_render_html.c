@@ -40,8 +40,8 @@ static int verify_plan(const us_Structure *s, const us_PlanFile *pf, CliCommon *
   return r;
 }
 
-/* Bodies by height of their centre of mass, then index (qsort context
- * free: the keys are copied in). */
+/* Bodies by height of their centre of mass (y in 2D, z in 3D), then
+ * index (qsort context free: the keys are copied in). */
 typedef struct Low {
   double y;
   int i;
@@ -89,7 +89,7 @@ static int buildable_order(const us_Structure *s, const us_PlanFile *pf, CliComm
   }
   for (int k = 0; k < pf->nblocked; k++) blocked[pf->blocked[k]] = 1;
   for (int i = 0; i < s->nbody; i++)
-    if (!s->bodies[i].fixed && !blocked[i]) cand[n++] = (Low){s->bodies[i].com[1], i};
+    if (!s->bodies[i].fixed && !blocked[i]) cand[n++] = (Low){s->bodies[i].com[s->dim == 3 ? 2 : 1], i};
   qsort(cand, (size_t)n, sizeof *cand, low_cmp);
   long budget = 50L * n + 1000;
   while (got < n && (r = build_one(w, &present, cand, n, in, &budget, &added, err)) == 1)

@@ -12,6 +12,8 @@
  * share a point (a corner on two faces): their normals tell them apart.
  * The forces are
  * copied as written: this reader does not judge them (verification does).
+ * Points, normals and forces have the structure's dimension of components
+ * (3D forces: normal, then along the contact's tangents t1 and t2).
  *
  * Invariants of the result: certs has ngroups + 1 entries; certs[k] names
  * only contacts of s, each at most once; certs[ngroups] (the empty
@@ -68,15 +70,20 @@ static int side_index(const us_Structure *s, json_t *v, int may_be_ground) {
 /* The contact of s between a and b with normal n nearest to p, within
  * tol, not yet used by step k, or -1. (Two contacts may share a point:
  * a corner on two faces; their normals tell them apart.) */
-static int find_contact(const CertCtx *c, int a, int b, const double p[2], const double n[2],
+static double dist(const double *x, const double *y, int dim) {
+  double s = 0.0;
+  for (int d = 0; d < dim; d++) s += (x[d] - y[d]) * (x[d] - y[d]);
+  return sqrt(s);
+}
+static int find_contact(const CertCtx *c, int a, int b, const double p[3], const double n[3],
                         int k) {
   double best = 1e-6 * c->s->scale;
-  int hit = -1;
+  int hit = -1, dim = c->s->dim;
   for (int q = c->start[b]; q < c->start[b + 1]; q++) {
     int j = c->by_b[q];
     const us_Contact *x = &c->s->contacts[j];
-    double d = hypot(x->p[0] - p[0], x->p[1] - p[1]);
-    if (x->a != a || c->seen[j] == k + 1 || hypot(x->n[0] - n[0], x->n[1] - n[1]) > 1e-6) continue;
+    double d = dist(x->p, p, dim);
+    if (x->a != a || c->seen[j] == k + 1 || dist(x->n, n, dim) > 1e-6) continue;
     if (d <= best) best = d, hit = j;
   }
   return hit;
@@ -91,10 +98,11 @@ static us_Status read_entry(CertCtx *c, json_t *e, const char *where, int k, us_
   int a = side_index(c->s, json_object_get(e, "a"), 1);
   int b = side_index(c->s, json_object_get(e, "b"), 0);
   if (a == -2 || b < 0) return us_io_bad(&c->io, where, "a, b: expected body ids of the structure");
-  double p[2], n[2], force[2];
-  us_Status st = us_io_vec2(&c->io, where, "point", json_object_get(e, "point"), p);
-  if (!st) st = us_io_vec2(&c->io, where, "normal", json_object_get(e, "normal"), n);
-  if (!st) st = us_io_vec2(&c->io, where, "force", json_object_get(e, "force"), force);
+  double p[3] = {0, 0, 0}, n[3] = {0, 0, 0}, force[3] = {0, 0, 0};
+  int dim = c->s->dim;
+  us_Status st = us_io_vecn(&c->io, where, "point", json_object_get(e, "point"), dim, p);
+  if (!st) st = us_io_vecn(&c->io, where, "normal", json_object_get(e, "normal"), dim, n);
+  if (!st) st = us_io_vecn(&c->io, where, "force", json_object_get(e, "force"), dim, force);
   if (st) return st;
   int hit = find_contact(c, a, b, p, n, k);
   if (hit < 0)
@@ -104,8 +112,7 @@ static us_Status read_entry(CertCtx *c, json_t *e, const char *where, int k, us_
                      us_id_text(c->s->bodies[b].id).s, p[0], p[1], n[0], n[1]);
   c->seen[hit] = k + 1;
   f->contact[j] = hit;
-  f->f[2 * j] = force[0];
-  f->f[2 * j + 1] = force[1];
+  for (int d = 0; d < dim; d++) f->f[(size_t)dim * (size_t)j + (size_t)d] = force[d];
   return US_OK;
 }
 
@@ -136,7 +143,7 @@ static us_Status read_step(CertCtx *c, json_t *step, int k, us_Forces *f) {
   if (n > (size_t)c->s->ncontact)
     return us_io_bad(&c->io, where, "more certificate contacts than the structure has");
   f->contact = us_malloc((n + 1) * sizeof *f->contact);
-  f->f = us_malloc((2 * n + 1) * sizeof *f->f);
+  f->f = us_malloc(((size_t)c->s->dim * n + 1) * sizeof *f->f);
   if (!f->contact || !f->f) return nomem(c);
   f->cap = (int)n;
   for (size_t j = 0; !st && j < n; j++) {
@@ -180,9 +187,9 @@ us_Status us_plan_read_certs(const us_Structure *s, const char *path, const us_P
   if (!s || !path || !pf || !certs || (pf->ngroups > 0 && !pf->group_start))
     return us_error_set(err, US_ERR_USAGE, "us_plan_read_certs: missing argument");
   *certs = NULL;
-  if (s->dim != 2)
-    return us_error_set(err, US_ERR_INPUT, "%s: certificates are read for 2D structures only "
-                        "(this one is %dD)", path, s->dim);
+  if (s->dim != 2 && s->dim != 3)
+    return us_error_set(err, US_ERR_INPUT, "%s: certificates are read for 2D and 3D structures "
+                        "only (this one is %dD)", path, s->dim);
   CertCtx c = {{path, &local}, s, pf, NULL, NULL, NULL};
   size_t len = 0;
   char *text = us_io_slurp(path, &len, &local);

@@ -2,21 +2,30 @@
  * made of the page template src/render/viewer.html (embedded at build time,
  * viewer.h) with the structure and plan as JSON in place of its marker.
  *
- * The data (read by the page's script; every index is 0-based):
+ * The data (read by the page's script; every index is 0-based; D is the
+ * structure's dimension, 2 or 3, and every point or vector has D numbers):
  *   title     string
- *   ground    whether the half-plane y <= 0 supports the structure
+ *   dim       D; a 3D page carries the 3D view (src/render/viewer3.js) in
+ *             place of the script's second marker, a 2D page nothing there
+ *   view      [azimuth, elevation] of a 3D page's first view (degrees, the
+ *             axes of src/render/scene3.c)
+ *   ground    whether the half-plane y <= 0 (3D: z <= 0) supports it
  *   status    the plan's status word, or null without an order
- *   bodies    [{id, m (null when fixed), fixed, xy: [x0, y0, x1, ...], c: [x, y]}]
- *   contacts  [[a, b, px, py, nx, ny]]: a = -1 for the ground, the unit
- *             normal from a into b
+ *   bodies    [{id, m (null when fixed), fixed, xy: [x0, y0, x1, ...], c: [x, y]}];
+ *             3D: [{id, m, fixed, parts: [{v: [x0, y0, z0, x1, ...], f:
+ *             [[v, ...], ...]}], c: [x, y, z]}]: each convex part's
+ *             vertices and faces (vertex indices counter-clockwise seen
+ *             from outside)
+ *   contacts  [[a, b, p (D numbers), n (D numbers)]]: a = -1 for the
+ *             ground, the unit normal from a into b
  *   steps     [[body, ...]]: step k removes these bodies
  *   blocked   [body, ...]: bodies that cannot be removed (status none)
  *   forces    null, or one entry per position 0..nsteps (the structure
  *             before step k; the last, empty structure too): a flat list
- *             [contact, nx, ny, tx, ty, ...]: at each active contact the
+ *             [contact, normal (D), friction (D), ...]: at each contact the
  *             force the lower body exerts on the upper one (the picture's
- *             one convention, src/render/forces.c), its normal part (nx,
- *             ny) and friction part (tx, ty) in world axes
+ *             one convention, src/render/forces.c), its normal part and
+ *             friction part in world axes
  *   certs     null, or per position the independent re-check of those
  *             forces (us_certificate_check, no solver): {ok, force,
  *             torque, cone, sign} (the residuals relative to the weight;
@@ -40,8 +49,7 @@
  *
  * Numbers: 9 significant digits (a thousandth of a pixel on any screen);
  * a non-finite one refuses the page (US_ERR_INPUT) before the file is
- * opened, as do a structure that is not 2D (the 3D viewer is not written)
- * and settings that do not match the structure (US_ERR_USAGE). */
+ * opened, as do settings that do not match the structure (US_ERR_USAGE). */
 #include "core/core.h"
 #include "render/render.h"
 #include "render/viewer.h"
@@ -52,6 +60,7 @@
 #include <string.h>
 
 #define DATA_MARKER "@US_DATA@"
+#define VIEW3_MARKER "/*@US_VIEW3@*/"
 
 /* ------------------------------------------------------------ checks */
 
@@ -117,17 +126,22 @@ static int finite_xy(const double *v, int n) {
   return 1;
 }
 
+/* A body's geometry: its polygon (2D) or its parts' vertices (3D). */
+static int finite_body(const us_Body *b, int dim) {
+  int ok = finite_xy(b->com, dim) && (b->fixed || isfinite(b->mass));
+  if (dim == 2) return ok && finite_xy(b->verts, 2 * b->nvert);
+  for (int p = 0; ok && p < b->npart; p++) ok = finite_xy(b->parts[p].verts, 3 * b->parts[p].nvert);
+  return ok;
+}
+
 /* Every number the page will hold is finite. */
 static us_Status check_numbers(const us_Structure *s, const us_Forces *certs, int n,
                                us_Error *err) {
-  int ok = 1;
-  for (int i = 0; ok && i < s->nbody; i++) {
-    const us_Body *b = &s->bodies[i];
-    ok = finite_xy(b->verts, 2 * b->nvert) && finite_xy(b->com, 2) && (b->fixed || isfinite(b->mass));
-  }
+  int ok = 1, dim = s->dim;
+  for (int i = 0; ok && i < s->nbody; i++) ok = finite_body(&s->bodies[i], dim);
   for (int c = 0; ok && c < s->ncontact; c++)
-    ok = finite_xy(s->contacts[c].p, 2) && finite_xy(s->contacts[c].n, 2);
-  for (int k = 0; ok && certs && k <= n; k++) ok = finite_xy(certs[k].f, 2 * certs[k].ncontact);
+    ok = finite_xy(s->contacts[c].p, dim) && finite_xy(s->contacts[c].n, dim);
+  for (int k = 0; ok && certs && k <= n; k++) ok = finite_xy(certs[k].f, dim * certs[k].ncontact);
   if (!ok) return us_error_set(err, US_ERR_INPUT, "render --html: a coordinate, mass or force "
                                "is not a finite number");
   return US_OK;
@@ -135,9 +149,12 @@ static us_Status check_numbers(const us_Structure *s, const us_Forces *certs, in
 
 static us_Status check_all(const us_Structure *s, const us_RenderSettings *r,
                            const us_HtmlSettings *h, us_Error *err) {
-  if (s->dim != 2)
-    return us_error_set(err, US_ERR_INPUT, "render --html: only 2D structures can be shown "
-                        "(this one is %dD; the 3D viewer is not written yet)", s->dim);
+  if (s->dim != 2 && s->dim != 3)
+    return us_error_set(err, US_ERR_INPUT, "render --html: only 2D and 3D structures can be "
+                        "shown (this one is %dD)", s->dim);
+  if (s->dim == 3 && r && !(isfinite(r->view_az) && r->view_el >= -90.0 && r->view_el <= 90.0))
+    return us_error_set(err, US_ERR_USAGE, "render --html: the view (%g, %g) is not an azimuth "
+                        "and an elevation in [-90, 90] degrees", r->view_az, r->view_el);
   if (!us_structure_is_finalized(s))
     return us_error_set(err, US_ERR_USAGE, "render --html: the structure is not finalized");
   char *seen = us_calloc((size_t)s->nbody + 1, 1);
@@ -177,21 +194,47 @@ static void put_str(FILE *fp, const char *s) {
   fputc('"', fp);
 }
 
-static void put_body(FILE *fp, const us_Body *b) {
+/* n numbers separated by commas. */
+static void put_nums(FILE *fp, const double *v, int n) {
+  for (int k = 0; k < n; k++) {
+    if (k) fputc(',', fp);
+    put_num(fp, v[k]);
+  }
+}
+
+/* A convex part: {v: vertices, f: faces as vertex index lists}. */
+static void put_part(FILE *fp, const us_Polyhedron *p) {
+  fputs("{\"v\":[", fp);
+  put_nums(fp, p->verts, 3 * p->nvert);
+  fputs("],\"f\":[", fp);
+  for (int f = 0; f < p->nface; f++) {
+    fputs(f ? ",[" : "[", fp);
+    for (int q = p->face_start[f]; q < p->face_start[f + 1]; q++)
+      fprintf(fp, q > p->face_start[f] ? ",%d" : "%d", p->face_vert[q]);
+    fputc(']', fp);
+  }
+  fputs("]}", fp);
+}
+
+static void put_body(FILE *fp, const us_Body *b, int dim) {
   fputs("{\"id\":", fp);
   put_str(fp, b->id);
   fputs(",\"m\":", fp);
   if (b->fixed) fputs("null", fp);
   else put_num(fp, b->mass);
-  fputs(b->fixed ? ",\"fixed\":true,\"xy\":[" : ",\"fixed\":false,\"xy\":[", fp);
-  for (int k = 0; k < 2 * b->nvert; k++) {
-    if (k) fputc(',', fp);
-    put_num(fp, b->verts[k]);
+  fputs(b->fixed ? ",\"fixed\":true" : ",\"fixed\":false", fp);
+  if (dim == 2) {
+    fputs(",\"xy\":[", fp);
+    put_nums(fp, b->verts, 2 * b->nvert);
+  } else {
+    fputs(",\"parts\":[", fp);
+    for (int p = 0; p < b->npart; p++) {
+      if (p) fputc(',', fp);
+      put_part(fp, &b->parts[p]);
+    }
   }
   fputs("],\"c\":[", fp);
-  put_num(fp, b->com[0]);
-  fputc(',', fp);
-  put_num(fp, b->com[1]);
+  put_nums(fp, b->com, dim);
   fputs("]}", fp);
 }
 
@@ -199,7 +242,7 @@ static void put_bodies(FILE *fp, const us_Structure *s) {
   fputs(",\n\"bodies\":[", fp);
   for (int i = 0; i < s->nbody; i++) {
     fputs(i ? ",\n" : "\n", fp);
-    put_body(fp, &s->bodies[i]);
+    put_body(fp, &s->bodies[i], s->dim);
   }
   fputs("]", fp);
 }
@@ -209,13 +252,9 @@ static void put_contacts(FILE *fp, const us_Structure *s) {
   for (int c = 0; c < s->ncontact; c++) {
     const us_Contact *k = &s->contacts[c];
     fprintf(fp, "%s[%d,%d,", c ? ",\n" : "\n", k->a == US_GROUND ? -1 : k->a, k->b);
-    put_num(fp, k->p[0]);
+    put_nums(fp, k->p, s->dim);
     fputc(',', fp);
-    put_num(fp, k->p[1]);
-    fputc(',', fp);
-    put_num(fp, k->n[0]);
-    fputc(',', fp);
-    put_num(fp, k->n[1]);
+    put_nums(fp, k->n, s->dim);
     fputc(']', fp);
   }
   fputs("]", fp);
@@ -248,11 +287,11 @@ static void put_forces_at(FILE *fp, const us_Structure *s, const us_Forces *f) {
   for (int j = 0; j < f->ncontact; j++) {
     us_DrawnForce d;
     us_drawn_force(s, f, j, &d);
-    double v[4] = {d.normal[0], d.normal[1], d.friction[0], d.friction[1]};
     fprintf(fp, "%s%d", j ? "," : "", f->contact[j]);
-    for (int q = 0; q < 4; q++) {
+    for (int q = 0; q < 2 * s->dim; q++) {
+      double v = q < s->dim ? d.normal[q] : d.friction[q - s->dim];
       fputc(',', fp);
-      put_num(fp, isfinite(v[q]) ? v[q] : 0.0);
+      put_num(fp, isfinite(v) ? v : 0.0);
     }
   }
   fputc(']', fp);
@@ -335,6 +374,16 @@ static void put_data(FILE *fp, const us_Structure *s, const us_RenderSettings *r
   int with_plan = r && (r->norder > 0 || r->nblocked > 0);
   fputs("{\"title\":", fp);
   put_str(fp, h->title ? h->title : "unstack");
+  fprintf(fp, ",\n\"dim\":%d", s->dim);
+  if (s->dim == 3) {
+    us_RenderSettings def = us_render_default_settings();
+    const us_RenderSettings *v = r ? r : &def;
+    fputs(",\n\"view\":[", fp);
+    put_num(fp, v->view_az);
+    fputc(',', fp);
+    put_num(fp, v->view_el);
+    fputc(']', fp);
+  }
   fputs(s->ground ? ",\n\"ground\":true" : ",\n\"ground\":false", fp);
   fputs(",\n\"status\":", fp);
   if (with_plan) put_str(fp, us_plan_status_name(h->status));
@@ -392,13 +441,17 @@ us_HtmlSettings us_html_default_settings(void) {
   return h;
 }
 
-/* The template around its one marker, then the data in between. */
+/* The template around its two markers: the data in place of the first,
+ * the 3D view's script (3D only) in place of the second. */
 static void put_page(FILE *fp, const us_Structure *s, const us_RenderSettings *r,
-                     const us_HtmlSettings *h, const us_CertCheck *ck, const char *mark) {
-  const char *page = (const char *)us_viewer_html;
+                     const us_HtmlSettings *h, const us_CertCheck *ck, const char *mark,
+                     const char *mark3) {
+  const char *page = (const char *)us_viewer_html, *rest = mark + strlen(DATA_MARKER);
   fwrite(page, 1, (size_t)(mark - page), fp);
   put_data(fp, s, r, h, ck);
-  fputs(mark + strlen(DATA_MARKER), fp);
+  fwrite(rest, 1, (size_t)(mark3 - rest), fp);
+  if (s->dim == 3) fwrite(us_viewer3_js, 1, us_viewer3_js_size, fp);
+  fputs(mark3 + strlen(VIEW3_MARKER), fp);
 }
 
 us_Status us_render_html(const us_Structure *s, const us_RenderSettings *r,
@@ -409,14 +462,15 @@ us_Status us_render_html(const us_Structure *s, const us_RenderSettings *r,
   us_HtmlSettings def = us_html_default_settings();
   if (!h) h = &def;
   const char *mark = strstr((const char *)us_viewer_html, DATA_MARKER);
-  if (!mark) return us_error_set(err, US_ERR_USAGE, "render --html: the page template has no "
-                                 "data marker (a build error)");
+  const char *mark3 = mark ? strstr(mark, VIEW3_MARKER) : NULL;
+  if (!mark3) return us_error_set(err, US_ERR_USAGE, "render --html: the page template lacks "
+                                  "its data or 3D view marker (a build error)");
   us_Status st = check_all(s, r, h, err);
   if (st) return st;
   us_CertCheck *ck = NULL;
   if (h->certs && recheck_certs(s, r, h->certs, &ck, err)) return err->code;
   us_AtomicFile *af = us_atomic_open(path, err);
-  if (af) put_page((FILE *)us_atomic_stream(af), s, r, h, ck, mark);
+  if (af) put_page((FILE *)us_atomic_stream(af), s, r, h, ck, mark, mark3);
   us_free(ck);
   return af ? us_atomic_commit(af, err) : err->code;
 }

@@ -1,7 +1,9 @@
-/* The viewer's page template (src/render/viewer.html), embedded in the
- * library at build time by cmake/embed.cmake: its bytes, NUL-terminated,
- * and its length without the NUL. src/render/html.c writes it with the
- * plan's data in place of its one "@US_DATA@" marker. */
+/* The viewer's page template (src/render/viewer.html) and its 3D view
+ * (src/render/viewer3.js), embedded in the library at build time by
+ * cmake/embed.cmake: their bytes, NUL-terminated, and their lengths
+ * without the NUL. src/render/html.c writes the template with the plan's
+ * data in place of its "@US_DATA@" marker and, for a 3D structure, the 3D
+ * view in place of its "/" "*@US_VIEW3@*" "/" marker. */
 #ifndef US_RENDER_VIEWER_H
 #define US_RENDER_VIEWER_H
 
@@ -9,5 +11,7 @@
 
 extern const unsigned char us_viewer_html[];
 extern const size_t us_viewer_html_size;
+extern const unsigned char us_viewer3_js[];
+extern const size_t us_viewer3_js_size;
 
 #endif

@@ -3,7 +3,7 @@
 # usage: run.sh CLI WORK_DIR
 # Makes structures, plans and pages with the built CLI in WORK_DIR, then
 # opens them in Debian's headless Chromium through playwright-core
-# (viewer.test.js). playwright-core is installed with `npm ci` into WORK_DIR
+# (viewer.test.js, viewer3d.test.js for 3D). playwright-core is installed with `npm ci` into WORK_DIR
 # from this directory's package-lock.json when missing or when the lock
 # file changed. Screenshots: WORK_DIR/shots. A missing or broken Chromium,
 # node or npm is a failure, never a skip.
@@ -73,5 +73,26 @@ JSON
 run "$CLI" plan "$W/ids.json" --certificates -o "$W/ids-plan.json"
 run "$CLI" render "$W/ids.json" --plan "$W/ids-plan.json" --html -o "$W/ids.html"
 
-# ---- the browser
+# 3D (viewer3d.test.js): a pyramid of 14 boxes with a plan with
+# certificates, the same with one certificate force made negative, planned
+# with hands, and a tower of 3 taken apart from the bottom (verify fails)
+run "$CLI" generate pyramid3d --rows 3 -o "$W/pyr3.json"
+run "$CLI" plan "$W/pyr3.json" --certificates -o "$W/pyr3-plan.json"
+run "$CLI" render "$W/pyr3.json" --plan "$W/pyr3-plan.json" --html -o "$W/pyr3.html"
+sed -E '0,/"force": \[[^,]*,/s//"force": [-1000,/' "$W/pyr3-plan.json" >"$W/pyr3-neg-plan.json"
+run "$CLI" render "$W/pyr3.json" --plan "$W/pyr3-neg-plan.json" --html -o "$W/pyr3-neg.html"
+run "$CLI" plan "$W/pyr3.json" --hands auto -o "$W/pyr3-hands-plan.json"
+run "$CLI" render "$W/pyr3.json" --plan "$W/pyr3-hands-plan.json" --html -o "$W/pyr3-hands.html"
+run "$CLI" generate tower --blocks 3 -o "$W/tower3.json"
+set -- $(grep -o '"id": "[^"]*"' "$W/tower3.json" | cut -d'"' -f4)
+printf '{"status": "found", "order": ["%s", "%s", "%s"]}\n' "$1" "$2" "$3" >"$W/tower3-bad-plan.json"
+"$CLI" render "$W/tower3.json" --plan "$W/tower3-bad-plan.json" -o "$W/tower3-bad.html" >"$W/cmd.log" 2>&1
+rc=$?
+[ $rc -eq 1 ] || { cat "$W/cmd.log"; die "render of an invalid 3D plan: exit $rc, wanted 1"; }
+
+# ---- the browser: the 2D pages, then the 3D ones
 node "$HERE/viewer.test.js" "$W" "$CHROME" "$W"
+rc2=$?
+node "$HERE/viewer3d.test.js" "$W" "$CHROME" "$W"
+rc3=$?
+[ $rc2 -eq 0 ] && [ $rc3 -eq 0 ]

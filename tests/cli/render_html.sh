@@ -1,8 +1,9 @@
 # render --html (docs/viewer.md): the page is written for a plan with or
 # without certificates and for a structure alone; an output name ending in
 # .html chooses it; an order that verify rejects is written and exits 1;
-# bad input (another structure's plan, tampered certificates, a 3D file)
-# exits 2 and leaves the output as it was. The page itself is tested in a
+# bad input (another structure's plan, tampered certificates, a bad 3D
+# file or view) exits 2 and leaves the output as it was; 3D structures and
+# plans (with certificates, hands, an invalid order) give a 3D page. The page itself is tested in a
 # browser (ctest browser.viewer) and its data by test_render_html.
 . "$(dirname "$0")/lib.sh"
 # absent FILE DESCRIPTION
@@ -79,7 +80,56 @@ sed 's/"point": \[/"point": [7/' "$T/plan.json" >"$T/tampered.json"
 expect 2 "a certificate at a point the structure has no contact" -- "$CLI" render "$T/p.json" --plan "$T/tampered.json" -o "$T/e.html"
 contains "$T/err" "steps[0].certificate.contacts[0]" "the message names the JSON path"
 absent "$T/e.html" "tampered certificates"
-expect 2 "a 3D file" -- "$CLI" render "$T/p3.json" --html -o "$T/f.html"
-contains "$T/err" "3D viewer is not written yet" "the message says why"
-absent "$T/f.html" "3D"
+
+# 3D: the page is written with the structure's parts, the plan and its
+# forces, self-contained; a 3D plan with hands; an order verify rejects
+"$CLI" generate pyramid3d --rows 3 -o "$T/q.json" >/dev/null
+"$CLI" plan "$T/q.json" --certificates -o "$T/q-plan.json" >/dev/null
+expect 0 "3D: render --html with certificates" -- "$CLI" render "$T/q.json" --plan "$T/q-plan.json" --html -o "$T/q.html"
+page_has "$T/q.html" '"dim":3' "the 3D page says its dimension"
+page_has "$T/q.html" '"parts":[{"v":[' "the 3D page holds the bodies' parts"
+page_has "$T/q.html" '"forces":[' "the 3D page holds the plan's forces"
+page_has "$T/q.html" '"verify":{"ok":true' "the 3D page holds verify's report"
+page_has "$T/q.html" 'function view3' "the 3D page carries the 3D view"
+if grep -q 'function view3' "$T/a.html"; then bad "a 2D page does not carry the 3D view"
+else ok "a 2D page does not carry the 3D view"; fi
+nb=$(grep -o '"id":' "$T/q.html" | wc -l)
+[ "$nb" -eq 14 ] && ok "the 3D page has the 14 bodies" || bad "the 3D page has the 14 bodies: $nb"
+# no http(s) URL at all but the SVG namespace (a name, not a load)
+if grep -oiE "https?://[^\"' )]*" "$T/q.html" | grep -qv '^http://www.w3.org/2000/svg$' ||
+   grep -qiE "<script[^>]+src=|<link|@import|fetch\(|XMLHttpRequest" "$T/q.html"; then
+  bad "the 3D page loads nothing from outside"
+else ok "the 3D page loads nothing from outside"; fi
+expect 0 "3D: --view sets the first view" -- "$CLI" render "$T/q.json" --view 120,40 --html -o "$T/q2.html"
+page_has "$T/q2.html" '"view":[120,40]' "the page holds the view"
+sed -E '0,/"force": \[[^,]*,/s//"force": [-1000,/' "$T/q-plan.json" >"$T/q-neg.json"
+expect 0 "3D: a negative normal force in the file: written" -- "$CLI" render "$T/q.json" --plan "$T/q-neg.json" -o "$T/q-neg.html"
+n=$(grep -o '{"ok":false' "$T/q-neg.html" | wc -l)
+[ "$n" -eq 1 ] && ok "3D: only the edited step is flagged" || bad "3D: only the edited step is flagged: $n flagged"
+"$CLI" plan "$T/q.json" --hands auto -o "$T/q-hands.json" >/dev/null
+expect 0 "3D: a plan with hands" -- "$CLI" render "$T/q.json" --plan "$T/q-hands.json" -o "$T/q-hands.html"
+page_has "$T/q-hands.html" '"actions":[["place"' "the 3D page holds the actions"
+"$CLI" generate tower --blocks 3 -o "$T/t3.json" >/dev/null
+ids=$(grep -o '"id": "[^"]*"' "$T/t3.json" | cut -d'"' -f4)
+set -- $ids
+printf '{"status": "found", "order": ["%s", "%s", "%s"]}\n' "$1" "$2" "$3" >"$T/t3-bad.json"
+expect 1 "3D: an invalid order: written, exit 1" -- "$CLI" render "$T/t3.json" --plan "$T/t3-bad.json" -o "$T/t3.html"
+page_has "$T/t3.html" '"failed_step":0' "the 3D page names the failing step"
+"$CLI" generate dome --courses 3 --segments 6 -o "$T/dome.json" >/dev/null
+"$CLI" plan "$T/dome.json" -o "$T/dome-plan.json" >/dev/null 2>&1
+expect 0 "3D: a dome's plan" -- "$CLI" render "$T/dome.json" --plan "$T/dome-plan.json" -o "$T/dome.html"
+
+# 3D bad input: exit 2, nothing written
+expect 2 "3D: a 2D plan on a 3D structure" -- "$CLI" render "$T/q.json" --plan "$T/plan.json" -o "$T/f.html"
+absent "$T/f.html" "3D with another structure's plan"
+sed 's/"point": \[/"point": [7/' "$T/q-plan.json" >"$T/q-tampered.json"
+expect 2 "3D: a certificate at a point the structure has no contact" -- "$CLI" render "$T/q.json" --plan "$T/q-tampered.json" -o "$T/f.html"
+contains "$T/err" "steps[0].certificate.contacts[0]" "the message names the JSON path"
+absent "$T/f.html" "3D tampered certificates"
+sed -E '0,/"vertices": \[\[0, 0, 0\]/s//"vertices": [[0, 0]/' "$T/q.json" >"$T/q-bad.json"
+expect 2 "3D: a vertex with two coordinates" -- "$CLI" render "$T/q-bad.json" --html -o "$T/f.html"
+contains "$T/err" "q-bad.json" "the message names the file"
+absent "$T/f.html" "3D bad structure"
+expect 2 "3D: --view past the pole" -- "$CLI" render "$T/q.json" --view 35,95 --html -o "$T/f.html"
+absent "$T/f.html" "3D bad view"
 finish
