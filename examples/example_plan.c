@@ -6,7 +6,8 @@
  *   would tip on its own), a heavy counterweight C on S and L's inner end.
  *   C is the highest body, but the plank has to go first.
  *
- * Build: part of the CMake build (build/example_plan). */
+ * Build: part of the CMake build (build/example_plan); against an installed
+ * unstack with examples/CMakeLists.txt or pkg-config (docs/install.md). */
 #include <stdio.h>
 
 #include "unstack/unstack.h"
