@@ -16,7 +16,6 @@ block, or when they are collected.
 
 import json
 import os
-import tempfile
 
 from . import _unstack
 from ._unstack import Error
@@ -125,6 +124,8 @@ class Structure(_Owner):
 
     def to_dict(self):
         """The structure in the JSON structure format, as a dict."""
+        import tempfile  # here: it costs import time most sessions never need
+
         fd, path = tempfile.mkstemp(prefix="unstack-", suffix=".json")
         os.close(fd)
         try:
