@@ -68,32 +68,39 @@ static int set_int(us_GenSettings *g, int k, long v) {
   return 0;
 }
 
-/* One table parameter from kw, when given. */
-static int take_param(PyObject *kw, int k, us_GenSettings *g, Extra *x) {
-  char *field = (char *)g + params[k].off;
-  double d;
-  long v;
-  int r = params[k].kind == P_REAL ? us_py_take_double(kw, params[k].name, &d)
-          : params[k].kind == P_FLAG ? 0
-                                     : us_py_take_long(kw, params[k].name, &v);
-  if (params[k].kind == P_FLAG) {
-    PyObject *o = PyDict_GetItemString(kw, params[k].name);
-    if (!o) return 0;
-    r = PyObject_IsTrue(o);
-    if (r < 0) return -1;
-    *(int *)field = r;
-    return PyDict_DelItemString(kw, params[k].name);
-  }
-  if (r <= 0) return r;
-  x->rows_given |= !strcmp(params[k].name, "rows");
-  x->height_given |= !strcmp(params[k].name, "block_height");
-  x->tries_given |= !strcmp(params[k].name, "max_tries");
-  x->returns_given |= !strcmp(params[k].name, "returns");
-  if (params[k].kind == P_REAL) return *(double *)field = d, 0;
+/* A flag parameter (cap=): any truth value. */
+static int take_flag(PyObject *kw, const char *key, int *out) {
+  PyObject *o = PyDict_GetItemString(kw, key);
+  if (!o) return 0;
+  int r = PyObject_IsTrue(o);
+  if (r < 0) return -1;
+  *out = r;
+  return PyDict_DelItemString(kw, key) < 0 ? -1 : 1;
+}
+
+/* An integer parameter: a count (checked) or the seed. */
+static int store_long(us_GenSettings *g, int k, long v) {
   if (params[k].kind != P_SEED) return set_int(g, k, v);
   if (v < 0) return us_py_fail("generate: seed needs an integer >= 0"), -1;
-  *(unsigned long *)field = (unsigned long)v;
+  *(unsigned long *)((char *)g + params[k].off) = (unsigned long)v;
   return 0;
+}
+
+/* One table parameter from kw, when given; remembers which defaults the
+ * kind-specific rules must not apply. */
+static int take_param(PyObject *kw, int k, us_GenSettings *g, Extra *x) {
+  const char *name = params[k].name;
+  void *field = (char *)g + params[k].off;
+  long v = 0;
+  int r = params[k].kind == P_FLAG   ? take_flag(kw, name, field)
+          : params[k].kind == P_REAL ? us_py_take_double(kw, name, field)
+                                     : us_py_take_long(kw, name, &v);
+  if (r <= 0) return r;
+  x->rows_given |= !strcmp(name, "rows");
+  x->height_given |= !strcmp(name, "block_height");
+  x->tries_given |= !strcmp(name, "max_tries");
+  x->returns_given |= !strcmp(name, "returns");
+  return params[k].kind == P_FLAG || params[k].kind == P_REAL ? 0 : store_long(g, k, v);
 }
 
 /* remove=[(level, position), ...]: jenga pieces left out. */
