@@ -65,6 +65,7 @@ PyObject *us_py_forces(const us_Structure *s, const us_Forces *f);
 /* the module's functions */
 PyObject *us_py_read(PyObject *self, PyObject *args);
 PyObject *us_py_parse(PyObject *self, PyObject *args);
+PyObject *us_py_read_svg(PyObject *self, PyObject *args);
 PyObject *us_py_generate(PyObject *self, PyObject *args, PyObject *kw);
 PyObject *us_py_check(PyObject *self, PyObject *args, PyObject *kw);
 PyObject *us_py_plan(PyObject *self, PyObject *args, PyObject *kw);

@@ -108,6 +108,8 @@ static PyObject *alloc_fail_after(PyObject *self, PyObject *arg) {
 static PyMethodDef functions[] = {
     {"read", us_py_read, METH_VARARGS, "read(path, contact_tol) -> structure handle"},
     {"parse", us_py_parse, METH_VARARGS, "parse(text, name, contact_tol) -> structure handle"},
+    {"read_svg", us_py_read_svg, METH_VARARGS,
+     "read_svg(path, friction, scale, ground) -> structure handle"},
     {"generate", (PyCFunction)(void (*)(void))us_py_generate, METH_VARARGS | METH_KEYWORDS,
      "generate(kind, **params) -> structure handle"},
     {"check", (PyCFunction)(void (*)(void))us_py_check, METH_VARARGS | METH_KEYWORDS,

@@ -63,6 +63,23 @@ PyObject *us_py_parse(PyObject *self, PyObject *args) {
   return loaded(s, &err);
 }
 
+PyObject *us_py_read_svg(PyObject *self, PyObject *args) {
+  const char *path;
+  double friction = -1, scale = 1;
+  int ground = 1;
+  (void)self;
+  if (!PyArg_ParseTuple(args, "s|ddp", &path, &friction, &scale, &ground)) return NULL;
+  us_SvgSettings set = us_svg_default_settings();
+  set.friction = friction, set.scale = scale, set.ground = ground;
+  us_Error err;
+  us_error_clear(&err);
+  us_Structure *s;
+  Py_BEGIN_ALLOW_THREADS
+  s = us_structure_read_svg(path, &set, NULL, &err);
+  Py_END_ALLOW_THREADS
+  return loaded(s, &err);
+}
+
 /* ------------------------------------------------------------ methods */
 
 static PyObject *st_close(PyStructure *h, PyObject *unused) {
@@ -107,6 +124,46 @@ static PyObject *st_fixed(PyStructure *h, void *unused) {
     Py_DECREF(id);
   }
   return l;
+}
+
+/* One body as a dict: id, fixed, mass (movable bodies), centre of mass. */
+static PyObject *body_dict(const us_Structure *s, int k) {
+  const us_Body *b = &s->bodies[k];
+  PyObject *mass = b->fixed ? (Py_INCREF(Py_None), Py_None) : PyFloat_FromDouble(b->mass);
+  return Py_BuildValue("{s:N,s:O,s:N,s:N}", "id", us_py_body_id(s, k), "fixed",
+                       b->fixed ? Py_True : Py_False, "mass", mass, "com",
+                       us_py_vector(b->com, s->dim));
+}
+
+/* One contact: its bodies, point, normal (from a into b) and coefficient. */
+static PyObject *contact_dict(const us_Structure *s, int k) {
+  const us_Contact *c = &s->contacts[k];
+  return Py_BuildValue("{s:N,s:N,s:N,s:N,s:d}", "a", us_py_body_id(s, c->a), "b",
+                       us_py_body_id(s, c->b), "point", us_py_vector(c->p, s->dim), "normal",
+                       us_py_vector(c->n, s->dim), "mu", c->mu);
+}
+
+/* A list of n dicts made by one of the two above. */
+static PyObject *dict_list(PyStructure *h, int contacts) {
+  const us_Structure *s = us_py_structure(h);
+  int n = s ? (contacts ? s->ncontact : s->nbody) : 0;
+  PyObject *l = s ? PyList_New(n) : NULL;
+  for (int k = 0; l && k < n; k++) {
+    PyObject *d = contacts ? contact_dict(s, k) : body_dict(s, k);
+    if (!d) return Py_DECREF(l), NULL;
+    PyList_SET_ITEM(l, k, d);
+  }
+  return l;
+}
+
+static PyObject *st_bodies(PyStructure *h, void *unused) {
+  (void)unused;
+  return dict_list(h, 0);
+}
+
+static PyObject *st_contacts(PyStructure *h, void *unused) {
+  (void)unused;
+  return dict_list(h, 1);
 }
 
 static PyObject *st_dim(PyStructure *h, void *unused) {
@@ -158,6 +215,8 @@ static PyGetSetDef st_getset[] = {
     {"ids", (getter)st_ids, NULL, "body ids in file order", NULL},
     {"fixed", (getter)st_fixed, NULL, "ids of the fixed bodies", NULL},
     {"dim", (getter)st_dim, NULL, "2 or 3", NULL},
+    {"bodies", (getter)st_bodies, NULL, "bodies: id, fixed, mass, com", NULL},
+    {"contacts", (getter)st_contacts, NULL, "contacts: a, b, point, normal, mu", NULL},
     {"ncontacts", (getter)st_ncontact, NULL, "number of contacts", NULL},
     {"closed", (getter)st_closed, NULL, "close() was called", NULL},
     {"fingerprint", (getter)st_fingerprint, NULL, "fnv1a64:... as in plan files", NULL},

@@ -20,7 +20,8 @@ import os
 from . import _unstack
 from ._unstack import Error
 
-__all__ = ["Error", "Structure", "CheckResult", "Plan", "load", "generate", "__version__"]
+__all__ = ["Error", "Structure", "CheckResult", "Plan", "load", "import_svg", "generate",
+           "__version__"]
 __version__ = _unstack.version
 Error.code = "usage"  # errors raised by the library carry their own status name
 
@@ -55,6 +56,14 @@ def load(source, contact_tol=0.0):
     if isinstance(path, bytes):
         path = os.fsdecode(path)
     return Structure(_unstack.read(path, float(contact_tol)))
+
+
+def import_svg(path, friction=None, scale=1.0, ground=True):
+    """A Structure from an SVG drawing, as `unstack import-svg` (docs/svg.md):
+    friction (default: the drawing's data-friction, else 0.5), the drawing's
+    scale (1:scale), ground (the drawing's lowest point supports it)."""
+    mu = -1.0 if friction is None else float(friction)
+    return Structure(_unstack.read_svg(os.fsdecode(os.fspath(path)), mu, float(scale), bool(ground)))
 
 
 def generate(kind, **params):
@@ -101,7 +110,19 @@ class Structure(_Owner):
 
     @property
     def fixed(self):
+        """Ids of the fixed bodies (never removed)."""
         return self._h.fixed
+
+    @property
+    def bodies(self):
+        """One dict per body: id, fixed, mass (None when fixed), com."""
+        return self._h.bodies
+
+    @property
+    def contacts(self):
+        """One dict per contact: a, b (ids, "ground"), point, normal (from a
+        into b), mu."""
+        return self._h.contacts
 
     @property
     def ncontacts(self):

@@ -1,9 +1,12 @@
 """The package's API on known answers: verdicts, plan statuses and orders,
 the objects' data and their life cycle."""
 
+import subprocess
+
 import pytest
 
 import unstack
+from conftest import ROOT
 
 
 def test_column_top_down_found():
@@ -123,3 +126,28 @@ def test_limit_status():
 
 def test_version():
     assert unstack.__version__.count(".") == 2
+
+
+def test_bodies_and_contacts(data):
+    s = unstack.load(data / "cantilever.json")
+    plank = next(b for b in s.bodies if b["id"] == "L")
+    assert plank["fixed"] is False
+    assert plank["mass"] == pytest.approx(3.2 * 0.2)  # density 1 times the area
+    assert plank["com"] == pytest.approx([1.4, 1.1])
+    assert len(s.contacts) == s.ncontacts
+    pairs = {frozenset((c["a"], c["b"])) for c in s.contacts}
+    assert frozenset(("L", "C")) in pairs and frozenset(("ground", "P")) in pairs
+    assert all(c["mu"] == pytest.approx(0.5) for c in s.contacts)
+
+
+def test_import_svg_as_the_cli(cli, tmp_path):
+    for name, status in (("arch", "none"), ("cantilever", "found"), ("column", "found")):
+        svg = ROOT / "examples" / f"{name}.svg"
+        f = tmp_path / f"{name}.json"
+        subprocess.run([cli, "import-svg", str(svg), "-o", str(f)], check=True, capture_output=True)
+        s = unstack.import_svg(svg)
+        assert s.fingerprint == unstack.load(f).fingerprint
+        assert s.plan().status == status
+    with pytest.raises(unstack.Error) as e:
+        unstack.import_svg(ROOT / "README.md")
+    assert e.value.code == "parse" and "README.md:1" in str(e.value)
