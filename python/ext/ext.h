@@ -69,5 +69,6 @@ PyObject *us_py_read_svg(PyObject *self, PyObject *args);
 PyObject *us_py_generate(PyObject *self, PyObject *args, PyObject *kw);
 PyObject *us_py_check(PyObject *self, PyObject *args, PyObject *kw);
 PyObject *us_py_plan(PyObject *self, PyObject *args, PyObject *kw);
+PyObject *us_py_render(PyObject *self, PyObject *args);
 
 #endif

@@ -116,6 +116,8 @@ static PyMethodDef functions[] = {
      "check(structure, **settings) -> dict"},
     {"plan", (PyCFunction)(void (*)(void))us_py_plan, METH_VARARGS | METH_KEYWORDS,
      "plan(structure, **settings) -> plan handle"},
+    {"render", us_py_render, METH_VARARGS,
+     "render(structure, path, plan, forces, title): .svg, .png or .html"},
     {"alloc_live", alloc_live, METH_NOARGS, "the library's live allocations (leak checks)"},
     {"alloc_fail_after", alloc_fail_after, METH_O, "fail the library's allocations after n more"},
     {NULL, NULL, 0, NULL}};

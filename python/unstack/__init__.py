@@ -162,6 +162,16 @@ class Structure(_Owner):
         finally:
             os.unlink(path)
 
+    def render(self, path, plan=None, forces=False, title=None):
+        """Draw the structure, and a plan of it when given: .svg or .png
+        (docs/render.md; the plan's order numbered, a none plan's build and
+        blocked bodies), or .html, the interactive viewer (docs/viewer.md;
+        2D; the forces of every step when the plan was made with
+        certificates=True). forces=True draws in a picture the full
+        structure's forces of such a plan. Written atomically."""
+        h = None if plan is None else plan._h
+        _unstack.render(self._h, os.fsdecode(os.fspath(path)), h, bool(forces), title)
+
     def check(self, method="auto", **settings):
         """Does the whole structure stand? Keywords: method (auto, lp,
         lpsolve, lcp, lcp-reuse, lp-lcp), local (True/False), time_limit
