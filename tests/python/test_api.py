@@ -151,3 +151,21 @@ def test_import_svg_as_the_cli(cli, tmp_path):
     with pytest.raises(unstack.Error) as e:
         unstack.import_svg(ROOT / "README.md")
     assert e.value.code == "parse" and "README.md:1" in str(e.value)
+
+
+def test_threads_plan_at_once():
+    # the GIL is released while the library works; answers do not depend on it
+    import threading
+    kinds = [("stacker", dict(rows=8, width=6, seed=k)) for k in range(1, 7)]
+    want = [unstack.generate(k, **p).plan().order for k, p in kinds]
+    got = [None] * len(kinds)
+
+    def run(i):
+        got[i] = unstack.generate(kinds[i][0], **kinds[i][1]).plan().order
+
+    threads = [threading.Thread(target=run, args=(i,)) for i in range(len(kinds))]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert got == want and all(want)
