@@ -29,6 +29,17 @@ cli:
 	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
 	@cmake --build $(BUILD) -j$(JOBS) --target unstack_cli
 
+# `make install PREFIX=P` (docs/install.md): builds only what is installed
+# (the tool, libunstack.so, its modules; no tests) and installs it under P
+# in Debian's layout; DESTDIR=D stages it under D for a package.
+PREFIX ?= /usr/local
+.PHONY: install
+install:
+	@bash scripts/deps.sh demo
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
+	@cmake --build $(BUILD) -j$(JOBS) --target us_installed
+	DESTDIR="$(DESTDIR)" cmake --install $(BUILD) --prefix "$(abspath $(PREFIX))"
+
 # The main job on a built-in default: the source's 91-block pyramid.
 demo: cli
 	@mkdir -p $(OUT)

@@ -11,9 +11,7 @@ set(us_pkgdir ${CMAKE_INSTALL_LIBDIR}/cmake/unstack)
 # directory is the loader's own under /usr and /usr/local
 set_target_properties(unstack_shared PROPERTIES EXPORT_NAME unstack)
 install(TARGETS unstack_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(TARGETS unstack_shared EXPORT unstackTargets
-        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(TARGETS unstack_shared EXPORT unstackTargets LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 
 # the modules (every us_module target), where src/core/module.c looks for
 # them: LIBDIR/unstack, seen from BINDIR and from LIBDIR

@@ -20,6 +20,8 @@ DESTDIR=$T/stage cmake --install "$B" --prefix "$P" >"$T/stage.log" 2>&1 || bad 
 (cd "$T/stage" && find . ! -type d | sort) >"$T/staged"
 outside=$(grep -v "^\.$P/" "$T/staged" | head -3)
 [ -z "$outside" ] && ok "nothing installed outside the prefix" || bad "installed outside the prefix: $outside"
+grep -q "^prefix=$P\$" "$T/stage$P"/lib/*/pkgconfig/unstack.pc && ok "a staged unstack.pc names the prefix" ||
+  bad "a staged unstack.pc names another prefix"
 sed "s#^\.$P/#./#" "$T/staged" | cmp -s - "$T/files" && ok "DESTDIR installs the same files" ||
   bad "DESTDIR installs other files"
 

@@ -35,9 +35,7 @@ missing=""
 for k in $kinds; do has "$T/sec" "$k" || missing="$missing $k"; done
 [ -n "$kinds" ] && [ -z "$missing" ] && ok "generate: its $(echo $kinds | wc -w) kinds are in its section" ||
   bad "generate: kinds missing:$missing"
-if command -v groff >/dev/null; then
-  groff -man -Tutf8 -ww -z "$MAN" 2>"$T/groff"
-  [ ! -s "$T/groff" ] && ok "groff renders the page without warnings" ||
-    { bad "groff warns"; head -5 "$T/groff"; }
-fi
+# groff (scripts/deps.sh: groff-base)
+groff -man -Tutf8 -ww -z "$MAN" 2>"$T/groff" && [ ! -s "$T/groff" ] &&
+  ok "groff renders the page without warnings" || { bad "groff warns or is missing"; head -5 "$T/groff"; }
 finish
