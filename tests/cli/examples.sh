@@ -13,4 +13,13 @@ for m in lp lpsolve lcp lcp-reuse lp-lcp; do
   expect 0 "cantilever with $m" -- "$CLI" plan "$DATA/cantilever.json" --method $m
   expect 1 "leaning with $m" -- "$CLI" plan "$DATA/leaning.json" --method $m
 done
+# the Python session (examples/plan.py) with the build tree's package, when
+# built; not in sanitizer builds (python.pytest runs the package there)
+py=$(dirname "$CLI")/python
+ext=$(ls "$py"/unstack/_unstack*.so 2>/dev/null | head -1)
+if [ -n "$ext" ] && ! ldd "$ext" | grep -q libasan; then
+  expect 0 "examples/plan.py session" -- env PYTHONPATH="$py" /usr/bin/python3 \
+    "$(dirname "$0")/../../examples/plan.py" "$T"
+  contains "$T/out" "all as expected" "examples/plan.py: known answers"
+fi
 finish
