@@ -20,6 +20,7 @@
 
 #include "io.h"
 #include "plan_actions.h"
+#include "stability/certificate.h"
 
 static const char *const plan_keys[] = {
     "format",    "version",   "status",  "order",   "method",    "search",     "order_heuristic",
@@ -106,7 +107,7 @@ static void write_step_ids(us_JsonOut *o, const us_Structure *s, const us_Plan *
 
 /* One step: the bodies removed and the certificate of the structure before. */
 static void write_step(us_JsonOut *o, const us_Structure *s, const us_Plan *p, int k,
-                       const us_Bitset *present, double tol) {
+                       const us_Bitset *present, double tol, double *acc, unsigned char *seen) {
   const us_Forces *f = &p->certs[k];
   us_jo_raw(o, k ? ",\n    {\"remove\": " : "\n    {\"remove\": ");
   write_step_ids(o, s, p, k);
@@ -117,23 +118,34 @@ static void write_step(us_JsonOut *o, const us_Structure *s, const us_Plan *p, i
     us_jo_cert_contact(o, s, f, j);
   }
   us_jo_raw(o, f->ncontact ? "\n        ],\n" : "],\n");
-  us_CertCheck ck = us_certificate_check(s, present, f, tol);
+  us_CertCheck ck;
+  us_certificate_check_buf(s, present, f, tol, acc, seen, &ck);
   write_check(o, &ck);
   us_jo_raw(o, "      }}");
 }
 
 static us_Status write_steps(us_JsonOut *o, const us_Structure *s, const us_Plan *p, double tol) {
   us_Bitset present;
-  if (us_bitset_init(&present, s->nbody > 0 ? s->nbody : 1)) return US_ERR_NOMEM;
+  /* the check's scratch, once for every step (no allocation failure can
+     pass for a failed check) */
+  double *acc = us_calloc((size_t)(s->nbody > 0 ? s->nbody : 1) * US_CERT_ACC, sizeof(double));
+  unsigned char *seen = us_calloc((size_t)(s->ncontact > 0 ? s->ncontact : 1), 1);
+  if (!acc || !seen || us_bitset_init(&present, s->nbody > 0 ? s->nbody : 1)) {
+    us_free(acc);
+    us_free(seen);
+    return US_ERR_NOMEM;
+  }
   for (int i = 0; i < s->nbody; i++) us_bitset_set(&present, i);
   us_jo_raw(o, "  \"steps\": [");
   for (int k = 0; k < nsteps_of(p); k++) {
-    write_step(o, s, p, k, &present, tol);
+    write_step(o, s, p, k, &present, tol, acc, seen);
     for (int q = step_first(p, k); q < step_first(p, k + 1); q++)
       us_bitset_clear(&present, p->order[q]);
   }
   us_jo_raw(o, nsteps_of(p) ? "\n  ],\n" : "],\n");
   us_bitset_free(&present);
+  us_free(acc);
+  us_free(seen);
   return US_OK;
 }
 
