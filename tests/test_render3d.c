@@ -85,8 +85,10 @@ static void to_px(const Fit *f, const double p[3], double *X, double *Y) {
 
 /* ----------------------------------------------------------- structures */
 
-/* Axis-aligned boxes (lo[i], lo[i] + size[i]), ids b0, b1, ...; no ground. */
-static us_Structure *boxes(int n, const double (*lo)[3], const double (*size)[3]) {
+/* Axis-aligned boxes (lo[i], lo[i] + size[i]), ids b0, b1, ...; no ground;
+ * box i fixed when bit i of `fixed` is set. */
+static us_Structure *boxes_fixed(int n, const double (*lo)[3], const double (*size)[3],
+                                 unsigned fixed) {
   us_Error err;
   us_Structure *s = us_structure_new(3);
   s->ground = 0;
@@ -97,11 +99,15 @@ static us_Structure *boxes(int n, const double (*lo)[3], const double (*size)[3]
       for (int d = 0; d < 3; d++) xyz[3 * c + d] = lo[i][d] + ((c >> d) & 1) * size[i][d];
     snprintf(id, sizeof id, "b%d", i);
     us_BodyDef def = us_default_body_def();
-    def.id = id, def.nvert = 8, def.xyz = xyz;
+    def.id = id, def.nvert = 8, def.xyz = xyz, def.fixed = (int)((fixed >> i) & 1u);
     if (us_structure_add_body(s, &def, &err) < 0) return us_structure_free(s), NULL;
   }
   if (us_structure_finalize(s, &err)) return us_structure_free(s), NULL;
   return s;
+}
+
+static us_Structure *boxes(int n, const double (*lo)[3], const double (*size)[3]) {
+  return boxes_fixed(n, lo, size, 0u);
 }
 
 /* ------------------------------------------------------------------ PNG */
@@ -244,7 +250,7 @@ static void pyramid_views(void) {
   char path[128];
   int svg_ok = test_tmp_path("p.svg", path, sizeof path) && us_render_svg(s, &r, path, &err) == 0;
   char *svg = svg_ok ? test_slurp(path) : NULL;
-  int grid = svg && strstr(svg, "<g class=\"grid\"") && strstr(svg, "class=\"labels\"");
+  int grid = svg && strstr(svg, "<g class=\"grid\"") && strstr(svg, "</text></g>");
 #ifdef US_HAVE_LIBXML2
   xmlDocPtr doc = svg_ok ? xmlReadFile(path, NULL, XML_PARSE_NONET | XML_PARSE_NOERROR) : NULL;
   int parses = doc != NULL;
@@ -308,4 +314,137 @@ static void labels_and_failure(void) {
   us_free(ids), us_free(steps);
 }
 
-US_TEST_MAIN(T(tower_top_face), T(nearer_wins), T(pyramid_views), T(labels_and_failure))
+/* ------------------------------------------------- depth order and marks */
+
+/* The SVG of s under r (us_free it), or NULL. */
+static char *svg_of(const us_Structure *s, const us_RenderSettings *r, const char *name) {
+  char path[128];
+  us_Error err;
+  if (!test_tmp_path(name, path, sizeof path) || us_render_svg(s, r, path, &err)) return NULL;
+  char *text = test_slurp(path);
+  remove(path);
+  return text;
+}
+
+/* Offset of the first (last: 1) face of body id in the SVG, -1 if none. */
+static long title_at(const char *svg, const char *id, int last) {
+  char key[64];
+  snprintf(key, sizeof key, "<title>%s</title>", id);
+  long at = -1;
+  for (const char *q = svg; q && (q = strstr(q, key)); q++) {
+    at = q - svg;
+    if (!last) break;
+  }
+  return at;
+}
+
+/* The faces of body `back` all before those of body `front` in the SVG. */
+static int drawn_before(const char *svg, const char *back, const char *front) {
+  long b = title_at(svg, back, 1), f = title_at(svg, front, 0);
+  return b >= 0 && f >= 0 && b < f;
+}
+
+static int occurrences(const char *svg, const char *needle) {
+  int n = 0;
+  for (const char *q = svg; q && (q = strstr(q, needle)); q++) n++;
+  return n;
+}
+
+/* A small box b0 straight behind a big one b1 (the near box's inscribed
+ * ball covers the small box's circumscribed one in the picture): b0's
+ * faces all come before b1's in the SVG, b0's label is left out and b1's
+ * is there. From the other side (azimuth + 180) b0 is in front: its faces
+ * come after b1's and both labels are drawn. */
+static void near_hides_far(void) {
+  Axes A = axes(35, 25);
+  double lo[2][3], sz[2][3] = {{0.5, 0.5, 0.5}, {3, 3, 3}};
+  for (int d = 0; d < 3; d++) {
+    lo[0][d] = 0.0;
+    lo[1][d] = 0.25 + 5.0 * A.e[d] + 1.0 * A.r[d] - 1.5; /* centre off b0's line of sight by 1 */
+  }
+  us_Structure *s = boxes(2, lo, sz);
+  CHECK(s != NULL);
+  us_RenderSettings r = us_render_default_settings();
+  r.labels = US_LABELS_IDS, r.width_px = 400;
+  char *front = svg_of(s, &r, "hide.svg");
+  r.view_az = 215;
+  char *back = svg_of(s, &r, "hide2.svg");
+  us_structure_free(s);
+  CHECK(front && back);
+  CHECK(!strstr(front, ">b0</text>"));
+  CHECK(strstr(front, ">b1</text>") != NULL);
+  CHECK(drawn_before(front, "b0", "b1"));
+  CHECK(strstr(back, ">b0</text>") && strstr(back, ">b1</text>"));
+  CHECK(drawn_before(back, "b1", "b0"));
+  us_free(front), us_free(back);
+}
+
+/* A box resting on the far end of a long beam: the beam's top face has its
+ * centroid nearer the viewer than any face of the box, yet the box is in
+ * front of it where they overlap (the order by centroids got this wrong).
+ * The box's faces come after the beam's in the SVG, and in the PNG a point
+ * of the box's front face just above the beam has the box's colour (box
+ * removed first: ramp 0; beam: ramp 1), not the beam's. */
+static void box_on_beam(void) {
+  const double lo[2][3] = {{0, 0, 0}, {0, 8, 1}}, sz[2][3] = {{1, 10, 1}, {1, 1, 1}};
+  us_Structure *s = boxes(2, lo, sz);
+  CHECK(s != NULL);
+  int order[2] = {1, 0};
+  us_RenderSettings r = us_render_default_settings();
+  r.order = order, r.norder = 2, r.width_px = 400, r.show_labels = 0, r.show_contacts = 0;
+  Png png;
+  int ok = png_render(&png, s, &r, "beam.png");
+  Fit f = fit(s, 35, 25, 400);
+  us_Rgb c = ok ? pixel_at(&png, &f, 0.5, 8.0, 1.2) : (us_Rgb){0, 0, 0};
+  double fbox = factor(c, us_ramp(0.0)), fbeam = factor(c, us_ramp(1.0));
+  fprintf(stderr, "box front %d,%d,%d: box f %.3f beam f %.3f\n", c.r, c.g, c.b, fbox, fbeam);
+  char *svg = svg_of(s, &r, "beam.svg");
+  png_close(&png);
+  us_structure_free(s);
+  CHECK(ok && svg);
+  CHECK(fbox > 0.25);
+  CHECK(fbeam < 0);
+  CHECK(drawn_before(svg, "b0", "b1"));
+  us_free(svg);
+}
+
+/* A box b1 on a fixed base b0, both straight behind a big fixed box b2:
+ * the contacts' dots and force arrows, b1's hand ring (held) and its label
+ * are left out, b2's label is drawn. Seen from the other side (b2 behind
+ * them) the dots, arrows, ring and label are all there. */
+static void hidden_marks(void) {
+  us_Error err;
+  Axes A = axes(35, 25);
+  double lo[3][3] = {{0, 0, 0}, {0, 0, 0.5}, {0}}, sz[3][3] = {{1, 1, 0.5}, {1, 1, 0.5}, {4, 4, 4}};
+  for (int d = 0; d < 3; d++) lo[2][d] = 0.5 + 6.0 * A.e[d] - 2.0;
+  us_Structure *s = boxes_fixed(3, lo, sz, 5u);
+  CHECK(s != NULL);
+  us_StabilitySettings set = us_stability_default_settings();
+  us_Stability *w = us_stability_new(s, &set, &err);
+  us_StabilityResult res;
+  us_stability_result_init(&res);
+  CHECK(w != NULL);
+  CHECK_OK(us_stability_test_full(w, &res, &err), &err);
+  const unsigned char hands[3] = {US_HAND_PLACED, US_HAND_HELD, US_HAND_PLACED};
+  us_RenderSettings r = us_render_default_settings();
+  r.labels = US_LABELS_IDS, r.width_px = 400, r.forces = &res.forces, r.hand_state = hands;
+  char *front = res.verdict == US_STABLE ? svg_of(s, &r, "marks.svg") : NULL;
+  r.view_az = 215;
+  char *back = res.verdict == US_STABLE ? svg_of(s, &r, "marks2.svg") : NULL;
+  int nforce = res.forces.ncontact;
+  us_stability_result_free(&res);
+  us_stability_free(w);
+  us_structure_free(s);
+  CHECK(front && back);
+  CHECK_INT(nforce, >, 0);
+  CHECK_INT(occurrences(front, "marker-end=\"url(#arrow"), ==, 0);
+  CHECK(!strstr(front, "class=\"contacts\"") && !strstr(front, "class=\"held\""));
+  CHECK(!strstr(front, ">b1</text>") && strstr(front, ">b2</text>"));
+  CHECK_INT(occurrences(back, "marker-end=\"url(#arrow"), >, 0);
+  CHECK(strstr(back, "class=\"contacts\"") && strstr(back, "class=\"held\""));
+  CHECK(strstr(back, ">b1</text>") != NULL);
+  us_free(front), us_free(back);
+}
+
+US_TEST_MAIN(T(tower_top_face), T(nearer_wins), T(pyramid_views), T(labels_and_failure),
+             T(near_hides_far), T(box_on_beam), T(hidden_marks))
