@@ -235,10 +235,39 @@ static void body_box(const us_SceneView *v, const us_Structure *s, const us_Body
   *h = n ? (bb[3] - bb[1]) * v->k : 0.0;
 }
 
+/* The area of face entry f in px^2 (0 for a point body). */
+static double face_area(const us_Scene *sc, const us_SceneBody *f) {
+  double a = 0.0;
+  const double *p = sc->pts + 2 * f->first;
+  for (int k = 0; k < f->npt; k++) {
+    int j = (k + 1) % f->npt;
+    a += p[2 * k] * p[2 * j + 1] - p[2 * j] * p[2 * k + 1];
+  }
+  return 0.5 * fabs(a);
+}
+
+/* Where the label of entry e's body goes (a box of half sides hw, hh): at
+ * (x, y), its projected centre, when nearer bodies leave it seen, else at
+ * the centroid of the largest face they leave it seen on (of the faces
+ * in e's run: its last part's); 0 when there is none. */
+static int label_spot(const us_Scene *sc, int e, double hw, double hh, double *x, double *y) {
+  int body = sc->bodies[e].body;
+  if (!us_depth3_hides_label(sc, body, *x, *y, hw, hh)) return 1;
+  double best = 0.0;
+  for (int k = e; k >= 0 && sc->bodies[k].body == body; k--) {
+    const us_SceneBody *f = &sc->bodies[k];
+    double a = face_area(sc, f);
+    if (a > best && !us_depth3_hides_label(sc, body, f->cx, f->cy, hw, hh))
+      best = a, *x = f->cx, *y = f->cy;
+  }
+  return best > 0.0;
+}
+
 /* proto's label on body i's last entry sb in the painter's order, sized as
  * in 2D (45% of the projected height, at most 16 px, fitted to the width,
- * none under 5 px), left out when parts painted later cover a quarter of
- * its box (depth3.c). */
+ * none under 5 px), at the projected centre of mass, or where that is
+ * covered (parts painted later cover a quarter of its box, depth3.c) on
+ * the largest face it is not, else left out. */
 static void put_label(const us_Scene *sc, us_SceneBody *sb, const us_SceneView *v,
                       const us_Structure *s, const us_SceneBody *proto) {
   const us_Body *b = &s->bodies[sb->body];
@@ -253,8 +282,8 @@ static void put_label(const us_Scene *sc, us_SceneBody *sb, const us_SceneView *
   sb->label.size = fs;
   us_scene_px(v, c, &sb->label.x, &sb->label.y);
   double hw = 0.3 * fs * US_MAX(len, 1.0), hh = 0.5 * fs; /* the text's box, as sized */
-  if (us_depth3_hides_label(sc, sb->body, sb->label.x, sb->label.y, hw, hh))
-    sb->label.text = NULL; /* nearer bodies cover much of it */
+  if (!label_spot(sc, (int)(sb - sc->bodies), hw, hh, &sb->label.x, &sb->label.y))
+    sb->label.text = NULL; /* nearer bodies cover much of it wherever it goes */
 }
 
 static void put_labels(us_Scene *sc, const us_SceneView *v, const us_Structure *s,
