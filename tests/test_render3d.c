@@ -446,5 +446,95 @@ static void hidden_marks(void) {
   us_free(front), us_free(back);
 }
 
+/* Three tilted sticks in a triangle, each lying over the next at a corner
+ * (seen from above): a cycle, which no painter's order draws right. The
+ * order breaks it at one node: every stick is drawn (its top face), and
+ * at two of the three corners the upper stick's colour is on top. */
+static void stick_cycle(void) {
+  us_Error err;
+  us_Structure *s = us_structure_new(3);
+  s->ground = 0;
+  double V[3][2];
+  for (int k = 0; k < 3; k++)
+    V[k][0] = 2.0 * cos((90.0 + 120.0 * k) * DEG), V[k][1] = 2.0 * sin((90.0 + 120.0 * k) * DEG);
+  for (int i = 0; i < 3; i++) { /* stick i: 0.2 high at V[i], 1.2 at V[i + 1], ends 0.5 beyond */
+    const double *a = V[i], *b = V[(i + 1) % 3];
+    double d[2] = {b[0] - a[0], b[1] - a[1]}, len = hypot(d[0], d[1]), xyz[24];
+    double t[2] = {d[0] / len, d[1] / len}, nrm[2] = {-t[1] * 0.15, t[0] * 0.15};
+    for (int c = 0; c < 8; c++) {
+      double f = (c & 1) ? 1.0 + 0.5 / len : -0.5 / len, side = (c & 2) ? 1.0 : -1.0;
+      xyz[3 * c] = a[0] + f * d[0] + side * nrm[0];
+      xyz[3 * c + 1] = a[1] + f * d[1] + side * nrm[1];
+      xyz[3 * c + 2] = 0.2 + f * 1.0 + ((c & 4) ? 0.3 : 0.0);
+    }
+    char id[8];
+    snprintf(id, sizeof id, "s%d", i);
+    us_BodyDef def = us_default_body_def();
+    def.id = id, def.nvert = 8, def.xyz = xyz;
+    CHECK(us_structure_add_body(s, &def, &err) >= 0);
+  }
+  CHECK_OK(us_structure_finalize(s, &err), &err);
+  int order[3] = {0, 1, 2}; /* colours ramp 0, 0.5, 1 */
+  us_RenderSettings r = us_render_default_settings();
+  r.order = order, r.norder = 3, r.width_px = 400, r.view_el = 90, r.view_az = 0;
+  r.show_labels = 0, r.show_contacts = 0;
+  Png png;
+  int ok = png_render(&png, s, &r, "sticks.png"), right = 0;
+  char *svg = svg_of(s, &r, "sticks.svg");
+  Fit f = fit(s, 0, 90, 400);
+  for (int i = 0; ok && i < 3; i++) { /* at corner V[i + 1], stick i is the upper one */
+    const double *c = V[(i + 1) % 3];
+    us_Rgb px = pixel_at(&png, &f, c[0], c[1], 1.5);
+    right += factor(px, us_ramp(0.5 * i)) > 0.25;
+    fprintf(stderr, "corner %d: %d,%d,%d, upper stick f %.3f\n", i, px.r, px.g, px.b,
+            factor(px, us_ramp(0.5 * i)));
+  }
+  if (ok) png_close(&png);
+  us_structure_free(s);
+  CHECK(ok && svg);
+  CHECK_INT(occurrences(svg, "<polygon"), ==, 3);
+  CHECK_INT(right, ==, 2);
+  us_free(svg);
+}
+
+/* Every failed allocation while a 3D picture with forces and hands is
+ * drawn is US_ERR_NOMEM, writes nothing and leaks nothing (the case's leak
+ * check); with enough memory the SVG is written. */
+static void out_of_memory(void) {
+  us_Error err;
+  us_GenSettings g = us_gen_default_settings();
+  g.n = 3;
+  us_Structure *s = us_gen_pyramid3d(&g, &err);
+  CHECK(s != NULL);
+  us_StabilitySettings set = us_stability_default_settings();
+  us_Stability *w = us_stability_new(s, &set, &err);
+  us_StabilityResult res;
+  us_stability_result_init(&res);
+  CHECK(w != NULL);
+  CHECK_OK(us_stability_test_full(w, &res, &err), &err);
+  unsigned char hands[14];
+  for (int i = 0; i < 14; i++) hands[i] = i == 4 || i == 13 ? US_HAND_HELD : US_HAND_PLACED;
+  us_RenderSettings r = us_render_default_settings();
+  r.forces = &res.forces, r.hand_state = hands, r.labels = US_LABELS_IDS;
+  char path[128];
+  test_tmp_path("oom3.svg", path, sizeof path);
+  remove(path);
+  int nomem_only = 1, done = 0;
+  for (long n = 0; n < 2000 && !done; n++) {
+    us_alloc_fail_after(n);
+    us_Status st = us_render_svg(s, &r, path, &err);
+    us_alloc_fail_after(-1);
+    if (st && (st != US_ERR_NOMEM || access(path, F_OK) == 0)) nomem_only = 0;
+    done = st == US_OK;
+  }
+  remove(path);
+  us_stability_result_free(&res);
+  us_stability_free(w);
+  us_structure_free(s);
+  CHECK(nomem_only);
+  CHECK(done);
+}
+
 US_TEST_MAIN(T(tower_top_face), T(nearer_wins), T(pyramid_views), T(labels_and_failure),
-             T(near_hides_far), T(box_on_beam), T(hidden_marks))
+             T(near_hides_far), T(box_on_beam), T(hidden_marks),
+             T(stick_cycle), T(out_of_memory))
