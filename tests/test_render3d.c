@@ -14,7 +14,13 @@
  * (three of each box); with one box straight in front of another along the
  * view, the nearer box's colour wins at the overlap, whichever order the
  * bodies are in; the picture is not blank, has its ground grid, and
- * changes with the view; the SVG parses as XML; bad views are refused. */
+ * changes with the view; the SVG parses as XML; bad views are refused.
+ * Depth order and covered marks: a box hidden behind a nearer one has its
+ * faces first in the SVG and no label; a box on the far end of a long beam
+ * is drawn over the beam's top face; a hidden contact's dots and arrows, a
+ * hidden held body's ring and a hidden mechanism's arrow are left out and
+ * drawn from the other side; a cycle of three sticks is drawn, right at two
+ * of its three crossings; every failed allocation is US_ERR_NOMEM. */
 #define _POSIX_C_SOURCE 200809L
 #include "render/render.h"
 #include "test.h"
@@ -415,7 +421,8 @@ static void box_on_beam(void) {
 static void hidden_marks(void) {
   us_Error err;
   Axes A = axes(35, 25);
-  double lo[3][3] = {{0, 0, 0}, {0, 0, 0.5}, {0}}, sz[3][3] = {{1, 1, 0.5}, {1, 1, 0.5}, {4, 4, 4}};
+  double lo[3][3] = {{0, 0, 0}, {0, 0, 0.5}, {0}};
+  const double sz[3][3] = {{1, 1, 0.5}, {1, 1, 0.5}, {4, 4, 4}};
   for (int d = 0; d < 3; d++) lo[2][d] = 0.5 + 6.0 * A.e[d] - 2.0;
   us_Structure *s = boxes_fixed(3, lo, sz, 5u);
   CHECK(s != NULL);
@@ -443,6 +450,41 @@ static void hidden_marks(void) {
   CHECK_INT(occurrences(back, "marker-end=\"url(#arrow"), >, 0);
   CHECK(strstr(back, "class=\"contacts\"") && strstr(back, "class=\"held\""));
   CHECK(strstr(back, ">b1</text>") != NULL);
+  us_free(front), us_free(back);
+}
+
+/* A box b1 overhanging a fixed base b0 (it tips), both straight behind a
+ * big fixed box b2: b1 is marked as falling, its mechanism's velocity
+ * arrow is left out (a nearer body covers it); from the other side it is
+ * drawn. */
+static void hidden_mechanism(void) {
+  us_Error err;
+  Axes A = axes(35, 25);
+  double lo[3][3] = {{0, 0, 0}, {0.6, 0, 0.5}, {0}};
+  const double sz[3][3] = {{1, 1, 0.5}, {1.2, 1, 0.3}, {4, 4, 4}};
+  for (int d = 0; d < 3; d++) lo[2][d] = 0.6 + 6.0 * A.e[d] - 2.0;
+  us_Structure *s = boxes_fixed(3, lo, sz, 5u);
+  CHECK(s != NULL);
+  us_StabilitySettings set = us_stability_default_settings();
+  us_Stability *w = us_stability_new(s, &set, &err);
+  us_StabilityResult res;
+  us_stability_result_init(&res);
+  CHECK(w != NULL);
+  CHECK_OK(us_stability_test_full(w, &res, &err), &err);
+  us_RenderFailure f = {0, res.unstable_body, &res.mechanism};
+  us_RenderSettings r = us_render_default_settings();
+  r.width_px = 400, r.failure = &f;
+  int unstable = res.verdict == US_UNSTABLE && res.mechanism.nbody > 0;
+  char *front = unstable ? svg_of(s, &r, "mech.svg") : NULL;
+  r.view_az = 215;
+  char *back = unstable ? svg_of(s, &r, "mech2.svg") : NULL;
+  us_stability_result_free(&res);
+  us_stability_free(w);
+  us_structure_free(s);
+  CHECK(front && back);
+  CHECK(strstr(front, "<g class=\"falls\"><title>b1</title>") != NULL);
+  CHECK(!strstr(front, "class=\"velocity\""));
+  CHECK(strstr(back, "class=\"velocity\"") != NULL);
   us_free(front), us_free(back);
 }
 
@@ -537,4 +579,4 @@ static void out_of_memory(void) {
 
 US_TEST_MAIN(T(tower_top_face), T(nearer_wins), T(pyramid_views), T(labels_and_failure),
              T(near_hides_far), T(box_on_beam), T(hidden_marks),
-             T(stick_cycle), T(out_of_memory))
+             T(hidden_mechanism), T(stick_cycle), T(out_of_memory))

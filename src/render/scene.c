@@ -368,7 +368,7 @@ static void body_label(us_SceneBody *sb, const View *v, const us_Structure *s,
 /* 3D: paints and label texts per body, then the faces (scene3.c); 1 on
  * out of memory. */
 static int put_bodies3(us_Scene *sc, const View *v, const us_Structure *s,
-                        const us_RenderSettings *r, const Info *in) {
+                       const us_RenderSettings *r, const Info *in) {
   for (int i = 0; i < s->nbody; i++) {
     in->proto[i].body = i;
     in->proto[i].paint = body_paint(s, r, in, i);
@@ -448,7 +448,8 @@ static void put_arrow(us_Scene *sc, const View *v, const us_DrawnForce *d, const
   double *a = &sc->arrows[4 * sc->narrow];
   us_scene_px(v, p, &a[0], &a[1]);
   us_scene_px(v, q, &a[2], &a[3]);
-  if (hypot(a[2] - a[0], a[3] - a[1]) >= 0.5 && !us_depth3_covers_segment(sc, d->upper, d->lower, a))
+  if (hypot(a[2] - a[0], a[3] - a[1]) >= 0.5 &&
+      !us_depth3_covers_segment(sc, d->upper, d->lower, a))
     sc->arrow_kind[sc->narrow++] = kind;
 }
 
