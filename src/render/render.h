@@ -89,7 +89,7 @@ typedef struct us_Scene {
                                    [ground_y, draw_bottom] */
   int nbody;
   us_SceneBody *bodies;   /* 2D: one per body; 3D: one per face turned to
-                             the viewer, far to near */
+                             the viewer, in the painter's order */
   int labels_in_order;    /* 1 (3D): each label drawn right after its entry,
                              so nearer faces cover it; 0 (2D): the SVG puts it
                              in its body's group, the PNG after every body */

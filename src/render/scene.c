@@ -33,10 +33,11 @@
  *
  * 3D structures (src/render/scene3.c): world points are projected onto the
  * view's right and up axes (us_SceneView; 2D: x and y as they are) before
- * the same fit; the bodies become their visible faces, painted far to near
- * and shaded, with labels at the projected centres of mass, and the ground
- * band becomes a grid on z = 0. Contacts and arrows are projected the same
- * way in both dimensions.
+ * the same fit; the bodies become their visible faces, painted in the
+ * painter's order (src/render/depth3.c) and shaded, with labels at the
+ * projected centres of mass, and the ground band becomes a grid on z = 0.
+ * Contacts and arrows are projected the same way in both dimensions; in 3D
+ * those a nearer body covers are left out (depth3.c).
  *
  * Errors: bad settings (order or force indices out of range, repeated
  * bodies in the order, sizes out of range) are US_ERR_USAGE; nothing is
