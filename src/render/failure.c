@@ -107,7 +107,7 @@ static void point_velocity2(const us_Structure *s, const double *v, const double
   out[1] = v[1] + v[2] * (p[0] - c[0]) * inv_l;
 }
 
-/* Arrows of the centres' velocities. */
+/* Arrows of the centres' velocities (3D: those no nearer body covers). */
 static void put_mech_arrows(us_Scene *sc, const us_SceneView *v, const us_Structure *s,
                             const us_Mechanism *m) {
   int k = mech_stride(s);
@@ -125,7 +125,9 @@ static void put_mech_arrows(us_Scene *sc, const us_SceneView *v, const us_Struct
     double *a = &sc->mech[4 * sc->nmech];
     us_scene_px(v, c, &a[0], &a[1]);
     us_scene_px(v, e, &a[2], &a[3]);
-    if (isfinite(a[2] + a[3]) && hypot(a[2] - a[0], a[3] - a[1]) >= 0.5) sc->nmech++;
+    if (isfinite(a[2] + a[3]) && hypot(a[2] - a[0], a[3] - a[1]) >= 0.5 &&
+        !us_depth3_covers_segment(sc, m->body[q], US_GROUND, a)) /* 3D: not under a nearer body */
+      sc->nmech++;
   }
 }
 

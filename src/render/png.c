@@ -2,7 +2,9 @@
  * ARGB32 image surface, then encoded as PNG into the caller's stream. It
  * decides nothing about what is drawn; it only spells the scene's shapes
  * in cairo calls, in the SVG writer's order (back to front: ground or the
- * 3D ground grid, bodies (3D: faces far to near), labels, contact dots, arrows, legend).
+ * 3D ground grid, bodies (3D: faces in the painter's order, each body's
+ * label right after its last face), labels (2D), contact dots, arrows,
+ * legend).
  *
  * Colours are the scene's bytes: a solid fill with full alpha lands in the
  * image unchanged, so the pixel inside a body is exactly its scene colour
@@ -164,8 +166,9 @@ static void draw_bodies(cairo_t *cr, const us_Scene *sc) {
     if (b->mark) mark_stroke(cr, sc, b->mark);
     cairo_stroke(cr);
     cairo_set_dash(cr, NULL, 0, 0.0);
+    if (sc->labels_in_order && b->label.text) draw_text(cr, &b->label); /* 3D */
   }
-  for (int i = 0; i < sc->nbody; i++)
+  for (int i = 0; !sc->labels_in_order && i < sc->nbody; i++)
     if (sc->bodies[i].label.text) draw_text(cr, &sc->bodies[i].label);
 }
 

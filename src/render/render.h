@@ -89,8 +89,10 @@ typedef struct us_Scene {
                                    [ground_y, draw_bottom] */
   int nbody;
   us_SceneBody *bodies;   /* 2D: one per body; 3D: one per face turned to
-                             the viewer, far to near */
-  int labels_apart;       /* 1: labels drawn after every body (3D) */
+                             the viewer, in the painter's order */
+  int labels_in_order;    /* 1 (3D): each label drawn right after its entry,
+                             so nearer faces cover it; 0 (2D): the SVG puts it
+                             in its body's group, the PNG after every body */
   int nline;
   double *lines;          /* 3D ground grid (x1, y1, x2, y2), under the bodies */
   double line_width;
@@ -118,6 +120,9 @@ typedef struct us_Scene {
                              held bodies' centres, class "held" */
   double *hands, hand_r;
   us_Rgb hand_color;      /* hand marks and held bodies' outlines */
+  struct us_Depth *depth; /* 3D, while the scene is built: the painter's
+                             order's nodes, for what covers a mark
+                             (src/render/depth3.c); NULL otherwise */
   int has_ramp;           /* the legend's ramp strip */
   us_SceneBox ramp_box;
   us_Rgb ramp[US_RAMP_STOPS]; /* us_ramp at evenly spaced t */
@@ -149,13 +154,35 @@ void us_scene_px(const us_SceneView *v, const double p[3], double *X, double *Y)
 void us_scene3_count(const us_Structure *s, size_t *nentry, size_t *npt);
 /* Grow bb (xmin, ymin, xmax, ymax, projected) by the bodies and the grid. */
 void us_scene3_bounds(const us_Structure *s, const us_SceneView *v, double bb[4]);
-/* The visible faces, far to near, painted from proto[body] (paint; label
- * text and colour) and shaded; labels at the bodies' projected centres;
- * the ground grid. sc->bodies and sc->pts hold us_scene3_count's sizes,
- * sc->lines 4 US_GRID_LINES doubles. proto's depths are used as marks. */
+/* The visible faces in the painter's order (src/render/depth3.c), painted
+ * from proto[body] (paint; label text and colour) and shaded; labels at
+ * the bodies' projected centres, left out where a nearer body covers
+ * them; the ground grid. sc->bodies and sc->pts hold us_scene3_count's
+ * sizes, sc->lines 4 US_GRID_LINES doubles. proto's depths are used as
+ * marks. Sets sc->depth; 1 on out of memory. */
 #define US_GRID_LINES 64
-void us_scene3_bodies(us_Scene *sc, const us_SceneView *v, const us_Structure *s,
-                      us_SceneBody *proto);
+int us_scene3_bodies(us_Scene *sc, const us_SceneView *v, const us_Structure *s,
+                     us_SceneBody *proto);
+
+/* The painter's order (src/render/depth3.c): sc->bodies[0 .. nbody) as
+ * collected, the faces of each convex part in a run of equal node_of[],
+ * plane[e] the face plane of entry e (NULL: a point body), reordered so
+ * that a nearer part comes after every part it overlaps; the order kept
+ * in sc->depth (even on failure: us_depth3_free). 1 on out of memory. */
+typedef struct us_Depth us_Depth;
+int us_depth3_order(us_Scene *sc, const us_SceneView *v, int nbody, const double *const *plane,
+                    const int *node_of);
+/* 1 when a part painted after every part of bodies a and b (US_GROUND:
+ * none) covers the box of half sides hw, hh at (x, y), or the segment
+ * seg (x1, y1, x2, y2), px; 0 without sc->depth (2D). */
+int us_depth3_covers_box(const us_Scene *sc, int a, int b, double x, double y, double hw,
+                         double hh);
+int us_depth3_covers_segment(const us_Scene *sc, int a, int b, const double seg[4]);
+/* 1 when parts painted after body's cover more than a quarter of the
+ * label box (half sides hw, hh at x, y); 0 without sc->depth. */
+int us_depth3_hides_label(const us_Scene *sc, int body, double x, double y, double hw,
+                          double hh);
+void us_depth3_free(us_Scene *sc);
 
 /* Failure marks (src/render/failure.c): r->failure checked against s
  * (US_ERR_USAGE); the body that falls (named, else the mechanism's

@@ -33,10 +33,11 @@
  *
  * 3D structures (src/render/scene3.c): world points are projected onto the
  * view's right and up axes (us_SceneView; 2D: x and y as they are) before
- * the same fit; the bodies become their visible faces, painted far to near
- * and shaded, with labels at the projected centres of mass, and the ground
- * band becomes a grid on z = 0. Contacts and arrows are projected the same
- * way in both dimensions.
+ * the same fit; the bodies become their visible faces, painted in the
+ * painter's order (src/render/depth3.c) and shaded, with labels at the
+ * projected centres of mass, and the ground band becomes a grid on z = 0.
+ * Contacts and arrows are projected the same way in both dimensions; in 3D
+ * those a nearer body covers are left out (depth3.c).
  *
  * Errors: bad settings (order or force indices out of range, repeated
  * bodies in the order, sizes out of range) are US_ERR_USAGE; nothing is
@@ -313,7 +314,8 @@ static int body_mark(const us_RenderSettings *r, const Info *in, int i) {
 }
 
 /* Hand marks (rings) at the held bodies' centres of mass, around their
- * labels, sized from the dots. */
+ * labels, sized from the dots; in 3D only where no nearer body covers the
+ * ring (src/render/depth3.c). */
 static void put_hands(us_Scene *sc, const View *v, const us_Structure *s,
                       const us_RenderSettings *r) {
   sc->hand_color = kHand;
@@ -322,8 +324,10 @@ static void put_hands(us_Scene *sc, const View *v, const us_Structure *s,
     if (r->hand_state[i] == US_HAND_HELD && !s->bodies[i].fixed) {
       const double *c = s->bodies[i].com;
       double p[3] = {c[0], c[1], s->dim == 3 ? c[2] : 0.0};
-      us_scene_px(v, p, &sc->hands[2 * sc->nhand], &sc->hands[2 * sc->nhand + 1]);
-      sc->nhand++;
+      double *h = &sc->hands[2 * sc->nhand];
+      us_scene_px(v, p, &h[0], &h[1]);
+      sc->nhand += !us_depth3_covers_box(sc, i, US_GROUND, h[0], h[1], sc->hand_r + 1.25,
+                                         sc->hand_r + 1.25); /* 3D: left out when covered */
     }
 }
 
@@ -362,9 +366,10 @@ static void body_label(us_SceneBody *sb, const View *v, const us_Structure *s,
   sb->label = (us_SceneText){text, px_x(v, x), px_y(v, y), fs, 0, 1, 0, light ? kWhite : kBlack};
 }
 
-/* 3D: paints and label texts per body, then the faces (scene3.c). */
-static void put_bodies3(us_Scene *sc, const View *v, const us_Structure *s,
-                        const us_RenderSettings *r, const Info *in) {
+/* 3D: paints and label texts per body, then the faces (scene3.c); 1 on
+ * out of memory. */
+static int put_bodies3(us_Scene *sc, const View *v, const us_Structure *s,
+                       const us_RenderSettings *r, const Info *in) {
   for (int i = 0; i < s->nbody; i++) {
     in->proto[i].body = i;
     in->proto[i].paint = body_paint(s, r, in, i);
@@ -372,7 +377,7 @@ static void put_bodies3(us_Scene *sc, const View *v, const us_Structure *s,
     in->proto[i].hidden = unplaced(s, r, i);
     body_label(&in->proto[i], v, s, r, in);
   }
-  us_scene3_bodies(sc, v, s, in->proto);
+  return us_scene3_bodies(sc, v, s, in->proto);
 }
 
 static void put_bodies(us_Scene *sc, const View *v, const us_Structure *s,
@@ -399,14 +404,16 @@ static void put_bodies(us_Scene *sc, const View *v, const us_Structure *s,
 
 /* -------------------------------------------------------- dots, arrows */
 
-/* Contact points, but those of bodies not placed yet. */
+/* Contact points, but those of bodies not placed yet and (3D) those a
+ * body nearer than both touching ones covers. */
 static void put_dots(us_Scene *sc, const View *v, const us_Structure *s,
                      const us_RenderSettings *r) {
   for (int c = 0; c < s->ncontact; c++) {
     const us_Contact *k = &s->contacts[c];
     if (unplaced(s, r, k->a) || unplaced(s, r, k->b)) continue;
-    us_scene_px(v, k->p, &sc->dots[2 * sc->ndot], &sc->dots[2 * sc->ndot + 1]);
-    sc->ndot++;
+    double *d = &sc->dots[2 * sc->ndot];
+    us_scene_px(v, k->p, &d[0], &d[1]);
+    sc->ndot += !us_depth3_covers_box(sc, k->a, k->b, d[0], d[1], sc->dot_r, sc->dot_r);
   }
   sc->dot_color = (us_Rgb){34, 34, 34};
 }
@@ -432,15 +439,19 @@ static double force_max(const us_DrawnForce *d, int n) {
   return fmax;
 }
 
-/* One arrow from p along v (kind 0 normal, 1 friction); under half a pixel
- * (as drawn, after projection) it is left out. */
-static void put_arrow(us_Scene *sc, const View *v, const double *p, const double *fv,
+/* One arrow of force d from p along fv (kind 0 normal, 1 friction); under
+ * half a pixel (as drawn, after projection) it is left out, and in 3D when
+ * a body nearer than both of d's covers it. */
+static void put_arrow(us_Scene *sc, const View *v, const us_DrawnForce *d, const double *fv,
                       double scale, unsigned char kind) {
+  const double *p = d->p;
   double q[3] = {p[0] + fv[0] * scale, p[1] + fv[1] * scale, p[2] + fv[2] * scale};
   double *a = &sc->arrows[4 * sc->narrow];
   us_scene_px(v, p, &a[0], &a[1]);
   us_scene_px(v, q, &a[2], &a[3]);
-  if (hypot(a[2] - a[0], a[3] - a[1]) >= 0.5) sc->arrow_kind[sc->narrow++] = kind;
+  if (hypot(a[2] - a[0], a[3] - a[1]) >= 0.5 &&
+      !us_depth3_covers_segment(sc, d->upper, d->lower, a))
+    sc->arrow_kind[sc->narrow++] = kind;
 }
 
 /* Arrows scaled so the longest part (fmax) is 12% of the view: the normal
@@ -449,8 +460,8 @@ static void put_arrows(us_Scene *sc, const View *v, const us_DrawnForce *d, int 
   double scale = 0.12 * v->span / fmax;
   for (int k = 0; k < n; k++) {
     if (!isfinite(norm3(d[k].normal)) || !isfinite(norm3(d[k].friction))) continue;
-    put_arrow(sc, v, d[k].p, d[k].normal, scale, 0);
-    put_arrow(sc, v, d[k].p, d[k].friction, scale, 1);
+    put_arrow(sc, v, &d[k], d[k].normal, scale, 0);
+    put_arrow(sc, v, &d[k], d[k].friction, scale, 1);
   }
 }
 
@@ -577,8 +588,8 @@ static us_Status alloc_parts(us_Scene *sc, const us_Structure *s, const us_Rende
   return us_error_set(err, US_ERR_NOMEM, "render: out of memory");
 }
 
-static void fill_scene(us_Scene *sc, const View *v, const us_Structure *s,
-                       const us_RenderSettings *r, const Info *in) {
+static us_Status fill_scene(us_Scene *sc, const View *v, const us_Structure *s,
+                            const us_RenderSettings *r, const Info *in, us_Error *err) {
   sc->arrow_color = (us_Rgb){31, 78, 156};
   sc->friction_color = (us_Rgb){230, 115, 0};
   sc->arrow_width = 1.5;
@@ -587,13 +598,16 @@ static void fill_scene(us_Scene *sc, const View *v, const us_Structure *s,
   int band = s->ground && s->dim == 2; /* 3D: the grid instead */
   sc->ground_y = band ? US_MAX(px_y(v, 0.0), sc->draw_top) : sc->draw_bottom;
   line_sizes(sc, v, s);
-  if (s->dim == 3) put_bodies3(sc, v, s, r, in);
-  else put_bodies(sc, v, s, r, in);
+  if (s->dim == 3 && put_bodies3(sc, v, s, r, in))
+    return us_error_set(err, US_ERR_NOMEM, "render: out of memory");
+  if (s->dim == 2) put_bodies(sc, v, s, r, in);
   if (r->show_contacts) put_dots(sc, v, s, r);
   if (in->fmax > 0) put_arrows(sc, v, in->drawn, in->ndrawn, in->fmax);
   if (r->failure) us_scene_mechanism(sc, v, s, r->failure);
   if (r->hand_state) put_hands(sc, v, s, r);
   put_legend(sc, r, in);
+  us_depth3_free(sc); /* the order's nodes: only the build needs them */
+  return US_OK;
 }
 
 /* The bands around the drawing: title and legend. */
@@ -618,7 +632,7 @@ us_Status us_scene_build(us_Scene *sc, const us_Structure *s, const us_RenderSet
   if (!st) st = plan_bands(&in, s, r, err);
   if (!st) st = world_view(s, r, &v, err);
   if (!st) st = fit_view(sc, &v, r, &in, max_side, max_pixels, err);
-  if (!st) fill_scene(sc, &v, s, r, &in);
+  if (!st) st = fill_scene(sc, &v, s, r, &in, err);
   us_free(in.step);
   us_free(in.proto);
   us_free(in.drawn);
@@ -627,6 +641,7 @@ us_Status us_scene_build(us_Scene *sc, const us_Structure *s, const us_RenderSet
 }
 
 void us_scene_free(us_Scene *sc) {
+  us_depth3_free(sc);
   us_free(sc->bodies);
   us_free(sc->pts);
   us_free(sc->dots);

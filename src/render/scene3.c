@@ -13,17 +13,14 @@
  *
  * Hidden surfaces. Each part is a convex polyhedron whose face planes have
  * outward unit normals n: a face is drawn only when n . e > 0 (it faces
- * the viewer; for one convex part this alone is exact). Across parts and
- * bodies the faces are painted far to near by the depth of their vertex
- * centroid (the painter's algorithm; ties by body, then by face, so the
- * order is deterministic). Limits: the centroid order is right for faces
- * of similar size that do not interpenetrate, as the blocks of a stack or
- * a wall are, but a long face next to a short one can have its centroid
- * nearer while it is partly behind (a long beam lying past a small block),
- * and faces overlapping cyclically (three sticks each over the next) have
- * no correct painter's order at all; a depth buffer or splitting the faces
- * (BSP) would be needed there. Contact dots and force arrows are drawn
- * over every face, hidden or not.
+ * the viewer; for one convex part this alone is exact). Across parts the
+ * faces are painted in the painter's order of src/render/depth3.c: a part
+ * after every part it is in front of where their pictures overlap, which
+ * is right for convex parts that do not interpenetrate, whatever their
+ * sizes (cycles of parts overlapping each other in turn are broken at the
+ * farthest). Labels, contact dots, force arrows, hand rings and mechanism
+ * arrows are drawn over the faces, each only where no part painted after
+ * its bodies covers it (depth3.c: "Covering").
  *
  * Shading is a pure factor on the sRGB bytes of the body's colour,
  *   f = 0.70 + 0.30 n_z - 0.12 (n . r),  clamped to [0.25, 1],
@@ -182,38 +179,40 @@ static void put_face(us_Scene *sc, us_SceneBody *sb, const us_SceneView *v,
   sb->depth = dot3(c, v->e);
 }
 
-/* Every face turned to the viewer, and every point body, unsorted. */
+/* Where collect puts what depth3.c needs: per entry its face plane (NULL
+ * for a point body) and its node (one per convex part or point body). */
+typedef struct Collected {
+  const double **plane;
+  int *node;
+  int nnode;
+} Collected;
+
+/* Every face turned to the viewer, and every point body, by body and part. */
 static void collect(us_Scene *sc, const us_SceneView *v, const us_Structure *s,
-                    const us_SceneBody *proto) {
+                    const us_SceneBody *proto, Collected *out) {
   int first = 0;
   sc->nbody = 0;
   for (int i = 0; i < s->nbody; i++) {
     const us_Body *b = &s->bodies[i];
     if (proto[i].hidden) continue;
-    for (int p = 0; p < b->npart; p++)
+    for (int p = 0; p < b->npart; p++, out->nnode++)
       for (int f = 0; f < b->parts[p].nface; f++) {
         const double *n = b->parts[p].planes + 4 * f;
         if (!(dot3(n, v->e) > 1e-9)) continue;
+        out->plane[sc->nbody] = n, out->node[sc->nbody] = out->nnode;
         us_SceneBody *sb = &sc->bodies[sc->nbody++];
         *sb = (us_SceneBody){.body = i, .paint = shade(proto[i].paint, n, v),
                              .mark = proto[i].mark};
         put_face(sc, sb, v, &b->parts[p], f, &first);
       }
     if (b->npart == 0) {
+      out->plane[sc->nbody] = NULL, out->node[sc->nbody] = out->nnode++;
       us_SceneBody *sb = &sc->bodies[sc->nbody++];
       *sb = (us_SceneBody){.body = i, .paint = proto[i].paint, .depth = dot3(b->com, v->e),
                            .mark = proto[i].mark};
       us_scene_px(v, b->com, &sb->cx, &sb->cy);
     }
   }
-}
-
-/* Far to near; ties by body, then by position in the point array. */
-static int by_depth(const void *pa, const void *pb) {
-  const us_SceneBody *a = pa, *b = pb;
-  if (a->depth != b->depth) return a->depth < b->depth ? -1 : 1;
-  if (a->body != b->body) return a->body < b->body ? -1 : 1;
-  return (a->first > b->first) - (a->first < b->first);
 }
 
 /* ---------------------------------------------------------------- labels */
@@ -236,10 +235,41 @@ static void body_box(const us_SceneView *v, const us_Structure *s, const us_Body
   *h = n ? (bb[3] - bb[1]) * v->k : 0.0;
 }
 
-/* proto's label on body i's nearest entry sb, sized as in 2D (45% of the
- * projected height, at most 16 px, fitted to the width, none under 5 px). */
-static void put_label(us_SceneBody *sb, const us_SceneView *v, const us_Structure *s,
-                      const us_SceneBody *proto) {
+/* The area of face entry f in px^2 (0 for a point body). */
+static double face_area(const us_Scene *sc, const us_SceneBody *f) {
+  double a = 0.0;
+  const double *p = sc->pts + 2 * f->first;
+  for (int k = 0; k < f->npt; k++) {
+    int j = (k + 1) % f->npt;
+    a += p[2 * k] * p[2 * j + 1] - p[2 * j] * p[2 * k + 1];
+  }
+  return 0.5 * fabs(a);
+}
+
+/* Where the label of entry e's body goes (a box of half sides hw, hh): at
+ * (x, y), its projected centre, when nearer bodies leave it seen, else at
+ * the centroid of the largest face they leave it seen on (of the faces
+ * in e's run: its last part's); 0 when there is none. */
+static int label_spot(const us_Scene *sc, int e, double hw, double hh, double *x, double *y) {
+  int body = sc->bodies[e].body;
+  if (!us_depth3_hides_label(sc, body, *x, *y, hw, hh)) return 1;
+  double best = 0.0;
+  for (int k = e; k >= 0 && sc->bodies[k].body == body; k--) {
+    const us_SceneBody *f = &sc->bodies[k];
+    double a = face_area(sc, f);
+    if (a > best && !us_depth3_hides_label(sc, body, f->cx, f->cy, hw, hh))
+      best = a, *x = f->cx, *y = f->cy;
+  }
+  return best > 0.0;
+}
+
+/* proto's label on body i's last entry sb in the painter's order, sized as
+ * in 2D (45% of the projected height, at most 16 px, fitted to the width,
+ * none under 5 px), at the projected centre of mass, or where that is
+ * covered (parts painted later cover a quarter of its box, depth3.c) on
+ * the largest face it is not, else left out. */
+static void put_label(const us_Scene *sc, us_SceneBody *sb, const us_SceneView *v,
+                      const us_Structure *s, const us_SceneBody *proto) {
   const us_Body *b = &s->bodies[sb->body];
   double c[3], w, h, len = (double)strlen(proto->label.text);
   body_box(v, s, b, c, &w, &h);
@@ -251,24 +281,34 @@ static void put_label(us_SceneBody *sb, const us_SceneView *v, const us_Structur
   if (proto->label.text == proto->num) sb->label.text = sb->num;
   sb->label.size = fs;
   us_scene_px(v, c, &sb->label.x, &sb->label.y);
+  double hw = 0.3 * fs * US_MAX(len, 1.0), hh = 0.5 * fs; /* the text's box, as sized */
+  if (!label_spot(sc, (int)(sb - sc->bodies), hw, hh, &sb->label.x, &sb->label.y))
+    sb->label.text = NULL; /* nearer bodies cover much of it wherever it goes */
 }
 
 static void put_labels(us_Scene *sc, const us_SceneView *v, const us_Structure *s,
                        us_SceneBody *proto) {
-  for (int k = sc->nbody - 1; k >= 0; k--) { /* nearest entry of each body first */
+  for (int k = sc->nbody - 1; k >= 0; k--) { /* last entry of each body first */
     us_SceneBody *sb = &sc->bodies[k];
     us_SceneBody *pr = &proto[sb->body];
     if (!pr->label.text || pr->depth < 0) continue;
     pr->depth = -1.0; /* proto's depth marks "labelled" */
-    put_label(sb, v, s, pr);
+    put_label(sc, sb, v, s, pr);
   }
 }
 
-void us_scene3_bodies(us_Scene *sc, const us_SceneView *v, const us_Structure *s,
-                      us_SceneBody *proto) {
+int us_scene3_bodies(us_Scene *sc, const us_SceneView *v, const us_Structure *s,
+                     us_SceneBody *proto) {
+  size_t ne, np;
+  us_scene3_count(s, &ne, &np);
+  Collected c = {us_malloc((ne + 1) * sizeof *c.plane), us_malloc((ne + 1) * sizeof *c.node), 0};
+  int bad = !c.plane || !c.node;
   put_grid(sc, v, s);
-  collect(sc, v, s, proto);
-  qsort(sc->bodies, (size_t)sc->nbody, sizeof *sc->bodies, by_depth);
+  if (!bad) collect(sc, v, s, proto, &c);
+  if (!bad) bad = us_depth3_order(sc, v, s->nbody, (const double *const *)c.plane, c.node);
+  us_free(c.plane), us_free(c.node);
+  if (bad) return 1;
   put_labels(sc, v, s, proto);
-  sc->labels_apart = 1;
+  sc->labels_in_order = 1;
+  return 0;
 }

@@ -4,9 +4,10 @@
  * We write SVG ourselves rather than through cairo's SVG surface because
  * the file is meant to be read as well as looked at: every body is a <g>
  * holding a <title> with its id (viewers show it on hover) and one
- * <polygon> (a <circle> for a point body; in 3D a <g> per visible face,
- * labels in a group of their own after all faces, the ground grid as
- * <line>s in class grid), the groups carry class names
+ * <polygon> (a <circle> for a point body; in 3D a <g> per visible face in
+ * the painter's order, a body's label in its last face's <g>, so nearer
+ * faces cover it, the ground grid as <line>s in class grid), the groups
+ * carry class names
  * (ground, bodies, contacts, forces, legend), hatches are named <pattern>s
  * and arrows share one <marker>; cairo's SVG surface would give glyph
  * outlines and anonymous paths, none of which a test, a script or the
@@ -171,17 +172,9 @@ static void put_bodies(FILE *fp, const us_Scene *sc, const us_Structure *s) {
     put_escaped(fp, s->bodies[b->body].id);
     fputs("</title>", fp);
     put_shape(fp, sc, b);
-    if (b->label.text && !sc->labels_apart) put_text(fp, &b->label);
+    if (b->label.text) put_text(fp, &b->label); /* 3D: covered by later faces */
     fputs("</g>\n", fp);
   }
-  fputs("</g>\n", fp);
-}
-
-/* Labels after every body (3D: a later face must not cover them). */
-static void put_labels(FILE *fp, const us_Scene *sc) {
-  fputs("<g class=\"labels\">\n", fp);
-  for (int i = 0; i < sc->nbody; i++)
-    if (sc->bodies[i].label.text) put_text(fp, &sc->bodies[i].label), fputc('\n', fp);
   fputs("</g>\n", fp);
 }
 
@@ -277,7 +270,6 @@ void us_scene_write_svg(FILE *fp, const us_Scene *sc, const us_Structure *s) {
   if (sc->ground_y < sc->draw_bottom) put_ground(fp, sc);
   if (sc->nline) put_grid(fp, sc);
   put_bodies(fp, sc, s);
-  if (sc->labels_apart) put_labels(fp, sc);
   if (sc->ndot) put_dots(fp, sc);
   if (sc->narrow) put_arrows(fp, sc);
   if (sc->nmech || sc->nghost) put_mechanism(fp, sc);

@@ -2,7 +2,8 @@
 # files are PNG, SVG files XML), sizes, the title's status, and every error
 # (bad --format, an extension that names no format, unwritable outputs, bad
 # input, a PNG too large) is exit 2 with nothing written; a 3D structure
-# as PNG and SVG, turned by --view, bad views refused.
+# as PNG and SVG, turned by --view, bad views refused, labels of hidden
+# bodies left out.
 . "$(dirname "$0")/lib.sh"
 "$CLI" generate column --blocks 3 -o "$T/c.json" >/dev/null || bad "generate column"
 "$CLI" plan "$T/c.json" -o "$T/c-plan.json" >/dev/null || bad "plan column"
@@ -135,6 +136,11 @@ grep -q ">3</text>\|>b2</text>" "$T/nol.svg" && bad "--labels none writes labels
 expect 2 "--labels steps without a plan" -- "$CLI" render "$T/c.json" --labels steps -o "$T/x2.svg"
 expect 2 "--labels bad" -- "$CLI" render "$T/c.json" --labels nope -o "$T/x2.svg"
 expect 0 "3D --labels ids to PNG" -- "$CLI" render "$T/p3.json" --plan "$T/p3-plan.json" --labels ids -o "$T/p3i.png"
+# 3D labels only where seen: the bottom course's middle box b5 is covered on
+# every side (neighbours and the course above), the top box b14 is not
+expect 0 "3D --labels ids to SVG" -- "$CLI" render "$T/p3.json" --labels ids -o "$T/p3i.svg"
+grep -q ">b5</text>" "$T/p3i.svg" && bad "the hidden box's label is drawn" || ok "no label on the hidden box"
+contains "$T/p3i.svg" ">b14</text>" "the top box's label"
 # an unstable structure: the falling body and the mechanism
 printf '{"bodies": [{"id": "base", "polygon": [[0,0],[1,0],[1,1],[0,1]]}, {"id": "top", "polygon": [[0.6,1],[1.8,1],[1.8,1.4],[0.6,1.4]]}]}' >"$T/tip.json"
 expect 0 "render an unstable structure" -- "$CLI" render "$T/tip.json" -o "$T/tip.svg"
