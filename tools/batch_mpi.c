@@ -36,7 +36,7 @@ int batch_mpi_ranks(void) {
  * its modules), opened RTLD_GLOBAL; NULL with why. */
 static const us_MpiApi *load(char *why, size_t n) {
 #ifndef US_HAVE_MPI
-  snprintf(why, n, "this unstack was built without MPI (libopenmpi-dev missing)");
+  snprintf(why, n, "this unstack was built without MPI (no libopenmpi-dev at build time, or -DUS_MPI=OFF)");
   return NULL;
 #else
   char exe[4096], dir[4096], file[4200];

@@ -95,6 +95,16 @@ same "$T/cut.jsonl" "$T/j2.jsonl" "resumed output = a whole run (cut line redone
 contains "$T/resume2.out" "0 answered now" "a finished output is left as it is"
 same "$T/cut.jsonl" "$T/j2.jsonl" "and unchanged"
 
+# a batch killed at any moment, then resumed: the same lines (whenever the
+# kill lands, even after the end)
+"$CLI" batch "$D" "$B" -o "$T/killed.jsonl" --jobs 2 >/dev/null 2>&1 &
+pid=$!
+sleep 0.05
+kill -9 "$pid" 2>/dev/null
+wait "$pid" 2>/dev/null
+"$CLI" batch "$D" "$B" -o "$T/killed.jsonl" --resume --jobs 2 >/dev/null
+same "$T/killed.jsonl" "$T/j2.jsonl" "killed with SIGKILL, then --resume: no line lost or repeated"
+
 # --- check and classify: the single commands' verdicts
 "$CLI" batch "$D" -o "$T/check.jsonl" --task check --method lpsolve >/dev/null
 for f in "$D/arch.json" "$D/random-05.json"; do
