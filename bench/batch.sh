@@ -27,7 +27,7 @@ timed() {
   shift 2
   for ((r = 0; r < REPS; r++)); do
     /usr/bin/time -f "%e %U %S" -o "$W/t" "$@" >/dev/null 2>&1
-    read -r wall u s <"$W/t"
+    read -r wall u s < <(tail -n 1 "$W/t") # after "Command exited with non-zero status"
     if [ -z "$best" ] || awk "BEGIN{exit !($wall < $best)}"; then
       best=$wall cpu=$(awk "BEGIN{print $u + $s}"); fi
   done
@@ -49,10 +49,13 @@ timed "plan per file xargs -P 2" 400 xargs -P 2 -n 1 "$CLI" plan <"$W/list"
 # the large set: the 400 structures again and again as hard links (the
 # random stacker needs about 10 ms a structure to generate; labelling
 # does the same work on a copy), labelled once with 2 jobs
-mkdir -p "$W/big"
-for ((i = 0; i < BIG; i++)); do
-  ln "$W/s400/random-$(printf %03d $((i % 400 + 1))).json" "$W/big/s$(printf %07d "$i").json"
-done
+python3 -c '
+import os, sys
+src, dst, n = sys.argv[1], sys.argv[2], int(sys.argv[3])
+os.makedirs(dst)
+for i in range(n):
+    os.link("%s/random-%03d.json" % (src, i % 400 + 1), "%s/s%07d.json" % (dst, i))
+' "$W/s400" "$W/big" "$BIG"
 REPS=1 timed "batch --jobs 2 large set" "$BIG" "$CLI" batch "$W/big" -o "$W/big.jsonl" --jobs 2
 lines=$(wc -l <"$W/big.jsonl")
 
