@@ -54,7 +54,7 @@ static int add_dir(List *l, const char *dir) {
     else r = push(l, p);
   }
   closedir(d);
-  qsort(l->v + first, (size_t)(l->n - first), sizeof *l->v, cmp_str);
+  if (l->n > first) qsort(l->v + first, (size_t)(l->n - first), sizeof *l->v, cmp_str);
   return r;
 }
 

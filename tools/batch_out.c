@@ -128,7 +128,7 @@ static int answered_files(const char *out, char *text, char ***files, int *nf) {
     v[n++] = l;
     json_decref(o);
   }
-  qsort(v, (size_t)n, sizeof *v, cmp_str);
+  if (n) qsort(v, (size_t)n, sizeof *v, cmp_str);
   *files = v, *nf = n;
   return 0;
 }

@@ -105,6 +105,12 @@ wait "$pid" 2>/dev/null
 "$CLI" batch "$D" "$B" -o "$T/killed.jsonl" --resume --jobs 2 >/dev/null
 same "$T/killed.jsonl" "$T/j2.jsonl" "killed with SIGKILL, then --resume: no line lost or repeated"
 
+# an empty directory, an empty output resumed: no lines, no error
+mkdir -p "$T/empty"
+: >"$T/empty.jsonl"
+expect 0 "an empty directory, --resume on an empty OUT" -- "$CLI" batch "$T/empty" -o "$T/empty.jsonl" --resume
+[ ! -s "$T/empty.jsonl" ] && ok "no lines for no inputs" || bad "lines written for no inputs"
+
 # --- check and classify: the single commands' verdicts
 "$CLI" batch "$D" -o "$T/check.jsonl" --task check --method lpsolve >/dev/null
 for f in "$D/arch.json" "$D/random-05.json"; do
