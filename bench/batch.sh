@@ -44,7 +44,7 @@ if "$CLI" --version | grep -q '^mpi: yes' && command -v mpirun >/dev/null; then
 fi
 ls "$W"/s400/*.json >"$W/list"
 timed "plan per file" 400 bash -c 'while read -r f; do "$0" plan "$f"; done <"$1"' "$CLI" "$W/list"
-timed "plan per file xargs -P 2" 400 xargs -P 2 -n 1 "$CLI" plan <"$W/list"
+timed "plan per file xargs -P 2" 400 xargs -a "$W/list" -P 2 -n 1 "$CLI" plan
 
 # the large set: the 400 structures again and again as hard links (the
 # random stacker needs about 10 ms a structure to generate; labelling
