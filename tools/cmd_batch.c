@@ -35,14 +35,16 @@ static int set_task(const char *v, void *dst, const char *cmd) {
   return cli_fail(cmd, "--task takes plan, check or classify (got '%s')", v);
 }
 
-/* --task before the table is built: the task's options join it. */
+/* --task before the table is built: the task's options join it (a bad
+ * word is left to the parser's message). */
 static BatchTask find_task(int argc, char **argv) {
   BatchTask t = BATCH_PLAN;
   for (int i = 1; i < argc; i++) {
     const char *v = !strcmp(argv[i], "--task") && i + 1 < argc ? argv[i + 1]
                     : !strncmp(argv[i], "--task=", 7)          ? argv[i] + 7
                                                                : NULL;
-    if (v && set_task(v, &t, "batch") == 0) continue;
+    for (int k = BATCH_PLAN; v && k <= BATCH_CLASSIFY; k++)
+      if (!strcmp(v, batch_task_name((BatchTask)k))) t = (BatchTask)k;
   }
   return t;
 }
