@@ -132,6 +132,9 @@ expect 2 "plan's own output options are not batch's" -- "$CLI" batch "$D" --prin
 expect 2 "output = an input" -- "$CLI" batch "$D" -o "$D/random-03.json"
 [ ! -e "$T/u.jsonl" ] && ok "usage errors write no output file" || bad "u.jsonl written"
 
+# --- libmpi is never linked: only batch under a launcher loads modules/mpi.so
+if ldd "$CLI" | grep -q libmpi; then bad "unstack links libmpi"; else ok "unstack does not link libmpi"; fi
+
 # --- MPI: mpirun -n 2 gives the same lines (when this build has MPI)
 if "$CLI" --version | grep -q '^mpi: yes' && command -v mpirun >/dev/null; then
   asroot=""
