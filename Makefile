@@ -2,12 +2,13 @@
 # Debian 12 machine (they install missing packages first, as root).
 BUILD ?= build
 ASAN  ?= build-asan
+TSAN  ?= build-tsan
 JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
 CLI    = $(BUILD)/unstack
 OUT   ?= demo-out
 QUICK ?= 0
 
-.PHONY: all deps build cli asan demo test test-release test-asan bench clean fuzz fuzz-build
+.PHONY: all deps build cli asan demo test test-release test-asan test-tsan bench clean fuzz fuzz-build
 
 all: build
 
@@ -57,7 +58,16 @@ test-asan: asan
 	cd $(ASAN) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  ctest -j$(JOBS) --output-on-failure -E '^bench'
 
-test: test-release test-asan
+# ThreadSanitizer on what runs threads: unstack batch (tests/cli/batch.sh,
+# --jobs 2) and test_threads; only those two targets are built (no MPI:
+# mpirun runs in the release suite)
+test-tsan: deps
+	@cmake -S . -B $(TSAN) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUS_TSAN=ON -DUS_MPI=OFF >/dev/null
+	@cmake --build $(TSAN) -j$(JOBS) --target unstack_cli test_threads
+	cd $(TSAN) && TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" \
+	  ctest -j$(JOBS) --output-on-failure -R '^(threads\.|cli\.batch$$)'
+
+test: test-release test-asan test-tsan
 
 # QUICK=1: a subset in under a minute (bench/results/*-quick.*)
 bench: build
@@ -89,4 +99,4 @@ fuzz: fuzz-build
 	done; exit $$found
 
 clean:
-	rm -rf $(BUILD) $(ASAN) $(OUT) $(FUZZ_BUILD)
+	rm -rf $(BUILD) $(ASAN) $(TSAN) $(OUT) $(FUZZ_BUILD)

@@ -21,7 +21,9 @@
 #                 stacker's random stacks from 100 to about 9,000: plan and verify time, tests, peak memory,
 #                 and the fitted exponent from 1,000 blocks up;
 #   hands-*.csv   plan --hands auto on arches of 6 to 30 voussoirs and the
-#                 default dome (bench/hands.sh): H, proven or not, time.
+#                 default dome (bench/hands.sh): H, proven or not, time;
+#   batch-*.csv   unstack batch on 400 small structures (1 and 2 jobs, MPI,
+#                 one process per file) and a large set (bench/batch.sh).
 # Usage: bench/run.sh BUILD_DIR   (env QUICK=1, BENCH_OUT=dir, BENCH_LIMIT=s)
 set -uo pipefail
 B=${1:-build}
@@ -335,6 +337,10 @@ say ""
 say "## Hands: plan --hands auto (docs/planning.md, \"Hands\")"
 say ""
 bash "$(dirname "$0")/hands.sh" "$B" "$OUT" "$tag" | tee -a "$MD"
+say ""
+say "## unstack batch: 400 small structures, and a large labelled set (docs/batch.md)"
+say ""
+bash "$(dirname "$0")/batch.sh" "$B" "$OUT" "$tag" | tee -a "$MD"
 say ""
 say "Whole benchmark: $(($(date +%s) - START)) s."
 echo "wrote $MD"

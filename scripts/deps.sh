@@ -4,13 +4,13 @@
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config coinor-libclp-dev liblpsolve55-dev libsuitesparse-dev
       libjansson-dev libxml2-dev libcairo2-dev libsiconos-numerics-dev python3
-      python3-dev python3-pytest
+      python3-dev python3-pytest libopenmpi-dev openmpi-bin
       groff-base) # groff-base: the man page's check (tests/cli/manpage.sh)
 # `deps.sh fuzz` (make fuzz): also clang with libFuzzer and its sanitizers
 [ "${1:-}" = fuzz ] && pkgs+=(clang libclang-rt-14-dev)
 # `deps.sh demo` (make demo): what building the tool needs, without the
 # packages only the tests use (below: the browser test's too)
-test_only=" libsiconos-numerics-dev python3 python3-pytest groff-base "
+test_only=" libsiconos-numerics-dev python3 python3-pytest groff-base libopenmpi-dev openmpi-bin "
 missing=()
 for p in "${pkgs[@]}"; do
   [ "${1:-}" = demo ] && [[ $test_only == *" $p "* ]] && continue

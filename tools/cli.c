@@ -20,8 +20,14 @@ int cli_fail(const char *cmd, const char *fmt, ...) {
   return CLI_EXIT_ERR;
 }
 
+void cli_error_text(char *buf, size_t n, const char *cmd, const us_Error *err) {
+  snprintf(buf, n, "unstack %s: %s: %s", cmd, us_status_name(err->code), err->msg);
+}
+
 int cli_error(const char *cmd, const us_Error *err) {
-  fprintf(stderr, "unstack %s: %s: %s\n", cmd, us_status_name(err->code), err->msg);
+  char line[sizeof err->msg + 128];
+  cli_error_text(line, sizeof line, cmd, err);
+  fprintf(stderr, "%s\n", line);
   return CLI_EXIT_ERR;
 }
 

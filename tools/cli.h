@@ -21,6 +21,7 @@ int cmd_generate(int argc, char **argv);
 int cmd_count(int argc, char **argv);
 int cmd_classify(int argc, char **argv);
 int cmd_import_svg(int argc, char **argv);
+int cmd_batch(int argc, char **argv);
 
 /* Print "unstack CMD: message" to stderr and return CLI_EXIT_ERR. */
 int cli_fail(const char *cmd, const char *fmt, ...)
@@ -29,6 +30,8 @@ int cli_fail(const char *cmd, const char *fmt, ...)
 #endif
     ;
 int cli_error(const char *cmd, const us_Error *err); /* exit code for err */
+/* The line cli_error prints for err, without the newline (batch lines). */
+void cli_error_text(char *buf, size_t n, const char *cmd, const us_Error *err);
 /* Before any work: can `out` be written, and is it none of the inputs?
  * 0, or the message printed and CLI_EXIT_ERR. */
 int cli_check_output(const char *cmd, const char *out, const char *const *inputs, int n);

@@ -1,5 +1,5 @@
 /* unstack check: does the whole structure stand? */
-#include "options.h"
+#include "task.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -15,13 +15,8 @@ static const char tail[] =
     "exit: 0 stable, 1 unstable, 2 usage or input error, 3 undecided (a solver\n"
     "limit was hit and no fallback decided, or the certificate failed)\n";
 
-typedef struct CheckArgs {
-  const char *file;
-  int forces, stats;
-} CheckArgs;
-
-/* The command line, by check's option table (optable.h). */
-static int parse(int argc, char **argv, CliCommon *c, CheckArgs *a) {
+/* check's option table (optable.h), shared with batch (task.h). */
+void cli_check_table(CliCommon *c, CheckArgs *a, CliOpt *out) {
   /* One entry per option, in --help's order; optable.h says how to add one. */
   const CliOpt opts[] = {
       CLI_OPT_METHOD(c),
@@ -32,6 +27,14 @@ static int parse(int argc, char **argv, CliCommon *c, CheckArgs *a) {
                          "(undecided)"),
       CLI_OPT_STATS(&a->stats, "print the test's statistics: time, solver, local tests"),
       CLI_END};
+  _Static_assert(sizeof opts / sizeof opts[0] <= CLI_TABLE_MAX, "CLI_TABLE_MAX too small");
+  memcpy(out, opts, sizeof opts);
+}
+
+/* The command line, by check's option table. */
+static int parse(int argc, char **argv, CliCommon *c, CheckArgs *a) {
+  CliOpt opts[CLI_TABLE_MAX];
+  cli_check_table(c, a, opts);
   const CliSpec spec = {"check", head, tail, opts, &a->file, 1, "more than one FILE given"};
   int r = cli_parse(&spec, argc, argv);
   if (!r && !a->file) return cli_fail("check", "no FILE given (see 'unstack check --help')");
@@ -55,6 +58,26 @@ static void print_forces(const us_Structure *s, const us_Forces *f) {
   }
 }
 
+us_Status cli_check_run(const us_Structure *s, const CliCommon *c, double time_limit,
+                        CliCheckOutcome *out, us_Error *err) {
+  us_StabilitySettings set = c->stab;
+  set.time_limit = time_limit;
+  memset(out, 0, sizeof *out);
+  double t0 = us_now();
+  us_Stability *w = us_stability_new(s, &set, err);
+  double t1 = us_now();
+  us_Status st = w ? us_stability_test_full(w, &out->res, err) : err->code;
+  if (w) out->info = *us_stability_info(w);
+  out->t_setup = t1 - t0, out->t_test = us_now() - t1;
+  if (st) us_stability_result_free(&out->res);
+  us_stability_free(w);
+  return st;
+}
+
+int cli_check_exit(us_Verdict v) {
+  return v == US_STABLE ? CLI_EXIT_OK : v == US_UNDECIDED ? CLI_EXIT_UNDECIDED : CLI_EXIT_NO;
+}
+
 static int report(const us_Structure *s, const us_StabilityResult *res, int forces) {
   int nmov = us_structure_movable_count(s);
   if (res->verdict == US_STABLE) {
@@ -64,14 +87,14 @@ static int report(const us_Structure *s, const us_StabilityResult *res, int forc
            res->check.max_cone_violation);
     if (res->note[0]) printf("solver: %s\n", res->note);
     if (forces) print_forces(s, &res->forces);
-    return CLI_EXIT_OK;
+    return cli_check_exit(res->verdict);
   }
   printf("%s: %d bodies, %d contacts", us_verdict_name(res->verdict), nmov, s->ncontact);
   if (res->unstable_body >= 0) printf("; body '%s' cannot be held",
                                       us_id_text(s->bodies[res->unstable_body].id).s);
   if (res->note[0]) printf(" (%s)", res->note);
   printf("\n");
-  return res->verdict == US_UNDECIDED ? CLI_EXIT_UNDECIDED : CLI_EXIT_NO;
+  return cli_check_exit(res->verdict);
 }
 
 /* --stats: what the test cost and how it was decided. */
@@ -95,23 +118,16 @@ int cmd_check(int argc, char **argv) {
   if (!s) return load;
   us_Error err;
   us_error_clear(&err);
-  us_StabilityResult res;
-  memset(&res, 0, sizeof res);
-  c.stab.time_limit = cli_time_left(c.stab.time_limit);
-  double t0 = us_now();
-  us_Stability *w = us_stability_new(s, &c.stab, &err);
-  double t1 = us_now();
+  CliCheckOutcome o;
   int code = CLI_EXIT_ERR;
-  if (w && us_stability_test_full(w, &res, &err) == US_OK) {
-    double t2 = us_now();
-    code = report(s, &res, a.forces);
+  if (cli_check_run(s, &c, cli_time_left(c.stab.time_limit), &o, &err) == US_OK) {
+    code = report(s, &o.res, a.forces);
     if (a.stats)
-      print_stats(us_stability_info(w), us_method_name(us_method_resolve(c.stab.method, s)),
-                  t1 - t0, t2 - t1);
+      print_stats(&o.info, us_method_name(us_method_resolve(c.stab.method, s)), o.t_setup,
+                  o.t_test);
+    us_stability_result_free(&o.res);
   }
   if (code == CLI_EXIT_ERR) cli_error("check", &err);
-  us_stability_result_free(&res);
-  us_stability_free(w);
   us_structure_free(s);
   return code;
 }

@@ -1,7 +1,7 @@
 /* unstack classify: the classes of a structure (stands, friction, top-down,
  * one-at-a-time, smallest group, strong = weak), each with its evidence,
  * as text (one line per class) or as one JSON object. */
-#include "options.h"
+#include "task.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -27,16 +27,8 @@ static const char tail[] =
 
 #define TEXT_IDS 20 /* blocked bodies named in the text output */
 
-typedef struct ClassifyArgs {
-  CliCommon common;
-  us_ClassifySettings set;
-  const char *file;
-  int json;
-} ClassifyArgs;
-
-/* -1: help printed (exit 0); else 0 or CLI_EXIT_ERR. By classify's option
- * table (optable.h). */
-static int parse_args(int argc, char **argv, ClassifyArgs *a) {
+/* classify's option table (optable.h), shared with batch (task.h). */
+void cli_classify_table(ClassifyArgs *a, CliOpt *out) {
   CliCommon *c = &a->common;
   /* One entry per option, in --help's order; optable.h says how to add one. */
   const CliOpt opts[] = {
@@ -52,6 +44,15 @@ static int parse_args(int argc, char **argv, ClassifyArgs *a) {
                CLI_ATLEAST(0), .need = "a number >= 0"),
       CLI_OPT_CONTACT_TOL(c),
       CLI_END};
+  _Static_assert(sizeof opts / sizeof opts[0] <= CLI_TABLE_MAX, "CLI_TABLE_MAX too small");
+  memcpy(out, opts, sizeof opts);
+}
+
+/* -1: help printed (exit 0); else 0 or CLI_EXIT_ERR. By classify's option
+ * table. */
+static int parse_args(int argc, char **argv, ClassifyArgs *a) {
+  CliOpt opts[CLI_TABLE_MAX];
+  cli_classify_table(a, opts);
   const CliSpec spec = {"classify", head, tail, opts, &a->file, 1, "more than one FILE given"};
   int r = cli_parse(&spec, argc, argv);
   if (r) return r;
@@ -379,6 +380,17 @@ static void print_json(const us_Structure *s, const us_Classification *c, const 
          c->t_equality, c->t_count);
 }
 
+us_Status cli_classify_run(const us_Structure *s, const ClassifyArgs *a, us_Classification *c,
+                           us_Error *err) {
+  us_ClassifySettings set = a->set;
+  set.stability = a->common.stab;
+  return us_classify(s, &set, c, err);
+}
+
+int cli_classify_exit(const us_Classification *c) {
+  return c->undecided ? CLI_EXIT_UNDECIDED : CLI_EXIT_OK;
+}
+
 int cmd_classify(int argc, char **argv) {
   ClassifyArgs a;
   memset(&a, 0, sizeof a);
@@ -393,10 +405,10 @@ int cmd_classify(int argc, char **argv) {
   us_error_clear(&err);
   us_Classification c;
   int code = CLI_EXIT_ERR;
-  if (us_classify(s, &a.set, &c, &err) == US_OK) {
+  if (cli_classify_run(s, &a, &c, &err) == US_OK) {
     if (a.json) print_json(s, &c, &a);
     else print_text(s, &c, &a);
-    code = c.undecided ? CLI_EXIT_UNDECIDED : CLI_EXIT_OK;
+    code = cli_classify_exit(&c);
   } else {
     cli_error("classify", &err);
   }

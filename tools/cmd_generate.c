@@ -1,13 +1,16 @@
 /* unstack generate: write a generated structure (column, pyramid, wall,
  * arch, random, stacker; in 3D tower, pyramid3d, wall3d, dome, jenga,
  * random3d) as a structure file. */
+#define _POSIX_C_SOURCE 200809L
 #include "options.h"
 
+#include <errno.h>
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 static const char head[] =
     "usage: unstack generate KIND [options] -o FILE\n"
@@ -86,6 +89,7 @@ typedef struct Extra {
   int height_given, tries_given;
   int returns_given; /* --returns, for wall3d only */
   double time_limit;  /* --time-limit, 0 when not given */
+  int count;          /* --count N: N files into the directory -o DIR/, 0: one file */
 } Extra;
 
 /* A positive int setting: "--blocks N" ... */
@@ -96,7 +100,11 @@ typedef struct Extra {
 static int parse(int argc, char **argv, us_GenSettings *g, Extra *x, const char **out) {
   /* One entry per option, in --help's order; optable.h says how to add one. */
   const CliOpt opts[] = {
-      CLI_TEXT("--output", "FILE", out, "structure file to write (required)", .alias = "-o"),
+      CLI_TEXT("--output", "FILE", out, "structure file to write (required); with --count a "
+               "directory (created if missing)", .alias = "-o"),
+      CLI_INT("--count", "N", &x->count, "write N structures with consecutive seeds S, S+1, ... "
+              "into the directory -o DIR/, named KIND-SEED.json (seeds zero-padded to one width)",
+              CLI_ATLEAST(1)),
       GEN_INT("--blocks", "N", &g->n, "column, tower: blocks; random3d: boxes (default 10)"),
       GEN_INT("--rows", "N", &g->rows, "pyramid, pyramid3d, wall, wall3d, random, stacker: rows (default 10)"),
       GEN_INT("--cols", "C", &g->cols, "wall, wall3d: bricks per course (default 10)"),
@@ -206,12 +214,60 @@ static int unknown_kind(const char *kind) {
   return cli_fail("generate", "unknown kind '%s' (%s)", kind, list);
 }
 
+/* One structure into `out`; the exit code. */
+static int generate_one(GenFn fn, const us_GenSettings *g, const Extra *x, const char *kind,
+                        const char *out) {
+  us_Error err;
+  us_error_clear(&err);
+  us_Structure *s = fn(g, &err);
+  if (!s && err.code == US_ERR_TIME_LIMIT) { /* an outcome: nothing written */
+    printf("stopped: %s (--time-limit %g); nothing written\n", err.msg, x->time_limit);
+    return CLI_EXIT_UNDECIDED;
+  }
+  if (!s || us_structure_write(s, out, &err)) {
+    us_structure_free(s);
+    return cli_error("generate", &err);
+  }
+  if (!x->count) printf("wrote %s: %s, %d bodies, %d contacts\n", out, kind, s->nbody, s->ncontact);
+  if (!x->count && fn == us_gen_random3d && s->nbody < g->n)
+    printf("random3d: %d of %d boxes placed: %d drops in a row were discarded (--max-tries)\n",
+           s->nbody, g->n, g->max_tries);
+  us_structure_free(s);
+  return CLI_EXIT_OK;
+}
+
+/* --count N: seeds S .. S+N-1 into DIR/KIND-SEED.json, the seed padded
+ * to the last one's width so that names sort as seeds (batch reads a
+ * directory sorted); --time-limit bounds the whole run. */
+static int generate_many(GenFn fn, us_GenSettings *g, const Extra *x, const char *kind,
+                         const char *dir) {
+  if (mkdir(dir, 0777) && errno != EEXIST)
+    return cli_fail("generate", "%s: cannot create the directory: %s", dir, strerror(errno));
+  struct stat st;
+  if (stat(dir, &st) || !S_ISDIR(st.st_mode))
+    return cli_fail("generate", "--count needs -o DIR/, a directory; %s is not one", dir);
+  unsigned long first = g->seed, last = first + (unsigned long)x->count - 1;
+  int width = snprintf(NULL, 0, "%lu", last);
+  size_t dl = strlen(dir);
+  const char *sep = dl && dir[dl - 1] == '/' ? "" : "/";
+  for (int k = 0; k < x->count; k++) {
+    char path[4096];
+    g->seed = first + (unsigned long)k;
+    snprintf(path, sizeof path, "%s%s%s-%0*lu.json", dir, sep, kind, width, g->seed);
+    int code = generate_one(fn, g, x, kind, path);
+    if (code) return code == CLI_EXIT_UNDECIDED ? printf("%d of %d written\n", k, x->count), code : code;
+  }
+  printf("wrote %d structures to %s: %s-%0*lu.json .. %s-%lu.json\n", x->count, dir, kind, width,
+         first, kind, last);
+  return CLI_EXIT_OK;
+}
+
 int cmd_generate(int argc, char **argv) {
   us_GenSettings g = us_gen_default_settings();
   int default_rows = g.rows;
   g.rows = -1; /* to see whether --rows was given */
   double block_width = g.width;
-  Extra x = {0, NULL, 0, 0, 0, 0};
+  Extra x = {0, NULL, 0, 0, 0, 0, 0};
   const char *out = NULL;
   if (argc < 2) return parse(0, NULL, &g, &x, &out); /* the help on stderr, exit 2 */
   if (cli_is_help(argv[1])) return parse(argc, argv, &g, &x, &out) < 0 ? CLI_EXIT_OK : CLI_EXIT_ERR;
@@ -222,30 +278,15 @@ int cmd_generate(int argc, char **argv) {
   int r = parse(argc - 1, argv + 1, &g, &x, &out);
   if (r) return r < 0 ? CLI_EXIT_OK : r;
   if (!out) return cli_fail("generate", "no output given: use -o FILE");
-  if (cli_check_output("generate", out, NULL, 0)) return CLI_EXIT_ERR;
+  if (!x.count && cli_check_output("generate", out, NULL, 0)) return CLI_EXIT_ERR;
   if ((fn == us_gen_pyramid || fn == us_gen_pyramid3d) && g.rows > 0) g.n = g.rows;
   if (g.rows < 0) g.rows = default_rows;
   if (settle(fn, &g, &x, block_width)) return CLI_EXIT_ERR;
   int *pairs = NULL;
   if (x.remove && parse_remove(x.remove, &pairs, &g.nremove)) return free(pairs), CLI_EXIT_ERR;
   g.remove = pairs;
-  us_Error err;
-  us_error_clear(&err);
   g.deadline = cli_deadline(x.time_limit);
-  us_Structure *s = fn(&g, &err);
+  int code = x.count ? generate_many(fn, &g, &x, argv[1], out) : generate_one(fn, &g, &x, argv[1], out);
   free(pairs);
-  if (!s && err.code == US_ERR_TIME_LIMIT) { /* an outcome: nothing written */
-    printf("stopped: %s (--time-limit %g); nothing written\n", err.msg, x.time_limit);
-    return CLI_EXIT_UNDECIDED;
-  }
-  if (!s || us_structure_write(s, out, &err)) {
-    us_structure_free(s);
-    return cli_error("generate", &err);
-  }
-  printf("wrote %s: %s, %d bodies, %d contacts\n", out, argv[1], s->nbody, s->ncontact);
-  if (fn == us_gen_random3d && s->nbody < g.n)
-    printf("random3d: %d of %d boxes placed: %d drops in a row were discarded (--max-tries)\n",
-           s->nbody, g.n, g.max_tries);
-  us_structure_free(s);
-  return CLI_EXIT_OK;
+  return code;
 }

@@ -1,5 +1,5 @@
 /* unstack plan: find a stable unstacking order and write it as a plan file. */
-#include "options.h"
+#include "task.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -108,11 +108,6 @@ static void print_summary(FILE *fp, const us_Structure *s, const us_Plan *p, con
   }
 }
 
-typedef struct {
-  const char *file, *out;
-  int stats, print;
-} PlanArgs;
-
 /* --print: "K<TAB>id[<TAB>id...]" per step; a none plan's build order. */
 static void print_steps(FILE *fp, const us_Structure *s, const us_Plan *p) {
   int build = p->status != US_PLAN_FOUND;
@@ -176,8 +171,8 @@ static int set_rules(const char *v, void *dst, const char *cmd) {
   return 0;
 }
 
-/* The command line, by plan's option table (optable.h). */
-static int parse(int argc, char **argv, CliCommon *c, PlanArgs *a) {
+/* plan's option table (optable.h), shared with batch (task.h). */
+void cli_plan_table(CliCommon *c, PlanArgs *a, CliOpt *out) {
   us_PlanSettings *p = &c->plan;
   /* One entry per option, in --help's order; optable.h says how to add one. */
   const CliOpt opts[] = {
@@ -217,6 +212,14 @@ static int parse(int argc, char **argv, CliCommon *c, PlanArgs *a) {
       CLI_OPT_STATS(&a->stats, "print the search statistics"),
       CLI_OPT_CONTACT_TOL(c),
       CLI_END};
+  _Static_assert(sizeof opts / sizeof opts[0] <= CLI_TABLE_MAX, "CLI_TABLE_MAX too small");
+  memcpy(out, opts, sizeof opts);
+}
+
+/* The command line, by plan's option table. */
+static int parse(int argc, char **argv, CliCommon *c, PlanArgs *a) {
+  CliOpt opts[CLI_TABLE_MAX];
+  cli_plan_table(c, a, opts);
   const CliSpec spec = {"plan", head, tail, opts, &a->file, 1, "more than one FILE given"};
   int r = cli_parse(&spec, argc, argv);
   if (!r && !a->file) return cli_fail("plan", "no FILE given (see 'unstack plan --help')");
@@ -224,6 +227,20 @@ static int parse(int argc, char **argv, CliCommon *c, PlanArgs *a) {
     return cli_fail("plan", "%s and -o - both write to stdout: choose one",
                     a->print ? "--print" : "--stats");
   return r;
+}
+
+us_Status cli_plan_run(const us_Structure *s, const CliCommon *c, double time_limit, us_Plan *p,
+                       us_Error *err) {
+  us_PlanSettings set = c->plan;
+  set.stability = c->stab;
+  set.time_limit = time_limit;
+  return us_plan(s, &set, p, err);
+}
+
+int cli_plan_exit(const us_Plan *p) {
+  return p->status == US_PLAN_FOUND       ? CLI_EXIT_OK
+         : p->status == US_PLAN_UNDECIDED ? CLI_EXIT_UNDECIDED
+                                          : CLI_EXIT_NO;
 }
 
 /* Which way the search goes, for the progress line. */
@@ -245,13 +262,11 @@ int cmd_plan(int argc, char **argv) {
   us_Structure *s = cli_load("plan", a.file, &c, c.plan.time_limit, &load);
   if (!s) return load;
   cli_progress_on("plan", &c, progress_mode(&c.plan), us_structure_movable_count(s));
-  c.plan.stability = c.stab;
   us_Error err;
   us_error_clear(&err);
   us_Plan p;
   int code = CLI_EXIT_ERR;
-  c.plan.time_limit = cli_time_left(c.plan.time_limit);
-  us_Status pst = us_plan(s, &c.plan, &p, &err);
+  us_Status pst = cli_plan_run(s, &c, cli_time_left(c.plan.time_limit), &p, &err);
   cli_progress_off(&c);
   if (pst == US_OK) {
     if (write_plan(s, &p, &c, a.out, &err) == US_OK) {
@@ -259,9 +274,7 @@ int cmd_plan(int argc, char **argv) {
       print_summary(info, s, &p, &c, to_stdout ? "stdout" : a.out);
       if (a.stats) print_stats(info, &p.stats);
       if (a.print) print_steps(stdout, s, &p);
-      code = p.status == US_PLAN_FOUND       ? CLI_EXIT_OK
-             : p.status == US_PLAN_UNDECIDED ? CLI_EXIT_UNDECIDED
-                                             : CLI_EXIT_NO;
+      code = cli_plan_exit(&p);
     }
     us_plan_free(&p);
   }

@@ -1,4 +1,5 @@
 /* unstack: command-line entry point; dispatches to one file per subcommand. */
+#include "batch.h"
 #include "cli.h"
 #include "options.h"
 
@@ -28,6 +29,8 @@ static void usage(FILE *f) {
         "  count FILE      count the sub-assemblies connected to the ground (exit 0 exact, 1 refused)\n"
         "  classify FILE   stands, friction, top-down, one at a time, smallest group K (exit 0)\n"
         "  import-svg SVG  turn a drawing (Inkscape, Illustrator) into a structure file\n"
+        "  batch INPUTS    plan, check or classify many files: one JSON line each (exit 0 all\n"
+        "                  answered, 1 some input failed)\n"
         "\n"
         "Run 'unstack COMMAND --help' for a command's options. Exit code 2: usage or input error.\n",
         f);
@@ -41,7 +44,7 @@ int main(int argc, char **argv) {
   } cmds[] = {{"check", cmd_check}, {"plan", cmd_plan}, {"verify", cmd_verify},
               {"render", cmd_render}, {"generate", cmd_generate},
               {"count", cmd_count}, {"classify", cmd_classify},
-              {"import-svg", cmd_import_svg}};
+              {"import-svg", cmd_import_svg}, {"batch", cmd_batch}};
   if (argc < 2) {
     usage(stderr);
     return CLI_EXIT_ERR;
@@ -51,7 +54,9 @@ int main(int argc, char **argv) {
     return CLI_EXIT_OK;
   }
   if (!strcmp(argv[1], "--version")) {
-    printf("unstack %s\n", US_VERSION);
+    char mpi[768];
+    batch_mpi_version(mpi, sizeof mpi);
+    printf("unstack %s\n%s\n", US_VERSION, mpi);
     return CLI_EXIT_OK;
   }
   enum { NCMDS = sizeof cmds / sizeof cmds[0] };

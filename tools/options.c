@@ -1,7 +1,7 @@
 /* What several subcommands share: enum words and parsers for the option
  * tables, structure loading, the statistics lines of --stats, the progress
  * line and the command's clock. */
-#include "options.h"
+#include "task.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -39,14 +39,18 @@ void cli_common_init(CliCommon *c) {
   c->stab = us_stability_default_settings();
 }
 
+us_Structure *cli_load_quiet(const char *path, const CliCommon *c, double deadline, us_Error *err) {
+  us_LoadSettings set = us_load_default_settings();
+  set.contact_tol = c->contact_tol;
+  set.deadline = deadline;
+  return us_structure_read_with(path, &set, err);
+}
+
 us_Structure *cli_load(const char *cmd, const char *path, const CliCommon *c, double time_limit,
                        int *code) {
   us_Error err;
   us_error_clear(&err);
-  us_LoadSettings set = us_load_default_settings();
-  set.contact_tol = c->contact_tol;
-  set.deadline = cli_deadline(time_limit);
-  us_Structure *s = us_structure_read_with(path, &set, &err);
+  us_Structure *s = cli_load_quiet(path, c, cli_deadline(time_limit), &err);
   *code = s ? CLI_EXIT_OK : CLI_EXIT_ERR;
   if (!s && err.code == US_ERR_TIME_LIMIT) { /* an outcome: nothing decided */
     printf("undecided: loading was cut by the time limit (--time-limit %g): %s\n", time_limit,
