@@ -13,8 +13,9 @@
  *
  * Algorithm: phase 1 of the primal simplex on G l + a = b (rows with
  * b_i < 0 negated first, so the artificials a = b >= 0 are a feasible
- * start), minimizing the sum of the artificials: entering the lowest
- * index with a negative reduced cost (Bland), leaving the largest pivot
+ * start), minimizing the sum of the artificials: entering the most
+ * negative reduced cost (Dantzig), or the lowest index with a negative
+ * one (Bland) once the objective stalls, leaving the largest pivot
  * among the ratio-test ties (for accuracy; a pivot limit stands in for
  * Bland's guarantee against cycling). A feasible answer's residual
  * |G l - b| is measured from the sparse columns before it is claimed.
@@ -129,19 +130,36 @@ static int leaving_row(const SmallWs *w, int m, int width, int pc) {
   return pr;
 }
 
-/* The lowest-index entering column until optimal: 0, or -1 past the pivot
- * limit (then CLP decides). */
+/* The entering column: the most negative reduced cost (Dantzig: few
+ * pivots), or the lowest index with a negative one (Bland: no cycling)
+ * once pivots stall; -1 when optimal. */
+static int entering_column(const double *cost, int ncol, int bland) {
+  int pc = -1;
+  double most = -COST_EPS;
+  for (int j = 0; j < ncol; j++)
+    if (cost[j] < most) {
+      pc = j;
+      if (bland) break;
+      most = cost[j];
+    }
+  return pc;
+}
+
+/* Pivots until optimal: 0, or -1 past the pivot limit (then CLP decides).
+ * After STALL_PIVOTS degenerate pivots in a row (the objective did not
+ * move) the entering rule turns to Bland's for the rest of the solve. */
+#define STALL_PIVOTS 16
 static int run_simplex(SmallWs *w, int m, int n) {
-  int width = n + m + 1, limit = 20 * (m + n);
+  int width = n + m + 1, limit = 20 * (m + n), stall = 0;
   const double *cost = w->t + (size_t)m * (size_t)width;
   for (int it = 0; it < limit; it++) {
-    int pc = -1;
-    for (int j = 0; j < n + m && pc < 0; j++)
-      if (cost[j] < -COST_EPS) pc = j;
+    int pc = entering_column(cost, n + m, stall >= STALL_PIVOTS);
     if (pc < 0) return 0;
     int pr = leaving_row(w, m, width, pc);
     if (pr < 0) return -1; /* phase 1 is bounded below: only round-off gets here */
+    double before = cost[width - 1];
     pivot(w, m, width, pr, pc);
+    stall = cost[width - 1] == before ? stall + 1 : 0;
   }
   return -1;
 }
