@@ -3,7 +3,7 @@
 # usage: deps.sh [fuzz]
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config coinor-libclp-dev liblpsolve55-dev libsuitesparse-dev
-      libjansson-dev libxml2-dev libcairo2-dev libsiconos-numerics-dev python3)
+      libjansson-dev libxml2-dev libcairo2-dev libassimp-dev libsiconos-numerics-dev python3)
 # `deps.sh fuzz` (make fuzz): also clang with libFuzzer and its sanitizers
 [ "${1:-}" = fuzz ] && pkgs+=(clang libclang-rt-14-dev)
 # `deps.sh demo` (make demo): what building the tool needs, without the

@@ -21,6 +21,7 @@ int cmd_generate(int argc, char **argv);
 int cmd_count(int argc, char **argv);
 int cmd_classify(int argc, char **argv);
 int cmd_import_svg(int argc, char **argv);
+int cmd_import_mesh(int argc, char **argv);
 
 /* Print "unstack CMD: message" to stderr and return CLI_EXIT_ERR. */
 int cli_fail(const char *cmd, const char *fmt, ...)

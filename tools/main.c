@@ -28,6 +28,7 @@ static void usage(FILE *f) {
         "  count FILE      count the sub-assemblies connected to the ground (exit 0 exact, 1 refused)\n"
         "  classify FILE   stands, friction, top-down, one at a time, smallest group K (exit 0)\n"
         "  import-svg SVG  turn a drawing (Inkscape, Illustrator) into a structure file\n"
+        "  import-mesh MESH  turn a mesh (OBJ, STL, PLY, glTF, 3MF, OFF) into a 3D structure\n"
         "\n"
         "Run 'unstack COMMAND --help' for a command's options. Exit code 2: usage or input error.\n",
         f);
@@ -41,7 +42,7 @@ int main(int argc, char **argv) {
   } cmds[] = {{"check", cmd_check}, {"plan", cmd_plan}, {"verify", cmd_verify},
               {"render", cmd_render}, {"generate", cmd_generate},
               {"count", cmd_count}, {"classify", cmd_classify},
-              {"import-svg", cmd_import_svg}};
+              {"import-svg", cmd_import_svg}, {"import-mesh", cmd_import_mesh}};
   if (argc < 2) {
     usage(stderr);
     return CLI_EXIT_ERR;
