@@ -63,7 +63,7 @@ static int parse(int argc, char **argv, us_MeshSettings *s, MeshArgs *a) {
 }
 
 static void report(const char *out, const us_Structure *s, const us_MeshInfo *in) {
-  printf("wrote %s: %d bodies (%d fixed, %d compounds of %d shells in all), %d contacts; "
+  printf("wrote %s: %d bodies (%d fixed, %d compound), %d shells, %d contacts; "
          "%ld faces read, %d ids renamed\n",
          out, in->bodies, in->fixed, in->compounds, in->shells, s->ncontact, in->faces,
          in->ids_renamed);

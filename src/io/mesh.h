@@ -33,9 +33,9 @@ typedef struct us_MeshDoc {
   us_MeshObject *objs;
 } us_MeshDoc;
 
-/* The object called `name` (made when missing, with `named`): its index,
- * or -1 out of memory. */
-int us_mesh_object(us_MeshDoc *d, const char *name, int named);
+/* A new object called `name`, or with `merge` the one of that name and
+ * kind when there is one: its index, or -1 out of memory. */
+int us_mesh_object(us_MeshDoc *d, const char *name, int named, int merge);
 /* Append a vertex / a face of n vertex indices (relative to `base`, the
  * object's vertex count before the mesh was added): 0, or -1 OOM. */
 int us_mesh_add_vertex(us_MeshObject *o, const double p[3]);

@@ -394,7 +394,8 @@ static us_Status check_face(const Work *w, int k, int f, const double c[3], doub
   if (fabs(side) <= tol) { /* a convex solid's centroid is inside: flat, or folded */
     char m[300];
     snprintf(m, sizeof m, "flat or not convex: the centre of its vertices is on the plane of "
-             "face %d (tolerance %g)", f + 1, tol);
+             "face %d (tolerance %g); give it as convex parts, each a closed mesh of its own "
+             "(docs/mesh.md, \"Compounds\")", f + 1, tol);
     return bad(w, m);
   }
   for (int i = w->sstart[k]; i < w->sstart[k + 1]; i++) {

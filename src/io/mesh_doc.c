@@ -5,9 +5,9 @@
 
 #include <string.h>
 
-int us_mesh_object(us_MeshDoc *d, const char *name, int named) {
-  /* objects are few; a linear search keeps the file's order */
-  for (int k = 0; k < d->nobj; k++)
+int us_mesh_object(us_MeshDoc *d, const char *name, int named, int merge) {
+  /* OBJ objects are few; a linear search keeps the file's order */
+  for (int k = 0; merge && k < d->nobj; k++)
     if (d->objs[k].named == named && !strcmp(d->objs[k].name, name)) return k;
   if (us_grow((void **)&d->objs, &d->ocap, d->nobj + 1, sizeof *d->objs)) return -1;
   us_MeshObject *o = &d->objs[d->nobj];

@@ -8,7 +8,7 @@
  * `g` a node of its own, beside the `o` before it; so the OBJ text is
  * scanned for its `o` and `g` lines first, and a group's node joins the
  * object of the `o` it follows (one object of several groups: a compound
- * when they are several shells). A node's name counts as given unless the
+ * when they are several shells), and an `o` given twice is one object. A node's name counts as given unless the
  * format names nothing (STL, PLY, OFF, by extension) or the name is
  * Assimp's own ("", "<...>", OBJ's "defaultobject"); an unnamed object is
  * split into its shells by mesh_build.c.
@@ -89,11 +89,12 @@ static us_Status scan_obj(Reader *r, const char *path) {
 static int node_object(Reader *r, const struct aiNode *node) {
   const char *name = node->mName.data;
   for (int k = 0; k < r->groups.n; k++)
-    if (!strcmp(r->groups.group[k], name)) return us_mesh_object(&r->doc, r->groups.object[k], 1);
+    if (!strcmp(r->groups.group[k], name)) return us_mesh_object(&r->doc, r->groups.object[k], 1, 1);
   int anonymous = !strcasecmp(r->ext, "stl") || !strcasecmp(r->ext, "ply") ||
                   !strcasecmp(r->ext, "off") || !name[0] || name[0] == '<' ||
                   !strcmp(name, "defaultobject");
-  return us_mesh_object(&r->doc, name[0] == '<' ? "" : name, !anonymous);
+  /* OBJ: an `o` given twice is one object; elsewhere every node is its own */
+  return us_mesh_object(&r->doc, name[0] == '<' ? "" : name, !anonymous, !strcasecmp(r->ext, "obj"));
 }
 
 /* p = m x (with the translation), Assimp's row-major 4x4. */
