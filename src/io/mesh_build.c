@@ -2,18 +2,29 @@
  * the mesh import, on the neutral document of io/mesh.h.
  *
  * Per object, in this order: every coordinate finite; vertices welded
- * (equal coordinates, exactly: files repeat a vertex by value, STL always);
- * faces with repeated vertices dropped to their distinct corners, fewer
- * than 3 left is a degenerate face; every edge on exactly two faces (a
- * closed surface); shells, the connected components of the faces through
- * shared vertices (union-find); then per shell, with the shell's own
- * tolerance (tol = 1e-6 x its bounding-box diagonal plus 4 float ulps of
- * its largest coordinate, since Assimp keeps coordinates as floats): no
- * face of area <= 1e-12 x diagonal^2, and convexity: with each face's
- * plane turned so that the shell's vertex centroid is behind it, no vertex
- * of the shell is more than tol in front (O(vertices x faces) per shell;
- * the centroid of a convex solid's vertices is inside it, so a convex
- * shell passes whatever the file's winding).
+ * (equal coordinates, exactly: files repeat a vertex by value, STL
+ * always); a face's repeated corners dropped, and a face with fewer than
+ * 3 corners left, or an area <= 1e-12 x its longest edge squared, is
+ * degenerate; then shells. Faces that share an edge belong to one shell
+ * when the edge has exactly two faces; an odd number is an open mesh.
+ * Where closed shells touch (stacked blocks in one STL share corners,
+ * edges and whole faces) an edge has 4, 6, ... faces; they are paired
+ * about the edge (pair_radially): with faces wound outward, going round
+ * the edge, every face that runs against the edge's direction opens a
+ * solid's wedge and the next face closes it. Coincident faces (two
+ * blocks' shared face, seen from both) are ordered so that the empty
+ * wedge lies between them. So touching shells need outward winding, as
+ * every exporter writes it; a shell that touches nothing may be wound
+ * any way.
+ *
+ * Then per shell, with the shell's own tolerance (tol = 1e-6 x its
+ * bounding-box diagonal plus 4 float ulps of its largest coordinate:
+ * Assimp keeps coordinates as floats), convexity: with each face's plane
+ * turned so that the shell's vertex centroid is behind it, the face's
+ * own corners within tol of it (a bent polygon has no plane), no vertex
+ * of the shell more than tol in front, and the centroid more than tol
+ * behind (O(vertices x faces) per shell; the centroid of a convex solid's
+ * vertices is inside it, so a convex shell passes whatever its winding).
  *
  * Bodies: a named object is one body, its shells the parts of a compound
  * when there are several; an unnamed object (STL, PLY, OFF) gives one body
@@ -382,7 +393,14 @@ static us_Status not_convex(const Work *w, int f, const double *v, double d, dou
   return bad(w, m);
 }
 
-/* Face f of shell k: not degenerate, no shell vertex in front of it. */
+static us_Status not_planar(const Work *w, int f, const double *v, double d, double tol) {
+  char m[400];
+  snprintf(m, sizeof m, "face %d is not planar: its corner (%g, %g, %g) is %g off its plane "
+           "(tolerance %g); split it into triangles", f + 1, v[0], v[1], v[2], d, tol);
+  return bad(w, m);
+}
+
+/* Face f of shell k: its corners on its plane, no shell vertex in front. */
 static us_Status check_face(const Work *w, int k, int f, const double c[3], double diag, double tol) {
   double n[3];
   face_normal(w, f, n);
@@ -397,6 +415,11 @@ static us_Status check_face(const Work *w, int k, int f, const double c[3], doub
              "face %d (tolerance %g); give it as convex parts, each a closed mesh of its own "
              "(docs/mesh.md, \"Compounds\")", f + 1, tol);
     return bad(w, m);
+  }
+  for (int i = w->fstart[f]; i < w->fstart[f + 1]; i++) { /* its own corners on its plane */
+    const double *v = w->p + 3 * w->fidx[i];
+    double d = s * (n[0] * (v[0] - o[0]) + n[1] * (v[1] - o[1]) + n[2] * (v[2] - o[2]));
+    if (fabs(d) > tol) return not_planar(w, f, v, fabs(d), tol);
   }
   for (int i = w->sstart[k]; i < w->sstart[k + 1]; i++) {
     const double *v = w->p + 3 * w->sv[i];
