@@ -369,6 +369,94 @@ static void out_of_memory(void) {
   CHECK(done);
 }
 
+/* Write text to the scratch file `name`; its path in buf. */
+static int write_file(const char *name, const char *text, char *buf, size_t n) {
+  FILE *fp = test_tmp_path(name, buf, n) ? fopen(buf, "w") : NULL;
+  if (!fp) return -1;
+  fputs(text, fp);
+  return fclose(fp);
+}
+
+/* The OBJ reader (mesh_obj.c): corners i, i/t, i//n, i/t/n and negative;
+ * groups before an o are objects, after it part of it; names kept whole;
+ * attribute lines skipped; unknown and free-form statements, and corners
+ * past the vertices, refused naming the line. */
+static void obj_reader(void) {
+  static const char text[] =
+      "# two tetrahedra and a compound\n"
+      "mtllib x.mtl\nvt 0 0\nvn 0 0 1\n"
+      "g first group\n"
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+      "f 1/1 3/1 2/1\nf 1//1 2//1 4//1\nusemtl red\nf 1/1/1 4/1/1 3/1/1\ns off\nf -3 -2 -1\n"
+      "o the ell\ng part a\n"
+      "v 3 0 0\nv 4 0 0\nv 3 1 0\nv 3 0 1\n"
+      "f -4 -2 -3\nf -4 -3 -1\nf -4 -1 -2\nf -3 -2 -1\n"
+      "g part b\n"
+      "v 3 0 2\nv 4 0 2\nv 3 1 2\nv 3 0 3\n"
+      "f 9 11 10\nf 9 10 12\nf 9 12 11\nf 10 11 12\n";
+  char path[256];
+  CHECK(write_file("t.obj", text, path, sizeof path) == 0);
+  us_MeshDoc d = doc();
+  us_Error err;
+  us_error_clear(&err);
+  us_Status st = us_mesh_read_obj(&d, path, &err);
+  int nobj = d.nobj, named0 = nobj > 0 && d.objs[0].named, faces1 = nobj > 1 ? d.objs[1].nface : 0;
+  int names = nobj == 2 && !strcmp(d.objs[0].name, "first group") && !strcmp(d.objs[1].name, "the ell");
+  us_Structure *s = st ? NULL : build(&d, NULL, NULL, &err);
+  us_mesh_doc_free(&d);
+  if (st || !s) fprintf(stderr, "%s\n", err.msg);
+  CHECK(s);
+  int nb = s->nbody, np = s->bodies[1].npart, ell = us_structure_find_body(s, "the_ell");
+  us_structure_free(s);
+  CHECK_INT(nobj, ==, 2);
+  CHECK(named0);
+  CHECK(names);
+  CHECK_INT(faces1, ==, 8);
+  CHECK_INT(nb, ==, 2);
+  CHECK_INT(np, ==, 2);
+  CHECK_INT(ell, ==, 1);
+  static const char *const bad[][2] = {{"v 0 0 0\nf 1 2 3\n", ":2: face corner 2: no such vertex"},
+                                       {"v 0 0\n", ":1: a vertex needs three numbers"},
+                                       {"\nsurf 0 1 0 1 1 2 3\n", ":2: free-form geometry"},
+                                       {"hello\n", ":1: not an OBJ statement: 'hello'"},
+                                       {"v 0 0 0\nf 0 1 1\n", ":2: face corner 0"}};
+  for (int k = 0; k < 5; k++) {
+    CHECK(write_file("bad.obj", bad[k][0], path, sizeof path) == 0);
+    d = doc();
+    us_error_clear(&err);
+    st = us_mesh_read_obj(&d, path, &err);
+    us_mesh_doc_free(&d);
+    if (!strstr(err.msg, bad[k][1])) fprintf(stderr, "case %d: %s\n", k, err.msg);
+    CHECK_INT(st, ==, US_ERR_PARSE);
+    CHECK(strstr(err.msg, bad[k][1]) != NULL);
+  }
+}
+
+/* The OBJ path through the module with every allocation failing in
+ * turn: US_ERR_NOMEM, no leak, until it goes through. */
+static void out_of_memory_obj(void) {
+  char path[256];
+  CHECK(write_file("oom.obj", "o a b\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                   "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\ng c\nv 2 0 0\nv 3 0 0\nv 2 1 0\n"
+                   "v 2 0 1\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n", path, sizeof path) == 0);
+  us_Error err;
+  us_structure_free(us_structure_read_mesh(path, NULL, NULL, &err)); /* the module loaded first */
+  long live0 = us_alloc_live();
+  int done = 0;
+  for (long n = 0; n < 100000 && !done; n++) {
+    us_error_clear(&err);
+    us_alloc_fail_after(n);
+    us_Structure *s = us_structure_read_mesh(path, NULL, NULL, &err);
+    us_alloc_fail_after(-1);
+    if (s) done = 1;
+    else if (err.code != US_ERR_NOMEM) fprintf(stderr, "n=%ld: [%s] %s\n", n, us_status_name(err.code), err.msg);
+    CHECK(s || err.code == US_ERR_NOMEM);
+    us_structure_free(s);
+    CHECK_INT(us_alloc_live(), ==, live0);
+  }
+  CHECK(done);
+}
+
 /* One OBJ file through the public entry point and module mesh.so: two
  * named cubes stacked, and a missing file. */
 static void module_reads_obj(void) {
@@ -409,4 +497,4 @@ static void module_reads_obj(void) {
 
 US_TEST_MAIN(T(touching_cubes), T(names_and_compounds), T(winding), T(convexity_tolerance),
              T(non_convex_or_compound), T(bad_meshes), T(placement_and_settings),
-             T(out_of_memory), T(module_reads_obj))
+             T(out_of_memory), T(obj_reader), T(out_of_memory_obj), T(module_reads_obj))

@@ -1,6 +1,7 @@
 /* Private pieces of the mesh import (docs/mesh.md), one file each:
  *   mesh_import.c  (module mesh.so) Assimp's scene -> a us_MeshDoc: every
  *                  object's faces in file coordinates, transforms applied;
+ *   mesh_obj.c     (library) OBJ files -> a us_MeshDoc, without Assimp;
  *   mesh_build.c   (library) a us_MeshDoc -> a structure: vertices welded,
  *                  faces and shells checked, convexity, names, bodies;
  *   mesh_lazy.c    (library) the public entry points' proxy.
@@ -41,6 +42,10 @@ int us_mesh_object(us_MeshDoc *d, const char *name, int named, int merge);
 int us_mesh_add_vertex(us_MeshObject *o, const double p[3]);
 int us_mesh_add_face(us_MeshObject *o, int base, const unsigned *idx, int n);
 void us_mesh_doc_free(us_MeshDoc *d);
+
+/* Read an OBJ file into d (mesh_obj.c; d->name set by the caller):
+ * US_ERR_IO, US_ERR_PARSE naming the line, or US_ERR_NOMEM. */
+us_Status us_mesh_read_obj(us_MeshDoc *d, const char *path, us_Error *err);
 
 /* The structure of a document (finalized), or NULL with err set naming
  * the file and the object. */

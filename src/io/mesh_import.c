@@ -3,15 +3,11 @@
  * neutral document of io/mesh.h, and the document built by mesh_build.c.
  *
  * Objects: every node that carries meshes is one object, named by the
- * node, holding all its meshes (glTF primitives, OBJ material sections)
- * with the node's accumulated transform applied. Assimp makes every OBJ
- * `g` a node of its own, beside the `o` before it; so the OBJ text is
- * scanned for its `o` and `g` lines first, and a group's node joins the
- * object of the `o` it follows (one object of several groups: a compound
- * when they are several shells), and an `o` given twice is one object. A node's name counts as given unless the
- * format names nothing (STL, PLY, OFF, by extension) or the name is
- * Assimp's own ("", "<...>", OBJ's "defaultobject"); an unnamed object is
- * split into its shells by mesh_build.c.
+ * node, holding all its meshes (glTF primitives, material sections) with
+ * the node's accumulated transform applied. A node's name counts as given
+ * unless the format names nothing (STL, PLY, OFF, by extension) or the
+ * name is Assimp's own ("", "<...>"); an unnamed object is split into its
+ * shells by mesh_build.c. OBJ files are read by mesh_obj.c instead.
  *
  * Assimp is asked for no post-processing beyond validating indices: no
  * triangulation (polygons are checked as they are), no welding, no
@@ -21,80 +17,24 @@
 #include <assimp/cimport.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
-#include <ctype.h>
 #include <errno.h>
 #include <stdio.h>
 #include <string.h>
 #include <strings.h>
 
-/* The OBJ groups seen after an `o`: group name -> object name. */
-typedef struct ObjGroups {
-  int n, cap;
-  char **group, **object;
-} ObjGroups;
-
 typedef struct Reader {
   us_MeshDoc doc;
   const char *ext;  /* the file's extension ("" without one) */
-  ObjGroups groups;
   us_Error *err;
 } Reader;
-
-static void groups_free(ObjGroups *g) {
-  for (int k = 0; k < g->n; k++) us_free(g->group[k]), us_free(g->object[k]);
-  us_free(g->group);
-  us_free(g->object);
-}
-
-/* The rest of an `o` / `g` line, trimmed as Assimp trims it. */
-static void line_name(const char *line, char *out, size_t cap) {
-  const char *s = line + 1;
-  while (*s == ' ' || *s == '\t') s++;
-  size_t n = strcspn(s, "\r\n");
-  while (n > 0 && isspace((unsigned char)s[n - 1])) n--;
-  snprintf(out, cap, "%.*s", (int)US_MIN(n, cap - 1), s);
-}
-
-static int add_group(ObjGroups *g, const char *group, const char *object) {
-  int cap = g->cap;
-  if (us_grow((void **)&g->group, &cap, g->n + 1, sizeof *g->group) ||
-      us_grow((void **)&g->object, &g->cap, g->n + 1, sizeof *g->object))
-    return -1;
-  g->group[g->n] = us_strdup(group);
-  g->object[g->n] = us_strdup(object);
-  if (!g->group[g->n] || !g->object[g->n]) return us_free(g->group[g->n]), us_free(g->object[g->n]), -1;
-  g->n++;
-  return 0;
-}
-
-/* Which `o` each `g` line follows (the first time the group is seen). */
-static us_Status scan_obj(Reader *r, const char *path) {
-  FILE *fp = fopen(path, "rb");
-  if (!fp) return us_error_set(r->err, US_ERR_IO, "%s: cannot open", path);
-  char line[4096], name[1024], object[1024] = "";
-  int at_start = 1, bad = 0;
-  while (!bad && fgets(line, sizeof line, fp)) {
-    int start = at_start;
-    at_start = strchr(line, '\n') != NULL;
-    if (!start || (line[0] != 'o' && line[0] != 'g') || !isspace((unsigned char)line[1])) continue;
-    line_name(line, name, sizeof name);
-    if (line[0] == 'o') snprintf(object, sizeof object, "%s", name);
-    else if (object[0]) bad = add_group(&r->groups, name, object);
-  }
-  fclose(fp);
-  return bad ? us_error_set(r->err, US_ERR_NOMEM, "%s: out of memory", path) : US_OK;
-}
 
 /* The object a node's meshes go to (named or not), or -1 out of memory. */
 static int node_object(Reader *r, const struct aiNode *node) {
   const char *name = node->mName.data;
-  for (int k = 0; k < r->groups.n; k++)
-    if (!strcmp(r->groups.group[k], name)) return us_mesh_object(&r->doc, r->groups.object[k], 1, 1);
   int anonymous = !strcasecmp(r->ext, "stl") || !strcasecmp(r->ext, "ply") ||
                   !strcasecmp(r->ext, "off") || !name[0] || name[0] == '<' ||
                   !strcmp(name, "defaultobject");
-  /* OBJ: an `o` given twice is one object; elsewhere every node is its own */
-  return us_mesh_object(&r->doc, name[0] == '<' ? "" : name, !anonymous, !strcasecmp(r->ext, "obj"));
+  return us_mesh_object(&r->doc, name[0] == '<' ? "" : name, !anonymous, 0);
 }
 
 /* p = m x (with the translation), Assimp's row-major 4x4. */
@@ -200,12 +140,11 @@ us_Structure *us_structure_read_mesh(const char *path, const us_MeshSettings *se
     return NULL;
   }
   fclose(fp);
-  us_Status st = strcasecmp(r.ext, "obj") ? US_OK : scan_obj(&r, path);
-  if (!st) st = read_scene(&r, path);
+  /* OBJ by our own reader (mesh_obj.c says why), the rest by Assimp */
+  us_Status st = strcasecmp(r.ext, "obj") ? read_scene(&r, path) : us_mesh_read_obj(&r.doc, path, err);
   if (!st && us_past((set ? set : &dflt)->deadline))
     st = us_error_set(err, US_ERR_TIME_LIMIT, "%s: the time limit passed while reading", path);
   us_Structure *s = st ? NULL : us_mesh_build(&r.doc, set ? set : &dflt, info, err);
   us_mesh_doc_free(&r.doc);
-  groups_free(&r.groups);
   return s;
 }

@@ -116,11 +116,12 @@ tet() { # tet NAME DX: a tetrahedron at x = DX (vertices numbered from 4 * (NAME
   echo "f $b $((b + 2)) $((b + 1))"; echo "f $b $((b + 1)) $((b + 3))"
   echo "f $b $((b + 3)) $((b + 2))"; echo "f $((b + 1)) $((b + 2)) $((b + 3))"
 }
-{ tet $'bad\xffname' 0 1; tet ground 2 5; tet ground-2 4 9; tet x 6 13; tet x 8 17; } >"$T/names.obj"
+{ tet $'bad\xffname' 0 1; tet ground 2 5; tet ground-2 4 9; tet x 6 13; tet x 8 17
+  tet "block 1" 10 21; tet "block 2" 12 25; } >"$T/names.obj"
 expect 0 "names import" -- "$CLI" import-mesh "$T/names.obj" -o "$T/names.json"
-for id in bad_name ground-2 ground-2-2 x; do contains "$T/names.json" "\"id\": \"$id\"" "id $id"; done
-contains "$T/out" "3 ids renamed" "names: 3 renamed"
-contains "$T/out" "4 bodies (0 fixed, 1 compound" "names: an OBJ o given twice is one object"
+for id in bad_name ground-2 ground-2-2 x block_1 block_2; do contains "$T/names.json" "\"id\": \"$id\"" "id $id"; done
+contains "$T/out" "5 ids renamed" "names: 5 renamed"
+contains "$T/out" "6 bodies (0 fixed, 1 compound" "names: an OBJ o given twice is one object"
 
 # --- bad files: exit 2, the file and the object named, nothing written
 # refuse NAME FILE TEXT...: import exits 2, the message holds FILE and each TEXT, no output
@@ -151,7 +152,11 @@ EOF
 $W "$T/ell2d.json" "$T/ell.obj" obj
 refuse "non-convex" "$T/ell.obj" "object 'ell'" "not convex" "convex parts"
 echo "this is not a mesh" >"$T/garbage.obj"
-refuse "garbage OBJ" "$T/garbage.obj" "cannot read"
+refuse "garbage OBJ" "$T/garbage.obj" "garbage.obj:1: not an OBJ statement: 'this'"
+printf 'o A\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n' >"$T/index.obj"
+refuse "OBJ face past the vertices" "$T/index.obj" "index.obj:5:" "no such vertex"
+echo "solid x" >"$T/garbage.stl"
+refuse "garbage STL" "$T/garbage.stl" "cannot read"
 echo "x" >"$T/mesh.xyz1"
 refuse "unknown format" "$T/mesh.xyz1" "cannot read"
 refuse "missing file" "$T/nope.obj" "cannot open"
