@@ -333,8 +333,24 @@ static us_Status join_faces(Work *w, int *up) {
   return st;
 }
 
-/* Shells: the faces joined, numbered in order of first face; each
- * shell's distinct vertices listed (a vertex may be in several shells). */
+/* Each shell's distinct vertices (a vertex may be in several shells):
+ * the faces sorted by shell (counting sort into order), then per shell
+ * its corners, each once (stamp). */
+static void list_shell_vertices(Work *w, int *order, int *end, int *stamp) {
+  int nf = w->obj->nface;
+  for (int k = 0; k <= w->nshell; k++) end[k] = 0;
+  for (int f = 0; f < nf; f++) end[w->fshell[f] + 1]++;
+  for (int k = 0; k < w->nshell; k++) end[k + 1] += end[k];
+  for (int f = 0; f < nf; f++) order[end[w->fshell[f]]++] = f;
+  for (int k = 0, n = 0, o = 0; k < w->nshell; k++) { /* end[k]: shell k's last + 1 */
+    for (; o < end[k]; o++)
+      for (int i = w->fstart[order[o]]; i < w->fstart[order[o] + 1]; i++)
+        if (stamp[w->fidx[i]] != k + 1) stamp[w->fidx[i]] = k + 1, w->sv[n++] = w->fidx[i];
+    w->sstart[k + 1] = n;
+  }
+}
+
+/* Shells: the faces joined, numbered in order of first face. */
 static us_Status find_shells(Work *w) {
   int nf = w->obj->nface;
   int *up = us_malloc((size_t)(nf + 1) * sizeof *up);
@@ -352,17 +368,7 @@ static us_Status find_shells(Work *w) {
   }
   w->sstart = st ? NULL : us_calloc((size_t)w->nshell + 1, sizeof *w->sstart);
   if (!st && !w->sstart) st = nomem(w);
-  int *order = up, *end = num; /* faces by shell (counting sort), up and num reused */
-  for (int k = 0; k <= w->nshell && !st; k++) end[k] = 0;
-  for (int f = 0; f < nf && !st; f++) end[w->fshell[f] + 1]++;
-  for (int k = 0; k < w->nshell && !st; k++) end[k + 1] += end[k];
-  for (int f = 0; f < nf && !st; f++) order[end[w->fshell[f]]++] = f;
-  for (int k = 0, n = 0, o = 0; k < w->nshell && !st; k++) { /* end[k]: shell k's last + 1 */
-    for (; o < end[k]; o++)
-      for (int i = w->fstart[order[o]]; i < w->fstart[order[o] + 1]; i++)
-        if (stamp[w->fidx[i]] != k + 1) stamp[w->fidx[i]] = k + 1, w->sv[n++] = w->fidx[i];
-    w->sstart[k + 1] = n;
-  }
+  if (!st) list_shell_vertices(w, up, num, stamp); /* up and num reused */
   us_free(up), us_free(num), us_free(stamp);
   return st;
 }
@@ -370,7 +376,7 @@ static us_Status find_shells(Work *w) {
 /* ------------------------------------------------------------ convexity */
 
 /* The shell's tolerance and vertex centroid. */
-static double shell_tol(const Work *w, int k, double c[3], double *diag) {
+static double shell_tol(const Work *w, int k, double c[3]) {
   double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, big = 0;
   int n = w->sstart[k + 1] - w->sstart[k];
   c[0] = c[1] = c[2] = 0;
@@ -380,9 +386,9 @@ static double shell_tol(const Work *w, int k, double c[3], double *diag) {
       lo[a] = fmin(lo[a], x), hi[a] = fmax(hi[a], x), big = fmax(big, fabs(x));
       c[a] += x / n;
     }
-  *diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-               (hi[2] - lo[2]) * (hi[2] - lo[2]));
-  return US_GEOM_TOL_REL * *diag + FLOAT_ULPS * FLT_EPSILON * big;
+  double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                     (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  return US_GEOM_TOL_REL * diag + FLOAT_ULPS * FLT_EPSILON * big;
 }
 
 static us_Status not_convex(const Work *w, int f, const double *v, double d, double tol) {
@@ -401,11 +407,10 @@ static us_Status not_planar(const Work *w, int f, const double *v, double d, dou
 }
 
 /* Face f of shell k: its corners on its plane, no shell vertex in front. */
-static us_Status check_face(const Work *w, int k, int f, const double c[3], double diag, double tol) {
+static us_Status check_face(const Work *w, int k, int f, const double c[3], double tol) {
   double n[3];
   face_normal(w, f, n);
   double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  (void)diag;
   const double *o = w->p + 3 * w->fidx[w->fstart[f]];
   double side = (n[0] * (c[0] - o[0]) + n[1] * (c[1] - o[1]) + n[2] * (c[2] - o[2])) / len;
   double s = side > 0 ? -1 / len : 1 / len;
@@ -431,13 +436,13 @@ static us_Status check_face(const Work *w, int k, int f, const double c[3], doub
 
 static us_Status check_shells(Work *w) {
   double (*c)[3] = us_malloc((size_t)(w->nshell + 1) * sizeof *c);
-  double *tol = us_malloc((size_t)(w->nshell + 1) * 2 * sizeof *tol);
+  double *tol = us_malloc((size_t)(w->nshell + 1) * sizeof *tol);
   if (!c || !tol) return us_free(c), us_free(tol), nomem(w);
-  for (int k = 0; k < w->nshell; k++) tol[2 * k] = shell_tol(w, k, c[k], &tol[2 * k + 1]);
+  for (int k = 0; k < w->nshell; k++) tol[k] = shell_tol(w, k, c[k]);
   us_Status st = US_OK;
   for (int f = 0; f < w->obj->nface && !st; f++) {
     int k = w->fshell[f];
-    st = check_face(w, k, f, c[k], tol[2 * k + 1], tol[2 * k]);
+    st = check_face(w, k, f, c[k], tol[k]);
     if (!st && f % CLOCK_EVERY == CLOCK_EVERY - 1 && us_past(w->set->deadline))
       st = us_error_set(w->err, US_ERR_TIME_LIMIT, "%s: the time limit passed while checking "
                         "the meshes", w->doc->name);
