@@ -41,6 +41,8 @@ typedef struct Obj {
   char *object;     /* the current o's name, or NULL */
   char *group;      /* the current g's name, or NULL */
   int cur;          /* the object faces go to, -1: look it up */
+  us_IdMap named;   /* object name -> index (keys: the objects' names) */
+  int unnamed;      /* the object of faces before any o or g, or -1 */
 } Obj;
 
 static int in_list(const char *const *list, const char *w, size_t n) {
@@ -72,12 +74,15 @@ static us_Status vertex(Obj *o, const char *s) {
   return US_OK;
 }
 
-/* The object the next face goes to. */
+/* The object the next face goes to: found by name, else made. */
 static int current(Obj *o) {
   if (o->cur >= 0) return o->cur;
   const char *name = o->object ? o->object : o->group;
-  o->cur = us_mesh_object(o->doc, name ? name : "", name != NULL, 1);
-  return o->cur;
+  int k = name ? us_idmap_get(&o->named, name) : o->unnamed;
+  if (k < 0) k = us_mesh_object(o->doc, name ? name : "", name != NULL, 0);
+  if (k >= 0 && name && us_idmap_put(&o->named, o->doc->objs[k].name, k) == -2) k = -1;
+  if (k >= 0 && !name) o->unnamed = k;
+  return o->cur = k;
 }
 
 /* One corner's vertex index (0-based), or -1 with the error set. */
@@ -160,8 +165,8 @@ us_Status us_mesh_read_obj(us_MeshDoc *doc, const char *path, us_Error *err) {
     us_free(text);
     return us_error_set(err, US_ERR_PARSE, "%s: not a text file (a NUL byte): not OBJ", path);
   }
-  Obj o = {doc, err, 0, NULL, 0, 0, NULL, NULL, -1};
-  us_Status st = US_OK;
+  Obj o = {doc, err, 0, NULL, 0, 0, NULL, NULL, -1, {0}, -1};
+  us_Status st = us_idmap_init(&o.named, 16) ? nomem(&o) : US_OK;
   for (char *line = text, *next; line && !st; line = next) {
     next = strchr(line, '\n');
     if (next) *next++ = '\0';
@@ -169,5 +174,6 @@ us_Status us_mesh_read_obj(us_MeshDoc *doc, const char *path, us_Error *err) {
     st = statement(&o, line);
   }
   us_free(o.v), us_free(o.object), us_free(o.group), us_free(text);
+  us_idmap_free(&o.named);
   return st;
 }
