@@ -15,7 +15,8 @@ static const char head[] =
     "none (STL, PLY, OFF). Each shell must be closed and convex; a named object of\n"
     "several convex shells becomes one compound body. The ground is the plane\n"
     "through the lowest point. Ids are the objects' names, made valid and unique\n"
-    "(repeats become NAME-2, NAME-3; an unnamed file's shells STEM-1, STEM-2, ...).\n"
+    "(repeats become NAME-2, NAME-3; an unnamed file's shells NAME-1, NAME-2, ...\n"
+    "after the STL solid's name, else the file's name without its extension).\n"
     "See docs/mesh.md.\n";
 static const char tail[] =
     "exit: 0 written, 2 usage or input error (nothing written; the message names\n"
