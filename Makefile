@@ -79,7 +79,7 @@ bench: build
 FUZZ_BUILD   ?= build-fuzz
 FUZZ_OUT     ?= $(FUZZ_BUILD)/out
 FUZZ_TIME    ?= 60
-FUZZ_TARGETS ?= structure pipeline oom svg html
+FUZZ_TARGETS ?= structure pipeline oom svg html mesh
 FUZZ_FLAGS   ?= -max_len=8192 -timeout=20 -rss_limit_mb=2048 -print_final_stats=1
 
 fuzz-build:

@@ -3,7 +3,7 @@
 # usage: deps.sh [fuzz]
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config coinor-libclp-dev liblpsolve55-dev libsuitesparse-dev
-      libjansson-dev libxml2-dev libcairo2-dev libsiconos-numerics-dev python3
+      libjansson-dev libxml2-dev libcairo2-dev libassimp-dev libsiconos-numerics-dev python3
       python3-dev python3-pytest libopenmpi-dev openmpi-bin
       groff-base) # groff-base: the man page's check (tests/cli/manpage.sh)
 # `deps.sh fuzz` (make fuzz): also clang with libFuzzer and its sanitizers

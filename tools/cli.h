@@ -22,6 +22,7 @@ int cmd_count(int argc, char **argv);
 int cmd_classify(int argc, char **argv);
 int cmd_import_svg(int argc, char **argv);
 int cmd_batch(int argc, char **argv);
+int cmd_import_mesh(int argc, char **argv);
 
 /* Print "unstack CMD: message" to stderr and return CLI_EXIT_ERR. */
 int cli_fail(const char *cmd, const char *fmt, ...)

@@ -29,6 +29,7 @@ static void usage(FILE *f) {
         "  count FILE      count the sub-assemblies connected to the ground (exit 0 exact, 1 refused)\n"
         "  classify FILE   stands, friction, top-down, one at a time, smallest group K (exit 0)\n"
         "  import-svg SVG  turn a drawing (Inkscape, Illustrator) into a structure file\n"
+        "  import-mesh MESH  turn a mesh (OBJ, STL, PLY, glTF, 3MF, OFF) into a 3D structure\n"
         "  batch INPUTS    plan, check or classify many files: one JSON line each (exit 0 all\n"
         "                  answered, 1 some input failed)\n"
         "\n"
@@ -44,7 +45,8 @@ int main(int argc, char **argv) {
   } cmds[] = {{"check", cmd_check}, {"plan", cmd_plan}, {"verify", cmd_verify},
               {"render", cmd_render}, {"generate", cmd_generate},
               {"count", cmd_count}, {"classify", cmd_classify},
-              {"import-svg", cmd_import_svg}, {"batch", cmd_batch}};
+              {"import-svg", cmd_import_svg}, {"import-mesh", cmd_import_mesh},
+              {"batch", cmd_batch}};
   if (argc < 2) {
     usage(stderr);
     return CLI_EXIT_ERR;

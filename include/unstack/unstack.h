@@ -875,6 +875,45 @@ US_API us_Structure *us_structure_parse_svg(const char *text, size_t len, const 
                                             const us_SvgSettings *set, us_SvgInfo *info,
                                             us_Error *err);
 
+/* Mesh import (docs/mesh.md; Assimp, loaded as module mesh.so): OBJ, STL,
+ * PLY, glTF/GLB, 3MF, OFF and the other formats Assimp reads, into a 3D
+ * structure. One body per named object (OBJ o/g, a glTF or 3MF node), per
+ * connected shell where the file names none (STL, PLY, OFF); a named
+ * object of several closed convex shells is one compound body. Start from
+ * us_mesh_default_settings(). */
+typedef struct us_MeshSettings {
+  char up;            /* 'z' (default) or 'y': y-up files turned so y is up */
+  double scale;       /* lengths multiplied by scale (default 1) */
+  double friction;    /* >= 0 or INFINITY: the structure's coefficient;
+                         < 0 (default): 0.5 */
+  double density;     /* every body's density (default 1) */
+  const char *fixed;  /* fnmatch(3) pattern: bodies whose ids match are
+                         fixed (default NULL: none) */
+  int ground;         /* 1 (default): the ground is the plane through the
+                         lowest point; 0: no ground */
+  double contact_tol; /* > 0: as for us_structure_read */
+  double deadline;    /* a us_now() time (default 0: none): past it the
+                         import stops with US_ERR_TIME_LIMIT */
+} us_MeshSettings;
+US_API us_MeshSettings us_mesh_default_settings(void);
+
+/* What an import did (optional out-parameter). */
+typedef struct us_MeshInfo {
+  int bodies, fixed;   /* bodies made, of them fixed */
+  int compounds;       /* bodies made of several convex shells */
+  int shells;          /* closed shells (convex parts) in all */
+  long faces;          /* faces read */
+  int ids_renamed;     /* names changed to be valid and unique */
+} us_MeshInfo;
+
+/* Read a mesh file into a finalized structure. Errors name the file and
+ * the object (US_ERR_IO unreadable file or unknown format, US_ERR_INPUT
+ * non-finite coordinates, degenerate faces, open or non-convex shells,
+ * overlapping bodies, US_ERR_USAGE bad settings, US_ERR_TIME_LIMIT); NULL
+ * then. info may be NULL. */
+US_API us_Structure *us_structure_read_mesh(const char *path, const us_MeshSettings *set,
+                                            us_MeshInfo *info, us_Error *err);
+
 /* Plan files. Reading maps ids to body indices of s. */
 US_API us_Status us_plan_write(const us_Structure *s, const us_Plan *p, const us_PlanSettings *set,
                         const char *path, us_Error *err);
