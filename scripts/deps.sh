@@ -2,7 +2,7 @@
 # Install the Debian 12 packages unstack needs, only when some are missing.
 # usage: deps.sh [fuzz]
 set -euo pipefail
-pkgs=(build-essential cmake pkg-config coinor-libclp-dev liblpsolve55-dev libsuitesparse-dev
+pkgs=(build-essential cmake pkg-config coinor-libclp-dev coinor-libcbc-dev liblpsolve55-dev libsuitesparse-dev
       libjansson-dev libxml2-dev libcairo2-dev libsiconos-numerics-dev python3)
 # `deps.sh fuzz` (make fuzz): also clang with libFuzzer and its sanitizers
 [ "${1:-}" = fuzz ] && pkgs+=(clang libclang-rt-14-dev)
