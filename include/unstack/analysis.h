@@ -195,7 +195,8 @@ US_API int us_strong_check(const us_Structure *s, const us_Bitset *present,
  *      no K at all exactly when the full structure does not stand
  *      (the searches of 3-5 stop at time_limit: the class is then unknown);
  *   6. frictionless, strong and weak stability coincide (Gauss's principle,
- *      docs/classify.md): reported, not computed;
+ *      docs/classify.md); with friction, strong stability is decided by
+ *      us_strong_stability (yes / no with a witness motion / undecided);
  *   7. needs buttressing: no sequence (4), and the smallest number of
  *      hands holding bodies still that builds it (plan --hands auto),
  *      proven or bounded;
@@ -208,6 +209,11 @@ typedef struct us_ClassifySettings {
   double time_limit;       /* seconds for each search of classes 3-5 (default
                               60; <= 0: none): past it a class is unknown */
   double count_time_limit; /* seconds for the count (default 2; <= 0: none) */
+  int strong;              /* 6. decide strong stability with friction (default
+                              1; 0: skip) */
+  us_StrongSettings strong_settings; /* its method and budgets (default
+                              us_strong_default_settings; its time limit is
+                              capped by time_limit) */
 } us_ClassifySettings;
 US_API us_ClassifySettings us_classify_default_settings(void);
 
@@ -291,6 +297,14 @@ typedef struct us_Classification {
   int equality, stands_bilateral;
   int bilateral_body, bilateral_loose, bilateral_mechanism;
   double t_equality;
+  /* 6. strong stability with friction (us_strong_stability): strong 1 yes
+     (a proof: frictionless and standing, Gauss's principle; or the search),
+     0 no (does not stand, or a checked witness motion in strong_result),
+     -1 undecided (strong_result.note says why; 3D is not decided), -2 not
+     asked */
+  int strong;
+  us_StrongResult strong_result;
+  double t_strong;
 } us_Classification;
 
 /* Classify structure s (finalized). set NULL: the defaults. Every class is

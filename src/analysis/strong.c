@@ -107,9 +107,10 @@ static us_Status search(const us_StrongModel *m, const us_StrongSettings *set, d
 }
 
 /* Turn a "no" of the search into a checked witness, or undecided. */
-static us_Status witness(const us_StrongModel *m, const us_Bitset *present, const double *x,
+static us_Status witness(const us_StrongModel *m, const us_Bitset *present, double *x,
                          const us_StrongSettings *set, us_StrongResult *out, us_Error *err) {
-  int rc = us_strong_witness(m, x, out);
+  int rc = us_strong_polish(m, x, out->power);
+  if (rc >= 0) rc = us_strong_witness(m, x, out);
   if (rc < 0) {
     us_error_set(err, US_ERR_NOMEM, "out of memory writing a strong-stability witness");
     return US_ERR_NOMEM;

@@ -61,6 +61,17 @@ int us_strong_mode_of(const us_StrongModel *m, const double *x, int c, double to
 /* Fill the witness of out from the normalized solution x (strong.c). */
 int us_strong_witness(const us_StrongModel *m, const double *x, us_StrongResult *out);
 
+/* Tighten the magnitudes bound[] of the contacts' f_n, a_n, a_t, g+- to
+ * their extent over the relaxation (strong_enum.c, two LPs each; margin
+ * 1e-6 relative + 1e-9): 0, or -1 on OOM. */
+int us_strong_tighten(us_StrongModel *m);
+
+/* Re-solve a witness x (gravity power `power`) in its own mode pattern for
+ * the largest gravity scale s, so that dividing by s amplifies rounding
+ * least (strong_enum.c): 1 x replaced, 0 kept (x not complementary within
+ * 1e-7, or the LP failed), -1 on OOM. */
+int us_strong_polish(const us_StrongModel *m, double *x, double power);
+
 /* The exhaustive mode search (strong_enum.c): decides into out->strong,
  * nodes, power, bound; the witness solution into x[nv] when no. */
 us_Status us_strong_enumerate(const us_StrongModel *m, const us_StrongSettings *set,

@@ -35,7 +35,7 @@ typedef struct Search {
   double tol, deadline;
   long nodes, max_nodes;
   int found, undecided;
-  double power;       /* best optimum seen */
+  double power;       /* largest optimum seen; the witness's once found */
   char note[160];
 } Search;
 
@@ -46,15 +46,18 @@ static lprec *make(const us_StrongModel *m) {
   set_verbose(lp, 1);
   set_add_rowmode(lp, TRUE);
   int ok = 1;
+  /* lp_solve may rewrite the arrays it is given: pass copies */
   int *colno = us_malloc((size_t)m->nv * sizeof(int));
-  ok = colno != NULL;
+  double *row = us_malloc((size_t)m->nv * sizeof(double));
+  ok = colno && row;
   for (int r = 0; ok && r < m->nrow; r++) {
     int a = m->row_start[r], n = m->row_start[r + 1] - a;
-    for (int k = 0; k < n; k++) colno[k] = m->col[a + k] + 1;
+    for (int k = 0; k < n; k++) colno[k] = m->col[a + k] + 1, row[k] = m->val[a + k];
     int eq = m->rlo[r] == m->rhi[r];
-    ok = add_constraintex(lp, n, m->val + a, colno, eq ? EQ : LE, m->rhi[r]);
+    ok = add_constraintex(lp, n, row, colno, eq ? EQ : LE, m->rhi[r]);
   }
   us_free(colno);
+  us_free(row);
   set_add_rowmode(lp, FALSE);
   double *obj = us_calloc((size_t)m->nv + 1, sizeof(double));
   ok = ok && obj;
@@ -114,6 +117,7 @@ static void dfs(Search *q) {
   int c = branch_contact(q);
   if (c < 0) {
     q->found = 1; /* complementary everywhere with power above tol */
+    q->power = obj;
     return;
   }
   /* mu = 0: sticking is inside the two slides (f_t = 0 in all three) */
@@ -132,6 +136,84 @@ static void dfs(Search *q) {
     q->mode[c] = -1;
     us_strong_mode_bounds(q->m, c, -1, q->lo, q->hi);
   }
+}
+
+/* The largest |x_j| over the relaxation (both directions), or -1 when an
+ * LP has no clean optimum (the bound is then kept). */
+static double extent(lprec *lp, const us_StrongModel *m, int j, double *obj) {
+  double best = 0;
+  for (int sg = -1; sg <= 1; sg += 2) {
+    memset(obj, 0, ((size_t)m->nv + 1) * sizeof(double));
+    obj[j + 1] = sg;
+    set_obj_fn(lp, obj);
+    int rc = solve(lp);
+    if (rc == INFEASIBLE) return 0;
+    if (rc != OPTIMAL && rc != PRESOLVED) return -1;
+    best = fmax(best, get_working_objective(lp));
+  }
+  return best;
+}
+
+int us_strong_tighten(us_StrongModel *m) {
+  lprec *lp = make(m);
+  double *obj = us_calloc((size_t)m->nv + 1, sizeof(double));
+  if (!lp || !obj) {
+    if (lp) delete_lp(lp);
+    us_free(obj);
+    return -1;
+  }
+  for (int j = 0; j < m->nv; j++) {
+    double b = 1.01 * m->bound[j] + 1e-9;
+    set_bounds(lp, j + 1, fmax(m->lo[j], -b), fmin(m->hi[j], b));
+  }
+  static const int ks[] = {SV_FN, SV_AN, SV_AT, SV_GP, SV_GM};
+  for (int c = 0; c < m->nc; c++)
+    for (int k = 0; k < 5; k++) {
+      int j = us_sv(m, c, ks[k]);
+      double e = extent(lp, m, j, obj);
+      if (e >= 0) m->bound[j] = fmin(m->bound[j], e * (1 + 1e-6) + 1e-9);
+    }
+  delete_lp(lp);
+  us_free(obj);
+  return 0;
+}
+
+int us_strong_polish(const us_StrongModel *m, double *x, double power) {
+  int *mode = us_malloc((size_t)(m->nc > 0 ? m->nc : 1) * sizeof(int));
+  double *lo = us_malloc((size_t)m->nv * sizeof(double));
+  double *hi = us_malloc((size_t)m->nv * sizeof(double));
+  double *obj = us_calloc((size_t)m->nv + 1, sizeof(double));
+  lprec *lp = mode && lo && hi && obj ? make(m) : NULL;
+  int rc = lp ? 1 : -1;
+  for (int c = 0; lp && c < m->nc; c++) {
+    mode[c] = us_strong_mode_of(m, x, c, 1e-7);
+    if (mode[c] < 0) rc = 0;
+  }
+  if (rc == 1) {
+    /* the pattern's polyhedron, gravity power at least half the found one,
+       the largest gravity scale s */
+    memcpy(lo, m->lo, (size_t)m->nv * sizeof(double));
+    memcpy(hi, m->hi, (size_t)m->nv * sizeof(double));
+    for (int c = 0; c < m->nc; c++) us_strong_mode_bounds(m, c, mode[c], lo, hi);
+    for (int j = 0; j < m->nv; j++) {
+      double b = 1.01 * m->bound[j] + 1e-9;
+      set_bounds(lp, j + 1, fmax(lo[j], -b), fmin(hi[j], b));
+    }
+    int *colno = us_malloc((size_t)m->nu * sizeof(int));
+    for (int j = 0; colno && j < m->nu; j++) colno[j] = j + 1;
+    if (colno) add_constraintex(lp, m->nu, m->obj, colno, GE, 0.5 * power);
+    us_free(colno);
+    obj[m->nv] = 1;
+    set_obj_fn(lp, obj);
+    int st = colno ? solve(lp) : -1;
+    rc = (st == OPTIMAL || st == PRESOLVED) && get_variables(lp, x) ? 1 : 0;
+  }
+  if (lp) delete_lp(lp);
+  us_free(mode);
+  us_free(lo);
+  us_free(hi);
+  us_free(obj);
+  return rc;
 }
 
 us_Status us_strong_enumerate(const us_StrongModel *m, const us_StrongSettings *set,

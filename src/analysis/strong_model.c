@@ -222,7 +222,7 @@ int us_strong_model_build(us_StrongModel *m, const us_Structure *s, const us_Bit
   int rc = masses(m, why, why_size);
   if (rc) return rc;
   bounds(m);
-  if (newton_rows(m) || contact_rows(m) || hull_rows(m)) return -1;
+  if (newton_rows(m) || contact_rows(m) || us_strong_tighten(m) || hull_rows(m)) return -1;
   return 0;
 }
 
