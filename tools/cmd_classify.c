@@ -290,29 +290,27 @@ static const char *strong_method_word(us_StrongMethod m) {
   return m == US_STRONG_MIP ? "mip" : m == US_STRONG_ENUM ? "enumeration" : "auto";
 }
 
-/* Class 6 with friction: the answer, how, and the witness for "no". */
+/* Class 6 with friction on one line: the answer, how, and for "no" the
+ * witness's moving bodies and its contact modes (JSON has it all). */
 static void text_strong(const us_Structure *s, const us_Classification *c) {
   const us_StrongResult *r = &c->strong_result;
   if (c->strong == -2) return;
   printf("strong: %s (%s", c->strong == 1 ? "yes" : c->strong == 0 ? "no" : "undecided", r->note);
   if (r->nodes) printf("; %s, %ld %s", strong_method_word(r->method), r->nodes,
                        r->method == US_STRONG_MIP ? "nodes" : "LPs");
-  printf(")\n");
-  if (!r->has_witness) return;
-  for (int k = 0; k < r->nbody && k < TEXT_IDS; k++) {
-    printf("  moves: "), put_body(s, r->body[k]);
-    printf(" a = (%.6g, %.6g) m/s^2, alpha = %.6g rad/s^2\n", r->accel[3 * k],
-           r->accel[3 * k + 1], r->accel[3 * k + 2]);
+  printf(")");
+  if (r->has_witness) {
+    printf("; witness:");
+    for (int k = 0; k < r->nbody && k < TEXT_IDS; k++) {
+      printf(" "), put_body(s, r->body[k]);
+      printf(" a = (%.4g, %.4g) alpha = %.4g", r->accel[3 * k], r->accel[3 * k + 1],
+             r->accel[3 * k + 2]);
+    }
+    int n[4] = {0, 0, 0, 0};
+    for (int k = 0; k < r->ncontact; k++) n[r->mode[k] & 3]++;
+    printf("; contacts: %d separate, %d stick, %d slide", n[0], n[1], n[2] + n[3]);
   }
-  for (int k = 0; k < r->ncontact && k < TEXT_IDS; k++) {
-    const us_Contact *ct = &s->contacts[r->contact[k]];
-    printf("  contact ");
-    if (ct->a >= 0) put_body(s, ct->a);
-    else printf("ground");
-    printf(" / "), put_body(s, ct->b);
-    printf(" at (%.6g, %.6g): %s, f = (%.6g, %.6g) N\n", ct->p[0], ct->p[1],
-           mode_word(r->mode[k]), r->force[2 * k], r->force[2 * k + 1]);
-  }
+  printf("\n");
 }
 
 static void print_text(const us_Structure *s, const us_Classification *c, const ClassifyArgs *a) {
@@ -472,6 +470,7 @@ int cmd_classify(int argc, char **argv) {
   memset(&a, 0, sizeof a);
   cli_common_init(&a.common);
   a.set = us_classify_default_settings();
+  a.set.strong = 1; /* --strong auto */
   int r = parse_args(argc, argv, &a);
   if (r) return r < 0 ? CLI_EXIT_OK : r;
   int load;

@@ -136,8 +136,8 @@ typedef enum us_ContactMode {
 
 typedef struct us_StrongSettings {
   us_StrongMethod method;
-  long max_nodes;      /* enumeration: LPs at most (default 200,000); MIP: nodes */
-  double time_limit;   /* seconds (default 30; <= 0: none) */
+  long max_nodes;      /* enumeration: LPs at most (default 100,000); MIP: nodes */
+  double time_limit;   /* wall-clock seconds (default 10; <= 0: none) */
   double tol;          /* normalized gravity power that counts as motion
                           (default 1e-7; see docs) */
 } us_StrongSettings;
@@ -210,7 +210,7 @@ typedef struct us_ClassifySettings {
                               60; <= 0: none): past it a class is unknown */
   double count_time_limit; /* seconds for the count (default 2; <= 0: none) */
   int strong;              /* 6. decide strong stability with friction (default
-                              1; 0: skip) */
+                              0: not asked; the CLI asks) */
   us_StrongSettings strong_settings; /* its method and budgets (default
                               us_strong_default_settings; its time limit is
                               capped by time_limit) */

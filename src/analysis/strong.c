@@ -27,7 +27,7 @@ static us_Module cbc_module = {"cbc", "the CBC mixed-integer solver", NULL};
 const us_CbcModule *us_cbc_module_api(us_Error *err) { return us_module_api(&cbc_module, err); }
 
 us_StrongSettings us_strong_default_settings(void) {
-  us_StrongSettings s = {US_STRONG_AUTO, 200000, 30.0, 1e-6};
+  us_StrongSettings s = {US_STRONG_AUTO, 100000, 10.0, 1e-6};
   return s;
 }
 
@@ -128,7 +128,7 @@ static us_Status decide(const us_Structure *s, const us_Bitset *present,
                         us_Error *err) {
   us_StrongModel m;
   char why[128] = "";
-  int rc = us_strong_model_build(&m, s, present, why, sizeof why);
+  int rc = us_strong_model_build(&m, s, present, deadline, why, sizeof why);
   us_Status st = US_OK;
   double *x = rc ? NULL : us_calloc((size_t)m.nv, sizeof(double));
   if (rc < 0 || (rc == 0 && !x)) {

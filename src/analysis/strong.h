@@ -48,7 +48,7 @@ static inline int us_sv(const us_StrongModel *m, int c, int k) {
 /* Build the model of sub-assembly present (strong_model.c); 0, -1 on OOM,
  * 1 when a body has no inertia or a contact a mu above 1e6 (refused: why). */
 int us_strong_model_build(us_StrongModel *m, const us_Structure *s, const us_Bitset *present,
-                          char *why, size_t why_size);
+                          double deadline, char *why, size_t why_size);
 void us_strong_model_free(us_StrongModel *m);
 
 /* Write the bounds of contact c's variables in mode k (the relaxation for
@@ -61,10 +61,11 @@ int us_strong_mode_of(const us_StrongModel *m, const double *x, int c, double to
 /* Fill the witness of out from the normalized solution x (strong.c). */
 int us_strong_witness(const us_StrongModel *m, const double *x, us_StrongResult *out);
 
-/* Tighten the magnitudes bound[] of the contacts' f_n, a_n, a_t, g+- to
- * their extent over the relaxation (strong_enum.c, two LPs each; margin
- * 1e-6 relative + 1e-9): 0, or -1 on OOM. */
-int us_strong_tighten(us_StrongModel *m);
+/* Tighten the magnitudes bound[] of the contacts' a_n, a_t (the big-M
+ * values) to their extent over the relaxation (strong_enum.c, two LPs
+ * each; margin 1e-6 relative + 1e-9; stops at deadline, the bounds left
+ * are valid, only looser): 0, or -1 on OOM. */
+int us_strong_tighten(us_StrongModel *m, double deadline);
 
 /* Re-solve a witness x (gravity power `power`) in its own mode pattern for
  * the largest gravity scale s, so that dividing by s amplifies rounding

@@ -154,7 +154,7 @@ static double extent(lprec *lp, const us_StrongModel *m, int j, double *obj) {
   return best;
 }
 
-int us_strong_tighten(us_StrongModel *m) {
+int us_strong_tighten(us_StrongModel *m, double deadline) {
   lprec *lp = make(m);
   double *obj = us_calloc((size_t)m->nv + 1, sizeof(double));
   if (!lp || !obj) {
@@ -166,9 +166,10 @@ int us_strong_tighten(us_StrongModel *m) {
     double b = 1.01 * m->bound[j] + 1e-9;
     set_bounds(lp, j + 1, fmax(m->lo[j], -b), fmin(m->hi[j], b));
   }
-  static const int ks[] = {SV_FN, SV_AN, SV_AT, SV_GP, SV_GM};
-  for (int c = 0; c < m->nc; c++)
-    for (int k = 0; k < 5; k++) {
+  /* the big-M magnitudes only; past the deadline the rest stay as they are */
+  static const int ks[] = {SV_AN, SV_AT};
+  for (int c = 0; c < m->nc && !us_past(deadline); c++)
+    for (int k = 0; k < 2; k++) {
       int j = us_sv(m, c, ks[k]);
       double e = extent(lp, m, j, obj);
       if (e >= 0) m->bound[j] = fmin(m->bound[j], e * (1 + 1e-6) + 1e-9);

@@ -77,6 +77,8 @@ static Cbc_Model *build(const us_StrongModel *m, const us_StrongSettings *set, d
   Cbc_setParameter(cbc, "heuristicsOnOff", "off");
   Cbc_setParameter(cbc, "preprocess", "off");
   Cbc_setMaximumNodes(cbc, set->max_nodes > 2000000000L ? 2000000000 : (int)set->max_nodes);
+  /* the deadline is wall-clock time, CBC counts CPU seconds by default */
+  Cbc_setParameter(cbc, "timeMode", "elapsed");
   if (deadline > 0) Cbc_setMaximumSeconds(cbc, fmax(deadline - us_now(), 0.01));
   return cbc;
 }

@@ -207,7 +207,7 @@ static int hull_rows(us_StrongModel *m) {
 }
 
 int us_strong_model_build(us_StrongModel *m, const us_Structure *s, const us_Bitset *present,
-                          char *why, size_t why_size) {
+                          double deadline, char *why, size_t why_size) {
   memset(m, 0, sizeof *m);
   if (build_system(m, s, present)) return -1;
   m->nu = 3 * m->e.nbody;
@@ -222,7 +222,7 @@ int us_strong_model_build(us_StrongModel *m, const us_Structure *s, const us_Bit
   int rc = masses(m, why, why_size);
   if (rc) return rc;
   bounds(m);
-  if (newton_rows(m) || contact_rows(m) || us_strong_tighten(m) || hull_rows(m)) return -1;
+  if (newton_rows(m) || contact_rows(m) || us_strong_tighten(m, deadline) || hull_rows(m)) return -1;
   return 0;
 }
 

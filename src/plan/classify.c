@@ -84,7 +84,7 @@ us_ClassifySettings us_classify_default_settings(void) {
   c.max_tests = US_CLASSIFY_MAX_TESTS;
   c.time_limit = US_CLASSIFY_TIME;
   c.count_time_limit = US_CLASSIFY_COUNT_TIME;
-  c.strong = 1;
+  c.strong = 0; /* opt-in: its search can take its whole budget (arches) */
   c.strong_settings = us_strong_default_settings();
   return c;
 }

@@ -34,7 +34,7 @@ contains "$T/out" "sequence: yes" "column has a sequence"
 contains "$T/out" "group: smallest K = 1" "column: K = 1"
 contains "$T/out" "count: 6 connected" "column: count 6"
 contains "$T/out" "equality constraints: no, it stands already" "column: no equality class"
-[ "$(wc -l <"$T/out")" -eq 9 ] && ok "one line per class and a time line" || bad "$(wc -l <"$T/out") lines"
+[ "$(wc -l <"$T/out")" -eq 10 ] && ok "one line per class and a time line" || bad "$(wc -l <"$T/out") lines"
 
 # the cantilever: highest first fails, the DFS finds an order
 expect 0 "classify cantilever" -- "$CLI" classify "$DATA/cantilever.json"
@@ -136,7 +136,7 @@ cat >"$T/weird.json" <<'EOF'
 EOF
 expect 0 "classify odd ids" -- "$CLI" classify "$T/weird.json"
 contains "$T/out" 'blocked: "le\"ft\\", "ri\u0001g\u000aht\u0009' "text: ids escaped"
-[ "$(wc -l <"$T/out")" -eq 10 ] && ok "no raw newline from an id" || bad "an id broke a line"
+[ "$(wc -l <"$T/out")" -eq 11 ] && ok "no raw newline from an id" || bad "an id broke a line"
 expect 0 "classify odd ids --json" -- "$CLI" classify "$T/weird.json" --json
 json_is "$T/out" '.blocked == ["le\"ft\\", "ri\u0001g\nht\t\u00e9"]' "json: ids round-trip"
 
