@@ -86,6 +86,26 @@ static void pinched_weak_not_strong(void) {
   us_structure_free(s);
 }
 
+/* The box pinched between two movable piers 2 x 3 on the ground (density
+ * 1, mu 0.5), off the ground at y 1..2. Weakly stable: a squeeze N = W_box
+ * / (2 mu) = W_box per side holds the box; each pier (weight 6 W_box) takes
+ * the push N at height 1..2, whose moment (at most 2 W_box) is far below
+ * its own about its outer foot (6 W_box x 1), and its ground friction can
+ * reach mu (6 + 1/2) W_box > N. Not strongly: the box in free fall with no
+ * force on either side, the piers at rest on the ground, is a solution. */
+static void pinched_between_piers(void) {
+  us_Structure *s = us_structure_new(2);
+  s->friction = 0.5;
+  scene_box(s, "pierL", 0, 0, 2, 3, 1);
+  scene_box(s, "pierR", 3, 0, 2, 3, 1);
+  scene_box(s, "box", 2, 1, 1, 1, 1);
+  s = scene_seal(s);
+  CHECK(s);
+  CHECK_INT(scene_verdict(s, US_METHOD_LP, NULL), ==, US_STABLE);
+  CHECK(both_say(s, 0));
+  us_structure_free(s);
+}
+
 /* The same box resting on the ground between the walls: the ground stops
  * any descent, the walls any sideways motion, and a rotation about either
  * bottom corner drives the opposite top corner into its wall; every
@@ -335,7 +355,7 @@ static void out_of_memory(void) {
   us_structure_free(s);
 }
 
-US_TEST_MAIN(T(pinched_weak_not_strong), T(pinched_on_ground_strong), T(slope_below_at_above),
+US_TEST_MAIN(T(pinched_weak_not_strong), T(pinched_between_piers), T(pinched_on_ground_strong), T(slope_below_at_above),
              T(frictionless_agree), T(tampered_witness_rejected),
              T(sliding_witness_friction_sign), T(mip_matches_enumeration),
              T(frictionless_strong_equals_weak), T(bad_arguments), T(out_of_memory))
