@@ -206,6 +206,13 @@ static int hull_rows(us_StrongModel *m) {
   return 0;
 }
 
+/* The tightening gets a quarter of the time left: the bounds it leaves are
+ * valid anyway, and the search needs the rest. */
+static double tighten_deadline(double deadline) {
+  double now = us_now();
+  return deadline > 0 ? now + 0.25 * fmax(deadline - now, 0) : 0;
+}
+
 int us_strong_model_build(us_StrongModel *m, const us_Structure *s, const us_Bitset *present,
                           double deadline, char *why, size_t why_size) {
   memset(m, 0, sizeof *m);
@@ -222,7 +229,7 @@ int us_strong_model_build(us_StrongModel *m, const us_Structure *s, const us_Bit
   int rc = masses(m, why, why_size);
   if (rc) return rc;
   bounds(m);
-  if (newton_rows(m) || contact_rows(m) || us_strong_tighten(m, deadline) || hull_rows(m)) return -1;
+  if (newton_rows(m) || contact_rows(m) || us_strong_tighten(m, tighten_deadline(deadline)) || hull_rows(m)) return -1;
   return 0;
 }
 
