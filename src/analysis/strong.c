@@ -15,16 +15,11 @@
  * undecided. */
 #include "strong.h"
 
-#include "core/module.h"
 #include "model/massprops.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-
-static us_Module cbc_module = {"cbc", "the CBC mixed-integer solver", NULL};
-
-const us_CbcModule *us_cbc_module_api(us_Error *err) { return us_module_api(&cbc_module, err); }
 
 us_StrongSettings us_strong_default_settings(void) {
   us_StrongSettings s = {US_STRONG_AUTO, 100000, 10.0, 1e-6};

@@ -62,7 +62,7 @@ int us_strong_mode_of(const us_StrongModel *m, const double *x, int c, double to
 int us_strong_witness(const us_StrongModel *m, const double *x, us_StrongResult *out);
 
 /* Tighten the magnitudes bound[] of the contacts' a_n, a_t (the big-M
- * values) to their extent over the relaxation (strong_enum.c, two LPs
+ * values) to their extent over the relaxation (strong_lp.c, two LPs
  * each; margin 1e-6 relative + 1e-9; stops at deadline, the bounds left
  * are valid, only looser): 0, or -1 on OOM. */
 int us_strong_tighten(us_StrongModel *m, double deadline);

@@ -19,9 +19,8 @@
  * search exhausted with no optimum above tol: every pattern was covered.
  * Any LP without a clean status, the node budget or the clock gives
  * undecided, never yes. */
-#include "strong.h"
+#include "strong_lp.h"
 
-#include <lp_lib.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -38,36 +37,6 @@ typedef struct Search {
   double power;       /* largest optimum seen; the witness's once found */
   char note[160];
 } Search;
-
-/* The LP of the model: rows, objective (maximised), relaxation bounds. */
-static lprec *make(const us_StrongModel *m) {
-  lprec *lp = make_lp(0, m->nv);
-  if (!lp) return NULL;
-  set_verbose(lp, 1);
-  set_add_rowmode(lp, TRUE);
-  int ok = 1;
-  /* lp_solve may rewrite the arrays it is given: pass copies */
-  int *colno = us_malloc((size_t)m->nv * sizeof(int));
-  double *row = us_malloc((size_t)m->nv * sizeof(double));
-  ok = colno && row;
-  for (int r = 0; ok && r < m->nrow; r++) {
-    int a = m->row_start[r], n = m->row_start[r + 1] - a;
-    for (int k = 0; k < n; k++) colno[k] = m->col[a + k] + 1, row[k] = m->val[a + k];
-    int eq = m->rlo[r] == m->rhi[r];
-    ok = add_constraintex(lp, n, row, colno, eq ? EQ : LE, m->rhi[r]);
-  }
-  us_free(colno);
-  us_free(row);
-  set_add_rowmode(lp, FALSE);
-  double *obj = us_calloc((size_t)m->nv + 1, sizeof(double));
-  ok = ok && obj;
-  if (ok) memcpy(obj + 1, m->obj, (size_t)m->nv * sizeof(double));
-  ok = ok && set_obj_fn(lp, obj);
-  us_free(obj);
-  set_maxim(lp);
-  if (!ok) delete_lp(lp);
-  return ok ? lp : NULL;
-}
 
 /* The node's bounds, within the certified magnitudes (strong_model.c), so
  * that no LP is unbounded. */
@@ -138,53 +107,12 @@ static void dfs(Search *q) {
   }
 }
 
-/* The largest |x_j| over the relaxation (both directions), or -1 when an
- * LP has no clean optimum (the bound is then kept). */
-static double extent(lprec *lp, const us_StrongModel *m, int j, double *obj) {
-  double best = 0;
-  for (int sg = -1; sg <= 1; sg += 2) {
-    memset(obj, 0, ((size_t)m->nv + 1) * sizeof(double));
-    obj[j + 1] = sg;
-    set_obj_fn(lp, obj);
-    int rc = solve(lp);
-    if (rc == INFEASIBLE) return 0;
-    if (rc != OPTIMAL && rc != PRESOLVED) return -1;
-    best = fmax(best, get_working_objective(lp));
-  }
-  return best;
-}
-
-int us_strong_tighten(us_StrongModel *m, double deadline) {
-  lprec *lp = make(m);
-  double *obj = us_calloc((size_t)m->nv + 1, sizeof(double));
-  if (!lp || !obj) {
-    if (lp) delete_lp(lp);
-    us_free(obj);
-    return -1;
-  }
-  for (int j = 0; j < m->nv; j++) {
-    double b = 1.01 * m->bound[j] + 1e-9;
-    set_bounds(lp, j + 1, fmax(m->lo[j], -b), fmin(m->hi[j], b));
-  }
-  /* the big-M magnitudes only; past the deadline the rest stay as they are */
-  static const int ks[] = {SV_AN, SV_AT};
-  for (int c = 0; c < m->nc && !us_past(deadline); c++)
-    for (int k = 0; k < 2; k++) {
-      int j = us_sv(m, c, ks[k]);
-      double e = extent(lp, m, j, obj);
-      if (e >= 0) m->bound[j] = fmin(m->bound[j], e * (1 + 1e-6) + 1e-9);
-    }
-  delete_lp(lp);
-  us_free(obj);
-  return 0;
-}
-
 int us_strong_polish(const us_StrongModel *m, double *x, double power) {
   int *mode = us_malloc((size_t)(m->nc > 0 ? m->nc : 1) * sizeof(int));
   double *lo = us_malloc((size_t)m->nv * sizeof(double));
   double *hi = us_malloc((size_t)m->nv * sizeof(double));
   double *obj = us_calloc((size_t)m->nv + 1, sizeof(double));
-  lprec *lp = mode && lo && hi && obj ? make(m) : NULL;
+  lprec *lp = mode && lo && hi && obj ? us_strong_lp_new(m) : NULL;
   int rc = lp ? 1 : -1;
   for (int c = 0; lp && c < m->nc; c++) {
     mode[c] = us_strong_mode_of(m, x, c, 1e-7);
@@ -225,7 +153,7 @@ us_Status us_strong_enumerate(const us_StrongModel *m, const us_StrongSettings *
   q.lo = us_malloc(nv * sizeof(double));
   q.hi = us_malloc(nv * sizeof(double));
   q.x = x;
-  q.lp = q.mode && q.lo && q.hi ? make(m) : NULL;
+  q.lp = q.mode && q.lo && q.hi ? us_strong_lp_new(m) : NULL;
   us_Status st = US_OK;
   if (!q.lp) {
     st = US_ERR_NOMEM;

@@ -52,7 +52,7 @@ expect 0 "classify leaning" -- "$CLI" classify "$DATA/leaning.json"
 contains "$T/out" "stands only with friction, mu* = 0.109846" "leaning: mu* by hand statics"
 contains "$T/out" 'sequence: none; blocked: "left", "right"' "leaning: both slabs blocked"
 contains "$T/out" "group: smallest K = 2" "leaning: K = 2"
-contains "$T/out" "strong stability not decided" "leaning: no strong = weak claim with friction"
+contains "$T/out" "not frictionless: they may differ" "leaning: no strong = weak claim with friction"
 expect 0 "classify leaning --json" -- "$CLI" classify "$DATA/leaning.json" --json
 json_is "$T/out" '.stands and (.stands_frictionless | not) and .min_group == 2 and .sequence == false and .blocked == ["left", "right"] and .count == "4" and .mu_critical == 0.109846' "leaning: JSON classes"
 expect 0 "classify leaning with the LCP" -- "$CLI" classify "$DATA/leaning.json" --method lcp-reuse
