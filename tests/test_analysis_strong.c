@@ -223,7 +223,7 @@ static void sliding_witness_friction_sign(void) {
 static int raw(const us_Structure *s, const us_Bitset *present, us_StrongMethod m, long *nodes) {
   us_StrongModel md;
   char why[128];
-  if (us_strong_model_build(&md, s, present, 0, why, sizeof why)) {
+  if (us_strong_model_build(&md, s, present, why, sizeof why) || us_strong_model_tighten(&md, 0)) {
     us_strong_model_free(&md);
     return -2;
   }

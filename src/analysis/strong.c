@@ -101,6 +101,19 @@ static us_Status search(const us_StrongModel *m, const us_StrongSettings *set, d
   return us_strong_enumerate(m, set, deadline, x, out, err);
 }
 
+/* Method auto: a first dive of the mode search on the untightened model, a
+ * few LPs deep:
+ * the easy motions (things falling free, sliding) are found before the
+ * bounds are tightened, which costs two LPs per contact. */
+static us_Status dive(const us_StrongModel *m, const us_StrongSettings *set, double deadline,
+                      double *x, us_StrongResult *out, us_Error *err) {
+  us_StrongSettings d = *set;
+  d.max_nodes = 2L * m->nc + 8;
+  us_Status st = us_strong_enumerate(m, &d, deadline, x, out, err);
+  out->method = US_STRONG_ENUM;
+  return st;
+}
+
 /* Turn a "no" of the search into a checked witness, or undecided. */
 static us_Status witness(const us_StrongModel *m, const us_Bitset *present, double *x,
                          const us_StrongSettings *set, us_StrongResult *out, us_Error *err) {
@@ -123,7 +136,7 @@ static us_Status decide(const us_Structure *s, const us_Bitset *present,
                         us_Error *err) {
   us_StrongModel m;
   char why[128] = "";
-  int rc = us_strong_model_build(&m, s, present, deadline, why, sizeof why);
+  int rc = us_strong_model_build(&m, s, present, why, sizeof why);
   us_Status st = US_OK;
   double *x = rc ? NULL : us_calloc((size_t)m.nv, sizeof(double));
   if (rc < 0 || (rc == 0 && !x)) {
@@ -133,7 +146,14 @@ static us_Status decide(const us_Structure *s, const us_Bitset *present,
     out->strong = -1;
     snprintf(out->note, sizeof out->note, "refused: %s", why);
   } else {
-    st = search(&m, set, deadline, x, out, err);
+    out->strong = -1;
+    if (set->method == US_STRONG_AUTO) st = dive(&m, set, deadline, x, out, err);
+    if (st == US_OK && out->strong != 0) {
+      memset(out, 0, sizeof *out);
+      st = us_strong_model_tighten(&m, deadline) ? US_ERR_NOMEM : US_OK;
+      if (st) us_error_set(err, st, "out of memory tightening the strong-stability model");
+      if (!st) st = search(&m, set, deadline, x, out, err);
+    }
     if (st == US_OK && out->strong == 0) st = witness(&m, present, x, set, out, err);
   }
   us_free(x);

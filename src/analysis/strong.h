@@ -48,7 +48,10 @@ static inline int us_sv(const us_StrongModel *m, int c, int k) {
 /* Build the model of sub-assembly present (strong_model.c); 0, -1 on OOM,
  * 1 when a body has no inertia or a contact a mu above 1e6 (refused: why). */
 int us_strong_model_build(us_StrongModel *m, const us_Structure *s, const us_Bitset *present,
-                          double deadline, char *why, size_t why_size);
+                          char *why, size_t why_size);
+/* Tighten the big-M magnitudes (us_strong_tighten, a quarter of the time
+ * left before deadline) and add the hull cuts; 0, or -1 on OOM. */
+int us_strong_model_tighten(us_StrongModel *m, double deadline);
 void us_strong_model_free(us_StrongModel *m);
 
 /* Write the bounds of contact c's variables in mode k (the relaxation for

@@ -214,7 +214,7 @@ static double tighten_deadline(double deadline) {
 }
 
 int us_strong_model_build(us_StrongModel *m, const us_Structure *s, const us_Bitset *present,
-                          double deadline, char *why, size_t why_size) {
+                          char *why, size_t why_size) {
   memset(m, 0, sizeof *m);
   if (build_system(m, s, present)) return -1;
   m->nu = 3 * m->e.nbody;
@@ -229,8 +229,12 @@ int us_strong_model_build(us_StrongModel *m, const us_Structure *s, const us_Bit
   int rc = masses(m, why, why_size);
   if (rc) return rc;
   bounds(m);
-  if (newton_rows(m) || contact_rows(m) || us_strong_tighten(m, tighten_deadline(deadline)) || hull_rows(m)) return -1;
+  if (newton_rows(m) || contact_rows(m)) return -1;
   return 0;
+}
+
+int us_strong_model_tighten(us_StrongModel *m, double deadline) {
+  return us_strong_tighten(m, tighten_deadline(deadline)) || hull_rows(m) ? -1 : 0;
 }
 
 void us_strong_mode_bounds(const us_StrongModel *m, int c, int k, double *lo, double *hi) {
