@@ -2,7 +2,8 @@
 # Install the Debian 12 packages unstack needs, only when some are missing.
 # usage: deps.sh [fuzz]
 set -euo pipefail
-pkgs=(build-essential cmake pkg-config coinor-libclp-dev liblpsolve55-dev libsuitesparse-dev
+pkgs=(build-essential cmake pkg-config coinor-libclp-dev coinor-libcbc-dev liblpsolve55-dev
+      libsuitesparse-dev
       libjansson-dev libxml2-dev libcairo2-dev libassimp-dev libsiconos-numerics-dev python3
       python3-dev python3-pytest libopenmpi-dev openmpi-bin
       groff-base) # groff-base: the man page's check (tests/cli/manpage.sh)

@@ -19,6 +19,7 @@ lp_clp_lazy.c:clp_module  module record: an atomic pointer to the loaded entry p
 png_lazy.c:png_module     the same for the PNG writer's module
 svg_lazy.c:svg_module     the same for the SVG import's module
 mesh_lazy.c:mesh_module   the same for the mesh import's module
+strong_lazy.c:cbc_module  the same for the strong-stability MIP's module (CBC)
 "
 found=$(for a in "$build"/libus_*.a; do objdump -t "$a"; done | awk '
   /^[^ ]+\.o:[ \t]+file format/ { f = $1; sub(/\.o:$/, "", f); next }

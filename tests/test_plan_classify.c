@@ -1108,10 +1108,50 @@ static void out_of_memory_is_clean(void) {
   us_structure_free(scenes[1]);
 }
 
+/* Class 6 with friction (docs/classify.md): asked for, a box pinched
+ * between fixed walls off the ground stands but is not strongly stable
+ * (free fall with no wall force is a solution of the dynamics), and the
+ * witness passes the independent check; the same box seated on the
+ * ground is strongly stable; a frictionless column is, by the theorem,
+ * without a search; not asked, the class is -2. */
+static void strong_with_friction(void) {
+  us_ClassifySettings set = us_classify_default_settings();
+  us_Classification c;
+  us_Error err;
+  for (int seated = 0; seated < 2; seated++) {
+    us_Structure *s = us_structure_new(2);
+    double wl[8] = {0, 0, 1, 0, 1, 3, 0, 3}, wr[8] = {2, 0, 3, 0, 3, 3, 2, 3};
+    scene_polygon(s, "left", 4, wl, 1);
+    scene_polygon(s, "right", 4, wr, 1);
+    scene_box(s, "box", 1, seated ? 0 : 1, 1, 1, 1);
+    s = scene_seal(s);
+    CHECK(s);
+    set.strong = 0;
+    CHECK_OK(us_classify(s, &set, &c, &err), &err);
+    CHECK_INT(c.strong, ==, -2);
+    us_classification_free(&c);
+    set.strong = 1;
+    CHECK_OK(us_classify(s, &set, &c, &err), &err);
+    CHECK(c.stands);
+    CHECK_INT(c.strong, ==, seated ? 1 : 0);
+    CHECK_INT(c.strong_result.has_witness, ==, !seated);
+    if (!seated) CHECK(us_strong_check(s, NULL, &c.strong_result, 1e-6, NULL, 0));
+    us_classification_free(&c);
+    us_structure_free(s);
+  }
+  us_Structure *col = scene_column(3);
+  CHECK(col);
+  CHECK_OK(us_classify(col, &set, &c, &err), &err);
+  CHECK_INT(c.strong, ==, 1);
+  CHECK_INT(c.strong_result.nodes, ==, 0);
+  us_classification_free(&c);
+  us_structure_free(col);
+}
+
 US_TEST_MAIN(T(column_is_topdown), T(cantilever_needs_backtracking),
              T(leaning_slabs_need_friction_and_pairs), T(arch_needs_a_group),
              T(ramp_needs_tan_alpha), T(overhang_stands_for_no_mu), T(equality_known_answers),
              T(bilateral_certificate_modes), T(bilateral_superset_on_piles), T(topdown_probe_limit), T(time_limit_leaves_classes_unknown), T(count_refusal_is_reported),
              T(classes_match_brute_force), T(frictionless_verdicts_agree),
              T(frictionless_accelerations_unique), T(argument_errors), T(undecided_tests_decide_no_class),
-             T(out_of_memory_is_clean))
+             T(out_of_memory_is_clean), T(strong_with_friction))

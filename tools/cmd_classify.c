@@ -15,6 +15,8 @@ static const char head[] =
     "  stands       does the full structure stand with its own friction?\n"
     "  friction     frictionless, or only with friction: the critical coefficient mu*\n"
     "  strong-weak  frictionless, strong and weak stability coincide\n"
+    "  strong       with friction: does every solution of the dynamics stay at rest?\n"
+    "               yes (a proof), no (a witness motion, checked) or undecided\n"
     "  top-down     does 'remove the highest body' work? (the source's plain DFS)\n"
     "  sequence     does a one-at-a-time removal order exist? (if not: the blocked bodies)\n"
     "  group        the smallest K such that steps of at most K bodies suffice\n"
@@ -26,6 +28,18 @@ static const char tail[] =
     "stability test it rests on could not be decided)\n";
 
 #define TEXT_IDS 20 /* blocked bodies named in the text output */
+
+/* --strong HOW: the method of class 6, or off. */
+static int set_strong(const char *v, void *dst, const char *cmd) {
+  us_ClassifySettings *set = dst;
+  static const char *words[] = {"auto", "enum", "mip"}; /* us_StrongMethod order */
+  set->strong = strcmp(v, "off") != 0;
+  for (int k = 0; k < 3; k++)
+    if (!strcmp(v, words[k])) set->strong_settings.method = (us_StrongMethod)k;
+  if (set->strong && strcmp(v, "auto") && strcmp(v, "enum") && strcmp(v, "mip"))
+    return cli_fail(cmd, "--strong takes auto, mip, enum or off (got '%s')", v);
+  return 0;
+}
 
 /* classify's option table (optable.h), shared with batch (task.h). */
 void cli_classify_table(ClassifyArgs *a, CliOpt *out) {
@@ -42,6 +56,9 @@ void cli_classify_table(ClassifyArgs *a, CliOpt *out) {
                "seconds for the friction bisection and for each search of top-down, sequence "
                "and group (default 60; 0: none); a class cut there is unknown",
                CLI_ATLEAST(0), .need = "a number >= 0"),
+      CLI_CALL("--strong", "HOW", &a->set, set_strong,
+               "strong stability with friction: auto (default: the MIP with CBC, else the "
+               "exhaustive mode search), mip, enum, or off"),
       CLI_OPT_CONTACT_TOL(c),
       CLI_END};
   _Static_assert(sizeof opts / sizeof opts[0] <= CLI_TABLE_MAX, "CLI_TABLE_MAX too small");
@@ -125,7 +142,7 @@ static void text_strong_weak(const us_Classification *c) {
   else if (c->friction_timed_out && !c->stands_some_mu)
     printf("strong-weak: unknown (the friction class was cut by the time limit)\n");
   else
-    printf("strong-weak: not frictionless: weak stability only (strong stability not decided)\n");
+    printf("strong-weak: not frictionless: they may differ (the strong line decides)\n");
 }
 
 static const char *plural(long n) { return n == 1 ? "" : "s"; }
@@ -265,11 +282,44 @@ static void text_equality(const us_Structure *s, const us_Classification *c) {
   }
 }
 
+static const char *mode_word(us_ContactMode m) {
+  static const char *w[] = {"separates", "sticks", "slides+", "slides-"};
+  return (unsigned)m < 4 ? w[m] : "?";
+}
+
+static const char *strong_method_word(us_StrongMethod m) {
+  return m == US_STRONG_MIP ? "mip" : m == US_STRONG_ENUM ? "enumeration" : "auto";
+}
+
+/* Class 6 with friction on one line: the answer, how, and for "no" the
+ * witness's moving bodies and its contact modes (JSON has it all). */
+static void text_strong(const us_Structure *s, const us_Classification *c) {
+  const us_StrongResult *r = &c->strong_result;
+  if (c->strong == -2) return;
+  printf("strong: %s (%s", c->strong == 1 ? "yes" : c->strong == 0 ? "no" : "undecided", r->note);
+  if (r->nodes) printf("; %s, %ld %s", strong_method_word(r->method), r->nodes,
+                       r->method == US_STRONG_MIP ? "nodes" : "LPs");
+  printf(")");
+  if (r->has_witness) {
+    printf("; witness:");
+    for (int k = 0; k < r->nbody && k < TEXT_IDS; k++) {
+      printf(" "), put_body(s, r->body[k]);
+      printf(" a = (%.4g, %.4g) alpha = %.4g", r->accel[3 * k], r->accel[3 * k + 1],
+             r->accel[3 * k + 2]);
+    }
+    int n[4] = {0, 0, 0, 0};
+    for (int k = 0; k < r->ncontact; k++) n[r->mode[k] & 3]++;
+    printf("; contacts: %d separate, %d stick, %d slide", n[0], n[1], n[2] + n[3]);
+  }
+  printf("\n");
+}
+
 static void print_text(const us_Structure *s, const us_Classification *c, const ClassifyArgs *a) {
   const char *method = us_method_name(us_method_resolve(a->set.stability.method, s));
   text_stands(s, c, method);
   text_friction(c, a->set.time_limit);
   text_strong_weak(c);
+  text_strong(s, c);
   text_topdown(c);
   text_sequence(s, c, a);
   text_group(c, a);
@@ -356,6 +406,40 @@ static void json_count(const us_Classification *c) {
   put_string(c->count_note);
 }
 
+/* Class 6 with friction: strong, its method, note, and the witness. */
+static void json_strong(const us_Structure *s, const us_Classification *c) {
+  const us_StrongResult *r = &c->strong_result;
+  printf(", \"strong\": %s, \"strong_method\": ",
+         c->strong == 1 ? "true" : c->strong == 0 ? "false" : "null");
+  if (r->nodes) printf("\"%s\"", strong_method_word(r->method));
+  else printf("null");
+  printf(", \"strong_note\": ");
+  put_string(c->strong == -2 ? "not asked" : r->note);
+  printf(", \"strong_nodes\": %ld, \"strong_witness\": ", r->nodes);
+  if (!r->has_witness) {
+    printf("null");
+    return;
+  }
+  printf("{\"bodies\": [");
+  for (int k = 0; k < r->nbody; k++) {
+    printf("%s{\"id\": ", k ? ", " : "");
+    put_body(s, r->body[k]);
+    printf(", \"a\": [%.9g, %.9g], \"alpha\": %.9g}", r->accel[3 * k], r->accel[3 * k + 1],
+           r->accel[3 * k + 2]);
+  }
+  printf("], \"contacts\": [");
+  for (int k = 0; k < r->ncontact; k++) {
+    const us_Contact *ct = &s->contacts[r->contact[k]];
+    printf("%s{\"a\": ", k ? ", " : "");
+    json_body_or_null(s, ct->a);
+    printf(", \"b\": ");
+    put_body(s, ct->b);
+    printf(", \"p\": [%.9g, %.9g], \"mode\": \"%s\", \"f\": [%.9g, %.9g]}", ct->p[0], ct->p[1],
+           mode_word(r->mode[k]), r->force[2 * k], r->force[2 * k + 1]);
+  }
+  printf("]}");
+}
+
 static void print_json(const us_Structure *s, const us_Classification *c, const ClassifyArgs *a) {
   printf("{\"file\": ");
   put_string(a->file);
@@ -373,11 +457,13 @@ static void print_json(const us_Structure *s, const us_Classification *c, const 
            c->hands_lower, us_plan_status_name(c->hands_status));
   json_equality(s, c);
   json_count(c);
+  json_strong(s, c);
   printf(", \"undecided\": %s", json_bool(c->undecided));
   printf(", \"seconds\": %.6f, \"times\": {\"stands\": %.6f, \"friction\": %.6f, \"topdown\": %.6f, "
-         "\"sequence\": %.6f, \"group\": %.6f, \"equality\": %.6f, \"count\": %.6f}}\n",
+         "\"sequence\": %.6f, \"group\": %.6f, \"equality\": %.6f, \"count\": %.6f, "
+         "\"strong\": %.6f}}\n",
          c->seconds, c->t_stands, c->t_friction, c->t_topdown, c->t_sequence, c->t_group,
-         c->t_equality, c->t_count);
+         c->t_equality, c->t_count, c->t_strong);
 }
 
 us_Status cli_classify_run(const us_Structure *s, const ClassifyArgs *a, us_Classification *c,
@@ -396,6 +482,7 @@ int cmd_classify(int argc, char **argv) {
   memset(&a, 0, sizeof a);
   cli_common_init(&a.common);
   a.set = us_classify_default_settings();
+  a.set.strong = 1; /* --strong auto */
   int r = parse_args(argc, argv, &a);
   if (r) return r < 0 ? CLI_EXIT_OK : r;
   int load;

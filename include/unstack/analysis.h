@@ -112,6 +112,74 @@ US_API us_Status us_critical_friction(const us_Structure *s, const us_Bitset *pr
                                const us_StabilitySettings *set, double tol, double mu_max,
                                us_FrictionResult *out, us_Error *err);
 
+/* Strong stability with friction (src/analysis/strong*.c, docs/classify.md,
+ * "Strong stability with friction"): does EVERY solution of the contact
+ * dynamics at rest (accelerations complementary to normal forces, static
+ * Coulomb friction: sliding contacts carry mu f_n against the slip) leave
+ * every body at rest? A structure that does not stand (weakly) is not
+ * strongly stable either. Answers: 1 yes (a proof: no complementary
+ * solution with gravity power above tol, from the exhaustive mode search or
+ * the MIP's bound), 0 no (with a witness motion that us_strong_check
+ * re-checked without the solver), -1 undecided (a budget, a refusal). */
+typedef enum us_StrongMethod {
+  US_STRONG_AUTO = 0, /* the MIP (CBC module) when it loads, else enumeration */
+  US_STRONG_ENUM,     /* exhaustive contact-mode search with lp_solve */
+  US_STRONG_MIP       /* one mixed-integer program, CBC (module cbc) */
+} us_StrongMethod;
+
+typedef enum us_ContactMode {
+  US_MODE_SEPARATES = 0, /* f = 0, normal acceleration >= 0 */
+  US_MODE_STICKS,        /* closed, no slip: |f_t| <= mu f_n */
+  US_MODE_SLIDES_POS,    /* closed, slip along +t: f_t = -mu f_n */
+  US_MODE_SLIDES_NEG     /* closed, slip along -t: f_t = +mu f_n */
+} us_ContactMode;
+
+typedef struct us_StrongSettings {
+  us_StrongMethod method;
+  long max_nodes;      /* enumeration: LPs at most (default 100,000); MIP: nodes */
+  double time_limit;   /* wall-clock seconds (default 10; <= 0: none) */
+  double tol;          /* normalized gravity power that counts as motion
+                          (default 1e-7; see docs) */
+} us_StrongSettings;
+US_API us_StrongSettings us_strong_default_settings(void);
+
+typedef struct us_StrongResult {
+  int strong;          /* 1 yes, 0 no, -1 undecided */
+  us_StrongMethod method; /* the one that answered */
+  char note[160];      /* how it was decided, or why undecided */
+  long nodes;          /* LPs (enumeration) or branch-and-bound nodes (MIP) */
+  double power;        /* best normalized gravity power found (>= 0) */
+  double bound;        /* proven upper bound on it (yes: <= tol) */
+  double seconds;
+  /* the witness motion (strong == 0 and has_witness): accelerations of the
+     present movable bodies (ax, ay, alpha in m/s^2, rad/s^2; 3D unused),
+     and per active contact its index in s->contacts, force (f_n, f_t in
+     newtons) and mode */
+  int has_witness;
+  int nbody, *body;
+  double *accel;       /* [nbody * 3] */
+  int ncontact, *contact;
+  double *force;       /* [ncontact * 2] */
+  us_ContactMode *mode;/* [ncontact] */
+} us_StrongResult;
+US_API void us_strong_result_free(us_StrongResult *r);
+
+/* Decide strong stability of sub-assembly `present` (NULL: every movable
+ * body) of a 2D structure. Outcomes in out; errors: bad arguments or a 3D
+ * structure (US_ERR_USAGE), memory, a solver failure. err may be NULL. */
+US_API us_Status us_strong_stability(const us_Structure *s, const us_Bitset *present,
+                                     const us_StrongSettings *set, us_StrongResult *out,
+                                     us_Error *err);
+
+/* The independent check of a witness motion (no solver): Newton-Euler on
+ * every body (m a = m g + sum of contact forces, I alpha = their torques),
+ * the contact accelerations computed from the body accelerations, normal
+ * complementarity, the Coulomb cone, sliding friction against the slip,
+ * and gravity power above tol (relative to the weight and |g|). 1 when it
+ * passes, else 0 with the first failure in why (may be NULL). */
+US_API int us_strong_check(const us_Structure *s, const us_Bitset *present,
+                           const us_StrongResult *w, double tol, char *why, size_t why_size);
+
 /* Classification (src/plan/classify.c, docs/classify.md): the classes of
  * the research proposal, each decided exactly by the library's own tests
  * and searches, with its evidence:
@@ -127,7 +195,8 @@ US_API us_Status us_critical_friction(const us_Structure *s, const us_Bitset *pr
  *      no K at all exactly when the full structure does not stand
  *      (the searches of 3-5 stop at time_limit: the class is then unknown);
  *   6. frictionless, strong and weak stability coincide (Gauss's principle,
- *      docs/classify.md): reported, not computed;
+ *      docs/classify.md); with friction, strong stability is decided by
+ *      us_strong_stability (yes / no with a witness motion / undecided);
  *   7. needs buttressing: no sequence (4), and the smallest number of
  *      hands holding bodies still that builds it (plan --hands auto),
  *      proven or bounded;
@@ -140,6 +209,11 @@ typedef struct us_ClassifySettings {
   double time_limit;       /* seconds for each search of classes 3-5 (default
                               60; <= 0: none): past it a class is unknown */
   double count_time_limit; /* seconds for the count (default 2; <= 0: none) */
+  int strong;              /* 6. decide strong stability with friction (default
+                              0: not asked; the CLI asks) */
+  us_StrongSettings strong_settings; /* its method and budgets (default
+                              us_strong_default_settings; its time limit is
+                              capped by time_limit) */
 } us_ClassifySettings;
 US_API us_ClassifySettings us_classify_default_settings(void);
 
@@ -223,6 +297,14 @@ typedef struct us_Classification {
   int equality, stands_bilateral;
   int bilateral_body, bilateral_loose, bilateral_mechanism;
   double t_equality;
+  /* 6. strong stability with friction (us_strong_stability): strong 1 yes
+     (a proof: frictionless and standing, Gauss's principle; or the search),
+     0 no (does not stand, or a checked witness motion in strong_result),
+     -1 undecided (strong_result.note says why; 3D is not decided), -2 not
+     asked */
+  int strong;
+  us_StrongResult strong_result;
+  double t_strong;
 } us_Classification;
 
 /* Classify structure s (finalized). set NULL: the defaults. Every class is

@@ -46,7 +46,11 @@
  *   6. frictionless, strong stability (every solution of the contact LCP
  *      has zero accelerations) and weak stability (some has) coincide:
  *      docs/classify.md gives the proof (Gauss's principle of least
- *      constraint); reported when class 2 says frictionless.
+ *      constraint); reported when class 2 says frictionless. A structure
+ *      that stands frictionless is strongly stable with any friction too
+ *      (same docs), and one that does not stand is not; otherwise
+ *      us_strong_stability decides (src/analysis/strong.c) within the
+ *      time limit, a "no" carrying its checked witness motion.
  * Undecided tests (us_Verdict US_UNDECIDED) never decide a class: the
  * stands class says undecided; the friction bisection takes them as not
  * standing (its mu* stays a certified upper bound) and counts them; the
@@ -66,6 +70,7 @@
 #include "hook.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #define US_CLASSIFY_MAX_TESTS 20000 /* default limit of the top-down probe */
@@ -79,6 +84,8 @@ us_ClassifySettings us_classify_default_settings(void) {
   c.max_tests = US_CLASSIFY_MAX_TESTS;
   c.time_limit = US_CLASSIFY_TIME;
   c.count_time_limit = US_CLASSIFY_COUNT_TIME;
+  c.strong = 0; /* opt-in: its search can take its whole budget (arches) */
+  c.strong_settings = us_strong_default_settings();
   return c;
 }
 
@@ -91,12 +98,14 @@ static void reset(us_Classification *c) {
   c->count_status = US_COUNT_REFUSED_TIME;
   c->stands_bilateral = -1;
   c->bilateral_body = -1;
+  c->strong = -2;
 }
 
 void us_classification_free(us_Classification *c) {
   if (!c) return;
   us_free(c->blocked);
   us_free(c->count);
+  us_strong_result_free(&c->strong_result);
   reset(c);
 }
 
@@ -148,6 +157,33 @@ static us_Status classify_friction(const us_Structure *s, const us_ClassifySetti
   }
   us_friction_result_free(&fr);
   return st;
+}
+
+/* ------------------------------------------------- 6. strong stability */
+
+/* Frictionless and standing: strong by the theorem; not standing: not
+ * strong; undecided stands: undecided; else the search, within the time
+ * limit. */
+static us_Status classify_strong(const us_Structure *s, const us_ClassifySettings *set,
+                                 us_Classification *out, us_Error *err) {
+  if (!set->strong) return US_OK;
+  us_StrongResult *r = &out->strong_result;
+  const char *why = s->dim != 2           ? "decided in 2D only"
+                    : out->stands_undecided ? "the stands test was undecided"
+                                            : NULL;
+  out->strong = out->stands_frictionless ? 1 : !out->stands && !why ? 0 : -1;
+  if (out->stands_frictionless) why = "frictionless: strong = weak (Gauss's principle)";
+  else if (!out->stands && !why) why = "does not stand (weak stability fails)";
+  if (why || !out->stands) {
+    snprintf(r->note, sizeof r->note, "%s", why);
+    return US_OK;
+  }
+  us_StrongSettings st = set->strong_settings;
+  if (set->time_limit > 0 && !(st.time_limit > 0 && st.time_limit < set->time_limit))
+    st.time_limit = set->time_limit;
+  us_Status rc = us_strong_stability(s, NULL, &st, r, err);
+  if (rc == US_OK) out->strong = r->strong;
+  return rc;
 }
 
 /* ------------------------------------------------- 3. top-down (plain DFS) */
@@ -359,7 +395,8 @@ us_Status us_classify(const us_Structure *s, const us_ClassifySettings *set,
   } steps[] = {{classify_stands, &out->t_stands},     {classify_friction, &out->t_friction},
                {classify_topdown, &out->t_topdown},   {classify_sequence, &out->t_sequence},
                {classify_group, &out->t_group},       {classify_hands, &out->t_hands},
-               {classify_equality, &out->t_equality}, {classify_count, &out->t_count}};
+               {classify_equality, &out->t_equality}, {classify_count, &out->t_count},
+               {classify_strong, &out->t_strong}};
   double t0 = us_now();
   out->nbody = us_structure_movable_count(s);
   for (size_t k = 0; k < sizeof steps / sizeof steps[0] && !st; k++) {
