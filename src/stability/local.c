@@ -406,10 +406,11 @@ static int supports(const us_Local *L, const us_Contact *k, int u) {
   return (u == k->b ? d : -d) > SUPPORT_COS;
 }
 
-/* Level 1: the supporters under the footprint, followed down (BFS). */
-static void grow_supporters(us_Local *L, const us_Bitset *cur) {
+/* The supporters under the footprint of the region's bodies from index
+ * q0 on, followed down (BFS: the bodies found join the scan). */
+static void grow_supporters_from(us_Local *L, const us_Bitset *cur, int q0) {
   const us_Structure *s = L->s;
-  for (int q = 0; q < L->nreg; q++) {
+  for (int q = q0; q < L->nreg; q++) {
     int u = L->reg[q];
     for (int m = L->inc_start[u]; m < L->inc_start[u + 1]; m++) {
       const us_Contact *k = &s->contacts[L->inc[m]];
@@ -419,6 +420,33 @@ static void grow_supporters(us_Local *L, const us_Bitset *cur) {
       region_add(L, v);
     }
   }
+}
+
+/* Level 1: the supporters under the footprint, followed down. */
+static void grow_supporters(us_Local *L, const us_Bitset *cur) { grow_supporters_from(L, cur, 0); }
+
+/* Level 1b, the counterweights' load path: the present bodies resting on
+ * a seed (a counterweight pressing on an added cantilever can only hold it
+ * by taking load off its own supports), and their supporters under their
+ * own footprint, followed down: where the load the counterweight moves
+ * leaves and where it arrives. The number of bodies added. */
+static int grow_pressers(us_Local *L, const us_Bitset *cur, int nseed) {
+  const us_Structure *s = L->s;
+  int before = L->nreg;
+  foot_set(L, INFINITY, -INFINITY);
+  for (int q = 0; q < nseed; q++) {
+    int u = L->reg[q];
+    for (int m = L->inc_start[u]; m < L->inc_start[u + 1]; m++) {
+      const us_Contact *k = &s->contacts[L->inc[m]];
+      int v = k->a == u ? k->b : k->a;
+      if (v < 0 || !us_bitset_get(cur, v) || !supports(L, k, v)) continue;
+      widen_foot(L, v);
+      if (!L->in_r[v]) region_add(L, v);
+    }
+  }
+  if (L->nreg == before) return 0;
+  grow_supporters_from(L, cur, before);
+  return L->nreg - before;
 }
 
 /* One ring of present neighbours; the number of bodies added. */
@@ -664,7 +692,7 @@ static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityR
     if (L->seed_tries >= 256) L->seed_tries /= 2, L->seed_hits /= 2; /* recent history */
     if (r) return r < 0 ? -1 : settle(L, US_LOCAL_UNSTABLE, info);
   }
-  int nseed = seeded ? L->nreg : -1;
+  int nseed = seeded ? L->nreg : -1, nfirst = L->nreg, pressed = 0;
   grow_supporters(L, cur);
   /* regions the small solver takes whole are never handed back early */
   int closed = 0, coned = 0, limit = US_MAX((int)(LOCAL_GLOBAL_SHARE * size), US_SMALL_ROWS / L->eq.nw);
@@ -679,6 +707,10 @@ static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityR
     /* closed: both LPs were the exact test of R's components, and neither
      * decided (a re-check failed, or the solver gave up) */
     if (closed) return US_LOCAL_GLOBAL;
+    if (!pressed) { /* level 1b: the counterweights' load path */
+      pressed = 1;
+      if (grow_pressers(L, cur, nfirst)) continue;
+    }
     if (!coned) { /* level 2: every supporter of R, followed down */
       coned = 1;
       int before = L->nreg;
