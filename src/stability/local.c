@@ -23,6 +23,9 @@
  *             (bodies below a seed whose horizontal extent overlaps the
  *             changed bodies', followed down to the ground): the path the
  *             weight of the change takes;
+ *   level 1b: the bodies resting on a seed (a counterweight on an added
+ *             cantilever) and their supporters under their own footprint,
+ *             followed down: the path of the load the counterweight moves;
  *   level 2:  every supporter of R, followed down (the load's cone);
  *   level k:  rings of neighbours, until R at least doubled;
  * at each level the fixed LP (feasible: stable) and the support LP
