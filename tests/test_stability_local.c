@@ -26,7 +26,7 @@ static void flip(us_Bitset *b, int i) { b->w[i >> 6] ^= (uint64_t)1 << (i & 63);
 #endif
 
 typedef struct Tally {
-  long tests, stable, unstable, local, mech, plumb;
+  long tests, stable, unstable, local, mech, plumb, lever;
 } Tally;
 
 /* Test `node` with both workspaces: 0 if the verdicts agree and the
@@ -37,6 +37,7 @@ static int compare(us_Stability *loc, us_Stability *glob, const us_Structure *s,
   us_Error err;
   long before = us_stability_info(loc)->local_stable + us_stability_info(loc)->local_unstable;
   long plumbed = us_stability_info(loc)->local_plumb;
+  long levered = us_stability_info(loc)->local_lever;
   if (us_stability_test(loc, node, rl, &err) || us_stability_test(glob, node, rg, &err)) {
     fprintf(stderr, "test error: %s\n", err.msg);
     return -1;
@@ -46,6 +47,7 @@ static int compare(us_Stability *loc, us_Stability *glob, const us_Structure *s,
   t->tests++;
   t->local += was_local;
   t->plumb += us_stability_info(loc)->local_plumb - plumbed;
+  t->lever += us_stability_info(loc)->local_lever - levered;
   if (rl->verdict != rg->verdict || rl->verdict == US_UNDECIDED) {
     fprintf(stderr, "%d bodies: local %s (%s), full %s (%s)\n", us_bitset_count(node),
             us_verdict_name(rl->verdict), rl->note, us_verdict_name(rg->verdict), rg->note);
@@ -185,8 +187,8 @@ static us_Structure *gen(int kind, double mu, int size, unsigned long seed) {
 
 static void report(const char *what, const Tally *t) {
   fprintf(stderr, "%s: %ld sub-assemblies (%ld stable, %ld unstable), %ld settled locally, "
-                  "%ld by plumb lines, %ld mechanisms checked\n",
-          what, t->tests, t->stable, t->unstable, t->local, t->plumb, t->mech);
+                  "%ld by plumb lines, %ld by levers, %ld mechanisms checked\n",
+          what, t->tests, t->stable, t->unstable, t->local, t->plumb, t->lever, t->mech);
 }
 
 /* ------------------------------------------------------------------ cases */
@@ -356,6 +358,7 @@ static void stacker_assembly_agrees(void) {
   CHECK(t.stable > t.tests / 4 && t.unstable > 0);
   CHECK(t.local > t.tests / 2);
   CHECK(t.mech > 0);
+  CHECK(t.lever > 0); /* the levers took part in the agreement */
 }
 
 /* Local tests off, on, and the planner: the same plans. */

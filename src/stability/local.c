@@ -669,6 +669,30 @@ static int try_plumb(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
   return 1;
 }
 
+/* The lever of one added cantilever held by a body resting on it (plumb.h,
+ * us_plumb_lever), after the pending loads went down (its release reads
+ * fbase): the changed bodies re-checked by the independent check, as a
+ * region's. 1 stable, 0 not proven (fbase unchanged), -1 OOM. */
+static int try_lever(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
+                     us_StabilityInfo *info, us_Error *err) {
+  if (L->touching || L->nadd != 1) return 0;
+  us_Plumb *p = &L->plumb;
+  int r = us_plumb_lever(p, cur, L->added[0], L->fbase);
+  if (r < 0) return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)"), -1;
+  if (r == 0) return 0;
+  us_certificate_check_bodies(L->s, cur, p->path, p->npath, L->inc_start, L->inc, L->fbase,
+                              L->mass, L->set.cert_tol, &res->check);
+  if (!res->check.ok) {
+    us_plumb_undo(p, L->fbase);
+    return 0;
+  }
+  res->verdict = US_STABLE;
+  snprintf(res->note, sizeof res->note, "local: a lever (%d bodies), the rest unchanged",
+           p->npath);
+  info->local_lever++;
+  return 1;
+}
+
 /* The pending plumb loads into fbase (B's certificate made explicit). */
 static int materialize(us_Local *L, us_Error *err) {
   if (us_plumb_materialize(&L->plumb, L->fbase))
@@ -700,7 +724,7 @@ static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityR
   /* regions the small solver takes whole are never handed back early */
   int closed = 0, coned = 0, limit = US_MAX((int)(LOCAL_GLOBAL_SHARE * size), US_SMALL_ROWS / L->eq.nw);
   for (;;) {
-    if (L->nreg > limit && !closed) return US_LOCAL_GLOBAL;
+      if (L->nreg > limit && !closed) return US_LOCAL_GLOBAL;
     r = try_fixed(L, cur, res, info, err);
     if (r) return r < 0 ? -1 : settle(L, US_LOCAL_STABLE, info);
     if (L->nreg > nseed) { /* R = D had its support LP already */
@@ -759,6 +783,8 @@ int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
     if (r > 0) r = settle_n(US_LOCAL_STABLE, L->nadd, info);
   } else if (materialize(L, err)) {
     r = -1;
+  } else if ((r = try_lever(L, cur, res, info, err)) != 0) {
+    if (r > 0) r = settle_n(US_LOCAL_STABLE, L->plumb.npath, info);
   } else if (L->nreg > 16 + (size = size >= 0 ? size : us_bitset_count(cur)) / 8) {
     r = US_LOCAL_GLOBAL;
   } else {
