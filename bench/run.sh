@@ -20,6 +20,9 @@
 #   scaling.csv   walls and pyramids from 100 to 100,000 blocks, the
 #                 stacker's random stacks from 100 to about 9,000: plan and verify time, tests, peak memory,
 #                 and the fitted exponent from 1,000 blocks up;
+#   decisions.csv per scaling workload, the default plan's tests settled
+#                 by plumb lines, by levers, by region LPs (with the region
+#                 sizes) and by the full system;
 #   hands-*.csv   plan --hands auto on arches of 6 to 30 voussoirs and the
 #                 default dome (bench/hands.sh): H, proven or not, time;
 #   batch-*.csv   unstack batch on 400 small structures (1 and 2 jobs, MPI,
@@ -58,6 +61,7 @@ plan_row() {
   rss=$(sed -n 's/^RSS \([0-9]*\)/\1/p' "$log")
   [ -n "$total" ] || status=timeout
   echo "${status:-error} ${tests:-0} ${total:-nan} ${rss:-0}"
+  cp "$log" "$W/last-plan.log"
   cat "$log" >>"$W/all-plans.log"
 }
 
@@ -268,6 +272,8 @@ say ""
 say "## Scaling: whole plan (and verify) time against the number of blocks"
 say ""
 echo "family,bodies,method,status,tests,plan_s,verify_s,rss_kb" >"$SC"
+DC=$OUT/decisions-$tag.csv
+echo "family,bodies,local_tests,plumb_pct,lever_pct,region_pct,full_pct,region_lps,mean_region,settled_by_region_size" >"$DC"
 if [ "$QUICK" = 1 ]; then
   walls="10 17 32"; pyrs="14 24 45"; stacks="18:12"
 else
@@ -288,6 +294,17 @@ scale_row() { # family file method-words max-bodies
   local label
   label=$(echo "$m" | sed 's/--method //; s/ --local off/-nolocal/')
   echo "$fam,$n,$label,$status,$tests,$total,$vt,$rss" | tee -a "$SC"
+  [ "$label" = auto ] && decision_row "$fam" "$n" "$W/last-plan.log"
+}
+# Who decided the local tests of a plan (its --stats log): shares of the
+# tests settled by plumb lines, by region LPs (stable or unstable, with the
+# region sizes' histogram) and by the full system (docs/local.md).
+decision_row() { # family bodies log
+  sed -n 's/.*local tests: \([0-9]*\) stable (\([0-9]*\) by plumb lines, \([0-9]*\) by levers), \([0-9]*\) unstable, \([0-9]*\) on the full system; \([0-9]*\) region LPs, mean region \([0-9.]*\) bodies.*/\1 \2 \3 \4 \5 \6 \7/p' "$3" |
+    awk -v fam="$1" -v n="$2" -v sizes="$(sed -n 's/.*settled by region size: //p' "$3" | tr ',' ';')" \
+      '{t = $1 + $4 + $5; if (t == 0) next
+        printf "%s,%s,%d,%.2f,%.2f,%.2f,%.2f,%d,%s,%s\n", fam, n, t, 100 * $2 / t, 100 * $3 / t,
+          100 * ($1 - $2 - $3 + $4) / t, 100 * $5 / t, $6, $7, sizes}' >>"$DC"
 }
 # One regular family: generate each size, then the methods that reach it
 # (lcp-reuse up to lcp_cap bodies, lpsolve up to 350).
@@ -326,6 +343,12 @@ say ""
 say "| family | blocks | method | status | tests | plan s | verify s | max RSS MiB |"
 say "|---|---|---|---|---|---|---|---|"
 tail -n +2 "$SC" | awk -F, '{printf "| %s | %s | %s | %s | %s | %s | %s | %.0f |\n", $1, $2, $3, $4, $5, $6, $7, $8 / 1024}' | tee -a "$MD"
+say ""
+say "Who decided the stability tests of the default plan ($(basename "$DC")): plumb lines, levers, region LPs (stable or unstable; the share settled at each region size) and the full system:"
+say ""
+say "| family | blocks | tests | plumb lines % | levers % | regions % | full system % | region LPs | mean region | settled by region size |"
+say "|---|---|---|---|---|---|---|---|---|---|"
+tail -n +2 "$DC" | awk -F, '{printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6, $7, $8, $9, $10}' | tee -a "$MD"
 if [ "$QUICK" != 1 ]; then # about 5 minutes: the full run only
   say ""
   say "## LP fallbacks of the LCP backends"

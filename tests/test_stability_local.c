@@ -26,7 +26,7 @@ static void flip(us_Bitset *b, int i) { b->w[i >> 6] ^= (uint64_t)1 << (i & 63);
 #endif
 
 typedef struct Tally {
-  long tests, stable, unstable, local, mech, plumb;
+  long tests, stable, unstable, local, mech, plumb, lever;
 } Tally;
 
 /* Test `node` with both workspaces: 0 if the verdicts agree and the
@@ -37,6 +37,7 @@ static int compare(us_Stability *loc, us_Stability *glob, const us_Structure *s,
   us_Error err;
   long before = us_stability_info(loc)->local_stable + us_stability_info(loc)->local_unstable;
   long plumbed = us_stability_info(loc)->local_plumb;
+  long levered = us_stability_info(loc)->local_lever;
   if (us_stability_test(loc, node, rl, &err) || us_stability_test(glob, node, rg, &err)) {
     fprintf(stderr, "test error: %s\n", err.msg);
     return -1;
@@ -46,6 +47,7 @@ static int compare(us_Stability *loc, us_Stability *glob, const us_Structure *s,
   t->tests++;
   t->local += was_local;
   t->plumb += us_stability_info(loc)->local_plumb - plumbed;
+  t->lever += us_stability_info(loc)->local_lever - levered;
   if (rl->verdict != rg->verdict || rl->verdict == US_UNDECIDED) {
     fprintf(stderr, "%d bodies: local %s (%s), full %s (%s)\n", us_bitset_count(node),
             us_verdict_name(rl->verdict), rl->note, us_verdict_name(rg->verdict), rg->note);
@@ -185,8 +187,8 @@ static us_Structure *gen(int kind, double mu, int size, unsigned long seed) {
 
 static void report(const char *what, const Tally *t) {
   fprintf(stderr, "%s: %ld sub-assemblies (%ld stable, %ld unstable), %ld settled locally, "
-                  "%ld by plumb lines, %ld mechanisms checked\n",
-          what, t->tests, t->stable, t->unstable, t->local, t->plumb, t->mech);
+                  "%ld by plumb lines, %ld by levers, %ld mechanisms checked\n",
+          what, t->tests, t->stable, t->unstable, t->local, t->plumb, t->lever, t->mech);
 }
 
 /* ------------------------------------------------------------------ cases */
@@ -315,6 +317,50 @@ static void mechanism_check_rejects(void) {
   us_structure_free(s);
 }
 
+/* The planner's pattern on the stacker's stacks: build in the reverse of
+ * a plan's removal order (found with local tests off), and before each
+ * placement also try the next few bodies of the order on their own, as the
+ * greedy assembly does (a cantilever before its counterweight falls; one
+ * after it is held only through the counterweight's load path, level 1b
+ * of the regions). Every test through both workspaces. */
+static int assembly_replay(us_Structure *s, Tally *t) {
+  us_PlanSettings ps = us_plan_default_settings();
+  ps.stability.local = -1;
+  us_Plan plan;
+  us_Error err;
+  if (!s || us_plan(s, &ps, &plan, &err)) return -1;
+  Pair p;
+  us_Bitset node = {0};
+  int bad = plan.status != US_PLAN_FOUND || pair_open(s, &p) || us_bitset_init(&node, s->nbody);
+  for (int k = plan.nsteps - 1; k >= 0 && !bad; k--) {
+    for (int j = k - 1; j >= 0 && j >= k - 3 && !bad; j--) { /* ahead of time */
+      flip(&node, plan.order[j]);
+      bad = pair_compare(&p, s, &node, t) != 0;
+      flip(&node, plan.order[j]);
+    }
+    flip(&node, plan.order[k]);
+    if (!bad) bad = pair_compare(&p, s, &node, t) != 0;
+  }
+  us_bitset_free(&node);
+  pair_close(&p);
+  us_plan_free(&plan);
+  us_structure_free(s);
+  return bad ? -1 : 0;
+}
+
+static void stacker_assembly_agrees(void) {
+  Tally t = {0};
+  static const double mus[] = {0.0, 0.5};
+  for (int m = 0; m < 2; m++)
+    for (unsigned long seed = 1; seed <= 3; seed++)
+      CHECK_INT(assembly_replay(walk_generated(3, mus[m], 14, seed, 0, 6), &t), ==, 0);
+  report("stacker assembly", &t);
+  CHECK(t.stable > t.tests / 4 && t.unstable > 0);
+  CHECK(t.local > t.tests / 2);
+  CHECK(t.mech > 0);
+  CHECK(t.lever > 0); /* the levers took part in the agreement */
+}
+
 /* Local tests off, on, and the planner: the same plans. */
 static void plans_agree(void) {
   for (int kind = 0; kind < 4; kind++) {
@@ -339,4 +385,5 @@ static void plans_agree(void) {
 
 US_TEST_MAIN({"generators_agree", generators_agree}, {"random_piles_agree", random_piles_agree},
              {"global_instability_decided", global_instability_decided},
-             {"mechanism_check_rejects", mechanism_check_rejects}, {"plans_agree", plans_agree})
+             {"mechanism_check_rejects", mechanism_check_rejects}, {"plans_agree", plans_agree},
+             {"stacker_assembly_agrees", stacker_assembly_agrees})

@@ -417,6 +417,8 @@ typedef struct us_StabilityInfo {
   long local_settled[US_LOCAL_BUCKETS]; /* tests settled by a region of
                             2^k .. 2^(k+1) - 1 bodies (bucket 0: 0 or 1) */
   long local_plumb;      /* of local_stable: proven by plumb lines, no LP */
+  long local_lever;      /* of local_stable: proven by a lever (a cantilever held
+                            by its counterweight), no LP */
   long cone_lemke;       /* LCP tests settled by the cone LCP's Lemke fallback */
   long cone_lemke_failed; /* Lemke fallbacks that did not settle (to the LP) */
   long cone3_outer;      /* 3D: tests whose inner-polygon LP was infeasible, so

@@ -23,6 +23,9 @@
  *             (bodies below a seed whose horizontal extent overlaps the
  *             changed bodies', followed down to the ground): the path the
  *             weight of the change takes;
+ *   level 1b: the bodies resting on a seed (a counterweight on an added
+ *             cantilever) and their supporters under their own footprint,
+ *             followed down: the path of the load the counterweight moves;
  *   level 2:  every supporter of R, followed down (the load's cone);
  *   level k:  rings of neighbours, until R at least doubled;
  * at each level the fixed LP (feasible: stable) and the support LP
@@ -406,10 +409,11 @@ static int supports(const us_Local *L, const us_Contact *k, int u) {
   return (u == k->b ? d : -d) > SUPPORT_COS;
 }
 
-/* Level 1: the supporters under the footprint, followed down (BFS). */
-static void grow_supporters(us_Local *L, const us_Bitset *cur) {
+/* The supporters under the footprint of the region's bodies from index
+ * q0 on, followed down (BFS: the bodies found join the scan). */
+static void grow_supporters_from(us_Local *L, const us_Bitset *cur, int q0) {
   const us_Structure *s = L->s;
-  for (int q = 0; q < L->nreg; q++) {
+  for (int q = q0; q < L->nreg; q++) {
     int u = L->reg[q];
     for (int m = L->inc_start[u]; m < L->inc_start[u + 1]; m++) {
       const us_Contact *k = &s->contacts[L->inc[m]];
@@ -419,6 +423,33 @@ static void grow_supporters(us_Local *L, const us_Bitset *cur) {
       region_add(L, v);
     }
   }
+}
+
+/* Level 1: the supporters under the footprint, followed down. */
+static void grow_supporters(us_Local *L, const us_Bitset *cur) { grow_supporters_from(L, cur, 0); }
+
+/* Level 1b, the counterweights' load path: the present bodies resting on
+ * a seed (a counterweight pressing on an added cantilever can only hold it
+ * by taking load off its own supports), and their supporters under their
+ * own footprint, followed down: where the load the counterweight moves
+ * leaves and where it arrives. The number of bodies added. */
+static int grow_pressers(us_Local *L, const us_Bitset *cur, int nseed) {
+  const us_Structure *s = L->s;
+  int before = L->nreg;
+  foot_set(L, INFINITY, -INFINITY);
+  for (int q = 0; q < nseed; q++) {
+    int u = L->reg[q];
+    for (int m = L->inc_start[u]; m < L->inc_start[u + 1]; m++) {
+      const us_Contact *k = &s->contacts[L->inc[m]];
+      int v = k->a == u ? k->b : k->a;
+      if (v < 0 || !us_bitset_get(cur, v) || !supports(L, k, v)) continue;
+      widen_foot(L, v);
+      if (!L->in_r[v]) region_add(L, v);
+    }
+  }
+  if (L->nreg == before) return 0;
+  grow_supporters_from(L, cur, before);
+  return L->nreg - before;
 }
 
 /* One ring of present neighbours; the number of bodies added. */
@@ -638,6 +669,30 @@ static int try_plumb(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
   return 1;
 }
 
+/* The lever of one added cantilever held by a body resting on it (plumb.h,
+ * us_plumb_lever), after the pending loads went down (its release reads
+ * fbase): the changed bodies re-checked by the independent check, as a
+ * region's. 1 stable, 0 not proven (fbase unchanged), -1 OOM. */
+static int try_lever(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
+                     us_StabilityInfo *info, us_Error *err) {
+  if (L->touching || L->nadd != 1) return 0;
+  us_Plumb *p = &L->plumb;
+  int r = us_plumb_lever(p, cur, L->added[0], L->fbase);
+  if (r < 0) return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)"), -1;
+  if (r == 0) return 0;
+  us_certificate_check_bodies(L->s, cur, p->path, p->npath, L->inc_start, L->inc, L->fbase,
+                              L->mass, L->set.cert_tol, &res->check);
+  if (!res->check.ok) {
+    us_plumb_undo(p, L->fbase);
+    return 0;
+  }
+  res->verdict = US_STABLE;
+  snprintf(res->note, sizeof res->note, "local: a lever (%d bodies), the rest unchanged",
+           p->npath);
+  info->local_lever++;
+  return 1;
+}
+
 /* The pending plumb loads into fbase (B's certificate made explicit). */
 static int materialize(us_Local *L, us_Error *err) {
   if (us_plumb_materialize(&L->plumb, L->fbase))
@@ -664,12 +719,12 @@ static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityR
     if (L->seed_tries >= 256) L->seed_tries /= 2, L->seed_hits /= 2; /* recent history */
     if (r) return r < 0 ? -1 : settle(L, US_LOCAL_UNSTABLE, info);
   }
-  int nseed = seeded ? L->nreg : -1;
+  int nseed = seeded ? L->nreg : -1, nfirst = L->nreg, pressed = 0;
   grow_supporters(L, cur);
   /* regions the small solver takes whole are never handed back early */
   int closed = 0, coned = 0, limit = US_MAX((int)(LOCAL_GLOBAL_SHARE * size), US_SMALL_ROWS / L->eq.nw);
   for (;;) {
-    if (L->nreg > limit && !closed) return US_LOCAL_GLOBAL;
+      if (L->nreg > limit && !closed) return US_LOCAL_GLOBAL;
     r = try_fixed(L, cur, res, info, err);
     if (r) return r < 0 ? -1 : settle(L, US_LOCAL_STABLE, info);
     if (L->nreg > nseed) { /* R = D had its support LP already */
@@ -679,6 +734,10 @@ static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityR
     /* closed: both LPs were the exact test of R's components, and neither
      * decided (a re-check failed, or the solver gave up) */
     if (closed) return US_LOCAL_GLOBAL;
+    if (!pressed) { /* level 1b: the counterweights' load path */
+      pressed = 1;
+      if (grow_pressers(L, cur, nfirst)) continue;
+    }
     if (!coned) { /* level 2: every supporter of R, followed down */
       coned = 1;
       int before = L->nreg;
@@ -724,6 +783,8 @@ int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
     if (r > 0) r = settle_n(US_LOCAL_STABLE, L->nadd, info);
   } else if (materialize(L, err)) {
     r = -1;
+  } else if ((r = try_lever(L, cur, res, info, err)) != 0) {
+    if (r > 0) r = settle_n(US_LOCAL_STABLE, L->plumb.npath, info);
   } else if (L->nreg > 16 + (size = size >= 0 ? size : us_bitset_count(cur)) / 8) {
     r = US_LOCAL_GLOBAL;
   } else {

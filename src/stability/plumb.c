@@ -390,6 +390,188 @@ int us_plumb_route(us_Plumb *p, const us_Bitset *cur, const int *added, int nadd
   return 1;
 }
 
+/* ------------------------------------------------------------ levers */
+
+/* Support point m of u usable by a lever's lines: its body below present
+ * and not the cantilever itself (skip). */
+static int usable(const us_Plumb *p, const us_Bitset *cur, int m, int skip) {
+  int v = p->sup[m].below;
+  return (skip < 0 || v != skip) && present(p, cur, v);
+}
+
+/* The far point of an extended lever rule for a load on u at c beyond its
+ * point `near`: the usable point on the other side of near, at least tol
+ * away, whose normal force is largest after its share is taken off (or
+ * put on); -1 if none. */
+static int release_point(const us_Plumb *p, const us_Bitset *cur, int skip, int u, double c,
+                         int near, double load, const double *f, double tol) {
+  double sn = p->sup[near].pos[0], best_left = -INFINITY;
+  int best = -1;
+  size_t dim = (size_t)p->s->dim;
+  for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++) {
+    double x = p->sup[m].pos[0];
+    if (!usable(p, cur, m, skip) || !(fabs(x - sn) > tol) || (x - sn) * (c - sn) > 0) continue;
+    double share = (c - sn) / (x - sn), d[3]; /* x's share of the load (< 0) */
+    components(p, &p->s->contacts[p->sup[m].contact], u, share * load, d);
+    double left = f[dim * (size_t)p->sup[m].contact] + d[0];
+    if (left > best_left) best_left = left, best = m;
+  }
+  return best;
+}
+
+/* 2D hop of a signed load on u at c, not resting on skip: a point on the
+ * line takes it all; else the nearest points on either side (lever rule);
+ * else (c beyond u's points) the two outermost points, by the
+ * same rule extended (one share negative: part of the load the far point
+ * carries already is taken off it; the caller's check decides whether it
+ * had that much). 1 found, 0 none. */
+static int hop_signed(const us_Plumb *p, const us_Bitset *cur, int skip, int u, const double c[2],
+                      double load, const double *f, Hop *h) {
+  double tol = AT_POINT * p->width[u];
+  int best[2] = {-1, -1}, lo = -1, hi = -1;
+  for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++) {
+    if (!usable(p, cur, m, skip)) continue;
+    double x = p->sup[m].pos[0];
+    if (fabs(x - c[0]) <= tol) {
+      h->n = 1;
+      hop_point(p, h, 0, m, 1.0);
+      return 1;
+    }
+    int side = x > c[0];
+    if (best[side] < 0 || (side ? x < p->sup[best[1]].pos[0] : x > p->sup[best[0]].pos[0]))
+      best[side] = m;
+    if (lo < 0 || x < p->sup[lo].pos[0]) lo = m;
+    if (hi < 0 || x > p->sup[hi].pos[0]) hi = m;
+  }
+  if (best[0] < 0 || best[1] < 0) { /* c outside the points: the rule extended */
+    if (lo < 0 || !(p->sup[hi].pos[0] - p->sup[lo].pos[0] > tol)) return 0;
+    int near = best[0] < 0 ? lo : hi, far = release_point(p, cur, skip, u, c[0], near, load, f, tol);
+    if (far < 0) return 0;
+    best[0] = p->sup[far].pos[0] < p->sup[near].pos[0] ? far : near;
+    best[1] = best[0] == far ? near : far;
+  }
+  double s1 = p->sup[best[0]].pos[0], s2 = p->sup[best[1]].pos[0], w1 = (c[0] - s1) / (s2 - s1);
+  h->n = 2;
+  hop_point(p, h, 0, best[0], 1.0 - w1);
+  hop_point(p, h, 1, best[1], w1);
+  return 1;
+}
+
+/* The lines a signed hop goes on as: as hop_children, shares of any sign
+ * (a body whose shares cancel gets none). */
+static int hop_children_signed(const us_Plumb *p, const Hop *h, const double c[2], int body[3],
+                               double w[3], double at[3][2]) {
+  int n = 0;
+  for (int q = 0; q < h->n; q++) {
+    int v = h->below[q], first = 1;
+    for (int r = 0; r < q; r++) first = first && h->below[r] != v;
+    if (!first || held(p, v)) continue;
+    double sw = 0.0, x = 0.0;
+    for (int r = q; r < h->n; r++)
+      if (h->below[r] == v) sw += h->w[r], x += h->w[r] * h->pos[r][0];
+    if (fabs(sw - 1.0) <= 1e-15) x = c[0]; /* one body: on the line */
+    else if (sw != 0.0) x /= sw;
+    else continue;
+    body[n] = v, w[n] = sw, at[n][0] = x, at[n][1] = 0.0;
+    n++;
+  }
+  return n;
+}
+
+/* Route the stacked lines (signed loads) down, not resting on skip:
+ * 1 routed, 0 no hop or out of budget, -1 OOM. */
+static int route_signed(us_Plumb *p, const us_Bitset *cur, int skip, double *f) {
+  for (int hops = 0; p->nstack > 0; hops++) {
+    if (hops >= PLUMB_HOPS) return 0;
+    us_PlumbLine l = p->stack[--p->nstack];
+    Hop h;
+    if (!hop_signed(p, cur, skip, l.body, l.pos, l.load, f, &h)) return 0;
+    for (int q = 0; q < h.n; q++) {
+      if (add_force(p, h.k[q], l.body, h.w[q] * l.load, f)) return -1;
+    }
+    int body[3];
+    double w[3], at[3][2];
+    for (int j = 0, n = hop_children_signed(p, &h, l.pos, body, w, at); j < n; j++) {
+      mark_body(p, body[j]);
+      if (push_line(p, body[j], at[j], w[j] * l.load)) return -1;
+    }
+  }
+  return 1;
+}
+
+/* Is c within the span of u's present support points? */
+static int within(const us_Plumb *p, const us_Bitset *cur, int u, double c) {
+  double tol = AT_POINT * p->width[u], lo = INFINITY, hi = -INFINITY;
+  for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++)
+    if (present(p, cur, p->sup[m].below))
+      lo = US_MIN(lo, p->sup[m].pos[0]), hi = US_MAX(hi, p->sup[m].pos[0]);
+  return c >= lo - tol && c <= hi + tol;
+}
+
+/* The cantilever's tipping point s (its outermost present support toward
+ * its centre c) and the presser point across it: a point of a present
+ * movable body resting on a, on the other side of s, farthest from it.
+ * 1 found (*ms, *mp: support entries, of a and of the presser), else 0. */
+static int lever_points(const us_Plumb *p, const us_Bitset *cur, int a, double c, int *ms,
+                        int *mp) {
+  double tol = AT_POINT * p->width[a];
+  int lo = -1, hi = -1;
+  for (int m = p->sup_start[a]; m < p->sup_start[a + 1]; m++) {
+    if (!present(p, cur, p->sup[m].below)) continue;
+    if (lo < 0 || p->sup[m].pos[0] < p->sup[lo].pos[0]) lo = m;
+    if (hi < 0 || p->sup[m].pos[0] > p->sup[hi].pos[0]) hi = m;
+  }
+  if (lo < 0) return 0;
+  int right = c > p->sup[hi].pos[0] + tol;
+  if (!right && !(c < p->sup[lo].pos[0] - tol)) return 0; /* not a cantilever */
+  *ms = right ? hi : lo;
+  double sx = p->sup[*ms].pos[0];
+  *mp = -1;
+  for (int j = p->inc_start[a]; j < p->inc_start[a + 1]; j++) {
+    int v = other_side(&p->s->contacts[p->inc[j]], a);
+    if (held(p, v) || !us_bitset_get(cur, v)) continue;
+    for (int m = p->sup_start[v]; m < p->sup_start[v + 1]; m++) {
+      const us_PlumbSupport *q = &p->sup[m];
+      if (q->contact != p->inc[j] || q->below != a) continue;
+      double arm = right ? sx - q->pos[0] : q->pos[0] - sx;
+      if (arm > tol && (*mp < 0 || arm > fabs(sx - p->sup[*mp].pos[0]))) *mp = m;
+    }
+  }
+  return *mp >= 0;
+}
+
+int us_plumb_lever(us_Plumb *p, const us_Bitset *cur, int a, double *f) {
+  for (int q = 0; q < p->npath; q++) p->mark[p->path[q]] = 0;
+  p->npath = 0;
+  p->nlog = 0;
+  p->nstack = 0;
+  if (p->nax != 1) return 0;
+  if (US_GROW(p->path, p->cap_path, p->s->nbody + 1)) return -1;
+  double c[2], w = p->s->bodies[a].mass / p->mass_total;
+  us_plumb_horizontal(p, p->s->bodies[a].com, c);
+  int ms, mp;
+  mark_body(p, a);
+  if (!lever_points(p, cur, a, c[0], &ms, &mp)) { /* a's own line, extended levers below */
+    if (!within(p, cur, a, c[0]))
+      return 0; /* a beyond its supports with nothing on it: it tips */
+    int r = push_line(p, a, c, w) ? -1 : route_signed(p, cur, -1, f);
+    if (r <= 0) us_plumb_undo(p, f);
+    return r;
+  }
+  const us_PlumbSupport *qs = &p->sup[ms], *qp = &p->sup[mp];
+  double load = w * (c[0] - qs->pos[0]) / (qs->pos[0] - qp->pos[0]); /* the presser's push */
+  int d = other_side(&p->s->contacts[qp->contact], a);
+  mark_body(p, d);
+  /* a: up w + load at s, down load at the presser's point (its weight's
+     torque about s balanced); the presser: up load there, and as much
+     released from its other supports at the same point */
+  int r = add_force(p, qp->contact, d, load, f) ? -1 : 1;
+  if (r > 0 && (push_line(p, a, qs->pos, w + load) || push_line(p, d, qp->pos, -load))) r = -1;
+  if (r > 0) r = route_signed(p, cur, a, f);
+  if (r <= 0) us_plumb_undo(p, f);
+  return r;
+}
+
 /* ------------------------------------------------------ lazy routing */
 
 int us_plumb_lazy_valid(const us_Plumb *p, const us_Bitset *cur) {

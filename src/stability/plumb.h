@@ -110,6 +110,18 @@ void us_plumb_horizontal(const us_Plumb *p, const double *x, double out[2]);
  * unchanged; -1: OOM, f unchanged. */
 int us_plumb_route(us_Plumb *p, const us_Bitset *cur, const int *added, int nadd, double *f);
 
+/* The lever (2D, docs/local.md "Levers"): added body a whose centre lies
+ * beyond its outermost support s (a cantilever) and a body d resting on a
+ * across s (its counterweight), at point q: d pushes a down at q with
+ * load = w (c - s) / (s - q), a's line at s carries w + load down, and d
+ * releases load from its other supports at q (a negative line, which may
+ * take a load off a support and put part of it on another; no line rests
+ * on a). Eager, into f (logged: us_plumb_undo takes it back); p->path
+ * lists every body whose forces changed. Nothing is proven here: a
+ * release may leave a contact outside its cone, so the caller re-checks
+ * the path's bodies. 1 routed, 0 no lever or no route (f unchanged), -1
+ * OOM (f unchanged). */
+int us_plumb_lever(us_Plumb *p, const us_Bitset *cur, int a, double *f);
 /* Undo the last successful route (f back to its values before it). */
 void us_plumb_undo(us_Plumb *p, double *f);
 
