@@ -53,6 +53,14 @@
  * already feasible Lemke makes no pivot. A warm run that fails (see
  * below) is repeated cold before CLP is asked. Setup pivots count in
  * info->pivots like Lemke's; info->reused counts warm starts.
+ *
+ * The dimension is a parameter: a body has nw = 3 (2D) or 6 (3D) wrench
+ * rows and a contact up to us_eq_gen_slots(dim) column slots, which size
+ * the remembered keys. In 3D the front end alternates the inner and outer
+ * polygonal cones (docs/cones3d.md) and calls this backend on each, so a
+ * remembered (contact, slot) may name another edge than last time: the
+ * warm start is then a worse guess, never a wrong one (any complementary
+ * start of the skew LCP keeps the argument above).
  */
 #include "lp_lcp.h"
 
@@ -78,7 +86,8 @@ typedef struct LpLcpWs {
   double *x, *ray;            /* [n] solution, [m] Farkas ray */
   int cap_xl, cap_yl, cap_x, cap_ray;
   double deadline;
-  int *xstamp, *ystamp; /* remembered basis: [3 ncontact], [3 nbody + 1] */
+  int nslot, nw;         /* column slots per contact, wrench rows per body */
+  int *xstamp, *ystamp; /* remembered basis: [nslot ncontact + 1], [nw nbody + 1] */
   int stamp, have_basis;
   int nray, last_body;
   void *clp;     /* CLP workspace, created on the first fallback */
@@ -103,10 +112,6 @@ static void lplcp_destroy(void *ws) {
 
 void *us_lp_lcp_create(const us_Structure *s, const us_StabilitySettings *set,
                        const us_LpLcpOptions *opt, us_Error *err) {
-  if (s->dim != 2) { /* its basis keys and the dense tableau's cap are 2D's */
-    us_error_set(err, US_ERR_USAGE, "method lp-lcp supports 2D structures only (use lp or lpsolve)");
-    return NULL;
-  }
   LpLcpWs *w = us_calloc(1, sizeof *w);
   if (w) {
     w->s = s;
@@ -115,8 +120,10 @@ void *us_lp_lcp_create(const us_Structure *s, const us_StabilitySettings *set,
     w->opt = *opt;
     if (w->opt.max_dim <= 0) w->opt.max_dim = US_LP_LCP_MAX_DIM;
     w->last_body = -1;
-    w->xstamp = us_calloc(3 * (size_t)s->ncontact + 1, sizeof(int));
-    w->ystamp = us_calloc(3 * (size_t)s->nbody + 1, sizeof(int));
+    w->nslot = us_eq_gen_slots(s->dim);
+    w->nw = s->dim == 2 ? 3 : 6;
+    w->xstamp = us_calloc((size_t)w->nslot * (size_t)s->ncontact + 1, sizeof(int));
+    w->ystamp = us_calloc((size_t)w->nw * (size_t)s->nbody + 1, sizeof(int));
   }
   if (!w || !w->xstamp || !w->ystamp) {
     lplcp_destroy(w);
@@ -180,11 +187,11 @@ static void fill_tableau(LpLcpWs *w, const us_EqSystem *sys) {
 /* ---------------------------------------------------------------- reuse */
 
 static int x_key(const LpLcpWs *w, const us_EqSystem *sys, int j) {
-  return 3 * sys->contact[w->gen.col_contact[j]] + us_eq_gen_slot(&w->gen, j);
+  return w->nslot * sys->contact[w->gen.col_contact[j]] + us_eq_gen_slot(&w->gen, j);
 }
 
 static int y_key(const LpLcpWs *w, const us_EqSystem *sys, int k) {
-  return k == w->m ? 3 * w->s->nbody : 3 * sys->body[k / 3] + k % 3;
+  return k == w->m ? w->nw * w->s->nbody : w->nw * sys->body[k / w->nw] + k % w->nw;
 }
 
 /* Remember the basic members of z by identity. */
