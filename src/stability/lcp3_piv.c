@@ -38,14 +38,15 @@ int us_lcp3_piv_init(us_Lcp3Piv *q, int n) {
   memset(q, 0, sizeof *q);
   size_t m = (size_t)(n > 0 ? n : 1);
   q->pos = us_malloc(m * sizeof(int));
+  q->live = us_malloc(m * sizeof(int));
   q->skip = us_calloc(m, 1);
-  if (!q->pos || !q->skip) return -1;
+  if (!q->pos || !q->live || !q->skip) return -1;
   for (int i = 0; i < n; i++) q->pos[i] = -1;
   return 0;
 }
 
 void us_lcp3_piv_free(us_Lcp3Piv *q) {
-  void *arrs[] = {q->mem, q->pos, q->R, q->t1, q->t2, q->skip};
+  void *arrs[] = {q->mem, q->pos, q->live, q->R, q->t1, q->t2, q->skip};
   for (size_t i = 0; i < sizeof arrs / sizeof arrs[0]; i++) us_free(arrs[i]);
   memset(q, 0, sizeof *q);
 }
@@ -167,11 +168,12 @@ static double ratio(const us_Lcp3Piv *q, const us_Lcp *p, int *block) {
   return alpha;
 }
 
-/* Settle P (header): 0 or LIMIT. `fresh`: the index that just joined,
- * refused if it leaves at once without progress. */
+/* Settle P (header): 0 or LIMIT, with a fresh on return. `fresh`: the
+ * index that just joined (a is still fresh: its force is 0), refused if
+ * it leaves at once without progress; -1: recompute a first. */
 static us_LcpResult settle(us_Lcp3Piv *q, us_Lcp *p, int fresh, long start, long limit) {
-  for (;;) {
-    p->ops.full(p->ops.ctx, p->f, p->live, p->a);
+  for (int stale = fresh < 0;; stale = 1) {
+    if (stale) p->ops.full(p->ops.ctx, p->f, p->live, p->a);
     if (q->k == 0) return US_LCP_SOLVED;
     for (int i = 0; i < q->k; i++) q->t1[i] = -p->a[q->mem[i]];
     solve(q, q->t1);
@@ -196,8 +198,9 @@ static int most_violated(const us_Lcp3Piv *q, const us_Lcp *p, int *refused) {
   int best = -1;
   double worst = -p->set.tol_a;
   *refused = 0;
-  for (int i = 0; i < p->n; i++) {
-    if (!p->live[i] || q->pos[i] >= 0 || !(p->a[i] < -p->set.tol_a)) continue;
+  for (int m = 0; m < q->nlive; m++) {
+    int i = q->live[m];
+    if (q->pos[i] >= 0 || !(p->a[i] < -p->set.tol_a)) continue;
     if (q->skip[i]) {
       *refused = 1;
       continue;
@@ -210,6 +213,9 @@ static int most_violated(const us_Lcp3Piv *q, const us_Lcp *p, int *refused) {
 us_LcpResult us_lcp3_piv_run(us_Lcp3Piv *q, us_Lcp *p, long limit) {
   long start = q->pivots;
   memset(q->skip, 0, (size_t)p->n);
+  q->nlive = 0;
+  for (int i = 0; i < p->n; i++)
+    if (p->live[i]) q->live[q->nlive++] = i;
   us_LcpResult r = settle(q, p, -1, start, limit);
   for (int sweep = 0; r == US_LCP_SOLVED;) {
     int refused, j = most_violated(q, p, &refused);

@@ -18,6 +18,7 @@ typedef struct us_Lcp3Piv {
                           R^T R = A_PP */
   double *t1, *t2;     /* [cap] scratch */
   unsigned char *skip; /* [n] refused in this sweep (dependent on P) */
+  int *live, nlive;    /* [n] the live indices of the current run */
   long pivots;         /* additions and removals, total */
   long refused;        /* additions refused as dependent (round-off), total */
 } us_Lcp3Piv;

@@ -172,6 +172,7 @@ static int cone_setup(LcpWs *w) {
     if (us_lcp_init(&k->lcp, k->sys.K * w->s->ncontact, &ops) == 0 &&
         (!d3 || us_lcp3_piv_init(&k->piv, k->sys.K * w->s->ncontact) == 0)) {
       us_lcp_configure(&k->lcp, &w->lset);
+      if (d3) k->lcp.set.tol_piv = w->lset.tol_piv3;
       for (int c = 0; c < w->s->ncontact && !d3; c++)
         if (isinf(w->s->contacts[c].mu)) us_lcp_set_friction(&k->lcp, 2 * c + 1, 2 * c, INFINITY);
       k->ready = 1;
@@ -656,6 +657,28 @@ static int cone_rerun(LcpWs *w, us_StabilityInfo *info, double *res, int *worst,
   return 1;
 }
 
+/* The same for 3D: the pivoting goes on from its passive set until no a
+ * is below the proof's slack (its own stop is a >= -tol_a). */
+static int cone_rerun3(LcpWs *w, us_StabilityInfo *info, double *res, int *worst, double *energy) {
+  us_Lcp *p = &w->kc->lcp;
+  double tol = p->set.tol_a, fmax = 0.0, dmax = 0.0;
+  for (int i = 0; i < p->n; i++) {
+    if (!p->live[i]) continue;
+    fmax = US_MAX(fmax, fabs(p->f[i]));
+    dmax = US_MAX(dmax, p->ops.entry(p->ops.ctx, i, i));
+  }
+  long piv0 = p->pivots;
+  p->set.tol_a = 0.5 * w->lset.cone_slack * (1.0 + fmax * dmax);
+  us_LcpResult rr = us_lcp3_piv_run(&w->kc->piv, p, w->lset.pivots_base);
+  p->set.tol_a = tol;
+  info->pivots += p->pivots - piv0;
+  if (rr == US_LCP_NOMEM) return -1;
+  w->kc->valid = rr == US_LCP_SOLVED;
+  if (rr != US_LCP_SOLVED) return 0;
+  *res = cone_residual(w, worst, energy);
+  return 1;
+}
+
 /* 3D: the accelerations v = M^-1 (G l - rhs) of the cone LCP's solution
  * as a Farkas ray of G l = rhs, l >= 0 (docs/lcp.md, "3D"): G^T v = a >= 0
  * is every generator's acceleration and rhs . v = f^T a - v^T M v < 0.
@@ -692,8 +715,9 @@ static int cone_verdict(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, d
              seeded ? "; LCP re-seeded from it" : "");
     return 1;
   }
-  if (rerun && sys->dim == 2 && res >= w->lset.unstable_tol && !cone_dual_proof(w, sys, energy)) {
-    int r = cone_rerun(w, info, &res, &worst, &energy);
+  if (rerun && res >= w->lset.unstable_tol && !cone_dual_proof(w, sys, energy)) {
+    int r = sys->dim == 3 ? cone_rerun3(w, info, &res, &worst, &energy)
+                          : cone_rerun(w, info, &res, &worst, &energy);
     if (r <= 0) return r;
   }
   if (!(res >= w->lset.unstable_tol && cone_dual_proof(w, sys, energy))) return 0;

@@ -167,6 +167,11 @@ static int moving(const us_LcpSys *y, int i, int side) {
   return b >= 0 && y->present[b] ? b : -1;
 }
 
+/* Index m of contact c's slots in use. */
+static int slot_index(const us_LcpSys *y, int c, int m) {
+  return y->K * c + y->slots[(size_t)y->K * (size_t)c + (size_t)m];
+}
+
 /* p^T M^-1 q on body b (3D: the rotation through its 3 x 3 block). */
 static double mdot(const us_LcpSys *y, int b, const double *p, const double *q) {
   const double *mi = y->minv + (size_t)y->nw * (size_t)b;
@@ -252,7 +257,7 @@ static int sys_apply(void *ctx, const int *idx, const double *x, int k, double *
       if (y->cmark[c]) continue;
       y->cmark[c] = 1;
       for (int m = 0; m < y->nslot[c]; m++) {
-        int i = y->K * c + y->slots[(size_t)y->K * (size_t)c + (size_t)m];
+        int i = slot_index(y, c, m);
         out_y[i] = gather(y, i);
         out[nout++] = i;
       }
@@ -267,14 +272,18 @@ static int sys_apply(void *ctx, const int *idx, const double *x, int k, double *
   return nout;
 }
 
-/* u = E f + F_ext on present bodies (the net normalized wrench). */
+/* u = E f + F_ext on present bodies (the net normalized wrench); forces
+ * sit only at the contacts' slots in use. */
 static void net_wrench(us_LcpSys *y, const double *f) {
   size_t nw = (size_t)y->nw;
   for (int b = 0; b < y->nbody; b++)
     if (y->present[b]) memcpy(y->u + nw * (size_t)b, y->fext + nw * (size_t)b, nw * sizeof(double));
   int nt = 0;
-  for (int i = 0; i < y->K * y->ncontact; i++)
-    if (f[i] != 0.0) scatter(y, i, f[i], &nt);
+  for (int c = 0; c < y->ncontact; c++)
+    for (int m = 0; m < y->nslot[c]; m++) {
+      int i = slot_index(y, c, m);
+      if (f[i] != 0.0) scatter(y, i, f[i], &nt);
+    }
   for (int t = 0; t < nt; t++) y->bmark[y->touched[t]] = 0;
 }
 
@@ -283,8 +292,11 @@ static void sys_full(void *ctx, const double *f, const unsigned char *live, doub
   net_wrench(y, f);
   for (int b = 0; b < y->nbody; b++)
     if (y->present[b]) to_velocity(y, b);
-  for (int i = 0; i < y->K * y->ncontact; i++)
-    if (live[i]) a[i] = gather(y, i);
+  for (int c = 0; c < y->ncontact; c++)
+    for (int m = 0; m < y->nslot[c]; m++) {
+      int i = slot_index(y, c, m);
+      if (live[i]) a[i] = gather(y, i);
+    }
   memset(y->u, 0, (size_t)y->nw * (size_t)y->nbody * sizeof(double));
 }
 
