@@ -221,7 +221,9 @@ static double gather(const us_LcpSys *y, int i) {
     int b = moving(y, i, side);
     if (b < 0) continue;
     const double *w = us_lcp_sys_w(y, i, side), *v = y->u + (size_t)y->nw * (size_t)b;
-    for (int r = 0; r < y->nw; r++) s += w[r] * v[r];
+    double t = 0.0; /* per side, then summed: the 2D operator's rounding */
+    for (int r = 0; r < y->nw; r++) t += w[r] * v[r];
+    s += t;
   }
   return s;
 }
@@ -306,8 +308,11 @@ double us_lcp_sys_residual(us_LcpSys *y, const double *f, int *worst_body, doubl
   *worst_body = -1;
   for (int b = 0; b < y->nbody; b++) {
     if (!y->present[b]) continue;
-    const double *u = y->u + (size_t)y->nw * (size_t)b;
-    q += mdot(y, b, u, u);
+    const double *u = y->u + (size_t)y->nw * (size_t)b, *mi = y->minv + (size_t)y->nw * (size_t)b;
+    if (y->rinv)
+      q += mdot(y, b, u, u);
+    else /* component by component: the 2D operator's rounding */
+      for (int r = 0; r < y->nw; r++) q += u[r] * mi[r] * u[r];
     for (int r = 0; r < y->nw; r++) {
       if (fabs(u[r]) > worst) {
         worst = fabs(u[r]);
