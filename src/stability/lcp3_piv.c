@@ -16,8 +16,9 @@
  * until no a off P is below -tol_a. Each join then settle strictly lowers
  * the objective in exact arithmetic, so no P repeats and the method ends
  * (Lawson and Hanson 1974, ch. 23); a pivot limit guards round-off. On
- * SOLVED, every live index has l >= 0, a >= -tol_a (a refused index only
- * where a later sweep confirms it), and a_P = 0: an LCP solution.
+ * SOLVED, every live index has l >= 0 and a_P = 0, and a >= -tol_a off P
+ * except refused indices still refused after SWEEPS sweeps (round-off);
+ * the caller's verdict re-checks a and never trusts SOLVED alone.
  * The matrix class: A symmetric positive semidefinite (a Gram matrix) is
  * what the method needs; it never forms A, only A_PP's entries and a.
  * Reuse: P, R and the forces stay between runs. Indices of removed bodies
