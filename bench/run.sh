@@ -7,6 +7,8 @@
 #                 column 80, random 84 from the stacker, pyramid 91), every
 #                 method and search direction, the source's own figures,
 #                 and the ratio to lpsolve;
+#   table2-3d.csv the 3D Table 2 (bench/table2_3d.sh: pyramid3d, wall3d,
+#                 a jittered tower, random3d; every method, both directions);
 #   table2-source.csv  the same workloads in the source's set-up:
 #                 frictionless, its DFS down from the top, no culling;
 #   fig4-*.csv    the source's Figure 4: seconds per stability test against
@@ -176,6 +178,14 @@ for wl in $workloads; do
   say "$line $(source_s "$wl" lpsolve) / $(source_s "$wl" lcp) / $(source_s "$wl" lcp-reuse) |"
 done
 say ""
+
+# --------------------------------------------------- Table 2 in 3D (issue 23)
+if [ "$QUICK" != 1 ]; then
+  say "## Table 2 in 3D: [data](table2-3d-$tag.csv) (bench/table2_3d.sh)"
+  say ""
+  bench/table2_3d.sh "$B" >"$OUT/table2-3d-$tag.csv" 2>>"$MD"
+  say ""
+fi
 
 # ----------------------------------------------------------------- Figure 4
 say "## Figure 4: one stability test against the sub-assembly's size"

@@ -62,6 +62,7 @@ us_LcpSettings us_lcp_default_settings(void) {
   s.tol_a = 1e-9;
   s.tol_f = 1e-12;
   s.tol_piv = 1e-6;
+  s.tol_piv3 = 1e-13;
   s.pivot_floor = 1e-300;
   s.ratio_tol = 1e-11;
   s.zero_step = 1e-14;

@@ -41,6 +41,8 @@ typedef struct us_LcpSettings {
   double tol_f;          /* 1e-12: a normal force below this counts as 0 */
   double tol_piv;        /* 1e-6: a join whose Schur pivot is <= this times
                             |A_ii| (1 for a bound row) is refused: deferred */
+  double tol_piv3;       /* 1e-13: the same for the 3D pivoting (lcp3_piv.c),
+                            whose ratio test copes with small pivots */
   double pivot_floor;    /* 1e-300: floor of |A_ii| in that test */
   double ratio_tol;      /* 1e-11: the ratio test ignores increments below
                             this times the largest increment (forces / a) */

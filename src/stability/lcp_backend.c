@@ -54,10 +54,13 @@
 #include "lcp_backend.h"
 
 #include "lcp.h"
+#include "lcp3_piv.h"
 #include "lcp_lemke.h"
 #include "lcp_sys.h"
 #include "backend.h"
+#include "lp_gen.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -71,6 +74,7 @@ typedef struct Cone {
   int failed; /* scratch solves that failed in a row (lcp-reuse) */
   long wait;  /* requests left before the next scratch attempt */
   us_LcpLemke lemke; /* where the Dantzig run fails (lcp_lemke.c) */
+  us_Lcp3Piv piv;    /* 3D: the principal pivoting (lcp3_piv.c) */
 } Cone;
 
 typedef struct LcpWs {
@@ -81,8 +85,15 @@ typedef struct LcpWs {
   int valid; /* lcp holds the solution of the last sub-assembly */
   us_LcpSys sys;
   us_Lcp lcp;
-  Cone cone;
-  int *idx;   /* [2 ncontact + 1] */
+  Cone cones[2]; /* 2D: [0]; 3D: the inner and the outer polygons' LCPs */
+  Cone *kc;      /* the cone LCP of the current test */
+  us_EqGen gen;  /* 3D: the test's cone generators (lp_gen.h) */
+  double *lcol, *ray; /* 3D: [gen.ncol] multipliers, [rows] Farkas ray */
+  int cap_lcol, cap_ray, nray;
+  unsigned char *changed; /* 3D: [ncontact + 1] contacts whose columns changed, kept zero */
+  int by_lp;  /* the LP decided the last test */
+  double farkas_slack; /* the LP settings' (3D rays are checked as the LP's) */
+  int *idx;   /* [K ncontact + 1] */
   int *gone;  /* [nbody + 1] bodies the cone LCP has and the test lacks */
   unsigned char *cmark; /* [ncontact + 1] contacts listed, kept zero */
   unsigned char *bmark; /* [nbody + 1] bodies of the test, kept zero */
@@ -99,7 +110,7 @@ static void lcp_set_deadline(void *ws, double deadline) {
   LcpWs *w = ws;
   w->lset.deadline = deadline;
   w->lcp.set.deadline = deadline;
-  w->cone.lcp.set.deadline = deadline;
+  for (int m = 0; m < 2; m++) w->cones[m].lcp.set.deadline = deadline;
   if (w->lpws) us_backend_clp.set_deadline(w->lpws, deadline);
 }
 
@@ -108,9 +119,16 @@ static void lcp_destroy(void *ws) {
   if (!w) return;
   us_lcp_free(&w->lcp);
   us_lcp_sys_free(&w->sys);
-  us_lcp_free(&w->cone.lcp);
-  us_lcp_sys_free(&w->cone.sys);
-  us_lcp_lemke_free(&w->cone.lemke);
+  for (int m = 0; m < 2; m++) {
+    us_lcp_free(&w->cones[m].lcp);
+    us_lcp_sys_free(&w->cones[m].sys);
+    us_lcp_lemke_free(&w->cones[m].lemke);
+    us_lcp3_piv_free(&w->cones[m].piv);
+  }
+  us_eq_gen_free(&w->gen);
+  us_free(w->lcol);
+  us_free(w->ray);
+  us_free(w->changed);
   if (w->lpws) us_backend_clp.destroy(w->lpws);
   us_free(w->idx);
   us_free(w->gone);
@@ -119,31 +137,43 @@ static void lcp_destroy(void *ws) {
   us_free(w);
 }
 
+/* Index arrays of the workspace, then (2D) the friction LCP. 0 or -1. */
 static int lcp_setup(LcpWs *w, const us_Structure *s) {
+  size_t K = (size_t)(s->dim == 3 ? us_eq_gen_slots(3) : 2);
+  w->idx = us_malloc((K * (size_t)s->ncontact + 1) * sizeof(int));
+  w->cmark = us_calloc((size_t)s->ncontact + 1, 1);
+  w->changed = us_calloc((size_t)s->ncontact + 1, 1);
+  w->gone = us_malloc(((size_t)s->nbody + 1) * sizeof(int));
+  w->bmark = us_calloc((size_t)s->nbody + 1, 1);
+  if (!w->idx || !w->cmark || !w->changed || !w->gone || !w->bmark) return -1;
+  if (s->dim == 3) { /* no friction LCP: the cone LCP is the LCP */
+    w->ray = us_malloc((12 * (size_t)s->nbody + 1) * sizeof(double));
+    return w->ray ? 0 : -1;
+  }
   if (us_lcp_sys_init(&w->sys, s)) return -1;
   us_LcpOps ops = us_lcp_sys_ops(&w->sys);
   if (us_lcp_init(&w->lcp, 2 * s->ncontact, &ops)) return -1;
   us_lcp_configure(&w->lcp, &w->lset);
   for (int c = 0; c < s->ncontact; c++)
     if (s->contacts[c].mu > 0) us_lcp_set_friction(&w->lcp, 2 * c + 1, 2 * c, s->contacts[c].mu);
-  w->idx = us_malloc((size_t)(2 * s->ncontact + 1) * sizeof(int));
-  w->cmark = us_calloc((size_t)s->ncontact + 1, 1);
-  w->gone = us_malloc(((size_t)s->nbody + 1) * sizeof(int));
-  w->bmark = us_calloc((size_t)s->nbody + 1, 1);
-  return w->idx && w->cmark && w->gone && w->bmark ? 0 : -1;
+  return 0;
 }
 
-/* The cone LCP, set up on first use (mu = +inf contacts keep a free
- * friction: their cone is a half-space with one edge direction). 0 or -1. */
+/* The cone LCP, set up on first use (2D: mu = +inf contacts keep a free
+ * friction: their cone is a half-space with one edge direction; 3D: every
+ * index a cone generator, the half-space's four included). 0 or -1. */
 static int cone_setup(LcpWs *w) {
-  Cone *k = &w->cone;
+  Cone *k = w->kc;
   if (k->ready) return 0;
   us_LcpOps ops;
-  if (us_lcp_sys_init_cone(&k->sys, w->s) == 0) {
+  int d3 = w->s->dim == 3;
+  if ((d3 ? us_lcp3_sys_init(&k->sys, w->s) : us_lcp_sys_init_cone(&k->sys, w->s)) == 0) {
     ops = us_lcp_sys_ops(&k->sys);
-    if (us_lcp_init(&k->lcp, 2 * w->s->ncontact, &ops) == 0) {
+    if (us_lcp_init(&k->lcp, k->sys.K * w->s->ncontact, &ops) == 0 &&
+        (!d3 || us_lcp3_piv_init(&k->piv, k->sys.K * w->s->ncontact) == 0)) {
       us_lcp_configure(&k->lcp, &w->lset);
-      for (int c = 0; c < w->s->ncontact; c++)
+      if (d3) k->lcp.set.tol_piv = w->lset.tol_piv3;
+      for (int c = 0; c < w->s->ncontact && !d3; c++)
         if (isinf(w->s->contacts[c].mu)) us_lcp_set_friction(&k->lcp, 2 * c + 1, 2 * c, INFINITY);
       k->ready = 1;
       return 0;
@@ -151,17 +181,16 @@ static int cone_setup(LcpWs *w) {
   }
   us_lcp_free(&k->lcp);
   us_lcp_sys_free(&k->sys);
+  us_lcp3_piv_free(&k->piv);
   return -1;
 }
 
 void *us_lcp_backend_create(const us_Structure *s, const us_StabilitySettings *set,
                             const us_LcpSettings *lcp, int reuse, us_Error *err) {
-  if (s->dim != 2) {
-    us_error_set(err, US_ERR_USAGE, "methods lcp and lcp-reuse support 2D structures only (the 3D LCP is not written yet; use lp or lpsolve)");
-    return NULL;
-  }
   LcpWs *w = us_calloc(1, sizeof *w);
   if (w) {
+    w->kc = &w->cones[0];
+    w->farkas_slack = us_lp_settings_resolve(&set->lp).farkas_slack;
     w->s = s;
     w->set = *set;
     w->lset = lcp ? *lcp : us_lcp_default_settings();
@@ -187,18 +216,30 @@ static void *create_reuse(const us_Structure *s, const us_StabilitySettings *set
 
 /* ------------------------------------------------------ mapping the test */
 
+/* Is structure contact c live in p (operator y)? */
+static int contact_live(const us_LcpSys *y, const us_Lcp *p, int c) {
+  return y->nslot[c] > 0 && p->live[y->K * c + y->slots[(size_t)y->K * (size_t)c]];
+}
+
 /* Present flags and external forces of the bodies of sys in operator y. */
 static void load_bodies(us_LcpSys *y, const us_EqSystem *sys) {
+  size_t nw = (size_t)y->nw;
   for (int r = 0; r < sys->nbody; r++) {
     int b = sys->body[r];
     y->present[b] = 1;
-    for (int k = 0; k < 3; k++) y->fext[3 * (size_t)b + (size_t)k] = -sys->rhs[3 * r + k];
+    for (size_t k = 0; k < nw; k++) y->fext[nw * (size_t)b + k] = -sys->rhs[nw * (size_t)r + k];
   }
 }
 
-/* The LCP indices of structure contact c: the normal, and the friction
+/* The LCP indices of structure contact c in operator y: 3D, its cone
+ * generators (the slots last loaded); 2D, the normal, and the friction
  * (the friction LCP) or the cone's second edge (the cone LCP) when mu > 0. */
-static int contact_indices(const LcpWs *w, int c, int *out) {
+static int contact_indices(const LcpWs *w, const us_LcpSys *y, int c, int *out) {
+  if (y->nw == 6) {
+    const unsigned char *sl = y->slots + (size_t)y->K * (size_t)c;
+    for (int m = 0; m < y->nslot[c]; m++) out[m] = y->K * c + sl[m];
+    return y->nslot[c];
+  }
   out[0] = 2 * c;
   if (!(w->s->contacts[c].mu > 0)) return 1;
   out[1] = 2 * c + 1;
@@ -210,7 +251,7 @@ static void start_scratch(LcpWs *w, us_LcpSys *y, us_Lcp *p, const us_EqSystem *
   memset(y->present, 0, (size_t)y->nbody);
   load_bodies(y, sys);
   int k = 0;
-  for (int ci = 0; ci < sys->ncontact; ci++) k += contact_indices(w, sys->contact[ci], w->idx + k);
+  for (int ci = 0; ci < sys->ncontact; ci++) k += contact_indices(w, y, sys->contact[ci], w->idx + k);
   us_lcp_add(p, w->idx, k);
 }
 
@@ -223,12 +264,12 @@ static us_LcpResult remove_bodies(LcpWs *w, us_LcpSys *y, us_Lcp *p, const int *
     y->present[b] = 0;
     for (int q = y->adj_start[b]; q < y->adj_start[b + 1]; q++) {
       int c = y->adj[q];
-      if (!p->live[2 * c] || w->cmark[c]) continue;
+      if (!contact_live(y, p, c) || w->cmark[c]) continue;
       w->cmark[c] = 1;
-      k += contact_indices(w, c, w->idx + k);
+      k += contact_indices(w, y, c, w->idx + k);
     }
   }
-  for (int j = 0; j < k; j++) w->cmark[w->idx[j] >> 1] = 0;
+  for (int j = 0; j < k; j++) w->cmark[w->idx[j] / y->K] = 0;
   return k ? us_lcp_fade(p, w->idx, k) : US_LCP_SOLVED;
 }
 
@@ -239,10 +280,10 @@ static int add_bodies(LcpWs *w, us_LcpSys *y, us_Lcp *p, const us_EqSystem *sys)
   int k = 0, live = 0;
   for (int ci = 0; ci < sys->ncontact; ci++) {
     int c = sys->contact[ci];
-    if (!p->live[2 * c]) k += contact_indices(w, c, w->idx + k);
+    if (!contact_live(y, p, c)) k += contact_indices(w, y, c, w->idx + k);
   }
   us_lcp_add(p, w->idx, k);
-  for (int c = 0; c < y->ncontact; c++) live += p->live[2 * c];
+  for (int c = 0; c < y->ncontact; c++) live += contact_live(y, p, c);
   int present = 0;
   for (int b = 0; b < y->nbody; b++) present += y->present[b];
   return live == sys->ncontact && present == sys->nbody ? 0 : -1;
@@ -297,8 +338,14 @@ static void read_forces(LcpWs *w, const us_EqSystem *sys, const double *f) {
 
 /* Cone edge forces l (cone LCP indices) <-> contact forces (f_n, f_t):
  * f_n = l0 + l1, f_t = mu (l0 - l1) for a finite mu > 0; else the same. */
-static void cone_to_forces(const LcpWs *w, const us_EqSystem *sys, double *f) {
-  const double *l = w->cone.lcp.f;
+static void cone_to_forces(LcpWs *w, const us_EqSystem *sys, double *f) {
+  const double *l = w->kc->lcp.f;
+  if (sys->dim == 3) { /* 3D: through the generators (lp_gen.h) */
+    for (int j = 0; j < w->gen.ncol; j++)
+      w->lcol[j] = l[w->kc->sys.K * sys->contact[w->gen.col_contact[j]] + us_eq_gen_slot(&w->gen, j)];
+    us_eq_gen_forces(sys, &w->gen, w->lcol, f);
+    return;
+  }
   for (int ci = 0; ci < sys->ncontact; ci++) {
     int c = sys->contact[ci];
     double mu = sys->mu[ci], l0 = l[2 * c], l1 = mu > 0 ? l[2 * c + 1] : 0.0;
@@ -309,7 +356,7 @@ static void cone_to_forces(const LcpWs *w, const us_EqSystem *sys, double *f) {
 }
 
 static void cone_from_forces(LcpWs *w, const us_EqSystem *sys, const double *f) {
-  double *l = w->cone.lcp.f;
+  double *l = w->kc->lcp.f;
   for (int ci = 0; ci < sys->ncontact; ci++) {
     int c = sys->contact[ci];
     double mu = sys->mu[ci], fn = f[2 * ci], ft = f[2 * ci + 1];
@@ -353,13 +400,14 @@ static int skip_lcp(LcpWs *w, int restart) {
  * off), and the cone LCP if it has no state. Returns 1 if the friction
  * LCP was re-seeded, 0 if not, -1 out of memory. */
 static int reseed(LcpWs *w, const us_EqSystem *sys, const double *f) {
-  if (!w->reuse) return 0;
-  if (w->cone.ready && !w->cone.valid) {
-    start_scratch(w, &w->cone.sys, &w->cone.lcp, sys);
+  if (!w->reuse || sys->dim == 3) return 0; /* 3D: no friction LCP; the LP's
+                                                forces name no cone edges */
+  if (w->kc->ready && !w->kc->valid) {
+    start_scratch(w, &w->kc->sys, &w->kc->lcp, sys);
     cone_from_forces(w, sys, f);
-    us_LcpResult r = us_lcp_seed(&w->cone.lcp);
+    us_LcpResult r = us_lcp_seed(&w->kc->lcp);
     if (r == US_LCP_NOMEM) return -1;
-    w->cone.valid = r == US_LCP_SOLVED;
+    w->kc->valid = r == US_LCP_SOLVED;
   }
   if (w->valid || w->skip > 0) return 0;
   start_scratch(w, &w->sys, &w->lcp, sys);
@@ -387,6 +435,7 @@ static us_Status fallback(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict,
   *verdict = out.verdict;
   if (st) return st;
   info->lp_fallbacks++;
+  w->by_lp = 1;
   if (*verdict == US_UNSTABLE && us_backend_clp.unstable_body)
     w->last_body = us_backend_clp.unstable_body(w->lpws);
   int seeded = *verdict == US_STABLE ? reseed(w, sys, f) : 0;
@@ -448,7 +497,7 @@ static int dual_cone_proof(LcpWs *w, const us_EqSystem *sys, double energy) {
  * for both edges; a_t = 0 for a free friction, mu = +inf), and f^T a is
  * sum l_e a_e. */
 static int cone_dual_proof(LcpWs *w, const us_EqSystem *sys, double energy) {
-  us_Lcp *p = &w->cone.lcp;
+  us_Lcp *p = &w->kc->lcp;
   double fa = 0.0, fmax = 0.0, dmax = 0.0;
   for (int i = 0; i < p->n; i++) {
     if (!p->live[i]) continue;
@@ -458,8 +507,9 @@ static int cone_dual_proof(LcpWs *w, const us_EqSystem *sys, double energy) {
   double slack = w->lset.cone_slack * (1.0 + fmax * dmax);
   us_lcp_refresh(p);
   for (int ci = 0; ci < sys->ncontact; ci++) {
-    int c = sys->contact[ci], two = sys->mu[ci] > 0;
-    for (int i = 2 * c; i <= 2 * c + two; i++) {
+    int nidx = contact_indices(w, &w->kc->sys, sys->contact[ci], w->idx);
+    for (int m = 0; m < nidx; m++) {
+      int i = w->idx[m];
       fa += p->f[i] * p->a[i];
       int ok = p->kind[i] == US_LCP_FRICTION ? fabs(p->a[i]) <= slack : p->a[i] >= -slack;
       if (!ok) return 0;
@@ -478,7 +528,7 @@ static void set_limit(const LcpWs *w, us_Lcp *p, int reusing) {
 /* Solve the cone LCP of sys (reusing its last state where it has one).
  * 1 solved, 0 not, -1 out of memory. */
 static int cone_solve(LcpWs *w, const us_EqSystem *sys, us_StabilityInfo *info) {
-  Cone *k = &w->cone;
+  Cone *k = w->kc;
   if (w->reuse && !k->valid && k->wait > 0) { /* back-off: its scratch solves fail */
     k->wait--;
     return 0;
@@ -511,20 +561,89 @@ static int cone_solve(LcpWs *w, const us_EqSystem *sys, us_StabilityInfo *info) 
   return r == US_LCP_NOMEM ? -1 : k->valid;
 }
 
+/* 3D: live indices idx[0..k) of the cone LCP, f = 0 (lcp3_piv.c drives
+ * them; the Dantzig queue is not used). */
+static void make_live(us_Lcp *p, const int *idx, int k) {
+  for (int m = 0; m < k; m++) {
+    p->live[idx[m]] = 1;
+    p->f[idx[m]] = 0.0;
+    p->state[idx[m]] = US_LCP_NC;
+  }
+}
+
+/* 3D reuse: the contacts of the bodies the cone LCP has and the test
+ * lacks leave P and the LCP, the test's new contacts join with l = 0.
+ * 1 if the live set then matches the test, 0 if not (start afresh). */
+static int follow3(LcpWs *w, const us_EqSystem *sys) {
+  Cone *k = w->kc;
+  us_LcpSys *y = &k->sys;
+  int ngone = 0, n = 0, live = 0;
+  for (int r = 0; r < sys->nbody; r++) w->bmark[sys->body[r]] = 1;
+  for (int b = 0; b < y->nbody; b++)
+    if (y->present[b] && !w->bmark[b]) w->gone[ngone++] = b;
+  for (int r = 0; r < sys->nbody; r++) w->bmark[sys->body[r]] = 0;
+  for (int j = 0; j < ngone; j++) {
+    int b = w->gone[j];
+    y->present[b] = 0;
+    for (int q = y->adj_start[b]; q < y->adj_start[b + 1]; q++)
+      if (contact_live(y, &k->lcp, y->adj[q])) {
+        n = contact_indices(w, y, y->adj[q], w->idx);
+        us_lcp3_piv_drop(&k->piv, &k->lcp, w->idx, n);
+      }
+  }
+  load_bodies(y, sys);
+  for (int ci = 0; ci < sys->ncontact; ci++) {
+    int c = sys->contact[ci];
+    if (contact_live(y, &k->lcp, c)) continue;
+    n = contact_indices(w, y, c, w->idx);
+    make_live(&k->lcp, w->idx, n);
+  }
+  for (int c = 0; c < y->ncontact; c++) live += contact_live(y, &k->lcp, c);
+  return live == sys->ncontact;
+}
+
+/* 3D: solve the cone LCP of sys by principal pivoting (lcp3_piv.c), from
+ * the last sub-assembly's passive set where it has one (lcp-reuse). 1
+ * solved, 0 not, -1 out of memory. */
+static int cone_solve3(LcpWs *w, const us_EqSystem *sys, us_StabilityInfo *info) {
+  Cone *k = w->kc;
+  if (cone_setup(w)) return -1;
+  long piv0 = k->lcp.pivots;
+  int reused = w->reuse && k->valid && follow3(w, sys);
+  if (!reused) {
+    us_lcp_reset(&k->lcp);
+    us_lcp3_piv_reset(&k->piv, k->lcp.n);
+    memset(k->sys.present, 0, (size_t)k->sys.nbody);
+    load_bodies(&k->sys, sys);
+    int n = 0;
+    for (int ci = 0; ci < sys->ncontact; ci++) n += contact_indices(w, &k->sys, sys->contact[ci], w->idx + n);
+    make_live(&k->lcp, w->idx, n);
+  }
+  int live = 0;
+  for (int ci = 0; ci < sys->ncontact; ci++) live += k->sys.nslot[sys->contact[ci]];
+  long limit = w->lset.max_pivots > 0 ? w->lset.max_pivots
+                                      : w->lset.pivots_per_index * (long)live + w->lset.pivots_base;
+  us_LcpResult r = us_lcp3_piv_run(&k->piv, &k->lcp, limit);
+  info->pivots += k->lcp.pivots - piv0;
+  info->reused += reused;
+  k->valid = r == US_LCP_SOLVED;
+  return r == US_LCP_NOMEM ? -1 : k->valid;
+}
+
 /* Edge forces >= 0 (round-off), then the cone LCP's net wrench: its
  * largest component, the body, and the energy v^T M v. */
 static double cone_residual(LcpWs *w, int *worst, double *energy) {
-  us_Lcp *p = &w->cone.lcp;
+  us_Lcp *p = &w->kc->lcp;
   for (int i = 0; i < p->n; i++)
     if (p->live[i] && p->kind[i] == US_LCP_NORMAL && p->f[i] < 0) p->f[i] = 0.0;
-  return us_lcp_sys_residual(&w->cone.sys, p->f, worst, energy);
+  return us_lcp_sys_residual(&w->kc->sys, p->f, worst, energy);
 }
 
 /* The proof failed on a_e >= -tol_a, which the Dantzig run accepts (times
  * the scale): run once more with the proof's round-off slack. 1 ran to a
  * solution (*res etc. fresh), 0 not, -1 out of memory. */
 static int cone_rerun(LcpWs *w, us_StabilityInfo *info, double *res, int *worst, double *energy) {
-  us_Lcp *p = &w->cone.lcp;
+  us_Lcp *p = &w->kc->lcp;
   double tol = p->set.tol_a;
   long piv0 = p->pivots;
   p->set.tol_a = w->lset.cone_slack;
@@ -532,10 +651,48 @@ static int cone_rerun(LcpWs *w, us_StabilityInfo *info, double *res, int *worst,
   p->set.tol_a = tol;
   info->pivots += p->pivots - piv0;
   if (rr == US_LCP_NOMEM) return -1;
-  w->cone.valid = rr == US_LCP_SOLVED;
+  w->kc->valid = rr == US_LCP_SOLVED;
   if (rr != US_LCP_SOLVED) return 0;
   *res = cone_residual(w, worst, energy);
   return 1;
+}
+
+/* The same for 3D: the pivoting goes on from its passive set until no a
+ * is below the proof's slack (its own stop is a >= -tol_a). */
+static int cone_rerun3(LcpWs *w, us_StabilityInfo *info, double *res, int *worst, double *energy) {
+  us_Lcp *p = &w->kc->lcp;
+  double tol = p->set.tol_a, fmax = 0.0, dmax = 0.0;
+  for (int i = 0; i < p->n; i++) {
+    if (!p->live[i]) continue;
+    fmax = US_MAX(fmax, fabs(p->f[i]));
+    dmax = US_MAX(dmax, p->ops.entry(p->ops.ctx, i, i));
+  }
+  long piv0 = p->pivots;
+  p->set.tol_a = 0.5 * w->lset.cone_slack * (1.0 + fmax * dmax);
+  us_LcpResult rr = us_lcp3_piv_run(&w->kc->piv, p, w->lset.pivots_base);
+  p->set.tol_a = tol;
+  info->pivots += p->pivots - piv0;
+  if (rr == US_LCP_NOMEM) return -1;
+  w->kc->valid = rr == US_LCP_SOLVED;
+  if (rr != US_LCP_SOLVED) return 0;
+  *res = cone_residual(w, worst, energy);
+  return 1;
+}
+
+/* 3D: the accelerations v = M^-1 (G l - rhs) of the cone LCP's solution
+ * as a Farkas ray of G l = rhs, l >= 0 (docs/lcp.md, "3D"): G^T v = a >= 0
+ * is every generator's acceleration and rhs . v = f^T a - v^T M v < 0.
+ * Checked without the solver (us_eq_gen_farkas_body) and kept for the
+ * front end's mechanism (farkas_ray). The body it points at, or -1. */
+static int cone_ray(LcpWs *w, const us_EqSystem *sys) {
+  size_t nw = (size_t)sys->nw;
+  double *vel = w->ray + nw * (size_t)sys->nbody;
+  us_lcp_sys_velocity(&w->kc->sys, w->kc->lcp.f, vel);
+  for (int r = 0; r < sys->nbody; r++)
+    memcpy(w->ray + nw * (size_t)r, vel + nw * (size_t)sys->body[r], nw * sizeof(double));
+  int body = us_eq_gen_farkas_body(sys, &w->gen, w->ray, w->farkas_slack);
+  w->nray = body >= 0 ? sys->nbody * sys->nw : 0;
+  return body;
 }
 
 /* The verdict of the cone LCP's forces (its Dantzig run's, rerun allowed,
@@ -559,10 +716,12 @@ static int cone_verdict(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, d
     return 1;
   }
   if (rerun && res >= w->lset.unstable_tol && !cone_dual_proof(w, sys, energy)) {
-    int r = cone_rerun(w, info, &res, &worst, &energy);
+    int r = sys->dim == 3 ? cone_rerun3(w, info, &res, &worst, &energy)
+                          : cone_rerun(w, info, &res, &worst, &energy);
     if (r <= 0) return r;
   }
   if (!(res >= w->lset.unstable_tol && cone_dual_proof(w, sys, energy))) return 0;
+  if (sys->dim == 3 && cone_ray(w, sys) < 0) return 0;
   *verdict = US_UNSTABLE;
   w->last_body = worst;
   snprintf(note, note_sz, "LCP %s; %s: bodies accelerate (net wrench %.2g W on '%s')", why, by,
@@ -577,7 +736,7 @@ static int cone_verdict(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, d
 static int cone_lemke_decide(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, double *f,
                              us_StabilityInfo *info, const char *why, char *note,
                              size_t note_sz) {
-  Cone *k = &w->cone;
+  Cone *k = w->kc;
   if (cone_setup(w)) return -1;
   start_scratch(w, &k->sys, &k->lcp, sys);
   k->valid = 0;
@@ -596,7 +755,7 @@ static int cone_lemke_decide(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdi
  * memory. */
 static int cone_decide(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, double *f,
                        us_StabilityInfo *info, const char *why, char *note, size_t note_sz) {
-  int r = cone_solve(w, sys, info);
+  int r = sys->dim == 3 ? cone_solve3(w, sys, info) : cone_solve(w, sys, info);
   if (r > 0) r = cone_verdict(w, sys, verdict, f, info, 1, "cone LCP", why, note, note_sz);
   if (r != 0) return r;
   return cone_lemke_decide(w, sys, verdict, f, info, why, note, note_sz);
@@ -637,6 +796,40 @@ static us_Status decide(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, d
   return settle(w, sys, verdict, f, info, why, note, note_sz, err);
 }
 
+/* 3D: the columns of the cone LCP of this test's polygons (the front
+ * end's inner or outer ones) into its operator; a live contact whose
+ * columns changed (a refinement) drops the LCP's state. */
+static void load3(LcpWs *w, const us_EqSystem *sys) {
+  Cone *k = w->kc;
+  us_lcp3_sys_load(&k->sys, sys, &w->gen, w->changed);
+  for (int ci = 0; ci < sys->ncontact; ci++) {
+    int c = sys->contact[ci];
+    if (!w->changed[c]) continue;
+    w->changed[c] = 0;
+    for (int i = k->sys.K * c; i < k->sys.K * (c + 1) && k->valid; i++)
+      if (k->lcp.live[i]) k->valid = 0;
+  }
+}
+
+/* 3D: the cone LCP on the test's generators (no friction LCP: docs/lcp.md,
+ * "3D"), reused where it can be, then Lemke, then the LP (settle). */
+static us_Status solve3(LcpWs *w, const us_EqSystem *sys, us_Verdict *verdict, double *f,
+                        us_StabilityInfo *info, char *note, size_t note_sz, us_Error *err) {
+  int outer = sys->cones && sys->cones->mode == US_CONE_OUTER;
+  w->kc = &w->cones[outer];
+  if (us_eq_generators(sys, DBL_MAX, &w->gen) || US_GROW(w->lcol, w->cap_lcol, w->gen.ncol + 1))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory building the 3D LCP");
+  if (w->gen.ncol == 0) {
+    *verdict = us_eq_no_columns_verdict(sys);
+    snprintf(note, note_sz, "no active contact");
+    return US_OK;
+  }
+  if (cone_setup(w)) return us_error_set(err, US_ERR_NOMEM, "out of memory in the LCP");
+  load3(w, sys);
+  return settle(w, sys, verdict, f, info, outer ? "3D, outer cones" : "3D, inner cones", note,
+                note_sz, err);
+}
+
 static us_Status lcp_solve(void *ws, const us_BackendProblem *pb, us_BackendOut *out,
                            us_Error *err) {
   /* the problem and the output under the names the body reads */
@@ -650,7 +843,8 @@ static us_Status lcp_solve(void *ws, const us_BackendProblem *pb, us_BackendOut 
   size_t note_sz = out->note_sz;
   LcpWs *w = ws;
   w->last_body = -1;
-  if (sys->dim != 2) return us_error_set(err, US_ERR_USAGE, "the LCP backends support 2D only");
+  w->nray = w->by_lp = 0;
+  if (sys->dim == 3) return solve3(w, sys, verdict, f, info, note, note_sz, err);
   if (skip_lcp(w, restart)) {
     info->lcp_skips++;
     char why[64];
@@ -687,12 +881,24 @@ static us_Status lcp_solve(void *ws, const us_BackendProblem *pb, us_BackendOut 
 
 static int lcp_unstable_body(void *ws) { return ((LcpWs *)ws)->last_body; }
 
+/* 3D only (2D keeps its verdicts without a mechanism): the cone LCP's
+ * checked ray, or the LP's where the LP decided. */
+static int lcp_farkas_ray(void *ws, const double **y) {
+  LcpWs *w = ws;
+  *y = NULL;
+  if (w->s->dim != 3) return 0;
+  if (w->by_lp) return w->lpws ? us_backend_clp.farkas_ray(w->lpws, y) : 0;
+  *y = w->nray ? w->ray : NULL;
+  return w->nray;
+}
+
 const us_Backend us_backend_lcp = {
     .method = US_METHOD_LCP,
     .create = create_scratch,
     .destroy = lcp_destroy,
     .solve = lcp_solve,
     .unstable_body = lcp_unstable_body,
+    .farkas_ray = lcp_farkas_ray,
     .set_deadline = lcp_set_deadline,
 };
 const us_Backend us_backend_lcp_reuse = {
@@ -701,5 +907,6 @@ const us_Backend us_backend_lcp_reuse = {
     .destroy = lcp_destroy,
     .solve = lcp_solve,
     .unstable_body = lcp_unstable_body,
+    .farkas_ray = lcp_farkas_ray,
     .set_deadline = lcp_set_deadline,
 };

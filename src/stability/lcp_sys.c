@@ -1,9 +1,11 @@
-/* The LCP operator of a 2D structure, A = J M^-1 J^T and b = J M^-1 F_ext,
+/* The LCP operator of a structure, A = J M^-1 J^T and b = J M^-1 F_ext,
  * kept implicit: entries are computed on demand from the per-contact
  * wrenches, products go through the bodies, so memory is O(bodies +
- * contacts) and never O(contacts^2).
+ * contacts) and never O(contacts^2). The dimension is a parameter (nw
+ * rows per body, K indices per contact, lcp_sys.h); this file fills the
+ * 2D operators, lcp3_sys.c the 3D one, and both share the products.
  *
- * Indices: 2c is the normal of structure contact c, 2c + 1 its friction
+ * 2D indices: 2c is the normal of structure contact c, 2c + 1 its friction
  * (component along t[0]). Units follow us_EqSystem: a unit component
  * pushes body b with +d at p and body a with -d; its wrench on a body is
  * (d, ((p - com) x d)_z / L) with L the structure's scale, and forces are in
@@ -62,11 +64,11 @@ static void fill_contacts(us_LcpSys *y, int cone) {
   double L = s->scale > 0 ? s->scale : 1.0;
   for (int c = 0; c < s->ncontact; c++) {
     const us_Contact *k = &s->contacts[c];
-    int ends[2] = {side_body(s, k->a), side_body(s, k->b)};
+    int ends[2] = {y->cb[2 * c], y->cb[2 * c + 1]};
+    y->slots[2 * c] = 0, y->slots[2 * c + 1] = 1, y->nslot[c] = 2;
     for (int side = 0; side < 2; side++) {
-      y->cb[2 * c + side] = ends[side];
-      for (int comp = 0; comp < 2; comp++) {
-        double *w = y->w + ((size_t)(2 * c + comp) * 2 + (size_t)side) * 3;
+        for (int comp = 0; comp < 2; comp++) {
+        double *w = us_lcp_sys_w(y, 2 * c + comp, side);
         if (ends[side] < 0)
           memset(w, 0, 3 * sizeof(double));
         else {
@@ -95,7 +97,7 @@ static void fill_masses(us_LcpSys *y) {
 }
 
 /* Contacts of every body (CSR). */
-static int fill_adjacency(us_LcpSys *y) {
+int us_lcp_sys_link(us_LcpSys *y) {
   const us_Structure *s = y->s;
   y->adj_start = us_calloc((size_t)s->nbody + 1, sizeof(int));
   y->adj = us_malloc((size_t)(2 * s->ncontact + 1) * sizeof(int));
@@ -109,28 +111,43 @@ static int fill_adjacency(us_LcpSys *y) {
   return 0;
 }
 
-static int sys_init(us_LcpSys *y, const us_Structure *s, int cone) {
+int us_lcp_sys_alloc(us_LcpSys *y, const us_Structure *s, int nw, int K) {
   memset(y, 0, sizeof *y);
   y->s = s;
   y->nbody = s->nbody;
   y->ncontact = s->ncontact;
+  y->nw = nw;
+  y->K = K;
   size_t nb = (size_t)(s->nbody > 0 ? s->nbody : 1),
-         nc = (size_t)(s->ncontact > 0 ? s->ncontact : 1);
-  y->minv = us_calloc(3 * nb, sizeof(double));
-  y->fext = us_calloc(3 * nb, sizeof(double));
+         nc = (size_t)(s->ncontact > 0 ? s->ncontact : 1), w = (size_t)nw, k = (size_t)K;
+  y->minv = us_calloc(w * nb, sizeof(double));
+  y->rinv = nw == 6 ? us_calloc(9 * nb, sizeof(double)) : NULL;
+  y->fext = us_calloc(w * nb, sizeof(double));
   y->present = us_calloc(nb, 1);
   y->cb = us_malloc(2 * nc * sizeof(int));
-  y->w = us_calloc(12 * nc, sizeof(double));
-  y->u = us_calloc(3 * nb, sizeof(double));
+  y->w = us_calloc(2 * w * k * nc, sizeof(double));
+  y->slots = us_calloc(k * nc, 1);
+  y->nslot = us_calloc(nc, sizeof(int));
+  y->u = us_calloc(w * nb, sizeof(double));
   y->touched = us_malloc(nb * sizeof(int));
   y->bmark = us_calloc(nb, 1);
   y->cmark = us_calloc(nc, 1);
-  if (!y->minv || !y->fext || !y->present || !y->cb || !y->w || !y->u || !y->touched || !y->bmark ||
-      !y->cmark)
+  if (!y->minv || (nw == 6 && !y->rinv) || !y->fext || !y->present || !y->cb || !y->w ||
+      !y->slots || !y->nslot || !y->u || !y->touched || !y->bmark || !y->cmark)
     return -1;
+  for (int c = 0; c < s->ncontact; c++) {
+    const us_Contact *ct = &s->contacts[c];
+    y->cb[2 * c] = side_body(s, ct->a);
+    y->cb[2 * c + 1] = side_body(s, ct->b);
+  }
+  return 0;
+}
+
+static int sys_init(us_LcpSys *y, const us_Structure *s, int cone) {
+  if (us_lcp_sys_alloc(y, s, 3, 2)) return -1;
   fill_contacts(y, cone);
   fill_masses(y);
-  return fill_adjacency(y);
+  return us_lcp_sys_link(y);
 }
 
 int us_lcp_sys_init(us_LcpSys *y, const us_Structure *s) { return sys_init(y, s, 0); }
@@ -138,16 +155,34 @@ int us_lcp_sys_init(us_LcpSys *y, const us_Structure *s) { return sys_init(y, s,
 int us_lcp_sys_init_cone(us_LcpSys *y, const us_Structure *s) { return sys_init(y, s, 1); }
 
 void us_lcp_sys_free(us_LcpSys *y) {
-  void *arrs[] = {y->minv, y->fext, y->present, y->cb,    y->w,    y->adj_start,
-                  y->adj,  y->u,    y->touched, y->bmark, y->cmark};
+  void *arrs[] = {y->minv,      y->rinv, y->fext, y->present, y->cb,    y->w,     y->slots,
+                  y->nslot,     y->adj_start, y->adj,  y->u,       y->touched, y->bmark, y->cmark};
   for (size_t i = 0; i < sizeof arrs / sizeof arrs[0]; i++) us_free(arrs[i]);
   memset(y, 0, sizeof *y);
 }
 
 /* Body of side `side` of LCP index i if it moves, else -1. */
 static int moving(const us_LcpSys *y, int i, int side) {
-  int b = y->cb[2 * (i >> 1) + side];
+  int b = y->cb[2 * (i / y->K) + side];
   return b >= 0 && y->present[b] ? b : -1;
+}
+
+/* Index m of contact c's slots in use. */
+static int slot_index(const us_LcpSys *y, int c, int m) {
+  return y->K * c + y->slots[(size_t)y->K * (size_t)c + (size_t)m];
+}
+
+/* p^T M^-1 q on body b (3D: the rotation through its 3 x 3 block). */
+static double mdot(const us_LcpSys *y, int b, const double *p, const double *q) {
+  const double *mi = y->minv + (size_t)y->nw * (size_t)b;
+  double sum = 0.0;
+  int nd = y->rinv ? 3 : y->nw;
+  for (int r = 0; r < nd; r++) sum += p[r] * mi[r] * q[r];
+  if (!y->rinv) return sum;
+  const double *R = y->rinv + 9 * (size_t)b;
+  for (int r = 0; r < 3; r++)
+    sum += p[3 + r] * (R[3 * r] * q[3] + R[3 * r + 1] * q[4] + R[3 * r + 2] * q[5]);
+  return sum;
 }
 
 static double sys_entry(void *ctx, int i, int j) {
@@ -158,9 +193,7 @@ static double sys_entry(void *ctx, int i, int j) {
     if (b < 0) continue;
     for (int sj = 0; sj < 2; sj++) {
       if (moving(y, j, sj) != b) continue;
-      const double *wi = us_lcp_sys_w(y, i, si), *wj = us_lcp_sys_w(y, j, sj);
-      const double *mi = y->minv + 3 * (size_t)b;
-      sum += wi[0] * mi[0] * wj[0] + wi[1] * mi[1] * wj[1] + wi[2] * mi[2] * wj[2];
+      sum += mdot(y, b, us_lcp_sys_w(y, i, si), us_lcp_sys_w(y, j, sj));
     }
   }
   return sum;
@@ -172,8 +205,8 @@ static void scatter(us_LcpSys *y, int i, double x, int *nt) {
     int b = moving(y, i, side);
     if (b < 0) continue;
     const double *w = us_lcp_sys_w(y, i, side);
-    double *u = y->u + 3 * (size_t)b;
-    for (int r = 0; r < 3; r++) u[r] += x * w[r];
+    double *u = y->u + (size_t)y->nw * (size_t)b;
+    for (int r = 0; r < y->nw; r++) u[r] += x * w[r];
     if (!y->bmark[b]) {
       y->bmark[b] = 1;
       y->touched[(*nt)++] = b;
@@ -187,16 +220,30 @@ static double gather(const us_LcpSys *y, int i) {
   for (int side = 0; side < 2; side++) {
     int b = moving(y, i, side);
     if (b < 0) continue;
-    const double *w = us_lcp_sys_w(y, i, side), *v = y->u + 3 * (size_t)b;
-    s += w[0] * v[0] + w[1] * v[1] + w[2] * v[2];
+    const double *w = us_lcp_sys_w(y, i, side), *v = y->u + (size_t)y->nw * (size_t)b;
+    double t = 0.0; /* per side, then summed: the 2D operator's rounding */
+    for (int r = 0; r < y->nw; r++) t += w[r] * v[r];
+    s += t;
   }
   return s;
 }
 
+/* out = M^-1 u of body b (out may be u). */
+static void minv_apply(const us_LcpSys *y, int b, const double *u, double *out) {
+  const double *mi = y->minv + (size_t)y->nw * (size_t)b;
+  double rot[3] = {0.0, 0.0, 0.0};
+  if (y->rinv) {
+    const double *R = y->rinv + 9 * (size_t)b;
+    for (int r = 0; r < 3; r++) rot[r] = R[3 * r] * u[3] + R[3 * r + 1] * u[4] + R[3 * r + 2] * u[5];
+  }
+  int nd = y->rinv ? 3 : y->nw;
+  for (int r = 0; r < nd; r++) out[r] = u[r] * mi[r];
+  if (y->rinv) memcpy(out + 3, rot, sizeof rot);
+}
+
 static void to_velocity(us_LcpSys *y, int b) {
-  double *u = y->u + 3 * (size_t)b;
-  const double *mi = y->minv + 3 * (size_t)b;
-  for (int r = 0; r < 3; r++) u[r] *= mi[r];
+  double *u = y->u + (size_t)y->nw * (size_t)b;
+  minv_apply(y, b, u, u);
 }
 
 static int sys_apply(void *ctx, const int *idx, const double *x, int k, double *out_y, int *out) {
@@ -211,28 +258,34 @@ static int sys_apply(void *ctx, const int *idx, const double *x, int k, double *
       int c = y->adj[q];
       if (y->cmark[c]) continue;
       y->cmark[c] = 1;
-      for (int comp = 0; comp < 2; comp++) {
-        out_y[2 * c + comp] = gather(y, 2 * c + comp);
-        out[nout++] = 2 * c + comp;
+      for (int m = 0; m < y->nslot[c]; m++) {
+        int i = slot_index(y, c, m);
+        out_y[i] = gather(y, i);
+        out[nout++] = i;
       }
     }
   }
-  for (int q = 0; q < nout; q += 2) y->cmark[out[q] >> 1] = 0;
+  for (int q = 0; q < nout; q++) y->cmark[out[q] / y->K] = 0;
   for (int t = 0; t < nt; t++) {
     int b = y->touched[t];
     y->bmark[b] = 0;
-    memset(y->u + 3 * (size_t)b, 0, 3 * sizeof(double));
+    memset(y->u + (size_t)y->nw * (size_t)b, 0, (size_t)y->nw * sizeof(double));
   }
   return nout;
 }
 
-/* u = E f + F_ext on present bodies (the net normalized wrench). */
+/* u = E f + F_ext on present bodies (the net normalized wrench); forces
+ * sit only at the contacts' slots in use. */
 static void net_wrench(us_LcpSys *y, const double *f) {
+  size_t nw = (size_t)y->nw;
   for (int b = 0; b < y->nbody; b++)
-    if (y->present[b]) memcpy(y->u + 3 * (size_t)b, y->fext + 3 * (size_t)b, 3 * sizeof(double));
+    if (y->present[b]) memcpy(y->u + nw * (size_t)b, y->fext + nw * (size_t)b, nw * sizeof(double));
   int nt = 0;
-  for (int i = 0; i < 2 * y->ncontact; i++)
-    if (f[i] != 0.0) scatter(y, i, f[i], &nt);
+  for (int c = 0; c < y->ncontact; c++)
+    for (int m = 0; m < y->nslot[c]; m++) {
+      int i = slot_index(y, c, m);
+      if (f[i] != 0.0) scatter(y, i, f[i], &nt);
+    }
   for (int t = 0; t < nt; t++) y->bmark[y->touched[t]] = 0;
 }
 
@@ -241,9 +294,12 @@ static void sys_full(void *ctx, const double *f, const unsigned char *live, doub
   net_wrench(y, f);
   for (int b = 0; b < y->nbody; b++)
     if (y->present[b]) to_velocity(y, b);
-  for (int i = 0; i < 2 * y->ncontact; i++)
-    if (live[i]) a[i] = gather(y, i);
-  memset(y->u, 0, 3 * (size_t)y->nbody * sizeof(double));
+  for (int c = 0; c < y->ncontact; c++)
+    for (int m = 0; m < y->nslot[c]; m++) {
+      int i = slot_index(y, c, m);
+      if (live[i]) a[i] = gather(y, i);
+    }
+  memset(y->u, 0, (size_t)y->nw * (size_t)y->nbody * sizeof(double));
 }
 
 double us_lcp_sys_residual(us_LcpSys *y, const double *f, int *worst_body, double *energy) {
@@ -252,18 +308,29 @@ double us_lcp_sys_residual(us_LcpSys *y, const double *f, int *worst_body, doubl
   *worst_body = -1;
   for (int b = 0; b < y->nbody; b++) {
     if (!y->present[b]) continue;
-    const double *u = y->u + 3 * (size_t)b, *mi = y->minv + 3 * (size_t)b;
-    for (int r = 0; r < 3; r++) {
-      q += u[r] * mi[r] * u[r];
+    const double *u = y->u + (size_t)y->nw * (size_t)b, *mi = y->minv + (size_t)y->nw * (size_t)b;
+    if (y->rinv)
+      q += mdot(y, b, u, u);
+    else /* component by component: the 2D operator's rounding */
+      for (int r = 0; r < y->nw; r++) q += u[r] * mi[r] * u[r];
+    for (int r = 0; r < y->nw; r++) {
       if (fabs(u[r]) > worst) {
         worst = fabs(u[r]);
         *worst_body = b;
       }
     }
   }
-  memset(y->u, 0, 3 * (size_t)y->nbody * sizeof(double));
+  memset(y->u, 0, (size_t)y->nw * (size_t)y->nbody * sizeof(double));
   if (energy) *energy = q;
   return worst;
+}
+
+void us_lcp_sys_velocity(us_LcpSys *y, const double *f, double *v) {
+  net_wrench(y, f);
+  size_t nw = (size_t)y->nw;
+  for (int b = 0; b < y->nbody; b++)
+    if (y->present[b]) minv_apply(y, b, y->u + nw * (size_t)b, v + nw * (size_t)b);
+  memset(y->u, 0, nw * (size_t)y->nbody * sizeof(double));
 }
 
 us_LcpOps us_lcp_sys_ops(us_LcpSys *y) {

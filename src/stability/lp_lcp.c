@@ -53,6 +53,15 @@
  * already feasible Lemke makes no pivot. A warm run that fails (see
  * below) is repeated cold before CLP is asked. Setup pivots count in
  * info->pivots like Lemke's; info->reused counts warm starts.
+ *
+ * The dimension is a parameter: a body has nw = 3 (2D) or 6 (3D) wrench
+ * rows and a contact up to us_eq_gen_slots(dim) column slots, which size
+ * the remembered keys. In 3D the front end alternates the inner and outer
+ * polygonal cones (docs/cones3d.md) and calls this backend on each, so a
+ * basis is remembered per mode; after a refinement a remembered (contact,
+ * slot) may name another edge than last time: the warm start is then a
+ * worse guess, never a wrong one (any complementary start of the skew LCP
+ * keeps the argument above).
  */
 #include "lp_lcp.h"
 
@@ -78,8 +87,11 @@ typedef struct LpLcpWs {
   double *x, *ray;            /* [n] solution, [m] Farkas ray */
   int cap_xl, cap_yl, cap_x, cap_ray;
   double deadline;
-  int *xstamp, *ystamp; /* remembered basis: [3 ncontact], [3 nbody + 1] */
-  int stamp, have_basis;
+  int nslot, nw;         /* column slots per contact, wrench rows per body */
+  int *xstamp, *ystamp; /* remembered bases, one per cone mode (2D: [0]):
+                           [2 (nslot ncontact + 1)], [2 (nw nbody + 1)] */
+  int stamp[2], have_basis[2];
+  int md;               /* the current system's cone mode (3D: 1 outer) */
   int nray, last_body;
   void *clp;     /* CLP workspace, created on the first fallback */
   int by_clp;    /* CLP decided the last test */
@@ -103,10 +115,6 @@ static void lplcp_destroy(void *ws) {
 
 void *us_lp_lcp_create(const us_Structure *s, const us_StabilitySettings *set,
                        const us_LpLcpOptions *opt, us_Error *err) {
-  if (s->dim != 2) { /* its basis keys and the dense tableau's cap are 2D's */
-    us_error_set(err, US_ERR_USAGE, "method lp-lcp supports 2D structures only (use lp or lpsolve)");
-    return NULL;
-  }
   LpLcpWs *w = us_calloc(1, sizeof *w);
   if (w) {
     w->s = s;
@@ -115,8 +123,10 @@ void *us_lp_lcp_create(const us_Structure *s, const us_StabilitySettings *set,
     w->opt = *opt;
     if (w->opt.max_dim <= 0) w->opt.max_dim = US_LP_LCP_MAX_DIM;
     w->last_body = -1;
-    w->xstamp = us_calloc(3 * (size_t)s->ncontact + 1, sizeof(int));
-    w->ystamp = us_calloc(3 * (size_t)s->nbody + 1, sizeof(int));
+    w->nslot = us_eq_gen_slots(s->dim);
+    w->nw = s->dim == 2 ? 3 : 6;
+    w->xstamp = us_calloc(2 * ((size_t)w->nslot * (size_t)s->ncontact + 1), sizeof(int));
+    w->ystamp = us_calloc(2 * ((size_t)w->nw * (size_t)s->nbody + 1), sizeof(int));
   }
   if (!w || !w->xstamp || !w->ystamp) {
     lplcp_destroy(w);
@@ -180,30 +190,32 @@ static void fill_tableau(LpLcpWs *w, const us_EqSystem *sys) {
 /* ---------------------------------------------------------------- reuse */
 
 static int x_key(const LpLcpWs *w, const us_EqSystem *sys, int j) {
-  return 3 * sys->contact[w->gen.col_contact[j]] + us_eq_gen_slot(&w->gen, j);
+  int base = w->md * (w->nslot * w->s->ncontact + 1);
+  return base + w->nslot * sys->contact[w->gen.col_contact[j]] + us_eq_gen_slot(&w->gen, j);
 }
 
 static int y_key(const LpLcpWs *w, const us_EqSystem *sys, int k) {
-  return k == w->m ? 3 * w->s->nbody : 3 * sys->body[k / 3] + k % 3;
+  int base = w->md * (w->nw * w->s->nbody + 1);
+  return base + (k == w->m ? w->nw * w->s->nbody : w->nw * sys->body[k / w->nw] + k % w->nw);
 }
 
 /* Remember the basic members of z by identity. */
 static void save_basis(LpLcpWs *w, const us_EqSystem *sys) {
-  w->stamp++;
+  int st = ++w->stamp[w->md];
   for (int j = 0; j < w->n; j++)
-    if (w->lk.pos[w->dim + j] >= 0) w->xstamp[x_key(w, sys, j)] = w->stamp;
+    if (w->lk.pos[w->dim + j] >= 0) w->xstamp[x_key(w, sys, j)] = st;
   for (int k = 0; k <= w->m; k++)
-    if (w->lk.pos[w->dim + w->n + k] >= 0) w->ystamp[y_key(w, sys, k)] = w->stamp;
-  w->have_basis = 1;
+    if (w->lk.pos[w->dim + w->n + k] >= 0) w->ystamp[y_key(w, sys, k)] = st;
+  w->have_basis[w->md] = 1;
 }
 
 /* The remembered x (into cand) and y (into ties) of this system. */
 static void remembered(LpLcpWs *w, const us_EqSystem *sys, int *nx, int *ny) {
   *nx = *ny = 0;
   for (int j = 0; j < w->n; j++)
-    if (w->xstamp[x_key(w, sys, j)] == w->stamp) w->xl[(*nx)++] = j;
+    if (w->xstamp[x_key(w, sys, j)] == w->stamp[w->md]) w->xl[(*nx)++] = j;
   for (int k = 0; k <= w->m; k++)
-    if (w->ystamp[y_key(w, sys, k)] == w->stamp) w->yl[(*ny)++] = k;
+    if (w->ystamp[y_key(w, sys, k)] == w->stamp[w->md]) w->yl[(*ny)++] = k;
 }
 
 /* The remembered pair (cand[bx], ties[by]) with the largest pivot above
@@ -318,7 +330,7 @@ static us_LemkeEnd run(LpLcpWs *w, const us_EqSystem *sys, int restart, int *pai
                        int *ray_col) {
   fill_tableau(w, sys);
   *pairs = 0;
-  if (w->opt.reuse && w->have_basis && !restart) {
+  if (w->opt.reuse && w->have_basis[w->md] && !restart) {
     us_LemkeEnd e = warm_setup(w, sys, pairs);
     if (e != US_LEMKE_GO) return e;
   }
@@ -366,6 +378,7 @@ static us_Status lplcp_solve(void *ws, const us_BackendProblem *pb, us_BackendOu
   LpLcpWs *w = ws;
   int chain = w->clp_chain && !restart;
   w->nray = w->by_clp = w->clp_chain = 0;
+  w->md = sys->cones && sys->cones->mode == US_CONE_OUTER; /* a basis per cone mode */
   w->last_body = -1;
   *verdict = US_UNDECIDED;
   if (us_eq_generators(sys, w->lp.n_column_mu, &w->gen)) return us_error_set(err, US_ERR_NOMEM, "out of memory building the LP");
@@ -388,7 +401,7 @@ static us_Status lplcp_solve(void *ws, const us_BackendProblem *pb, us_BackendOu
   int warm = 0;
   if (try_run(w, sys, restart, verdict, f, info, note, note_sz, &why, &warm)) return US_OK;
   if (warm && try_run(w, sys, 1, verdict, f, info, note, note_sz, &why, &warm)) return US_OK;
-  w->have_basis = 0; /* a failed run's basis is no start */
+  w->have_basis[w->md] = 0; /* a failed run's basis is no start */
   return clp_decide(w, sys, added, nadded, removed, nremoved, chain, verdict, f, info, why, note,
                     note_sz, err);
 }

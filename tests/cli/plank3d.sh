@@ -47,6 +47,9 @@ done
 expect 0 "a jittered tower of boxes plans" -- "$CLI" plan "$T/tower.json" -o "$T/tower-plan.json"
 expect 0 "and its plan verifies" -- "$CLI" verify "$T/tower.json" "$T/tower-plan.json"
 expect 0 "lp_solve plans it too" -- "$CLI" plan "$T/tower.json" --method lpsolve -o "$T/tower-plan2.json"
-expect 2 "lcp-reuse refuses 3D" -- "$CLI" check "$T/tower.json" --method lcp-reuse
-contains "$T/err" "2D structures only" "and says why"
+for m in lcp lcp-reuse lp-lcp; do
+  expect 0 "$m decides the 3D tower: stands" -- "$CLI" check "$T/tower.json" --method $m
+  expect 0 "$m plans it" -- "$CLI" plan "$T/tower.json" --method $m -o "$T/tower-$m.json"
+  expect 0 "and its plan verifies" -- "$CLI" verify "$T/tower.json" "$T/tower-$m.json"
+done
 finish
