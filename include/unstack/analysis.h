@@ -152,15 +152,17 @@ typedef struct us_StrongResult {
   double bound;        /* proven upper bound on it (yes: <= tol) */
   double seconds;
   /* the witness motion (strong == 0 and has_witness): accelerations of the
-     present movable bodies (ax, ay, alpha in m/s^2, rad/s^2; 3D unused),
-     and per active contact its index in s->contacts, force (f_n, f_t in
-     newtons) and mode */
+     present movable bodies (2D: ax, ay, alpha; 3D: ax, ay, az, alpha x, y,
+     z; in m/s^2, rad/s^2), and per active contact its index in
+     s->contacts, force (2D: f_n, f_t; 3D: f_n and f_t along t[0], t[1];
+     in newtons) and mode (3D: any slide is US_MODE_SLIDES_POS) */
   int has_witness;
   int nbody, *body;
-  double *accel;       /* [nbody * 3] */
+  double *accel;       /* [nbody * 3] (3D: [nbody * 6]) */
   int ncontact, *contact;
-  double *force;       /* [ncontact * 2] */
+  double *force;       /* [ncontact * 2] (3D: [ncontact * 3]) */
   us_ContactMode *mode;/* [ncontact] */
+  int dim;             /* of the witness: 2 or 3 */
 } us_StrongResult;
 US_API void us_strong_result_free(us_StrongResult *r);
 

@@ -89,12 +89,8 @@ static void dfs(Search *q) {
     q->power = obj;
     return;
   }
-  /* mu = 0: sticking is inside the two slides (f_t = 0 in all three) */
-  static const int all[4] = {US_MODE_SEPARATES, US_MODE_STICKS, US_MODE_SLIDES_POS,
-                             US_MODE_SLIDES_NEG};
-  static const int frictionless[3] = {US_MODE_SEPARATES, US_MODE_SLIDES_POS, US_MODE_SLIDES_NEG};
-  const int *modes = q->m->e.mu[c] > 0 ? all : frictionless;
-  int nmode = q->m->e.mu[c] > 0 ? 4 : 3;
+  int modes[2 + US_STRONG_EDGES];
+  int nmode = us_strong_modes(q->m, c, q->x, modes);
   for (int i = 0; i < nmode && !q->found && !q->undecided; i++) {
     int k = modes[i];
     q->mode[c] = k;
