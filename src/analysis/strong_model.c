@@ -91,7 +91,7 @@ static int avar(const us_StrongModel *m, int c, int k) {
 /* Entry (r, q) of the normalized mass matrix (r, q in one body's block). */
 static double mass_entry(const us_StrongModel *m, int r, int q) {
   int i = r / m->e.nw, a = r % m->e.nw, b = q % m->e.nw;
-  if (m->dim == 3 && a >= 3) return m->mrot[9 * i + 3 * (a - 3) + (b - 3)];
+  if (m->dim == 3 && a >= 3 && b >= 3) return m->mrot[9 * i + 3 * (a - 3) + (b - 3)];
   return r == q ? m->mdiag[r] : 0.0;
 }
 
