@@ -287,5 +287,26 @@ static void extruded_piles_match_2d(void) {
   CHECK(decided > 0);
 }
 
+/* Every allocation failing in turn on the 3D pinched box: an error or a
+ * full answer, never a crash or a leak (the harness checks leaks). */
+static void out_of_memory(void) {
+  us_Structure *s = prism(pinched2(1, 0.5));
+  CHECK(s);
+  us_StrongSettings set = us_strong_default_settings();
+  set.time_limit = 0;
+  int done = 0;
+  for (int n = 0; n < 600 && !done; n++) {
+    us_StrongResult r;
+    us_Error err;
+    us_alloc_fail_after(n);
+    us_Status st = us_strong_stability(s, NULL, &set, &r, &err);
+    us_alloc_fail_after(-1);
+    if (st == US_OK) done = r.strong == 0, us_strong_result_free(&r);
+    else CHECK(st == US_ERR_NOMEM || st == US_ERR_SOLVER);
+  }
+  CHECK(done);
+  us_structure_free(s);
+}
+
 US_TEST_MAIN(T(pinched_off_ground_no), T(box_on_ground_yes), T(slope_below_at_above),
-             T(extruded_2d_cases), T(tampered_witness_rejected), T(extruded_piles_match_2d))
+             T(extruded_2d_cases), T(tampered_witness_rejected), T(extruded_piles_match_2d), T(out_of_memory))
