@@ -167,8 +167,10 @@ typedef struct us_StrongResult {
 US_API void us_strong_result_free(us_StrongResult *r);
 
 /* Decide strong stability of sub-assembly `present` (NULL: every movable
- * body) of a 2D structure. Outcomes in out; errors: bad arguments or a 3D
- * structure (US_ERR_USAGE), memory, a solver failure. err may be NULL. */
+ * body) of a 2D or 3D structure (3D: the mode search with inner and outer
+ * polygonal cones; "yes" and "no" hold for the circular cone, else
+ * undecided; docs/classify.md). Outcomes in out; errors: bad arguments
+ * (US_ERR_USAGE), memory, a solver failure. err may be NULL. */
 US_API us_Status us_strong_stability(const us_Structure *s, const us_Bitset *present,
                                      const us_StrongSettings *set, us_StrongResult *out,
                                      us_Error *err);
@@ -302,7 +304,7 @@ typedef struct us_Classification {
   /* 6. strong stability with friction (us_strong_stability): strong 1 yes
      (a proof: frictionless and standing, Gauss's principle; or the search),
      0 no (does not stand, or a checked witness motion in strong_result),
-     -1 undecided (strong_result.note says why; 3D is not decided), -2 not
+     -1 undecided (strong_result.note says why), -2 not
      asked */
   int strong;
   us_StrongResult strong_result;

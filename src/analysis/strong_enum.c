@@ -2,7 +2,8 @@
  * decision, with lp_solve (independent of CBC, which solves the MIP).
  *
  * Every solution of the dynamics at rest shows, at each contact, one of
- * four modes (separates, sticks, slides +t, slides -t; us_ContactMode), and
+ * four modes (separates, sticks, slides +t, slides -t; us_ContactMode; 3D:
+ * one slide per cone direction, us_strong_modes), and
  * in a fixed mode pattern the conditions are linear: the solutions of one
  * pattern are a polyhedron, given in strong.h's variables by bounds only.
  * So the union over patterns is the solution set, and strong stability
