@@ -54,6 +54,9 @@ static void load_bounds(Search *q) {
 static int node_lp(Search *q, double *obj) {
   load_bounds(q);
   q->nodes++;
+  /* one LP of a large 3D model can outlast the deadline: lp_solve's own
+     limit (whole seconds), a timeout being undecided */
+  if (q->deadline > 0) set_timeout(q->lp, (long)ceil(fmax(q->deadline - us_now(), 0)) + 1);
   int rc = solve(q->lp);
   if (rc == INFEASIBLE) return 0;
   if (rc != OPTIMAL && rc != PRESOLVED) {
