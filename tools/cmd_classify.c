@@ -304,8 +304,12 @@ static void text_strong(const us_Structure *s, const us_Classification *c) {
     printf("; witness:");
     for (int k = 0; k < r->nbody && k < TEXT_IDS; k++) {
       printf(" "), put_body(s, r->body[k]);
-      printf(" a = (%.4g, %.4g) alpha = %.4g", r->accel[3 * k], r->accel[3 * k + 1],
-             r->accel[3 * k + 2]);
+      const double *a = r->accel + (r->dim == 3 ? 6 : 3) * k;
+      if (r->dim == 3)
+        printf(" a = (%.4g, %.4g, %.4g) alpha = (%.4g, %.4g, %.4g)", a[0], a[1], a[2], a[3], a[4],
+               a[5]);
+      else
+        printf(" a = (%.4g, %.4g) alpha = %.4g", a[0], a[1], a[2]);
     }
     int n[4] = {0, 0, 0, 0};
     for (int k = 0; k < r->ncontact; k++) n[r->mode[k] & 3]++;
@@ -424,8 +428,12 @@ static void json_strong(const us_Structure *s, const us_Classification *c) {
   for (int k = 0; k < r->nbody; k++) {
     printf("%s{\"id\": ", k ? ", " : "");
     put_body(s, r->body[k]);
-    printf(", \"a\": [%.9g, %.9g], \"alpha\": %.9g}", r->accel[3 * k], r->accel[3 * k + 1],
-           r->accel[3 * k + 2]);
+    const double *a = r->accel + (r->dim == 3 ? 6 : 3) * k;
+    if (r->dim == 3)
+      printf(", \"a\": [%.9g, %.9g, %.9g], \"alpha\": [%.9g, %.9g, %.9g]}", a[0], a[1], a[2],
+             a[3], a[4], a[5]);
+    else
+      printf(", \"a\": [%.9g, %.9g], \"alpha\": %.9g}", a[0], a[1], a[2]);
   }
   printf("], \"contacts\": [");
   for (int k = 0; k < r->ncontact; k++) {
@@ -434,8 +442,13 @@ static void json_strong(const us_Structure *s, const us_Classification *c) {
     json_body_or_null(s, ct->a);
     printf(", \"b\": ");
     put_body(s, ct->b);
-    printf(", \"p\": [%.9g, %.9g], \"mode\": \"%s\", \"f\": [%.9g, %.9g]}", ct->p[0], ct->p[1],
-           mode_word(r->mode[k]), r->force[2 * k], r->force[2 * k + 1]);
+    if (r->dim == 3)
+      printf(", \"p\": [%.9g, %.9g, %.9g], \"mode\": \"%s\", \"f\": [%.9g, %.9g, %.9g]}",
+             ct->p[0], ct->p[1], ct->p[2], mode_word(r->mode[k]), r->force[3 * k],
+             r->force[3 * k + 1], r->force[3 * k + 2]);
+    else
+      printf(", \"p\": [%.9g, %.9g], \"mode\": \"%s\", \"f\": [%.9g, %.9g]}", ct->p[0],
+             ct->p[1], mode_word(r->mode[k]), r->force[2 * k], r->force[2 * k + 1]);
   }
   printf("]}");
 }

@@ -152,21 +152,25 @@ typedef struct us_StrongResult {
   double bound;        /* proven upper bound on it (yes: <= tol) */
   double seconds;
   /* the witness motion (strong == 0 and has_witness): accelerations of the
-     present movable bodies (ax, ay, alpha in m/s^2, rad/s^2; 3D unused),
-     and per active contact its index in s->contacts, force (f_n, f_t in
-     newtons) and mode */
+     present movable bodies (2D: ax, ay, alpha; 3D: ax, ay, az, alpha x, y,
+     z; in m/s^2, rad/s^2), and per active contact its index in
+     s->contacts, force (2D: f_n, f_t; 3D: f_n and f_t along t[0], t[1];
+     in newtons) and mode (3D: any slide is US_MODE_SLIDES_POS) */
   int has_witness;
   int nbody, *body;
-  double *accel;       /* [nbody * 3] */
+  double *accel;       /* [nbody * 3] (3D: [nbody * 6]) */
   int ncontact, *contact;
-  double *force;       /* [ncontact * 2] */
+  double *force;       /* [ncontact * 2] (3D: [ncontact * 3]) */
   us_ContactMode *mode;/* [ncontact] */
+  int dim;             /* of the witness: 2 or 3 */
 } us_StrongResult;
 US_API void us_strong_result_free(us_StrongResult *r);
 
 /* Decide strong stability of sub-assembly `present` (NULL: every movable
- * body) of a 2D structure. Outcomes in out; errors: bad arguments or a 3D
- * structure (US_ERR_USAGE), memory, a solver failure. err may be NULL. */
+ * body) of a 2D or 3D structure (3D: the mode search with inner and outer
+ * polygonal cones; "yes" and "no" hold for the circular cone, else
+ * undecided; docs/classify.md). Outcomes in out; errors: bad arguments
+ * (US_ERR_USAGE), memory, a solver failure. err may be NULL. */
 US_API us_Status us_strong_stability(const us_Structure *s, const us_Bitset *present,
                                      const us_StrongSettings *set, us_StrongResult *out,
                                      us_Error *err);
@@ -300,7 +304,7 @@ typedef struct us_Classification {
   /* 6. strong stability with friction (us_strong_stability): strong 1 yes
      (a proof: frictionless and standing, Gauss's principle; or the search),
      0 no (does not stand, or a checked witness motion in strong_result),
-     -1 undecided (strong_result.note says why; 3D is not decided), -2 not
+     -1 undecided (strong_result.note says why), -2 not
      asked */
   int strong;
   us_StrongResult strong_result;

@@ -41,24 +41,27 @@ int us_strong_witness(const us_StrongModel *m, const double *x, us_StrongResult 
   double sc = x[m->nv - 1], g = us_gravity_norm(e->s->gravity);
   if (!(sc > 0)) return 1;
   size_t nb = (size_t)(e->nbody ? e->nbody : 1), nc = (size_t)(m->nc ? m->nc : 1);
+  size_t nw = (size_t)e->nw, dim = (size_t)m->dim;
   out->body = us_malloc(nb * sizeof(int));
-  out->accel = us_malloc(3 * nb * sizeof(double));
+  out->accel = us_malloc(nw * nb * sizeof(double));
   out->contact = us_malloc(nc * sizeof(int));
-  out->force = us_malloc(2 * nc * sizeof(double));
+  out->force = us_malloc(dim * nc * sizeof(double));
   out->mode = us_malloc(nc * sizeof(us_ContactMode));
   if (!out->body || !out->accel || !out->contact || !out->force || !out->mode) return -1;
-  out->nbody = e->nbody, out->ncontact = m->nc, out->has_witness = 1;
+  out->nbody = e->nbody, out->ncontact = m->nc, out->has_witness = 1, out->dim = m->dim;
   for (int i = 0; i < e->nbody; i++) {
     out->body[i] = e->body[i];
-    out->accel[3 * i] = x[3 * i] / sc * g;
-    out->accel[3 * i + 1] = x[3 * i + 1] / sc * g;
-    out->accel[3 * i + 2] = x[3 * i + 2] / sc * g / e->length_scale;
+    for (int k = 0; k < e->nw; k++) /* the first dim are linear, the rest angular */
+      out->accel[e->nw * i + k] = x[e->nw * i + k] / sc * g / (k < m->dim ? 1 : e->length_scale);
   }
+  static const int f2[2] = {SV_FN, SV_FT}, f3[3] = {SV3_FN, SV3_FT1, SV3_FT2};
   for (int c = 0; c < m->nc; c++) {
     int mode = us_strong_mode_of(m, x, c, 1e-9);
     out->contact[c] = e->contact[c];
-    out->force[2 * c] = x[us_sv(m, c, SV_FN)] / sc * e->force_scale;
-    out->force[2 * c + 1] = x[us_sv(m, c, SV_FT)] / sc * e->force_scale;
+    for (int k = 0; k < m->dim; k++)
+      out->force[m->dim * c + k] = x[us_sv(m, c, m->dim == 2 ? f2[k] : f3[k])] / sc * e->force_scale;
+    /* 3D: every slide is reported as "slides" (its direction is the slip's) */
+    if (m->dim == 3 && mode > US_MODE_SLIDES_POS) mode = US_MODE_SLIDES_POS;
     out->mode[c] = (us_ContactMode)(mode < 0 ? US_MODE_STICKS : mode);
   }
   return 0;
@@ -85,7 +88,7 @@ static us_Verdict weak_verdict(const us_Structure *s, const us_Bitset *present, 
 /* Run the chosen solver on the model; x receives a witness for "no". */
 static us_Status search(const us_StrongModel *m, const us_StrongSettings *set, double deadline,
                         double *x, us_StrongResult *out, us_Error *err) {
-  if (set->method != US_STRONG_ENUM) {
+  if (set->method != US_STRONG_ENUM && m->dim == 2) { /* 3D: the mode search only */
     us_Error lerr = {0};
     const us_CbcModule *api = us_cbc_module_api(&lerr);
     if (api) {
@@ -131,12 +134,14 @@ static us_Status witness(const us_StrongModel *m, const us_Bitset *present, doub
   return US_OK;
 }
 
-static us_Status decide(const us_Structure *s, const us_Bitset *present,
-                        const us_StrongSettings *set, double deadline, us_StrongResult *out,
-                        us_Error *err) {
+/* One model (3D: the inner or the outer cones) searched: its answer in out
+ * ("no" only with a checked witness). */
+static us_Status decide_model(const us_Structure *s, const us_Bitset *present, int outer,
+                              const us_StrongSettings *set, double deadline, us_StrongResult *out,
+                              us_Error *err) {
   us_StrongModel m;
   char why[128] = "";
-  int rc = us_strong_model_build(&m, s, present, why, sizeof why);
+  int rc = us_strong_model_build3(&m, s, present, outer, why, sizeof why);
   us_Status st = US_OK;
   double *x = rc ? NULL : us_calloc((size_t)m.nv, sizeof(double));
   if (rc < 0 || (rc == 0 && !x)) {
@@ -161,12 +166,47 @@ static us_Status decide(const us_Structure *s, const us_Bitset *present,
   return st;
 }
 
+/* 3D: a motion of the inner cones is one of the circular cone (its
+ * witness is re-checked against the circular cone); "yes" of the outer
+ * cones is "yes" of the circular one; a "yes" of the inner cones alone or
+ * an outer motion the circular cone rejects proves nothing: undecided. */
+static us_Status decide3(const us_Structure *s, const us_Bitset *present,
+                         const us_StrongSettings *set, double deadline, us_StrongResult *out,
+                         us_Error *err) {
+  us_Status st = decide_model(s, present, 0, set, deadline, out, err);
+  if (st != US_OK || out->strong == 0) return st;
+  int inner = out->strong;
+  long nodes = out->nodes;
+  us_strong_result_free(out);
+  st = decide_model(s, present, 1, set, deadline, out, err);
+  out->nodes += nodes;
+  if (st != US_OK || out->strong == 0) return st;
+  if (out->strong == 1)
+    snprintf(out->note, sizeof out->note,
+             "every contact-mode pattern of the outer polygonal cones (so of the circular cone)");
+  else if (inner == 1) {
+    char outer_note[sizeof out->note];
+    memcpy(outer_note, out->note, sizeof outer_note);
+    snprintf(out->note, sizeof out->note,
+             "no motion with the inner polygonal cones; the outer ones: %.100s", outer_note);
+  }
+  else if (out->note[0] == 0)
+    snprintf(out->note, sizeof out->note, "undecided with the polygonal cones");
+  return st;
+}
+
+static us_Status decide(const us_Structure *s, const us_Bitset *present,
+                        const us_StrongSettings *set, double deadline, us_StrongResult *out,
+                        us_Error *err) {
+  if (s->dim == 3) return decide3(s, present, set, deadline, out, err);
+  return decide_model(s, present, 0, set, deadline, out, err);
+}
+
 us_Status us_strong_stability(const us_Structure *s, const us_Bitset *present,
                               const us_StrongSettings *set, us_StrongResult *out, us_Error *err) {
   us_StrongSettings d = set ? *set : us_strong_default_settings();
-  if (!s || !out || s->dim != 2 || !(d.tol > 0) || d.max_nodes <= 0) {
-    us_error_set(err, US_ERR_USAGE, s && s->dim != 2 ? "strong stability is decided in 2D only"
-                                                     : "bad arguments to us_strong_stability");
+  if (!s || !out || (s->dim != 2 && s->dim != 3) || !(d.tol > 0) || d.max_nodes <= 0) {
+    us_error_set(err, US_ERR_USAGE, "bad arguments to us_strong_stability");
     return US_ERR_USAGE;
   }
   memset(out, 0, sizeof *out);
@@ -185,6 +225,7 @@ us_Status us_strong_stability(const us_Structure *s, const us_Bitset *present,
   if (st == US_OK && weak == US_STABLE && out->strong == 1 && !out->note[0])
     snprintf(out->note, sizeof out->note, "%s",
              out->method == US_STRONG_MIP ? "the MIP's proven bound" : "every contact-mode pattern");
+  if (st == US_OK && s->dim == 3) out->method = US_STRONG_ENUM; /* 3D: the mode search only */
   if (st == US_OK && out->strong == 0 && out->has_witness && !out->note[0])
     snprintf(out->note, sizeof out->note, "a motion the dynamics allow (checked)");
   out->seconds = us_now() - t0;

@@ -9,7 +9,8 @@
  * points from its centre, at least its radius of gyration), a contact's force measures to the force plus
  * the lighter side's weight, accelerations to |g|. Adding a body far away
  * changes none of them. Sign conventions are the structure's: the normal
- * points from a into b, the force on b is f_n n + f_t t with t = t[0], and
+ * points from a into b, the force on b is f_n n + f_t t with t = t[0] (3D:
+ * f_t1 t[0] + f_t2 t[1], the cone circular), and
  * a = acc_b(p) - acc_a(p) with acc(p) = a + alpha x (p - com) at rest. */
 #include "strong.h"
 
@@ -23,7 +24,7 @@ typedef struct Ctx {
   const us_Structure *s;
   const us_StrongResult *w;
   int *slot;        /* [nbody] witness row of a body, -1 at rest */
-  double *res;      /* [nbody * 3] Newton-Euler residual */
+  double *res;      /* [nbody * 6] Newton-Euler residual (force, torque) */
   double *scale;    /* [nbody] force magnitude scale */
   double *reach;    /* [nbody] */
   double g, tol;
@@ -36,61 +37,109 @@ static int fail(Ctx *x, const char *msg, const char *name) {
   return 0;
 }
 
-/* Acceleration of the material point p of body i (0 for the ground,
- * fixed bodies and bodies at rest). */
-static void point_acc(const Ctx *x, int i, const double *p, double out[2]) {
-  out[0] = out[1] = 0;
+/* The witness's linear and angular acceleration of body i (zero at rest);
+ * 2D: (ax, ay, 0) and (0, 0, alpha). */
+static void body_acc(const Ctx *x, int i, double lin[3], double ang[3]) {
+  lin[0] = lin[1] = lin[2] = ang[0] = ang[1] = ang[2] = 0;
   if (i < 0 || x->slot[i] < 0) return;
-  const double *a = x->w->accel + 3 * x->slot[i], *c = x->s->bodies[i].com;
-  out[0] = a[0] - a[2] * (p[1] - c[1]);
-  out[1] = a[1] + a[2] * (p[0] - c[0]);
+  int nw = x->s->dim == 3 ? 6 : 3;
+  const double *a = x->w->accel + nw * x->slot[i];
+  if (nw == 3) {
+    lin[0] = a[0], lin[1] = a[1], ang[2] = a[2];
+    return;
+  }
+  for (int k = 0; k < 3; k++) lin[k] = a[k], ang[k] = a[3 + k];
 }
 
-/* The witness's force at contact c (0 when it lists none), its mode. */
-static int witness_force(const Ctx *x, int c, double f[2]) {
-  f[0] = f[1] = 0;
+static void cross(const double *a, const double *b, double *out) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* Acceleration of the material point p of body i at rest, a + alpha x r
+ * (0 for the ground, fixed bodies and bodies at rest). */
+static void point_acc(const Ctx *x, int i, const double *p, double out[3]) {
+  double lin[3], ang[3], r[3] = {0, 0, 0}, t[3];
+  body_acc(x, i, lin, ang);
+  if (i >= 0)
+    for (int k = 0; k < x->s->dim; k++) r[k] = p[k] - x->s->bodies[i].com[k];
+  cross(ang, r, t);
+  for (int k = 0; k < 3; k++) out[k] = lin[k] + t[k];
+}
+
+/* The witness's force at contact c in the contact frame (f_n, f_t...; 0
+ * when it lists none). */
+static int witness_force(const Ctx *x, int c, double f[3]) {
+  int dim = x->s->dim;
+  f[0] = f[1] = f[2] = 0;
   for (int k = 0; k < x->w->ncontact; k++)
     if (x->w->contact[k] == c) {
-      f[0] = x->w->force[2 * k], f[1] = x->w->force[2 * k + 1];
+      for (int q = 0; q < dim; q++) f[q] = x->w->force[dim * k + q];
       return 1;
     }
   return 0;
 }
 
 /* Add the push F at p on body i (sign +1) to its residual. */
-static void push(Ctx *x, int i, const double *p, const double F[2], double sign) {
+static void push(Ctx *x, int i, const double *p, const double F[3], double sign) {
   if (i < 0 || x->slot[i] < 0) return;
   const double *c = x->s->bodies[i].com;
-  double *r = x->res + 3 * i, rx = p[0] - c[0], ry = p[1] - c[1];
-  r[0] += sign * F[0], r[1] += sign * F[1];
-  r[2] += sign * (rx * F[1] - ry * F[0]);
-  x->scale[i] += hypot(F[0], F[1]);
-  x->reach[i] = fmax(x->reach[i], hypot(rx, ry));
+  double r[3] = {0, 0, 0}, t[3];
+  for (int k = 0; k < x->s->dim; k++) r[k] = p[k] - c[k];
+  cross(r, F, t);
+  double *res = x->res + 6 * i;
+  for (int k = 0; k < 3; k++) res[k] += sign * F[k], res[3 + k] += sign * t[k];
+  x->scale[i] += sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]);
+  x->reach[i] = fmax(x->reach[i], sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]));
 }
 
-/* The conditions at contact c: cone, complementarity, sliding friction. */
+static double dot(const double *a, const double *b, int n) {
+  double v = 0;
+  for (int k = 0; k < n; k++) v += a[k] * b[k];
+  return v;
+}
+
+/* The conditions at contact c with the circular Coulomb cone (2D: the
+ * interval): cone, complementarity, sliding friction mu f_n against the
+ * slip. */
 static int check_contact(Ctx *x, int c) {
   const us_Contact *k = &x->s->contacts[c];
-  double f[2], pa[2], pb[2];
+  int dim = x->s->dim;
+  double f[3], pa[3], pb[3], d[3];
   witness_force(x, c, f);
   point_acc(x, k->a, k->p, pa);
   point_acc(x, k->b, k->p, pb);
-  double d[2] = {pb[0] - pa[0], pb[1] - pa[1]};
-  double an = d[0] * k->n[0] + d[1] * k->n[1], at = d[0] * k->t[0][0] + d[1] * k->t[0][1];
+  for (int q = 0; q < 3; q++) d[q] = pb[q] - pa[q];
+  double an = dot(d, k->n, dim), at[2] = {dot(d, k->t[0], dim), dim == 3 ? dot(d, k->t[1], dim) : 0};
+  double ft = hypot(f[1], f[2]), slip = hypot(at[0], at[1]);
   double wa = k->a >= 0 && !x->s->bodies[k->a].fixed ? x->s->bodies[k->a].mass : INFINITY;
   double wb = k->b >= 0 && !x->s->bodies[k->b].fixed ? x->s->bodies[k->b].mass : INFINITY;
-  double fs = x->tol * (fabs(f[0]) + fabs(f[1]) + fmin(wa, wb) * x->g), as = x->tol * x->g;
+  double fs = x->tol * (fabs(f[0]) + ft + fmin(wa, wb) * x->g), as = x->tol * x->g;
   const char *name = x->s->bodies[k->b >= 0 ? k->b : k->a].id;
   if (f[0] < -fs) return fail(x, "negative normal force at a contact of", name);
   if (an < -as) return fail(x, "interpenetration at a contact of", name);
-  if (fabs(f[1]) > k->mu * f[0] + fs) return fail(x, "friction outside the cone at", name);
+  if (ft > k->mu * f[0] + fs) return fail(x, "friction outside the cone at", name);
   if (f[0] > fs && fabs(an) > as) return fail(x, "normal acceleration at a closed contact of", name);
-  if (at > as && f[1] > -k->mu * f[0] + fs) return fail(x, "friction not against the slip at", name);
-  if (at < -as && f[1] < k->mu * f[0] - fs) return fail(x, "friction not against the slip at", name);
-  double F[2] = {f[0] * k->n[0] + f[1] * k->t[0][0], f[0] * k->n[1] + f[1] * k->t[0][1]};
+  /* slipping: f_t = -mu f_n (slip direction) */
+  double mf = k->mu * fmax(f[0], 0) / (slip > 0 ? slip : 1);
+  if (slip > as && hypot(f[1] + mf * at[0], f[2] + mf * at[1]) > fs)
+    return fail(x, "friction not against the slip at", name);
+  double F[3];
+  for (int q = 0; q < 3; q++) {
+    double t1 = dim == 3 ? k->t[1][q] : 0;
+    F[q] = q < dim ? f[0] * k->n[q] + f[1] * k->t[0][q] + f[2] * t1 : 0;
+  }
   push(x, k->b, k->p, F, 1.0);
   push(x, k->a, k->p, F, -1.0);
   return 1;
+}
+
+/* I alpha of body b (2D: the polar moment about z; 3D: the tensor). */
+static void inertia_times(const us_Body *b, int dim, const double ang[3], double out[3]) {
+  for (int r = 0; r < 3; r++)
+    out[r] = dim == 2 ? (r == 2 ? b->inertia * ang[2] : 0)
+                      : dot(b->inertia3[r], ang, 3);
 }
 
 /* Newton-Euler on every moving body; the gravity power into *power. */
@@ -101,16 +150,21 @@ static int check_bodies(Ctx *x, double *power) {
   for (int i = 0; i < s->nbody; i++) {
     if (x->slot[i] < 0) continue;
     const us_Body *b = &s->bodies[i];
-    const double *a = x->w->accel + 3 * x->slot[i], *r = x->res + 3 * i;
-    double fs = x->tol * (b->mass * (x->g + hypot(a[0], a[1])) + x->scale[i]);
-    if (fabs(b->mass * (a[0] - s->gravity[0]) - r[0]) > fs ||
-        fabs(b->mass * (a[1] - s->gravity[1]) - r[1]) > fs)
-      return fail(x, "forces do not give the acceleration of", b->id);
+    double lin[3], ang[3], ia[3];
+    body_acc(x, i, lin, ang);
+    inertia_times(b, s->dim, ang, ia);
+    const double *r = x->res + 6 * i;
+    double g3[3] = {s->gravity[0], s->gravity[1], s->dim == 3 ? s->gravity[2] : 0};
+    double fs = x->tol * (b->mass * (x->g + sqrt(dot(lin, lin, 3))) + x->scale[i]);
+    for (int q = 0; q < 3; q++)
+      if (fabs(b->mass * (lin[q] - g3[q]) - r[q]) > fs)
+        return fail(x, "forces do not give the acceleration of", b->id);
     /* lever: its farthest contact point, at least its radius of gyration */
-    double ts = fs * fmax(x->reach[i], sqrt(b->inertia / b->mass)) + x->tol * fabs(b->inertia * a[2]);
-    if (fabs(b->inertia * a[2] - r[2]) > ts)
-      return fail(x, "torques do not give the angular acceleration of", b->id);
-    *power += b->mass * (s->gravity[0] * a[0] + s->gravity[1] * a[1]);
+    double ts = fs * fmax(x->reach[i], sqrt(b->inertia / b->mass)) + x->tol * sqrt(dot(ia, ia, 3));
+    for (int q = 0; q < 3; q++)
+      if (fabs(ia[q] - r[3 + q]) > ts)
+        return fail(x, "torques do not give the angular acceleration of", b->id);
+    *power += b->mass * dot(g3, lin, 3);
     wsum += b->mass;
   }
   *power /= wsum * x->g * x->g;
@@ -125,16 +179,19 @@ static int check_lists(Ctx *x, const us_Bitset *present) {
     int i = x->w->body[k];
     if (i < 0 || i >= s->nbody || s->bodies[i].fixed || !us_bitset_get(present, i))
       return fail(x, "the witness moves a body that is not movable or present", NULL);
-    if (!isfinite(x->w->accel[3 * k]) || !isfinite(x->w->accel[3 * k + 1]) ||
-        !isfinite(x->w->accel[3 * k + 2]))
-      return fail(x, "non-finite acceleration of", s->bodies[i].id);
+    int nw = s->dim == 3 ? 6 : 3;
+    for (int q = 0; q < nw; q++)
+      if (!isfinite(x->w->accel[nw * k + q]))
+        return fail(x, "non-finite acceleration of", s->bodies[i].id);
     x->slot[i] = k;
   }
   for (int k = 0; k < x->w->ncontact; k++) {
     int c = x->w->contact[k];
-    if (c < 0 || c >= s->ncontact || !us_contact_active(s, present, c) ||
-        !isfinite(x->w->force[2 * k]) || !isfinite(x->w->force[2 * k + 1]))
+    if (c < 0 || c >= s->ncontact || !us_contact_active(s, present, c))
       return fail(x, "the witness lists a contact that is not active", NULL);
+    for (int q = 0; q < s->dim; q++)
+      if (!isfinite(x->w->force[s->dim * k + q]))
+        return fail(x, "non-finite force at a contact of the witness", NULL);
   }
   return 1;
 }
@@ -154,11 +211,12 @@ int us_strong_check(const us_Structure *s, const us_Bitset *present, const us_St
   Ctx x = {.s = s, .w = w, .g = us_gravity_norm(s->gravity), .tol = tol > 0 ? tol : 1e-6,
            .why = why, .why_size = why_size};
   if (why && why_size) why[0] = 0;
-  if (!w || !w->has_witness || s->dim != 2) return fail(&x, "no 2D witness to check", NULL);
+  if (!w || !w->has_witness || (w->dim && w->dim != s->dim))
+    return fail(&x, "no witness of the structure's dimension to check", NULL);
   us_Bitset all = {0};
   size_t nb = (size_t)(s->nbody > 0 ? s->nbody : 1);
   x.slot = us_malloc(nb * sizeof(int));
-  x.res = us_calloc(3 * nb, sizeof(double));
+  x.res = us_calloc(6 * nb, sizeof(double));
   x.scale = us_calloc(nb, sizeof(double));
   x.reach = us_calloc(nb, sizeof(double));
   int ok = x.slot && x.res && x.scale && x.reach;

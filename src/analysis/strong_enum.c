@@ -2,7 +2,8 @@
  * decision, with lp_solve (independent of CBC, which solves the MIP).
  *
  * Every solution of the dynamics at rest shows, at each contact, one of
- * four modes (separates, sticks, slides +t, slides -t; us_ContactMode), and
+ * four modes (separates, sticks, slides +t, slides -t; us_ContactMode; 3D:
+ * one slide per cone direction, us_strong_modes), and
  * in a fixed mode pattern the conditions are linear: the solutions of one
  * pattern are a polyhedron, given in strong.h's variables by bounds only.
  * So the union over patterns is the solution set, and strong stability
@@ -53,6 +54,9 @@ static void load_bounds(Search *q) {
 static int node_lp(Search *q, double *obj) {
   load_bounds(q);
   q->nodes++;
+  /* one LP of a large 3D model can outlast the deadline: lp_solve's own
+     limit (whole seconds), a timeout being undecided */
+  if (q->deadline > 0) set_timeout(q->lp, (long)ceil(fmax(q->deadline - us_now(), 0)) + 1);
   int rc = solve(q->lp);
   if (rc == INFEASIBLE) return 0;
   if (rc != OPTIMAL && rc != PRESOLVED) {
@@ -89,12 +93,8 @@ static void dfs(Search *q) {
     q->power = obj;
     return;
   }
-  /* mu = 0: sticking is inside the two slides (f_t = 0 in all three) */
-  static const int all[4] = {US_MODE_SEPARATES, US_MODE_STICKS, US_MODE_SLIDES_POS,
-                             US_MODE_SLIDES_NEG};
-  static const int frictionless[3] = {US_MODE_SEPARATES, US_MODE_SLIDES_POS, US_MODE_SLIDES_NEG};
-  const int *modes = q->m->e.mu[c] > 0 ? all : frictionless;
-  int nmode = q->m->e.mu[c] > 0 ? 4 : 3;
+  int modes[2 + US_STRONG_EDGES];
+  int nmode = us_strong_modes(q->m, c, q->x, modes);
   for (int i = 0; i < nmode && !q->found && !q->undecided; i++) {
     int k = modes[i];
     q->mode[c] = k;

@@ -168,9 +168,7 @@ static us_Status classify_strong(const us_Structure *s, const us_ClassifySetting
                                  us_Classification *out, us_Error *err) {
   if (!set->strong) return US_OK;
   us_StrongResult *r = &out->strong_result;
-  const char *why = s->dim != 2           ? "decided in 2D only"
-                    : out->stands_undecided ? "the stands test was undecided"
-                                            : NULL;
+  const char *why = out->stands_undecided ? "the stands test was undecided" : NULL;
   out->strong = out->stands_frictionless ? 1 : !out->stands && !why ? 0 : -1;
   if (out->stands_frictionless) why = "frictionless: strong = weak (Gauss's principle)";
   else if (!out->stands && !why) why = "does not stand (weak stability fails)";
