@@ -7,6 +7,8 @@
 #include "stability/backend.h"
 #include "stability/certificate.h"
 #include "stability/lp_gen.h"
+#include "stability/lp_small.h"
+#include "stability/equilibrium.h"
 #include "scenes.h"
 #include "test.h"
 
@@ -488,7 +490,44 @@ static void result_reuse(void) {
   us_structure_free(s);
 }
 
+/* The dense simplex of lp_small.c settles small systems by itself, both
+ * ways: a feasible answer (checked against its residual) or a Farkas ray
+ * from the duals of its final basis that passes the ray's own check;
+ * wrong duals would be rejected and the verdict would stay undecided. */
+static void small_lp_settles(void) {
+  const double dx[] = {-0.8, -0.6, -0.3, 0.0, 0.2, 0.45, 0.55, 0.65, 0.9};
+  for (int k = 0; k < (int)(sizeof dx / sizeof dx[0]); k++) {
+    us_Structure *s = two_blocks(dx[k]);
+    CHECK(s);
+    us_Error err;
+    us_StabilitySettings set = us_stability_default_settings();
+    us_EqSystem eq;
+    us_Bitset p;
+    CHECK(us_eq_init(&eq, s) == 0 && us_bitset_init(&p, s->nbody) == 0);
+    us_bitset_fill(&p);
+    CHECK(us_eq_build(&eq, &p) == 0);
+    void *ws = us_backend_small.create(s, &set, &err);
+    CHECK(ws);
+    double f[64] = {0};
+    char note[128];
+    us_StabilityInfo info = {0};
+    CHECK(eq.ncontact * eq.dim < 64);
+    us_BackendOut out = {US_UNDECIDED, f, &info, note, sizeof note};
+    CHECK_OK(us_backend_small.solve(ws, &(us_BackendProblem){.sys = &eq, .restart = 1}, &out, &err),
+             &err);
+    CHECK_INT(out.verdict, ==, fabs(dx[k]) < 0.5 ? US_STABLE : US_UNSTABLE);
+    const double *y = NULL;
+    int ny = us_backend_small.farkas_ray(ws, &y);
+    if (out.verdict == US_UNSTABLE) CHECK(ny == eq.nbody * eq.nw && y);
+    if (out.verdict == US_UNSTABLE) CHECK(us_backend_small.unstable_body(ws) >= 0);
+    us_backend_small.destroy(ws);
+    us_bitset_free(&p);
+    us_eq_free(&eq);
+    us_structure_free(s);
+  }
+}
+
 US_TEST_MAIN(T(names_and_defaults), T(point_body_support), T(single_block), T(overhanging_body),
              T(two_block_column), T(cantilever), T(inverted_v), T(sub_assemblies),
              T(empty_and_active), T(floating_and_usage), T(unstable_evidence), T(never_stable_without_certificate),
-             T(order_independence), T(out_of_memory), T(result_reuse))
+             T(order_independence), T(out_of_memory), T(result_reuse), T(small_lp_settles))

@@ -73,6 +73,16 @@ static us_Status read_globals(Reader *r, json_t *root) {
   return st;
 }
 
+/* 1 if v is [x, y] with two finite numbers (into out), without a message:
+ * the common case, which needs no field name formatted. */
+static int plain_vec2(json_t *v, double out[2]) {
+  if (!json_is_array(v) || json_array_size(v) != 2) return 0;
+  json_t *x = json_array_get(v, 0), *y = json_array_get(v, 1);
+  if (!json_is_number(x) || !json_is_number(y)) return 0;
+  out[0] = json_number_value(x), out[1] = json_number_value(y);
+  return isfinite(out[0]) && isfinite(out[1]);
+}
+
 /* The polygon of a body: an array of at least 3 [x, y] pairs. */
 static us_Status read_polygon(Reader *r, const char *where, json_t *v, double **xy, int *n) {
   if (!json_is_array(v))
@@ -83,7 +93,8 @@ static us_Status read_polygon(Reader *r, const char *where, json_t *v, double **
   *xy = us_malloc(2 * nv * sizeof(double));
   if (!*xy) return us_error_set(r->c.err, US_ERR_NOMEM, "%s: out of memory", r->c.name);
   for (size_t k = 0; k < nv; k++) {
-    char field[32];
+    if (plain_vec2(json_array_get(v, k), *xy + 2 * k)) continue;
+    char field[32]; /* a bad vertex: the checked read says why */
     snprintf(field, sizeof field, "polygon[%zu]", k);
     us_Status st = us_io_vec2(&r->c, where, field, json_array_get(v, k), *xy + 2 * k);
     if (st) return st;

@@ -20,9 +20,12 @@
  * Bland's guarantee against cycling). A feasible answer's residual
  * |G l - b| is measured from the sparse columns before it is claimed.
  * Optimum 0: l is feasible. Optimum > 0: the duals y of the final basis
- * (read from the artificials' reduced costs, y_i = 1 - r_i) satisfy
- * y . G_j <= 0 for every column and y . b > 0, a Farkas ray. The tableau
- * is m x (n + m + 1) doubles, reused between solves.
+ * (c_B B^-1, solved from the basis's columns) satisfy
+ * y . G_j <= 0 for every column and y . b > 0, a Farkas ray. The
+ * artificial columns are not stored: an artificial that leaves never
+ * comes back (the usual phase-1 rule), so the tableau is only
+ * (m + 1) x (n + 1) doubles, reused between solves, and the duals are
+ * solved from the final basis instead (B^T y = c_B, dense, pivoted).
  */
 #include "lp_small.h"
 
@@ -41,10 +44,11 @@
 typedef struct SmallWs {
   us_EqGen gen;
   us_LpSettings set;
-  double *t;         /* tableau, row-major, m rows of width n + m + 1, then the cost row */
-  int *basis;        /* [m] basic column of each row */
+  double *t;         /* tableau, row-major, m rows of width n + 1, then the cost row */
+  int *basis;        /* [m] basic column of each row (n + i: row i's artificial) */
   double *sol, *ray; /* [n], [m] */
-  int cap_t, cap_b, cap_s, cap_r;
+  double *bt;        /* [m (m + 1)] B^T and c_B for the duals */
+  int cap_t, cap_b, cap_s, cap_r, cap_bt;
   int nray, last_body;
 } SmallWs;
 
@@ -56,6 +60,7 @@ static void small_destroy(void *ws) {
   us_free(w->basis);
   us_free(w->sol);
   us_free(w->ray);
+  us_free(w->bt);
   us_free(w);
 }
 
@@ -75,7 +80,7 @@ static void *small_create(const us_Structure *s, const us_StabilitySettings *set
  * records the negated rows (in ray). */
 static void fill_tableau(SmallWs *w, const us_EqSystem *sys, int m, int n) {
   const us_EqGen *g = &w->gen;
-  int width = n + m + 1;
+  int width = n + 1;
   memset(w->t, 0, (size_t)(m + 1) * (size_t)width * sizeof(double));
   for (int j = 0; j < n; j++)
     for (int k = g->start[j]; k < g->start[j + 1]; k++)
@@ -85,11 +90,10 @@ static void fill_tableau(SmallWs *w, const us_EqSystem *sys, int m, int n) {
     double *row = w->t + (size_t)i * (size_t)width, sg = sys->rhs[i] < 0 ? -1.0 : 1.0;
     w->ray[i] = sg;
     for (int j = 0; j < n; j++) row[j] *= sg;
-    row[n + i] = 1.0;
-    row[n + m] = sg * sys->rhs[i];
+    row[n] = sg * sys->rhs[i];
     w->basis[i] = n + i;
     for (int j = 0; j < n; j++) cost[j] -= row[j]; /* reduced costs of phase 1 */
-    cost[n + m] -= row[n + m];                      /* minus the objective */
+    cost[n] -= row[n];                              /* minus the objective */
   }
 }
 
@@ -150,10 +154,10 @@ static int entering_column(const double *cost, int ncol, int bland) {
  * move) the entering rule turns to Bland's for the rest of the solve. */
 #define STALL_PIVOTS 16
 static int run_simplex(SmallWs *w, int m, int n) {
-  int width = n + m + 1, limit = 20 * (m + n), stall = 0;
+  int width = n + 1, limit = 20 * (m + n), stall = 0;
   const double *cost = w->t + (size_t)m * (size_t)width;
   for (int it = 0; it < limit; it++) {
-    int pc = entering_column(cost, n + m, stall >= STALL_PIVOTS);
+    int pc = entering_column(cost, n, stall >= STALL_PIVOTS);
     if (pc < 0) return 0;
     int pr = leaving_row(w, m, width, pc);
     if (pr < 0) return -1; /* phase 1 is bounded below: only round-off gets here */
@@ -178,19 +182,73 @@ static double residual(SmallWs *w, const us_EqSystem *sys, int m, int n) {
 }
 
 static int small_reserve(SmallWs *w, int m, int n) {
-  long cells = (long)(m + 1) * (long)(n + m + 1);
-  if (cells > 1L << 28) return -1;
+  long cells = (long)(m + 1) * (long)(n + 1), bcells = (long)m * (long)(m + 1) + 1;
+  if (cells > 1L << 28 || bcells > 1L << 28) return -1;
   return US_GROW(w->t, w->cap_t, (int)cells) || US_GROW(w->basis, w->cap_b, m + 1) ||
-                 US_GROW(w->sol, w->cap_s, n + 1) || US_GROW(w->ray, w->cap_r, m + 1)
+                 US_GROW(w->sol, w->cap_s, US_MAX(n, m) + 1) || US_GROW(w->ray, w->cap_r, m + 1) ||
+                 US_GROW(w->bt, w->cap_bt, (int)bcells)
              ? -1
              : 0;
 }
 
-/* Optimum > 0: the Farkas ray into w->ray (original row signs). */
-static void read_ray(SmallWs *w, int m, int n) {
-  const double *cost = w->t + (size_t)m * (size_t)(n + m + 1);
-  for (int i = 0; i < m; i++) w->ray[i] *= 1.0 - cost[n + i];
+/* B^T y = c_B for the final basis, in bt's [m x (m + 1)] augmented rows:
+ * row k is basic column k of the (row-negated) system, right-hand side 1
+ * for an artificial, 0 for a force column. */
+static void fill_dual_system(SmallWs *w, int m, int n) {
+  double *bt = w->bt;
+  memset(bt, 0, (size_t)m * (size_t)(m + 1) * sizeof(double));
+  for (int k = 0; k < m; k++) {
+    double *row = bt + (size_t)k * (size_t)(m + 1);
+    int j = w->basis[k];
+    if (j >= n) {
+      row[j - n] = 1.0, row[m] = 1.0;
+      continue;
+    }
+    for (int q = w->gen.start[j]; q < w->gen.start[j + 1]; q++)
+      row[w->gen.row[q]] = w->ray[w->gen.row[q]] * w->gen.val[q];
+  }
+}
+
+/* Gaussian elimination with partial pivoting on bt, y into the last
+ * column's rows in order; -1 if the basis looks singular (round-off). */
+static int solve_dual_system(double *bt, int m, double *y) {
+  int width = m + 1;
+  for (int c = 0; c < m; c++) {
+    int best = c;
+    for (int r = c + 1; r < m; r++)
+      if (fabs(bt[(size_t)r * (size_t)width + (size_t)c]) > fabs(bt[(size_t)best * (size_t)width + (size_t)c]))
+        best = r;
+    double *pr = bt + (size_t)best * (size_t)width, *rc = bt + (size_t)c * (size_t)width;
+    if (fabs(pr[c]) <= PIVOT_EPS) return -1;
+    if (best != c)
+      for (int j = 0; j < width; j++) {
+        double tmp = pr[j];
+        pr[j] = rc[j], rc[j] = tmp;
+      }
+    for (int r = c + 1; r < m; r++) {
+      double *row = bt + (size_t)r * (size_t)width, f = row[c] / rc[c];
+      if (f == 0.0) continue;
+      for (int j = c; j < width; j++) row[j] -= f * rc[j];
+    }
+  }
+  for (int c = m - 1; c >= 0; c--) { /* back substitution */
+    const double *rc = bt + (size_t)c * (size_t)width;
+    double v = rc[m];
+    for (int j = c + 1; j < m; j++) v -= rc[j] * y[j];
+    y[c] = v / rc[c];
+  }
+  return 0;
+}
+
+/* Optimum > 0: the Farkas ray into w->ray (original row signs; on entry
+ * w->ray holds the row signs); -1 if the duals cannot be solved. */
+static int read_ray(SmallWs *w, int m, int n) {
+  fill_dual_system(w, m, n);
+  double *y = w->sol; /* scratch (m of them reserved): no solution on this path */
+  if (solve_dual_system(w->bt, m, y)) return -1;
+  for (int i = 0; i < m; i++) w->ray[i] *= y[i];
   w->nray = m;
+  return 0;
 }
 
 static us_Status small_solve(void *ws, const us_BackendProblem *pb, us_BackendOut *out,
@@ -218,12 +276,12 @@ static us_Status small_solve(void *ws, const us_BackendProblem *pb, us_BackendOu
     snprintf(note, note_sz, "small LP: pivot limit");
     return US_OK;
   }
-  int width = n + m + 1;
-  double infeas = -w->t[(size_t)m * (size_t)width + (size_t)(n + m)];
+  int width = n + 1;
+  double infeas = -w->t[(size_t)m * (size_t)width + (size_t)n];
   if (infeas <= FEAS_TOL) {
     memset(w->sol, 0, (size_t)n * sizeof(double));
     for (int i = 0; i < m; i++)
-      if (w->basis[i] < n) w->sol[w->basis[i]] = w->t[(size_t)i * (size_t)width + (size_t)(n + m)];
+      if (w->basis[i] < n) w->sol[w->basis[i]] = w->t[(size_t)i * (size_t)width + (size_t)n];
     if (residual(w, sys, m, n) > RESID_TOL) { /* round-off: let CLP decide */
       snprintf(note, note_sz, "small LP: inaccurate");
       return US_OK;
@@ -233,8 +291,8 @@ static us_Status small_solve(void *ws, const us_BackendProblem *pb, us_BackendOu
     snprintf(note, note_sz, "small LP: feasible");
     return US_OK;
   }
-  read_ray(w, m, n);
-  w->last_body = us_eq_gen_farkas_body(sys, &w->gen, w->ray, w->set.farkas_slack);
+  if (read_ray(w, m, n) == 0)
+    w->last_body = us_eq_gen_farkas_body(sys, &w->gen, w->ray, w->set.farkas_slack);
   if (w->last_body < 0) { /* the ray does not hold up: let CLP decide */
     w->nray = 0;
     snprintf(note, note_sz, "small LP: infeasible, ray rejected");
