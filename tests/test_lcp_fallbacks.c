@@ -88,38 +88,25 @@ static void check_loads(const Load *loads, int n) {
   }
 }
 
-/* Workloads where the LP decides under 1 % of the tests: every one since
- * the cone LCP's Lemke fallback (measured: none at all). Before it,
- * stacker seeds 1, 3 and 4 sent 2 % to 17 % of their tests to the LP
- * (the cone LCP's Dantzig pivoting ended degenerate). On these five the
- * friction LCP never fails either: no re-seed, no skipped test. */
+/* The LP decides no test on these workloads (since the cone LCP's Lemke
+ * fallback; before it, stacker seeds 1, 3 and 4 sent 2 % to 17 % of their
+ * tests to the LP), and since failed repairs are retried from scratch
+ * (issue 23) lcp-reuse re-seeds and skips under 1 % of the tests: none
+ * at all but on seed 4 taken down, whose first scratch run (the whole
+ * stack) and one retry end degenerate: 2 re-seeds of 203 tests. Before
+ * the retry: 3-12 re-seeds and 4-109 skipped tests on seeds 1, 3 and 4. */
 static void under_one_percent(void) {
   static const Load loads[] = {
       {"column50", 3, 50, 1, 0.01, {0, 0}, {0, 0}},
       {"pyramid91", 1, 13, 1, 0.01, {0, 0}, {0, 0}},
       {"wall10x10", 2, 10, 1, 0.01, {0, 0}, {0, 0}},
+      {"stacker seed 1", 0, 15, 1, 0.01, {0, 0}, {0, 0}},
       {"stacker seed 2", 0, 15, 2, 0.01, {0, 0}, {0, 0}},
+      {"stacker seed 3", 0, 15, 3, 0.01, {0, 0}, {0, 0}},
+      {"stacker seed 4", 0, 15, 4, 0.01, {0, 2}, {0, 0}},
       {"stacker seed 5", 0, 15, 5, 0.01, {0, 0}, {0, 0}},
   };
   check_loads(loads, (int)(sizeof loads / sizeof loads[0]));
 }
 
-/* Stacker seeds 1, 3 and 4: no LP either, but the friction LCP (not PSD)
- * fails on some sub-assemblies (its final check finds a clamped contact
- * or a sticking friction off its row, or no fixed point), the cone LCP
- * decides, re-seeds it, and the back-off skips it after repeated
- * failures (docs/lcp.md, "Re-seeds and skips"). Bounds: the counts
- * measured on 2026-11-26 (assemble, dfs: seeds 3, 9 / 9, 0 / 7, 12;
- * skipped 8, 38 / 14, 0 / 4, 109) with ~20 % room, so a regression of the
- * friction LCP or of the back-off shows. */
-static void stacker_reseeds_bounded(void) {
-  static const Load loads[] = {
-      {"stacker seed 1", 0, 15, 1, 0.01, {4, 11}, {10, 46}},
-      {"stacker seed 3", 0, 15, 3, 0.01, {11, 1}, {17, 2}},
-      {"stacker seed 4", 0, 15, 4, 0.01, {9, 15}, {6, 130}},
-  };
-  check_loads(loads, (int)(sizeof loads / sizeof loads[0]));
-}
-
-US_TEST_MAIN({"under_one_percent", under_one_percent},
-             {"stacker_reseeds_bounded", stacker_reseeds_bounded})
+US_TEST_MAIN({"under_one_percent", under_one_percent})
