@@ -36,6 +36,10 @@
  * and follows the sub-assemblies lazily: when it is next needed, the
  * bodies it has and the test lacks leave (faded), the test's new contacts
  * join.
+ * A repair that fails (degenerate, limit) is first retried from scratch
+ * on the same test under the reuse pivot limit (info->lcp_retries): the
+ * path from zero forces usually avoids the nearly dependent set the
+ * repair ran into (docs/lcp.md, "Re-seeds and skips").
  * Back-off (lcp-reuse only): where the LCP keeps failing (large degenerate
  * walls: long runs of zero-length exchanges), the tests go straight to the
  * LP instead of paying for failing runs. After the j-th failed run in a
