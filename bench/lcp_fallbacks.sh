@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # LP fallbacks of the LCP backends per workload (issue 10): for each
 # workload, search and method, the plan's stability tests, how many of them
-# the LP decided (us_StabilityInfo.lp_fallbacks, from --stats), their share
-# and the plan's time; and whether the plan's summary (removals, tests,
+# the LP decided (us_StabilityInfo.lp_fallbacks, from --stats), their share,
+# lcp-reuse's re-seeds and skipped friction LCPs (lcp_seeds, lcp_skips;
+# issue 23) and the plan's time; and whether the plan's summary (removals, tests,
 # unstable tests) is the one --method lp gives. Markdown on stdout.
 # Workloads: the benchmark's Table 2 structures (random 10, columns 50 and
 # 80, the stacker's random stacks, seeds 1-5 with seed 3 the benchmark's,
@@ -31,24 +32,26 @@ if [ "${LCPFB_QUICK:-0}" != 1 ]; then
   workloads="$workloads wall25x40"
 fi
 
-# plan FILE METHOD SEARCH-ARGS...: "summary|tests|fallbacks|seconds"
+# plan FILE METHOD SEARCH-ARGS...: "summary|tests|fallbacks|seeds|skips|seconds"
 plan() {
   local f=$1 m=$2
   shift 2
   local log=$W/log
   "$CLI" plan "$f" --method "$m" --stats --time-limit "$LIMIT" "$@" >"$log" 2>&1
-  local sum tests fb secs
+  local sum tests fb seeds skips secs
   sum=$(head -1 "$log" | sed 's/, [0-9.]* s \[.*//')
   tests=$(sed -n 's/^  tests \([0-9]*\).*/\1/p' "$log")
   fb=$(sed -n 's/.*LP fallbacks \([0-9]*\).*/\1/p' "$log")
+  seeds=$(sed -n 's/.*re-seeded \([0-9]*\).*/\1/p' "$log")
+  skips=$(sed -n 's/.*LCP skipped \([0-9]*\).*/\1/p' "$log")
   secs=$(sed -n 's/.*time: total \([0-9.]*\) s.*/\1/p' "$log")
-  echo "$sum|${tests:-0}|${fb:-0}|${secs:-nan}"
+  echo "$sum|${tests:-0}|${fb:-0}|${seeds:-0}|${skips:-0}|${secs:-nan}"
 }
 
 echo "$(date -u +%Y-%m-%d), $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores; Release build."
 echo
-echo "| workload | bodies | search | method | tests | lp_fallbacks | % | time (s) | same plan as lp |"
-echo "|---|---|---|---|---|---|---|---|---|"
+echo "| workload | bodies | search | method | tests | lp_fallbacks | % | re-seeds | skipped | time (s) | same plan as lp |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for wl in $workloads; do
   f=$W/$wl.json
   n=$("$CLI" check "$f" --local off 2>/dev/null | sed -n 's/^[a-z]*: \([0-9]*\) bodies.*/\1/p')
@@ -60,10 +63,10 @@ for wl in $workloads; do
     for m in lcp lcp-reuse; do
       # the LCP from scratch needs seconds per test on the 25 x 40 wall
       [ "$wl" = wall25x40 ] && [ "$m" = lcp ] && continue
-      IFS='|' read -r sum tests fb secs <<<"$(plan "$f" "$m" "${args[@]}")"
+      IFS='|' read -r sum tests fb seeds skips secs <<<"$(plan "$f" "$m" "${args[@]}")"
       pct=$(awk -v a="$fb" -v b="$tests" 'BEGIN{ if (b > 0) printf "%.1f", 100 * a / b; else print "-" }')
       same=$([ "$sum" = "$lpsum" ] && echo yes || echo "NO: $sum vs $lpsum")
-      echo "| $wl | $n | $search | $m | $tests | $fb | $pct | $secs | $same |"
+      echo "| $wl | $n | $search | $m | $tests | $fb | $pct | $seeds | $skips | $secs | $same |"
     done
   done
 done

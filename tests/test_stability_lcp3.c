@@ -200,7 +200,11 @@ static void differential_piles(void) {
   report("jenga, random3d, domes", &t);
   CHECK(t.tests >= 2000 / SCALE);
   CHECK(t.stable > 100 / SCALE && t.unstable > 100 / SCALE);
-  CHECK(t.fallbacks * 100 <= t.tests * 2 * 2); /* measured 1.1 %: near-dependent edges */
+  /* fallbacks over both LCP methods' 2 x tests: measured 85 of 5,648 (1.5 %,
+   * Release; near-dependent edges whose a stays below the proof's slack):
+   * bounded at 1.7 % there, at 4 % under the sanitizers' smaller sample */
+  if (SCALE == 1) CHECK(t.fallbacks * 1000 <= t.tests * 2 * 17);
+  CHECK(t.fallbacks * 100 <= t.tests * 2 * 2);
 }
 
 /* A 2D structure extruded into prisms: the LCP methods give the planar

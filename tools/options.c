@@ -62,9 +62,10 @@ us_Structure *cli_load(const char *cmd, const char *path, const CliCommon *c, do
 }
 
 void cli_print_solver_stats(const us_StabilityInfo *in) {
-  printf("  LCP pivots %ld, LP fallbacks %ld (re-seeded %ld, LCP skipped %ld), reused %ld; "
-         "cone Lemke settled %ld, failed %ld\n",
-         in->pivots, in->lp_fallbacks, in->lcp_seeds, in->lcp_skips, in->reused, in->cone_lemke,
+  printf("  LCP pivots %ld, LP fallbacks %ld (re-seeded %ld, LCP skipped %ld), reused %ld "
+         "(%ld failed repairs retried from scratch); cone Lemke settled %ld, failed %ld\n",
+         in->pivots, in->lp_fallbacks, in->lcp_seeds, in->lcp_skips, in->reused, in->lcp_retries,
+         in->cone_lemke,
          in->cone_lemke_failed);
   if (in->cone3_outer || in->cone3_refined || in->cone3_open)
     printf("  3D cones: outer-polygon LPs %ld, directions added %ld, claims left to the "

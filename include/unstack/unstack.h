@@ -404,6 +404,7 @@ typedef struct us_StabilityInfo {
   long lp_fallbacks;     /* LCP verdicts settled by the LP */
   long lcp_seeds;        /* lcp-reuse restarts from the LP's forces after a fallback */
   long lcp_skips;        /* lcp-reuse tests sent straight to the LP (back-off) */
+  long lcp_retries;      /* lcp-reuse failed repairs solved again from scratch */
   long reused;           /* tests that started from the previous solution */
   double solve_time;     /* seconds in the backend */
   double check_time;     /* seconds re-checking certificates */

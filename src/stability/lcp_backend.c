@@ -36,6 +36,10 @@
  * and follows the sub-assemblies lazily: when it is next needed, the
  * bodies it has and the test lacks leave (faded), the test's new contacts
  * join.
+ * A repair that fails (degenerate, limit) is first retried from scratch
+ * on the same test under the reuse pivot limit (info->lcp_retries): the
+ * path from zero forces usually avoids the nearly dependent set the
+ * repair ran into (docs/lcp.md, "Re-seeds and skips").
  * Back-off (lcp-reuse only): where the LCP keeps failing (large degenerate
  * walls: long runs of zero-length exchanges), the tests go straight to the
  * LP instead of paying for failing runs. After the j-th failed run in a
@@ -863,13 +867,20 @@ static us_Status lcp_solve(void *ws, const us_BackendProblem *pb, us_BackendOut 
   }
   if (!reused) set_limit(w, &w->lcp, 0);
   us_LcpResult r = us_lcp_run(&w->lcp);
+  int retried = reused && (r == US_LCP_DEGENERATE || r == US_LCP_LIMIT);
+  if (retried) { /* a failed repair: this test from scratch, under the reuse limit */
+    start_scratch(w, &w->sys, &w->lcp, sys);
+    reused = 0;
+    r = us_lcp_run(&w->lcp);
+    info->lcp_retries++;
+  }
   info->pivots += w->lcp.pivots - piv0;
   info->reused += reused;
   w->valid = r == US_LCP_SOLVED;
   if (r == US_LCP_NOMEM) return us_error_set(err, US_ERR_NOMEM, "out of memory in the LCP");
   if (r == US_LCP_SOLVED) w->fails = 0;
   if (r != US_LCP_SOLVED) {
-    w->scratch_failed |= !reused;
+    w->scratch_failed |= !reused && !retried; /* a limited retry proves nothing */
     record_failure(w);
     char why[96];
     snprintf(why, sizeof why, "%s%s%s", result_name(r), r == US_LCP_DEGENERATE ? ": " : "",
