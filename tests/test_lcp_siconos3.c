@@ -218,7 +218,7 @@ static int reference(const us_Structure *s, const us_Bitset *b, double *residual
     *residual = o->dparam[SICONOS_DPARAM_RESIDU];
     solver_options_delete(o);
     free(o);
-    NM_free(W);
+    free(NM_free(W)); /* NULL once it freed the struct itself */
     free(q), free(mj);
   }
   accel(&y, r, a);
