@@ -15,6 +15,7 @@
 #                 the bodies in the tested sub-assembly, per method, on the
 #                 91-block pyramid and a 1,000-block wall (bench_fig4),
 #                 and on the frictionless pyramid taken apart (the source's);
+#                 in 3D on pyramid3d 6 rows and wall3d 8 x 8 (lp, lcp, lcp-reuse);
 #   startup.csv   whole commands timed from fork to exit: /bin/true, check
 #                 on a 5-block column, plan on the pyramid with lp and
 #                 lpsolve (bench/startup.c); startup-ratios.csv the two
@@ -237,6 +238,32 @@ for m in lpsolve lcp lcp-reuse lp auto; do
   say "| $m | $stats | $(echo "$fits" | awk -v m="$m" '$1 == m {print $2}') |"
 done
 say ""
+# Figure 4 in 3D (issue 23): pyramid3d (6 rows, 91 boxes) and wall3d
+# (8 x 8), built up along the plan; lp against the 3D LCP methods.
+gen pyramid3d --rows 6 -o "$W/pyramid3d-6.json"
+gen wall3d --rows 8 --cols 8 -o "$W/wall3d-8x8.json"
+for wl in pyramid3d-6 wall3d-8x8; do
+  [ "$QUICK" = 1 ] && [ "$wl" = wall3d-8x8 ] && continue
+  f4=$OUT/fig4-$wl-$tag.csv
+  echo "structure,method,bodies,seconds" >"$f4"
+  for m in lp lcp lcp-reuse; do
+    "$B/bench_fig4" "$W/$wl.json" "$wl" "$m" "$budget" >>"$f4" 2>>"$W/fig4.err"
+  done
+  fits=$(tail -n +2 "$f4" | awk -F, '{print $2, $3, $4}' |
+    "$B/bench_plot" "$OUT/fig4-$wl-$tag.svg" "Figure 4 in 3D: $wl, one stability test" \
+      "bodies in the sub-assembly" "seconds per test")
+  say "$wl, 3D ([plot](fig4-$wl-$tag.svg), [data](fig4-$wl-$tag.csv)):"
+  say ""
+  say "| method | tests timed | median ms | largest size timed | slope |"
+  say "|---|---|---|---|---|"
+  for m in lp lcp lcp-reuse; do
+    stats=$(awk -F, -v m="$m" '$2 == m {print $4 * 1000, $3}' "$f4" | sort -n |
+      awk '{v[NR] = $1; if ($2 > mx) mx = $2} END { if (NR) printf "%d | %.4f | %d", NR, v[int((NR + 1) / 2)], mx }')
+    [ -n "$stats" ] || continue
+    say "| $m | $stats | $(echo "$fits" | awk -v m="$m" '$1 == m {print $2}') |"
+  done
+  say ""
+done
 
 # ------------------------------------------------------------------ start-up
 # Whole commands as a user runs them (bench_startup: fork to exit, median

@@ -95,6 +95,13 @@ static void compare_one(us_Stability **w, const us_Bitset *b, us_StabilityResult
   for (int m = 1; m < 3 && r[0].verdict == US_UNSTABLE; m++) { /* a checked mechanism */
     if (r[m].mechanism.nbody == 0) { /* counted where the LP has one: a known gap */
       t->nomech += r[0].mechanism.nbody > 0;
+      if (getenv("LCP3_VERBOSE") && r[0].mechanism.nbody > 0) { /* name the gap */
+        fprintf(stderr, "no mechanism from %s where the LP has one, bodies:",
+                us_method_name(METHODS[m]));
+        for (int i = 0; i < b->nbits; i++)
+          if (us_bitset_get(b, i)) fprintf(stderr, " %d", i);
+        fprintf(stderr, " (test %ld of the walk; %s)\n", t->tests, r[m].note);
+      }
       continue;
     }
     CHECK(r[m].mechanism.ok);

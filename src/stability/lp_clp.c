@@ -240,6 +240,18 @@ static int clp_evidence(Clp_Simplex *m, ClpWs *w, const us_EqSystem *sys) {
   return body;
 }
 
+/* Does the infeasible run's ray pass the Farkas check? A warm run whose
+ * ray does not is repeated cold (seen once in 3,134 3D unstable verdicts:
+ * the lcp backend's own LP, warm from its previous sub-assembly, left an
+ * unstable verdict without a mechanism where a cold run has one). */
+static int ray_usable(Clp_Simplex *m, ClpWs *w, const us_EqSystem *sys) {
+  double *ray = Clp_infeasibilityRay(m);
+  if (!ray) return 0;
+  int body = us_eq_gen_farkas_body(sys, &w->gen, ray, w->set.farkas_slack);
+  Clp_freeRay(m, ray);
+  return body >= 0;
+}
+
 /* A cold solve of a big system: CLP's barrier without crossover (an
  * interior point: on the 10,000-block wall 5.4 s, where the dual simplex
  * from the slack basis took 4 minutes and the barrier with crossover 3).
@@ -316,7 +328,7 @@ static Clp_Simplex *clp_run(ClpWs *w, const us_EqSystem *sys, int region,
     int status = Clp_status(m);
     if ((status == 0 && Clp_sumPrimalInfeasibilities(m) <= w->set.warm_accept &&
          precise(w, Clp_getColSolution(m), CLP_WARM_REL)) ||
-        status == 1) {
+        (status == 1 && ray_usable(m, w, sys))) {
       info->reused++;
       return m;
     }
