@@ -71,16 +71,7 @@ static const char tail[] =
     "exit: 0 written, 2 usage error (nothing written), 3 stopped by --time-limit (nothing\n"
     "written)\n";
 
-typedef us_Structure *(*GenFn)(const us_GenSettings *, us_Error *);
-
-static const struct {
-  const char *kind;
-  GenFn fn;
-} kinds[] = {{"column", us_gen_column}, {"pyramid", us_gen_pyramid}, {"wall", us_gen_wall},
-             {"arch", us_gen_arch}, {"random", us_gen_random}, {"stacker", us_gen_stacker},
-             {"tower", us_gen_tower}, {"pyramid3d", us_gen_pyramid3d}, {"wall3d", us_gen_wall3d},
-             {"dome", us_gen_dome}, {"jenga", us_gen_jenga}, {"random3d", us_gen_random3d}};
-#define NKINDS ((int)(sizeof kinds / sizeof kinds[0]))
+typedef us_GenFn GenFn;
 
 /* Options that are not plain settings, and which defaults were overridden. */
 typedef struct Extra {
@@ -200,15 +191,16 @@ static int settle(GenFn fn, us_GenSettings *g, const Extra *x, double block_widt
 }
 
 const char *cli_generator_kind(int i) {
-  return i >= 0 && i < NKINDS ? kinds[i].kind : "unknown";
+  const char *kind = us_gen_kind(i);
+  return kind ? kind : "unknown";
 }
 
 /* "unknown kind 'castle' (column, pyramid, ...)", with the nearest kind. */
 static int unknown_kind(const char *kind) {
   char list[256] = "";
   size_t len = 0;
-  for (int k = 0; k < NKINDS && len < sizeof list; k++)
-    len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", k ? ", " : "", kinds[k].kind);
+  for (int k = 0; us_gen_kind(k) && len < sizeof list; k++)
+    len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", k ? ", " : "", us_gen_kind(k));
   const char *near = cli_nearest_word(kind, cli_generator_kind);
   if (near) return cli_fail("generate", "unknown kind '%s' (%s); did you mean '%s'?", kind, list, near);
   return cli_fail("generate", "unknown kind '%s' (%s)", kind, list);
@@ -271,9 +263,7 @@ int cmd_generate(int argc, char **argv) {
   const char *out = NULL;
   if (argc < 2) return parse(0, NULL, &g, &x, &out); /* the help on stderr, exit 2 */
   if (cli_is_help(argv[1])) return parse(argc, argv, &g, &x, &out) < 0 ? CLI_EXIT_OK : CLI_EXIT_ERR;
-  GenFn fn = NULL;
-  for (size_t k = 0; k < NKINDS; k++)
-    if (!strcmp(argv[1], kinds[k].kind)) fn = kinds[k].fn;
+  GenFn fn = us_gen_find(argv[1]);
   if (!fn) return unknown_kind(argv[1]);
   int r = parse(argc - 1, argv + 1, &g, &x, &out);
   if (r) return r < 0 ? CLI_EXIT_OK : r;

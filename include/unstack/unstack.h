@@ -801,6 +801,13 @@ US_API us_Structure *us_gen_jenga(const us_GenSettings *g, us_Error *err);
  * are discarded (then fewer: the count is s->nbody). */
 US_API us_Structure *us_gen_random3d(const us_GenSettings *g, us_Error *err);
 
+/* The generators by the names `unstack generate` gives them: the one named
+ * kind (NULL when none is), and the k-th name (k = 0, 1, ...; NULL past the
+ * last), for lists and bindings. */
+typedef us_Structure *(*us_GenFn)(const us_GenSettings *g, us_Error *err);
+US_API us_GenFn us_gen_find(const char *kind);
+US_API const char *us_gen_kind(int k);
+
 /* --------------------------------------------------------------------- I/O */
 
 /* Read a structure JSON file (docs/format.md); finalized on success.

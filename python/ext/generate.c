@@ -6,16 +6,7 @@
 #include <stddef.h>
 #include <string.h>
 
-typedef us_Structure *(*GenFn)(const us_GenSettings *, us_Error *);
-
-static const struct {
-  const char *kind;
-  GenFn fn;
-} kinds[] = {{"column", us_gen_column}, {"pyramid", us_gen_pyramid}, {"wall", us_gen_wall},
-             {"arch", us_gen_arch}, {"random", us_gen_random}, {"stacker", us_gen_stacker},
-             {"tower", us_gen_tower}, {"pyramid3d", us_gen_pyramid3d}, {"wall3d", us_gen_wall3d},
-             {"dome", us_gen_dome}, {"jenga", us_gen_jenga}, {"random3d", us_gen_random3d}};
-#define NKINDS ((int)(sizeof kinds / sizeof kinds[0]))
+typedef us_GenFn GenFn;
 
 /* What a parameter holds: an int >= 1, an int >= 0, a real, a seed, a flag. */
 typedef enum { P_POS, P_NONNEG, P_REAL, P_SEED, P_FLAG } ParamKind;
@@ -160,10 +151,10 @@ static int settle(GenFn fn, us_GenSettings *g, const Extra *x, double block_widt
 static GenFn find_kind(const char *kind) {
   char list[256] = "";
   size_t len = 0;
-  for (int k = 0; k < NKINDS; k++) {
-    if (!strcmp(kind, kinds[k].kind)) return kinds[k].fn;
-    len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", k ? ", " : "", kinds[k].kind);
-  }
+  GenFn fn = us_gen_find(kind);
+  if (fn) return fn;
+  for (int k = 0; us_gen_kind(k); k++)
+    len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", k ? ", " : "", us_gen_kind(k));
   us_py_fail("generate: unknown kind '%s' (%s)", kind, list);
   return NULL;
 }

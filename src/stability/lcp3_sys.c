@@ -38,10 +38,7 @@ static void inverse3(const double I[3][3], double k, double *R) {
 
 static void fill_masses3(us_LcpSys *y) {
   const us_Structure *s = y->s;
-  double mt = 0.0, L = s->scale > 0 ? s->scale : 1.0;
-  for (int i = 0; i < s->nbody; i++)
-    if (!s->bodies[i].fixed) mt += s->bodies[i].mass;
-  if (!(mt > 0)) mt = 1.0;
+  double mt = us_lcp_sys_movable_mass(s), L = s->scale > 0 ? s->scale : 1.0;
   for (int i = 0; i < s->nbody; i++) {
     const us_Body *b = &s->bodies[i];
     double *mi = y->minv + 6 * (size_t)i, *R = y->rinv + 9 * (size_t)i;

@@ -81,12 +81,16 @@ static void fill_contacts(us_LcpSys *y, int cone) {
   }
 }
 
-static void fill_masses(us_LcpSys *y) {
-  const us_Structure *s = y->s;
-  double mt = 0.0, L = s->scale > 0 ? s->scale : 1.0;
+double us_lcp_sys_movable_mass(const us_Structure *s) {
+  double mt = 0.0;
   for (int i = 0; i < s->nbody; i++)
     if (!s->bodies[i].fixed) mt += s->bodies[i].mass;
-  if (!(mt > 0)) mt = 1.0;
+  return mt > 0 ? mt : 1.0;
+}
+
+static void fill_masses(us_LcpSys *y) {
+  const us_Structure *s = y->s;
+  double mt = us_lcp_sys_movable_mass(s), L = s->scale > 0 ? s->scale : 1.0;
   for (int i = 0; i < s->nbody; i++) {
     const us_Body *b = &s->bodies[i];
     double *mi = y->minv + 3 * (size_t)i;

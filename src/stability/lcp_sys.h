@@ -37,6 +37,9 @@ typedef struct us_LcpSys {
   unsigned char *cmark;   /* [ncontact] kept zero */
 } us_LcpSys;
 
+/* The movable bodies' total mass (1 when there is none): masses are
+ * divided by it, so gravity alone gives each free body acceleration 1. */
+double us_lcp_sys_movable_mass(const us_Structure *s);
 int us_lcp_sys_init(us_LcpSys *y, const us_Structure *s);
 /* The cone operator: for a contact with finite mu > 0, index 2c is the
  * cone edge n + mu t and 2c + 1 the edge n - mu t (both normals of a

@@ -315,15 +315,13 @@ static int push_line(us_Plumb *p, int u, const double c[2], double load) {
   return 0;
 }
 
-/* After hop h of a line (position c, load) on u: the forces, and one line
- * on in each movable body below, at the weighted mean of its points (c
- * itself when one body takes the whole hop). 0 or -1 (OOM). */
 /* The lines hop h (of a line at c) goes on as: one per movable body
  * below, its share w[j] of the load at the share-weighted mean of its
- * points (c itself when one body takes the whole hop). Returns their
- * number (at most 3). */
-static int hop_children(const us_Plumb *p, const Hop *h, const double c[2], int body[3],
-                        double w[3], double at[3][2]) {
+ * points (c itself when one body takes the whole hop). Signed hops
+ * (sgn 1) have shares of any sign, and a body whose shares cancel gets
+ * no line. Returns their number (at most 3). */
+static int hop_children(const us_Plumb *p, const Hop *h, const double c[2], int sgn,
+                        int body[3], double w[3], double at[3][2]) {
   int n = 0;
   for (int q = 0; q < h->n; q++) {
     int v = h->below[q], first = 1;
@@ -335,8 +333,10 @@ static int hop_children(const us_Plumb *p, const Hop *h, const double c[2], int 
       s += h->w[r];
       x[0] += h->w[r] * h->pos[r][0], x[1] += h->w[r] * h->pos[r][1];
     }
-    if (s >= 1.0 - 1e-15) x[0] = c[0], x[1] = c[1]; /* one body: on the line */
-    else if (s > 0) x[0] /= s, x[1] /= s;
+    int whole = sgn ? fabs(s - 1.0) <= 1e-15 : s >= 1.0 - 1e-15;
+    if (whole) x[0] = c[0], x[1] = c[1]; /* one body: on the line */
+    else if (s != 0.0) x[0] /= s, x[1] /= s;
+    else if (sgn) continue;
     body[n] = v, w[n] = s, at[n][0] = x[0], at[n][1] = x[1];
     n++;
   }
@@ -348,7 +348,7 @@ static int take_hop(us_Plumb *p, const Hop *h, int u, const double c[2], double 
     if (add_force(p, h->k[q], u, h->w[q] * load, f)) return -1;
   int body[3];
   double w[3], at[3][2];
-  for (int j = 0, n = hop_children(p, h, c, body, w, at); j < n; j++) {
+  for (int j = 0, n = hop_children(p, h, c, 0, body, w, at); j < n; j++) {
     mark_body(p, body[j]);
     if (push_line(p, body[j], at[j], w[j] * load)) return -1;
   }
@@ -457,27 +457,6 @@ static int hop_signed(const us_Plumb *p, const us_Bitset *cur, int skip, int u, 
   return 1;
 }
 
-/* The lines a signed hop goes on as: as hop_children, shares of any sign
- * (a body whose shares cancel gets none). */
-static int hop_children_signed(const us_Plumb *p, const Hop *h, const double c[2], int body[3],
-                               double w[3], double at[3][2]) {
-  int n = 0;
-  for (int q = 0; q < h->n; q++) {
-    int v = h->below[q], first = 1;
-    for (int r = 0; r < q; r++) first = first && h->below[r] != v;
-    if (!first || held(p, v)) continue;
-    double sw = 0.0, x = 0.0;
-    for (int r = q; r < h->n; r++)
-      if (h->below[r] == v) sw += h->w[r], x += h->w[r] * h->pos[r][0];
-    if (fabs(sw - 1.0) <= 1e-15) x = c[0]; /* one body: on the line */
-    else if (sw != 0.0) x /= sw;
-    else continue;
-    body[n] = v, w[n] = sw, at[n][0] = x, at[n][1] = 0.0;
-    n++;
-  }
-  return n;
-}
-
 /* Route the stacked lines (signed loads) down, not resting on skip:
  * 1 routed, 0 no hop or out of budget, -1 OOM. */
 static int route_signed(us_Plumb *p, const us_Bitset *cur, int skip, double *f) {
@@ -491,7 +470,7 @@ static int route_signed(us_Plumb *p, const us_Bitset *cur, int skip, double *f) 
     }
     int body[3];
     double w[3], at[3][2];
-    for (int j = 0, n = hop_children_signed(p, &h, l.pos, body, w, at); j < n; j++) {
+    for (int j = 0, n = hop_children(p, &h, l.pos, 1, body, w, at); j < n; j++) {
       mark_body(p, body[j]);
       if (push_line(p, body[j], at[j], w[j] * l.load)) return -1;
     }
@@ -693,7 +672,7 @@ static int open_frame(const us_Plumb *p, const us_Bitset *cur, int u, const doub
   for (int q = 0; q < h.n; q++) F->x.k[q] = h.k[q], F->x.w[q] = h.w[q], F->below[q] = h.below[q];
   int body[3];
   double w[3], at[3][2];
-  for (int j = 0, n = hop_children(p, &h, c, body, w, at); j < n; j++) {
+  for (int j = 0, n = hop_children(p, &h, c, 0, body, w, at); j < n; j++) {
     if (!(w[j] > 0)) continue; /* no load goes that way */
     F->kid[F->nkid] = body[j], F->kid_w[F->nkid] = w[j];
     F->kid_pos[F->nkid][0] = at[j][0], F->kid_pos[F->nkid][1] = at[j][1];
