@@ -263,7 +263,7 @@ static void face_centre(const Work *w, int f, double c[3]) {
  * the direction from the edge to the face's centre, across the edge. */
 static void radial_angles(const Work *w, Side *e, int m) {
   const double *a = w->p + 3 * (e[0].key >> 32), *b = w->p + 3 * (e[0].key & 0xffffffffu);
-  double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v1[3] = {0, 0, 0}, v2[3];
+  double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v1[3] = {0, 0, 0}, v2[3] = {0, 0, 0};
   double dl = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
   for (int k = 0; k < 3; k++) d[k] /= dl;
   for (int i = 0; i < m; i++) {
