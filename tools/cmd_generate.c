@@ -168,26 +168,22 @@ static int parse_remove(const char *list, int **out, int *count) {
                   list);
 }
 
-/* Kind-specific defaults and checks after parsing; 0 or an exit code. */
-static int settle(GenFn fn, us_GenSettings *g, const Extra *x, double block_width) {
-  if (fn == us_gen_jenga && !x->height_given) g->height = 0.6 * g->width; /* the game's pieces */
-  if (fn == us_gen_random3d && !x->tries_given) g->max_tries = 200;
-  if (x->remove && fn != us_gen_jenga) return cli_fail("generate", "--remove is for jenga");
-  if (x->returns_given && fn != us_gen_wall3d) return cli_fail("generate", "--returns is for wall3d");
-  if (fn == us_gen_random || fn == us_gen_stacker || fn == us_gen_random3d) {
-    const char *kind = fn == us_gen_random ? "random" : fn == us_gen_stacker ? "stacker" : "random3d";
-    if (g->width != block_width)
-      return cli_fail("generate", "%s: block widths are fixed; set the structure width with --width",
-                      kind);
-    g->width = x->rand_width > 0 ? x->rand_width
-               : fn == us_gen_random ? 5.0
-               : fn == us_gen_stacker ? 12.0
-                                       : 4.0;
-  } else if (x->rand_width > 0) {
-    return cli_fail("generate", "--width is for random, stacker and random3d (structure width in "
-                                "blocks); use --block-width");
+/* Kind-specific defaults and checks after parsing (us_gen_settle); 0 or
+ * an exit code. */
+static int settle(GenFn fn, us_GenSettings *g, const Extra *x) {
+  us_GenGiven given = {x->rand_width, x->height_given, x->tries_given, x->returns_given,
+                       x->remove != NULL};
+  switch (us_gen_settle(fn, g, &given)) {
+  case US_GEN_FITS: return 0;
+  case US_GEN_REMOVE_NOT_JENGA: return cli_fail("generate", "--remove is for jenga");
+  case US_GEN_RETURNS_NOT_WALL3D: return cli_fail("generate", "--returns is for wall3d");
+  case US_GEN_BLOCK_WIDTH_FIXED:
+    return cli_fail("generate", "%s: block widths are fixed; set the structure width with --width",
+                    fn == us_gen_random ? "random" : fn == us_gen_stacker ? "stacker" : "random3d");
+  case US_GEN_WIDTH_NOT_RANDOM: break;
   }
-  return 0;
+  return cli_fail("generate", "--width is for random, stacker and random3d (structure width in "
+                              "blocks); use --block-width");
 }
 
 const char *cli_generator_kind(int i) {
@@ -258,7 +254,6 @@ int cmd_generate(int argc, char **argv) {
   us_GenSettings g = us_gen_default_settings();
   int default_rows = g.rows;
   g.rows = -1; /* to see whether --rows was given */
-  double block_width = g.width;
   Extra x = {0, NULL, 0, 0, 0, 0, 0};
   const char *out = NULL;
   if (argc < 2) return parse(0, NULL, &g, &x, &out); /* the help on stderr, exit 2 */
@@ -271,7 +266,7 @@ int cmd_generate(int argc, char **argv) {
   if (!x.count && cli_check_output("generate", out, NULL, 0)) return CLI_EXIT_ERR;
   if ((fn == us_gen_pyramid || fn == us_gen_pyramid3d) && g.rows > 0) g.n = g.rows;
   if (g.rows < 0) g.rows = default_rows;
-  if (settle(fn, &g, &x, block_width)) return CLI_EXIT_ERR;
+  if (settle(fn, &g, &x)) return CLI_EXIT_ERR;
   int *pairs = NULL;
   if (x.remove && parse_remove(x.remove, &pairs, &g.nremove)) return free(pairs), CLI_EXIT_ERR;
   g.remove = pairs;

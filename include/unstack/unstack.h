@@ -808,6 +808,27 @@ typedef us_Structure *(*us_GenFn)(const us_GenSettings *g, us_Error *err);
 US_API us_GenFn us_gen_find(const char *kind);
 US_API const char *us_gen_kind(int k);
 
+/* What a front end was told besides the settings it parsed into a
+ * us_GenSettings that started as us_gen_default_settings(): the structure
+ * width in blocks (random, stacker, random3d; 0: not given) and whether
+ * the height, max_tries, returns and a remove list were given. */
+typedef struct us_GenGiven {
+  double width;
+  int height, tries, returns, remove;
+} us_GenGiven;
+/* Why settings do not fit their generator (us_gen_settle); front ends
+ * word each in their own option names. */
+typedef enum us_GenMisfit {
+  US_GEN_FITS = 0,
+  US_GEN_REMOVE_NOT_JENGA,    /* a remove list is for jenga only */
+  US_GEN_RETURNS_NOT_WALL3D,  /* returns are for wall3d only */
+  US_GEN_BLOCK_WIDTH_FIXED,   /* random, stacker, random3d: the block width was set */
+  US_GEN_WIDTH_NOT_RANDOM     /* a structure width for another kind */
+} us_GenMisfit;
+/* The kind's own defaults for what was not given (jenga's piece height,
+ * random3d's tries, the random kinds' structure width), then the checks: US_GEN_FITS or why not. */
+US_API us_GenMisfit us_gen_settle(us_GenFn fn, us_GenSettings *g, const us_GenGiven *given);
+
 /* --------------------------------------------------------------------- I/O */
 
 /* Read a structure JSON file (docs/format.md); finalized on success.

@@ -129,23 +129,22 @@ static int take_all(PyObject *kw, us_GenSettings *g, Extra *x) {
   return us_py_no_more(kw, "generate");
 }
 
-/* Kind-specific defaults and checks, as the CLI's settle(). */
-static int settle(GenFn fn, us_GenSettings *g, const Extra *x, double block_width) {
-  if (fn == us_gen_jenga && !x->height_given) g->height = 0.6 * g->width;
-  if (fn == us_gen_random3d && !x->tries_given) g->max_tries = 200;
-  if (x->remove && fn != us_gen_jenga) return us_py_fail("generate: remove is for jenga"), -1;
-  if (x->returns_given && fn != us_gen_wall3d)
-    return us_py_fail("generate: returns is for wall3d"), -1;
-  if (fn == us_gen_random || fn == us_gen_stacker || fn == us_gen_random3d) {
-    if (g->width != block_width)
-      return us_py_fail("generate: block widths are fixed for random, stacker and random3d; set "
-                        "the structure width with width="), -1;
-    g->width = x->width > 0 ? x->width : fn == us_gen_random ? 5.0 : fn == us_gen_stacker ? 12.0 : 4.0;
-  } else if (x->width > 0) {
-    return us_py_fail("generate: width is for random, stacker and random3d (structure width in "
-                      "blocks); use block_width"), -1;
+/* Kind-specific defaults and checks (us_gen_settle, as the CLI's); 0 or
+ * -1 with the exception set. */
+static int settle(GenFn fn, us_GenSettings *g, const Extra *x) {
+  us_GenGiven given = {x->width, x->height_given, x->tries_given, x->returns_given,
+                       x->remove != NULL};
+  switch (us_gen_settle(fn, g, &given)) {
+  case US_GEN_FITS: return 0;
+  case US_GEN_REMOVE_NOT_JENGA: return us_py_fail("generate: remove is for jenga"), -1;
+  case US_GEN_RETURNS_NOT_WALL3D: return us_py_fail("generate: returns is for wall3d"), -1;
+  case US_GEN_BLOCK_WIDTH_FIXED:
+    return us_py_fail("generate: block widths are fixed for random, stacker and random3d; set "
+                      "the structure width with width="), -1;
+  case US_GEN_WIDTH_NOT_RANDOM: break;
   }
-  return 0;
+  return us_py_fail("generate: width is for random, stacker and random3d (structure width in "
+                    "blocks); use block_width"), -1;
 }
 
 static GenFn find_kind(const char *kind) {
@@ -179,7 +178,6 @@ PyObject *us_py_generate(PyObject *self, PyObject *args, PyObject *kwargs) {
   if (!fn) return NULL;
   us_GenSettings g = us_gen_default_settings();
   int default_rows = g.rows;
-  double block_width = g.width;
   Extra x;
   memset(&x, 0, sizeof x);
   PyObject *kw = kwargs ? PyDict_Copy(kwargs) : PyDict_New();
@@ -188,7 +186,7 @@ PyObject *us_py_generate(PyObject *self, PyObject *args, PyObject *kwargs) {
     if ((fn == us_gen_pyramid || fn == us_gen_pyramid3d) && x.rows_given) g.n = g.rows;
     if (!x.rows_given) g.rows = default_rows;
     g.remove = x.remove, g.nremove = x.nremove;
-    if (settle(fn, &g, &x, block_width) == 0) out = run(fn, &g, x.time_limit);
+    if (settle(fn, &g, &x) == 0) out = run(fn, &g, x.time_limit);
   }
   Py_XDECREF(kw);
   PyMem_Free(x.remove);

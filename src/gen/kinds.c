@@ -23,3 +23,18 @@ us_GenFn us_gen_find(const char *kind) {
 }
 
 const char *us_gen_kind(int k) { return k >= 0 && k < GEN_KINDS ? gen_kinds[k].kind : NULL; }
+
+us_GenMisfit us_gen_settle(us_GenFn fn, us_GenSettings *g, const us_GenGiven *given) {
+  int random = fn == us_gen_random || fn == us_gen_stacker || fn == us_gen_random3d;
+  if (fn == us_gen_jenga && !given->height) g->height = 0.6 * g->width; /* the game's pieces */
+  if (fn == us_gen_random3d && !given->tries) g->max_tries = 200;
+  if (given->remove && fn != us_gen_jenga) return US_GEN_REMOVE_NOT_JENGA;
+  if (given->returns && fn != us_gen_wall3d) return US_GEN_RETURNS_NOT_WALL3D;
+  if (!random) return given->width > 0 ? US_GEN_WIDTH_NOT_RANDOM : US_GEN_FITS;
+  if (g->width != us_gen_default_settings().width) return US_GEN_BLOCK_WIDTH_FIXED;
+  g->width = given->width > 0          ? given->width
+             : fn == us_gen_random  ? 5.0
+             : fn == us_gen_stacker ? 12.0
+                                    : 4.0;
+  return US_GEN_FITS;
+}
