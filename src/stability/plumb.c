@@ -46,6 +46,7 @@
 #define PLUMB_MAX_TRI 48 /* 3D: support points of a body searched for triangles at most */
 #define FLOW_POINTS 32   /* a lever's flow: support points of a body at most */
 #define FLOW_POPS 65536  /* a lever's flow: bodies passed on at most */
+#define FLOW_DEPTH 1     /* a lever's flow: levels of look-ahead (deeper measured worse) */
 
 typedef struct Hop {
   int n;         /* points carrying the load: 1 to 3 */
@@ -158,7 +159,11 @@ int us_plumb_init(us_Plumb *p, const us_Structure *s, const int *inc_start, cons
   p->acc = us_calloc(2 * nb, sizeof(double));
   p->queued = us_calloc(nb, 1);
   p->height = us_malloc(nb * sizeof(double));
-  if (!p->mark || !p->width || !p->sup_start || !p->sup || !p->acc || !p->queued || !p->height)
+  size_t ns = 2 * (size_t)(2 * s->ncontact + 1);
+  p->cap_val = us_malloc(ns * sizeof(double));
+  p->cap_stamp = us_calloc(ns, sizeof(long));
+  if (!p->mark || !p->width || !p->sup_start || !p->sup || !p->acc || !p->queued || !p->height ||
+      !p->cap_val || !p->cap_stamp)
     return -1;
   for (int u = 0; u < s->nbody; u++) p->height[u] = dot3(s->bodies[u].com, up);
   list_supports(p);
@@ -186,6 +191,8 @@ void us_plumb_free(us_Plumb *p) {
   us_free(p->height);
   us_free(p->fheap);
   us_free(p->excl);
+  us_free(p->cap_val);
+  us_free(p->cap_stamp);
   memset(p, 0, sizeof *p);
 }
 
@@ -492,46 +499,80 @@ static int drained(Spread *sp, double P, double M, double tol) {
   return 1;
 }
 
-/* Look-ahead: the largest t >= 0 such that a load sg t (sg = +-1) at x on
- * movable body v spreads over v's own points within their cone bounds
- * (one pair or one point carrying it; deeper bodies not asked). */
-static double capacity(const us_Plumb *p, const us_Bitset *cur, int skip, int v, double x,
-                       double sg, const double *f) {
-  double xs[FLOW_POINTS], lo[FLOW_POINTS], best = 0.0, tol = AT_POINT * p->width[v];
-  int n = 0;
-  for (int m = p->sup_start[v]; m < p->sup_start[v + 1] && n < FLOW_POINTS; m++)
-    if (usable(p, cur, v, m, skip)) xs[n] = p->sup[m].pos[0], lo[n++] = least_load(p, m, v, f);
+static double point_capacity(us_Plumb *p, const us_Bitset *cur, int skip, int m, double sg,
+                             const double *f, int depth);
+
+/* The bounds of support point m of u for a spread: its cone's (least_load)
+ * and what the body below can take or give there (point_capacity), and
+ * +-infinity on the ground or a fixed body. */
+static void point_bounds(us_Plumb *p, const us_Bitset *cur, int skip, int u, int m,
+                         const double *f, int depth, double *lo, double *hi) {
+  *lo = least_load(p, m, u, f), *hi = INFINITY;
+  if (held(p, p->sup[m].below)) return;
+  *lo = US_MAX(*lo, -point_capacity(p, cur, skip, m, -1.0, f, depth + 1));
+  *hi = point_capacity(p, cur, skip, m, 1.0, f, depth + 1);
+}
+
+/* The largest t >= 0 such that a load sg t (sg = +-1) at x on v spreads
+ * over v's points xs[0..n) within [lo, hi] (one point or one pair). */
+static double best_capacity(const double *xs, const double *lo, const double *hi, int n,
+                            double x, double sg, double tol) {
+  double best = 0.0;
   for (int i = 0; i < n; i++) {
-    if (fabs(xs[i] - x) <= tol) best = US_MAX(best, sg > 0 ? INFINITY : -lo[i]);
+    if (fabs(xs[i] - x) <= tol) best = US_MAX(best, sg > 0 ? hi[i] : -lo[i]);
     for (int k = i + 1; k < n; k++) {
       double dx = xs[i] - xs[k];
       if (!(fabs(dx) > tol)) continue;
-      double ai = sg * (x - xs[k]) / dx, ak = sg - ai, t = INFINITY; /* shares per unit t */
-      if (ai < 0.0) t = US_MIN(t, lo[i] / ai);
-      if (ak < 0.0) t = US_MIN(t, lo[k] / ak);
+      double a[2] = {sg * (x - xs[k]) / dx, 0.0}, t = INFINITY; /* shares per unit t */
+      a[1] = sg - a[0];
+      const int ij[2] = {i, k};
+      for (int q = 0; q < 2; q++)
+        t = US_MIN(t, a[q] > 0.0 ? hi[ij[q]] / a[q] : a[q] < 0.0 ? lo[ij[q]] / a[q] : INFINITY);
       best = US_MAX(best, t);
     }
   }
   return best;
 }
 
+/* Look-ahead: the largest t >= 0 such that a load sg t (sg = +-1) at
+ * support point m's position spreads over the body below it, each of its
+ * points bounded the same way, recursively down to the ground (memoised
+ * per point and flow; beyond FLOW_DEPTH levels, or on a cycle, a point's
+ * own cone only). A heuristic for choosing spreads: the check decides. */
+static double point_capacity(us_Plumb *p, const us_Bitset *cur, int skip, int m, double sg,
+                             const double *f, int depth) {
+  int side = sg > 0, v = p->sup[m].below;
+  size_t key = 2 * (size_t)m + (size_t)side;
+  if (p->cap_stamp[key] == p->flow_id) return p->cap_val[key];
+  p->cap_stamp[key] = p->flow_id, p->cap_val[key] = 0.0; /* on a cycle: 0 */
+  double xs[FLOW_POINTS], lo[FLOW_POINTS], hi[FLOW_POINTS];
+  int n = 0;
+  for (int j = p->sup_start[v]; j < p->sup_start[v + 1] && n < FLOW_POINTS; j++) {
+    if (!usable(p, cur, v, j, skip)) continue;
+    xs[n] = p->sup[j].pos[0];
+    if (depth < FLOW_DEPTH) point_bounds(p, cur, skip, v, j, f, depth, &lo[n], &hi[n]);
+    else lo[n] = least_load(p, j, v, f), hi[n] = INFINITY;
+    n++;
+  }
+  double t = best_capacity(xs, lo, hi, n, p->sup[m].pos[0], sg, AT_POINT * p->width[v]);
+  p->cap_val[key] = t;
+  return t;
+}
+
 /* Spread the change of u (load P down, moment M about the axis origin)
  * over its usable support points: amounts a_i >= each point's bound with
  * sum P and moment M. A point on the resultant first, then the best
  * pair, then the drained spread. 1 found, 0 none. */
-static int spread(const us_Plumb *p, const us_Bitset *cur, int skip, int u, double P, double M,
+static int spread(us_Plumb *p, const us_Bitset *cur, int skip, int u, double P, double M,
                   const double *f, Spread *sp) {
   double tol = AT_POINT * p->width[u];
   sp->nm = sp->n = 0;
   for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++) {
     if (!usable(p, cur, u, m, skip)) continue;
     if (sp->nm == FLOW_POINTS) return 0;
-    int v = p->sup[m].below, n = sp->nm++;
-    sp->m[n] = m, sp->x[n] = p->sup[m].pos[0], sp->lo[n] = least_load(p, m, u, f);
-    sp->hi[n] = INFINITY;
-    if (held(p, v)) continue;
-    sp->lo[n] = US_MAX(sp->lo[n], -capacity(p, cur, skip, v, sp->x[n], -1.0, f));
-    sp->hi[n] = capacity(p, cur, skip, v, sp->x[n], 1.0, f);
+    int n = sp->nm++;
+    sp->m[n] = m, sp->x[n] = p->sup[m].pos[0];
+    point_bounds(p, cur, skip, u, m, f, 0, &sp->lo[n], &sp->hi[n]);
   }
   for (int i = 0; i < sp->nm && P > 0.0; i++)
     if (fabs(M - P * sp->x[i]) <= tol * P && P <= sp->hi[i]) {
@@ -630,6 +671,7 @@ static int flow_press(us_Plumb *p, const us_Bitset *cur, int skip, int u, double
 static int flow_body(us_Plumb *p, const us_Bitset *cur, int skip, int u, double P, double M,
                      double *f) {
   Spread sp;
+  p->flow_id++; /* forces changed since the last look-ahead */
   int r = spread(p, cur, skip, u, P, M, f, &sp) ? 2 : flow_press(p, cur, skip, u, &P, &M, f);
   if (r < 0) return -1;
   if (r == 0 || (r == 1 && !spread(p, cur, skip, u, P, M, f, &sp))) return 0;
@@ -669,6 +711,141 @@ static int within(const us_Plumb *p, const us_Bitset *cur, int u, double c) {
   return c >= lo - tol && c <= hi + tol;
 }
 
+/* The lines hop h (of a line at c) goes on as (the lever's lines): one per movable body
+ * below, its share w[j] of the load at the share-weighted mean of its
+ * points (c itself when one body takes the whole hop). Signed hops
+ * (sgn 1) have shares of any sign, and a body whose shares cancel gets
+ * no line. Returns their number (at most 3). */
+static int hop_children_signed(const us_Plumb *p, const Hop *h, const double c[2], int sgn,
+                        int body[3], double w[3], double at[3][2]) {
+  int n = 0;
+  for (int q = 0; q < h->n; q++) {
+    int v = h->below[q], first = 1;
+    for (int r = 0; r < q; r++) first = first && h->below[r] != v;
+    if (!first || held(p, v)) continue;
+    double s = 0.0, x[2] = {0.0, 0.0};
+    for (int r = q; r < h->n; r++) {
+      if (h->below[r] != v) continue;
+      s += h->w[r];
+      x[0] += h->w[r] * h->pos[r][0], x[1] += h->w[r] * h->pos[r][1];
+    }
+    int whole = sgn ? fabs(s - 1.0) <= 1e-15 : s >= 1.0 - 1e-15;
+    if (whole) x[0] = c[0], x[1] = c[1]; /* one body: on the line */
+    else if (s != 0.0) x[0] /= s, x[1] /= s;
+    else if (sgn) continue;
+    body[n] = v, w[n] = s, at[n][0] = x[0], at[n][1] = x[1];
+    n++;
+  }
+  return n;
+}
+
+/* The far point of an extended lever rule for a load on u at c beyond its
+ * point `near`: the usable point on the other side of near, at least tol
+ * away, whose normal force is largest after its share is taken off (or
+ * put on); -1 if none. */
+static int release_point(const us_Plumb *p, const us_Bitset *cur, int skip, int u, double c,
+                         int near, double load, const double *f, double tol) {
+  double sn = p->sup[near].pos[0], best_left = -INFINITY;
+  int best = -1;
+  size_t dim = (size_t)p->s->dim;
+  for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++) {
+    double x = p->sup[m].pos[0];
+    if (!usable(p, cur, u, m, skip) || !(fabs(x - sn) > tol) || (x - sn) * (c - sn) > 0) continue;
+    double share = (c - sn) / (x - sn), d[3]; /* x's share of the load (< 0) */
+    components(p, &p->s->contacts[p->sup[m].contact], u, share * load, d);
+    double left = f[dim * (size_t)p->sup[m].contact] + d[0];
+    if (left > best_left) best_left = left, best = m;
+  }
+  return best;
+}
+
+/* 2D hop of a signed load on u at c, not resting on skip: a point on the
+ * line takes it all; else the nearest points on either side (lever rule);
+ * else (c beyond u's points) the two outermost points, by the
+ * same rule extended (one share negative: part of the load the far point
+ * carries already is taken off it; the caller's check decides whether it
+ * had that much). 1 found, 0 none. */
+static int hop_signed(const us_Plumb *p, const us_Bitset *cur, int skip, int u, const double c[2],
+                      double load, const double *f, Hop *h) {
+  double tol = AT_POINT * p->width[u];
+  int best[2] = {-1, -1}, lo = -1, hi = -1;
+  for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++) {
+    if (!usable(p, cur, u, m, skip)) continue;
+    double x = p->sup[m].pos[0];
+    if (fabs(x - c[0]) <= tol) {
+      h->n = 1;
+      hop_point(p, h, 0, m, 1.0);
+      return 1;
+    }
+    int side = x > c[0];
+    if (best[side] < 0 || (side ? x < p->sup[best[1]].pos[0] : x > p->sup[best[0]].pos[0]))
+      best[side] = m;
+    if (lo < 0 || x < p->sup[lo].pos[0]) lo = m;
+    if (hi < 0 || x > p->sup[hi].pos[0]) hi = m;
+  }
+  if (best[0] < 0 || best[1] < 0) { /* c outside the points: the rule extended */
+    if (lo < 0 || !(p->sup[hi].pos[0] - p->sup[lo].pos[0] > tol)) return 0;
+    int near = best[0] < 0 ? lo : hi, far = release_point(p, cur, skip, u, c[0], near, load, f, tol);
+    if (far < 0) return 0;
+    best[0] = p->sup[far].pos[0] < p->sup[near].pos[0] ? far : near;
+    best[1] = best[0] == far ? near : far;
+  }
+  double s1 = p->sup[best[0]].pos[0], s2 = p->sup[best[1]].pos[0], w1 = (c[0] - s1) / (s2 - s1);
+  h->n = 2;
+  hop_point(p, h, 0, best[0], 1.0 - w1);
+  hop_point(p, h, 1, best[1], w1);
+  return 1;
+}
+
+/* Route the stacked lines (signed loads) down, not resting on skip:
+ * 1 routed, 0 no hop or out of budget, -1 OOM. */
+static int route_signed(us_Plumb *p, const us_Bitset *cur, int skip, double *f) {
+  for (int hops = 0; p->nstack > 0; hops++) {
+    if (hops >= PLUMB_HOPS) return 0;
+    us_PlumbLine l = p->stack[--p->nstack];
+    Hop h;
+    if (!hop_signed(p, cur, skip, l.body, l.pos, l.load, f, &h)) return 0;
+    for (int q = 0; q < h.n; q++) {
+      if (add_force(p, h.k[q], l.body, h.w[q] * l.load, f)) return -1;
+    }
+    int body[3];
+    double w[3], at[3][2];
+    for (int j = 0, n = hop_children_signed(p, &h, l.pos, 1, body, w, at); j < n; j++) {
+      mark_body(p, body[j]);
+      if (push_line(p, body[j], at[j], w[j] * l.load)) return -1;
+    }
+  }
+  return 1;
+}
+
+/* The lever as signed lines (the route before the flow, kept where the
+ * flow finds no spread: its lines pick the far point with the most force
+ * left, and the caller's check decides): a's line at s carries w + load,
+ * the presser's release -load at q, each split by the extended lever
+ * rule. 1 routed, 0 none, -1 OOM; f unchanged unless 1. */
+static int lever_lines(us_Plumb *p, const us_Bitset *cur, int a, double *f) {
+  double c[2], w = p->s->bodies[a].mass / p->mass_total;
+  us_plumb_horizontal(p, p->s->bodies[a].com, c);
+  int ms, mp;
+  p->nstack = 0;
+  p->nexcl = 0;
+  mark_body(p, a);
+  if (!lever_points(p, cur, a, c[0], -1, &ms, &mp)) {
+    int r = push_line(p, a, c, w) ? -1 : route_signed(p, cur, -1, f);
+    if (r <= 0) us_plumb_undo(p, f);
+    return r;
+  }
+  const us_PlumbSupport *qs = &p->sup[ms], *qp = &p->sup[mp];
+  double load = w * (c[0] - qs->pos[0]) / (qs->pos[0] - qp->pos[0]);
+  int d = other_side(&p->s->contacts[qp->contact], a);
+  mark_body(p, d);
+  int r = add_force(p, qp->contact, d, load, f) ? -1 : 1;
+  if (r > 0 && (push_line(p, a, qs->pos, w + load) || push_line(p, d, qp->pos, -load))) r = -1;
+  if (r > 0) r = route_signed(p, cur, a, f);
+  if (r <= 0) us_plumb_undo(p, f);
+  return r;
+}
+
 int us_plumb_lever(us_Plumb *p, const us_Bitset *cur, int a, double *f) {
   for (int q = 0; q < p->npath; q++) p->mark[p->path[q]] = 0;
   p->npath = 0;
@@ -696,7 +873,7 @@ int us_plumb_lever(us_Plumb *p, const us_Bitset *cur, int a, double *f) {
   int r = flow_run(p, cur, a, f); /* empties the queue whatever happened */
   if (bad) r = -1;
   if (r <= 0) us_plumb_undo(p, f);
-  return r;
+  return r == 0 ? lever_lines(p, cur, a, f) : r;
 }
 
 /* ------------------------------------------------------ lazy routing */
