@@ -366,7 +366,8 @@ static void stacker_assembly_agrees(void) {
  * stacker's taller stacks (30 rows, width 20: cantilevers on cantilevers'
  * paths), in the planner's pattern, both frictions. Every verdict against
  * the full system, every stable certificate re-checked; the levers must
- * settle some tests (else the flow would be untested here). */
+ * settle many tests (else the flow, and its side contacts that carry
+ * shear in the LP's forces, would be untested here). */
 static void stacker_flows_agree(void) {
   Tally t = {0};
   static const double mus[] = {0.0, 0.5};
@@ -379,7 +380,7 @@ static void stacker_flows_agree(void) {
     }
   report("stacker flows", &t);
   CHECK(t.unstable > 0 && t.local > t.tests / 2);
-  CHECK(t.lever >= 8);
+  CHECK(t.lever >= 100); /* 13 before side contacts joined the flow, 148 with them */
 }
 
 /* Local tests off, on, and the planner: the same plans. */

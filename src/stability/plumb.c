@@ -418,21 +418,43 @@ static int usable(const us_Plumb *p, const us_Bitset *cur, int u, int m, int ski
   return 1;
 }
 
-/* The least vertical load point m of u can take on top of its force in f
- * and stay in its cone (<= 0: minus what can be taken off). Each cone face
- * g0 + load g1 >= 0 has g1 > 0 (the vertical is inside the cone), so each
- * bounds the load below. */
-static double least_load(const us_Plumb *p, int m, int u, const double *f) {
-  const us_Contact *k = &p->s->contacts[p->sup[m].contact];
-  const double *fk = f + (size_t)p->s->dim * (size_t)p->sup[m].contact;
-  double d[3];
+/* Contact j of u's incidence (inc[j]) as a point of u's flow: the body on
+ * its other side present, not the cantilever (skip), not a body u holds
+ * as a presser, not resting on u (the flow goes down and sideways, never
+ * up), and not contact `back`. 1 usable, 0 not. */
+static int flow_point(const us_Plumb *p, const us_Bitset *cur, int skip, int u, int j, int back) {
+  const us_Contact *k = &p->s->contacts[p->inc[j]];
+  int v = other_side(k, u);
+  if (p->inc[j] == back || (v >= 0 && v == skip) || !present(p, cur, v) || supports(p, k, v))
+    return 0;
+  for (int e = 0; e < p->nexcl; e++) /* a presser does not lean back on what it holds */
+    if (p->excl[2 * e] == u && p->excl[2 * e + 1] == v) return 0;
+  return 1;
+}
+
+/* The vertical loads contact kc can add on u on top of its force in f and
+ * stay in its cone: [lo, hi] with lo <= 0 <= hi. Each cone face g0 + load
+ * g1 >= 0 bounds it below (g1 > 0) or above (g1 < 0); a support's faces
+ * all have g1 > 0 (the vertical is inside its cone), a side contact's
+ * friction faces one each way. */
+static void vertical_bounds(const us_Plumb *p, int kc, int u, const double *f, double *lo,
+                            double *hi) {
+  const us_Contact *k = &p->s->contacts[kc];
+  const double *fk = f + (size_t)p->s->dim * (size_t)kc;
+  double d[3], g0[3], g1[3];
   components(p, k, u, 1.0, d);
-  double lo = d[0] > 0.0 ? -fk[0] / d[0] : 0.0;
-  for (int sg = -1; sg <= 1 && !isinf(k->mu); sg += 2) {
-    double g0 = k->mu * fk[0] + sg * fk[1], g1 = k->mu * d[0] + sg * d[1];
-    lo = g1 > 0.0 ? US_MAX(lo, -g0 / g1) : US_MAX(lo, 0.0);
+  int nf = isinf(k->mu) ? 1 : 3;
+  g0[0] = fk[0], g1[0] = d[0];
+  for (int q = 1; q < nf; q++) {
+    double sg = q == 1 ? -1.0 : 1.0;
+    g0[q] = k->mu * fk[0] + sg * fk[1], g1[q] = k->mu * d[0] + sg * d[1];
   }
-  return US_MIN(lo, 0.0);
+  *lo = -INFINITY, *hi = INFINITY;
+  for (int q = 0; q < nf; q++) {
+    if (g1[q] > 0.0) *lo = US_MAX(*lo, -g0[q] / g1[q]);
+    else if (g1[q] < 0.0) *hi = US_MIN(*hi, g0[q] / -g1[q]);
+  }
+  *lo = US_MIN(*lo, 0.0), *hi = US_MAX(*hi, 0.0);
 }
 
 /* A spread of a body's change over its support points (at most
@@ -481,7 +503,7 @@ static int best_pair(Spread *sp, double P, double M) {
 static int drained(Spread *sp, double P, double M, double tol) {
   double R = P, Rm = M;
   for (int i = 0; i < sp->nm; i++) R -= sp->lo[i], Rm -= sp->lo[i] * sp->x[i];
-  if (!(R > 0.0)) return 0;
+  if (!(R > 0.0) || !isfinite(R) || !isfinite(Rm)) return 0;
   double c = Rm / R;
   int lo = -1, hi = -1;
   for (int i = 0; i < sp->nm; i++) {
@@ -499,18 +521,18 @@ static int drained(Spread *sp, double P, double M, double tol) {
   return 1;
 }
 
-static double point_capacity(us_Plumb *p, const us_Bitset *cur, int skip, int m, double sg,
-                             const double *f, int depth);
+static double point_capacity(us_Plumb *p, const us_Bitset *cur, int skip, int u, int j,
+                             double sg, const double *f, int depth);
 
-/* The bounds of support point m of u for a spread: its cone's (least_load)
- * and what the body below can take or give there (point_capacity), and
- * +-infinity on the ground or a fixed body. */
-static void point_bounds(us_Plumb *p, const us_Bitset *cur, int skip, int u, int m,
+/* The bounds of flow point j of u for a spread: its cone's
+ * (vertical_bounds) and what the body on its other side can take or give
+ * there (point_capacity); the ground and fixed bodies take anything. */
+static void point_bounds(us_Plumb *p, const us_Bitset *cur, int skip, int u, int j,
                          const double *f, int depth, double *lo, double *hi) {
-  *lo = least_load(p, m, u, f), *hi = INFINITY;
-  if (held(p, p->sup[m].below)) return;
-  *lo = US_MAX(*lo, -point_capacity(p, cur, skip, m, -1.0, f, depth + 1));
-  *hi = point_capacity(p, cur, skip, m, 1.0, f, depth + 1);
+  vertical_bounds(p, p->inc[j], u, f, lo, hi);
+  if (held(p, other_side(&p->s->contacts[p->inc[j]], u)) || depth >= FLOW_DEPTH) return;
+  *lo = US_MAX(*lo, -point_capacity(p, cur, skip, u, j, -1.0, f, depth + 1));
+  *hi = US_MIN(*hi, point_capacity(p, cur, skip, u, j, 1.0, f, depth + 1));
 }
 
 /* The largest t >= 0 such that a load sg t (sg = +-1) at x on v spreads
@@ -535,26 +557,28 @@ static double best_capacity(const double *xs, const double *lo, const double *hi
 }
 
 /* Look-ahead: the largest t >= 0 such that a load sg t (sg = +-1) at
- * support point m's position spreads over the body below it, each of its
- * points bounded the same way, recursively down to the ground (memoised
- * per point and flow; beyond FLOW_DEPTH levels, or on a cycle, a point's
- * own cone only). A heuristic for choosing spreads: the check decides. */
-static double point_capacity(us_Plumb *p, const us_Bitset *cur, int skip, int m, double sg,
-                             const double *f, int depth) {
-  int side = sg > 0, v = p->sup[m].below;
-  size_t key = 2 * (size_t)m + (size_t)side;
+ * flow point j of u spreads over the body v on its other side, by one of
+ * v's points or pairs within their bounds (memoised per point and look-
+ * ahead; FLOW_DEPTH levels deep, a cycle counts 0). A heuristic for
+ * choosing spreads: the check decides. */
+static double point_capacity(us_Plumb *p, const us_Bitset *cur, int skip, int u, int j,
+                             double sg, const double *f, int depth) {
+  const us_Contact *k = &p->s->contacts[p->inc[j]];
+  int v = other_side(k, u);
+  size_t key = 2 * (size_t)j + (sg > 0);
   if (p->cap_stamp[key] == p->flow_id) return p->cap_val[key];
   p->cap_stamp[key] = p->flow_id, p->cap_val[key] = 0.0; /* on a cycle: 0 */
-  double xs[FLOW_POINTS], lo[FLOW_POINTS], hi[FLOW_POINTS];
+  double xs[FLOW_POINTS], lo[FLOW_POINTS], hi[FLOW_POINTS], x[2];
   int n = 0;
-  for (int j = p->sup_start[v]; j < p->sup_start[v + 1] && n < FLOW_POINTS; j++) {
-    if (!usable(p, cur, v, j, skip)) continue;
-    xs[n] = p->sup[j].pos[0];
-    if (depth < FLOW_DEPTH) point_bounds(p, cur, skip, v, j, f, depth, &lo[n], &hi[n]);
-    else lo[n] = least_load(p, j, v, f), hi[n] = INFINITY;
+  for (int jj = p->inc_start[v]; jj < p->inc_start[v + 1] && n < FLOW_POINTS; jj++) {
+    if (!flow_point(p, cur, skip, v, jj, p->inc[j])) continue;
+    us_plumb_horizontal(p, p->s->contacts[p->inc[jj]].p, x);
+    xs[n] = x[0];
+    point_bounds(p, cur, skip, v, jj, f, depth, &lo[n], &hi[n]);
     n++;
   }
-  double t = best_capacity(xs, lo, hi, n, p->sup[m].pos[0], sg, AT_POINT * p->width[v]);
+  us_plumb_horizontal(p, k->p, x);
+  double t = best_capacity(xs, lo, hi, n, x[0], sg, AT_POINT * p->width[v]);
   p->cap_val[key] = t;
   return t;
 }
@@ -567,12 +591,14 @@ static int spread(us_Plumb *p, const us_Bitset *cur, int skip, int u, double P, 
                   const double *f, Spread *sp) {
   double tol = AT_POINT * p->width[u];
   sp->nm = sp->n = 0;
-  for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++) {
-    if (!usable(p, cur, u, m, skip)) continue;
+  for (int j = p->inc_start[u]; j < p->inc_start[u + 1]; j++) {
+    if (!flow_point(p, cur, skip, u, j, -1)) continue;
     if (sp->nm == FLOW_POINTS) return 0;
     int n = sp->nm++;
-    sp->m[n] = m, sp->x[n] = p->sup[m].pos[0];
-    point_bounds(p, cur, skip, u, m, f, 0, &sp->lo[n], &sp->hi[n]);
+    double x[2];
+    us_plumb_horizontal(p, p->s->contacts[p->inc[j]].p, x);
+    sp->m[n] = j, sp->x[n] = x[0];
+    point_bounds(p, cur, skip, u, j, f, 0, &sp->lo[n], &sp->hi[n]);
   }
   for (int i = 0; i < sp->nm && P > 0.0; i++)
     if (fabs(M - P * sp->x[i]) <= tol * P && P <= sp->hi[i]) {
@@ -677,10 +703,9 @@ static int flow_body(us_Plumb *p, const us_Bitset *cur, int skip, int u, double 
   if (r == 0 || (r == 1 && !spread(p, cur, skip, u, P, M, f, &sp))) return 0;
   for (int q = 0; q < sp.n; q++) {
     int i = sp.pt[q];
-    const us_PlumbSupport *s = &p->sup[sp.m[i]];
+    int kc = p->inc[sp.m[i]], v = other_side(&p->s->contacts[kc], u);
     if (sp.amt[q] == 0.0) continue;
-    if (add_force(p, s->contact, u, sp.amt[q], f) ||
-        flow_add(p, s->below, sp.amt[q], sp.amt[q] * sp.x[i]))
+    if (add_force(p, kc, u, sp.amt[q], f) || flow_add(p, v, sp.amt[q], sp.amt[q] * sp.x[i]))
       return -1;
   }
   return 1;
