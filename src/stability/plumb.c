@@ -45,7 +45,7 @@
 #define PLUMB_HOPS 4096  /* hops one added body's lines may take */
 #define PLUMB_MAX_TRI 48 /* 3D: support points of a body searched for triangles at most */
 #define FLOW_POINTS 32   /* a lever's flow: support points of a body at most */
-#define FLOW_POPS 65536  /* a lever's flow: bodies passed on at most */
+#define FLOW_POPS 8192   /* a lever's flow: bodies passed on at most */
 #define FLOW_DEPTH 1     /* a lever's flow: levels of look-ahead (deeper measured worse) */
 
 typedef struct Hop {
@@ -162,8 +162,9 @@ int us_plumb_init(us_Plumb *p, const us_Structure *s, const int *inc_start, cons
   size_t ns = 2 * (size_t)(2 * s->ncontact + 1);
   p->cap_val = us_malloc(ns * sizeof(double));
   p->cap_stamp = us_calloc(ns, sizeof(long));
+  p->done = us_calloc(nb, sizeof(long));
   if (!p->mark || !p->width || !p->sup_start || !p->sup || !p->acc || !p->queued || !p->height ||
-      !p->cap_val || !p->cap_stamp)
+      !p->cap_val || !p->cap_stamp || !p->done)
     return -1;
   for (int u = 0; u < s->nbody; u++) p->height[u] = dot3(s->bodies[u].com, up);
   list_supports(p);
@@ -193,6 +194,7 @@ void us_plumb_free(us_Plumb *p) {
   us_free(p->excl);
   us_free(p->cap_val);
   us_free(p->cap_stamp);
+  us_free(p->done);
   memset(p, 0, sizeof *p);
 }
 
@@ -421,12 +423,16 @@ static int usable(const us_Plumb *p, const us_Bitset *cur, int u, int m, int ski
 /* Contact j of u's incidence (inc[j]) as a point of u's flow: the body on
  * its other side present, not the cantilever (skip), not a body u holds
  * as a presser, not resting on u (the flow goes down and sideways, never
- * up), and not contact `back`. 1 usable, 0 not. */
+ * up), not a side neighbour that already passed its change on (no load
+ * goes back and forth between neighbours), and not contact `back`. 1
+ * usable, 0 not. */
 static int flow_point(const us_Plumb *p, const us_Bitset *cur, int skip, int u, int j, int back) {
   const us_Contact *k = &p->s->contacts[p->inc[j]];
   int v = other_side(k, u);
   if (p->inc[j] == back || (v >= 0 && v == skip) || !present(p, cur, v) || supports(p, k, v))
     return 0;
+  if (!held(p, v) && p->done[v] == p->lever_id && !supports(p, k, u))
+    return 0; /* sideways only to a body that has not passed its change on */
   for (int e = 0; e < p->nexcl; e++) /* a presser does not lean back on what it holds */
     if (p->excl[2 * e] == u && p->excl[2 * e + 1] == v) return 0;
   return 1;
@@ -719,6 +725,7 @@ static int flow_run(us_Plumb *p, const us_Bitset *cur, int skip, double *f) {
   int r = 1;
   for (int pops = 0; p->nfheap > 0; pops++) {
     int u = flow_pop(p);
+    p->done[u] = p->lever_id;
     double P = p->acc[2 * (size_t)u], M = p->acc[2 * (size_t)u + 1];
     p->acc[2 * (size_t)u] = p->acc[2 * (size_t)u + 1] = 0.0;
     if (r > 0 && pops >= FLOW_POPS) r = 0;
@@ -882,6 +889,7 @@ int us_plumb_lever(us_Plumb *p, const us_Bitset *cur, int a, double *f) {
   int ms, mp, bad = 0;
   double P = w, M = w * c[0];
   p->nexcl = 0;
+  p->lever_id++;
   if (lever_points(p, cur, a, c[0], -1, &ms, &mp)) {
     /* the presser d pushes a down at q with the load that puts the
        resultant of a's weight and the push on s; d takes it off its

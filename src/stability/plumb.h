@@ -97,6 +97,7 @@ typedef struct us_Plumb {
   int *excl, nexcl, cap_excl; /* pairs (presser, held body): no load back */
   double *cap_val;       /* look-ahead per support entry and sign, valid */
   long *cap_stamp, flow_id; /* while its stamp is the current flow_id */
+  long *done, lever_id;  /* a body passed its change on in lever lever_id */
   int nnew;              /* lines the last lazy route checked (new entries) */
   double worst_line;     /* their largest hop residual (relative) */
 } us_Plumb;
