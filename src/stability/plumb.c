@@ -463,8 +463,8 @@ static void vertical_bounds(const us_Plumb *p, int kc, int u, const double *f, d
   *lo = US_MIN(*lo, 0.0), *hi = US_MAX(*hi, 0.0);
 }
 
-/* A spread of a body's change over its support points (at most
- * FLOW_POINTS): amt[q] at point pt[q]. */
+/* A spread of a body's change over its flow points (at most
+ * FLOW_POINTS; m[] their incidence indices): amt[q] at point pt[q]. */
 typedef struct Spread {
   int n, pt[FLOW_POINTS];
   double amt[FLOW_POINTS];
@@ -590,8 +590,8 @@ static double point_capacity(us_Plumb *p, const us_Bitset *cur, int skip, int u,
 }
 
 /* Spread the change of u (load P down, moment M about the axis origin)
- * over its usable support points: amounts a_i >= each point's bound with
- * sum P and moment M. A point on the resultant first, then the best
+ * over its flow points: amounts a_i within each point's bounds with sum P
+ * and moment M. A point on the resultant first, then the best
  * pair, then the drained spread. 1 found, 0 none. */
 static int spread(us_Plumb *p, const us_Bitset *cur, int skip, int u, double P, double M,
                   const double *f, Spread *sp) {
