@@ -71,7 +71,8 @@ static void compare(const us_Structure *s, const us_Bitset *p, void *small, void
 static void sweep(const us_Structure *s, Tally *t) {
   us_StabilitySettings set = us_stability_default_settings();
   us_Error err;
-  void *small = us_backend_small.create(s, &set, &err), *lps = us_backend_lpsolve.create(s, &set, &err);
+  void *small = us_backend_small.create(s, &set, &err);
+  void *lps = us_backend_lpsolve.create(s, &set, &err);
   us_Bitset p;
   CHECK(small && lps && us_bitset_init(&p, s->nbody) == 0);
   unsigned long long rnd = 12345;

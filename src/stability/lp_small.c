@@ -223,7 +223,8 @@ static int small_reserve(SmallWs *w, int m, int n) {
   long cells = (long)(m + 1) * (long)(n + 1), bcells = (long)m * (long)(m + 1) + 1;
   if (cells > 1L << 28 || bcells > 1L << 28) return -1;
   return US_GROW(w->t, w->cap_t, (int)cells) || US_GROW(w->basis, w->cap_b, m + 1) ||
-                 US_GROW(w->nz, w->cap_nz, n + 1) || US_GROW(w->cost, w->cap_cost, n + 1) || US_GROW(w->ratio, w->cap_ratio, m + 1) ||
+                 US_GROW(w->nz, w->cap_nz, n + 1) || US_GROW(w->cost, w->cap_cost, n + 1) ||
+                 US_GROW(w->ratio, w->cap_ratio, m + 1) ||
                  US_GROW(w->sol, w->cap_s, US_MAX(n, m) + 1) || US_GROW(w->ray, w->cap_r, m + 1) ||
                  US_GROW(w->bt, w->cap_bt, (int)bcells)
              ? -1
