@@ -158,8 +158,10 @@ static void pivot(SmallWs *w, int m, int n, int pr, int pc) {
 static int leaving_row(SmallWs *w, int m, int n, int pc) {
   const double *col = &T(w, m, 0, pc), *rhs = &T(w, m, 0, n);
   double best = INFINITY, *ratio = w->ratio;
-  for (int i = 0; i < m; i++) {
-    ratio[i] = col[i] > PIVOT_EPS ? US_MAX(rhs[i], 0.0) / col[i] : INFINITY;
+  for (int i = 0; i < m; i++) { /* selects, not branches: a non-pivot is INF / 1 */
+    int ok = col[i] > PIVOT_EPS;
+    double num = ok ? US_MAX(rhs[i], 0.0) : INFINITY, den = ok ? col[i] : 1.0;
+    ratio[i] = num / den;
     best = US_MIN(best, ratio[i]);
   }
   if (!isfinite(best)) return -1;
