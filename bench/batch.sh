@@ -7,7 +7,9 @@
 # 100,000 by default, 2,000 with QUICK=1; hard links to the 400) with 2 jobs: inputs per second
 # and the extrapolated time for a million. Wall and CPU seconds, best of
 # BATCH_REPS runs (3). Writes OUT/batch-TAG.csv and prints a markdown table.
-# Usage: bench/batch.sh BUILD_DIR OUT TAG   (env QUICK=1, BATCH_BIG=n, BATCH_REPS=n)
+# BATCH_GEN picks the 400 (default "random --rows 8 --width 5"; e.g.
+# "random", "random --rows 12 --width 4", "stacker --rows 6 --width 6").
+# Usage: bench/batch.sh BUILD_DIR OUT TAG   (env QUICK=1, BATCH_BIG=n, BATCH_REPS=n, BATCH_GEN=...)
 set -uo pipefail
 B=$1 OUT=$2 TAG=$3
 CLI=$(cd "$(dirname "$B/unstack")" && pwd)/unstack
@@ -34,7 +36,9 @@ timed() {
   echo "$name,$n,$best,$cpu,$(awk "BEGIN{printf \"%.1f\", $n / ($best > 0 ? $best : 0.01)}")" >>"$CSV"
 }
 
-"$CLI" generate random --rows 8 --width 5 --count 400 -o "$W/s400/" >/dev/null
+GEN=${BATCH_GEN:-random --rows 8 --width 5}
+# shellcheck disable=SC2086 # the generator's kind and options, split
+"$CLI" generate $GEN --count 400 -o "$W/s400/" >/dev/null
 timed "batch --jobs 1" 400 "$CLI" batch "$W/s400" -o "$W/o1.jsonl" --jobs 1
 timed "batch --jobs 2" 400 "$CLI" batch "$W/s400" -o "$W/o2.jsonl" --jobs 2
 if "$CLI" --version | grep -q '^mpi: yes' && command -v mpirun >/dev/null; then
@@ -53,8 +57,9 @@ python3 -c '
 import os, sys
 src, dst, n = sys.argv[1], sys.argv[2], int(sys.argv[3])
 os.makedirs(dst)
+names = sorted(f for f in os.listdir(src) if f.endswith(".json"))
 for i in range(n):
-    os.link("%s/random-%03d.json" % (src, i % 400 + 1), "%s/s%07d.json" % (dst, i))
+    os.link("%s/%s" % (src, names[i % len(names)]), "%s/s%07d.json" % (dst, i))
 ' "$W/s400" "$W/big" "$BIG"
 REPS=1 timed "batch --jobs 2 large set" "$BIG" "$CLI" batch "$W/big" -o "$W/big.jsonl" --jobs 2
 lines=$(wc -l <"$W/big.jsonl")
@@ -67,7 +72,9 @@ tail -n +2 "$CSV" | awk -F, '{printf "| %s | %s | %s | %s | %s |\n", $1, $2, $3,
 echo ""
 echo "- 2 jobs vs 1 (wall): $(ratio "$(col 'batch --jobs 1' 3)" "$(col 'batch --jobs 2' 3)")x"
 echo "- batch --jobs 1 vs one plan process per file (wall): $(ratio "$(col 'plan per file' 3)" "$(col 'batch --jobs 1' 3)")x, (CPU): $(ratio "$(col 'plan per file' 4)" "$(col 'batch --jobs 1' 4)")x"
+echo "- batch --jobs 2 vs one plan process per file (wall, issue 25's 15x): $(ratio "$(col 'plan per file' 3)" "$(col 'batch --jobs 2' 3)")x"
 echo "- batch --jobs 2 vs two plan processes at a time (wall): $(ratio "$(col 'plan per file xargs -P 2' 3)" "$(col 'batch --jobs 2' 3)")x"
 big_s=$(col 'batch --jobs 2 large set' 3)
 echo "- large set: $lines lines for $BIG structures (hard links to the 400), $(col 'batch --jobs 2 large set' 5) inputs/s; a million at that rate: $(awk "BEGIN{printf \"%.0f\", 1e6 / $BIG * $big_s}") s (extrapolated)"
+echo "- inputs: generate $GEN --count 400"
 echo "- machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg) at the end"

@@ -25,6 +25,22 @@ typedef struct Batch {
 
 const char *batch_task_name(BatchTask t);
 
+/* One JSON line built in place (batch_json.c): jl_open, then jl_key and a
+ * value in turn (jl_raw for brackets, commas and literals), then jl_close
+ * for the malloc'd line with "}\n" (NULL when out of memory). */
+typedef struct JLine {
+  char *s;
+  size_t len, cap;
+  int oom;
+} JLine;
+void jl_open(JLine *l);
+void jl_key(JLine *l, const char *key);
+void jl_str(JLine *l, const char *text);
+void jl_int(JLine *l, long long v);
+void jl_real(JLine *l, double x);
+void jl_raw(JLine *l, const char *text);
+char *jl_close(JLine *l);
+
 /* One input's JSON line, newline included (malloc'd; NULL only when out of
  * memory). *failed is set when the line is an error line. */
 char *batch_run_one(const Batch *b, const char *path, int *failed);

@@ -2,11 +2,10 @@
  * same calls as the single command) on the loaded structure, turned into
  * one JSON line: the file as given, the status or verdict with its exit
  * code, tests, time, and the task's key results; or an error line with the
- * single command's message. */
+ * single command's message. The line is written in place (batch_json.c). */
 #define _POSIX_C_SOURCE 200809L
 #include "batch.h"
 
-#include <jansson.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,81 +14,77 @@ const char *batch_task_name(BatchTask t) {
   return t == BATCH_PLAN ? "plan" : t == BATCH_CHECK ? "check" : "classify";
 }
 
-/* A JSON string of text that may not be UTF-8 (file names): bytes that
- * break it become '?'. */
-static json_t *jtext(const char *s) {
-  json_t *j = json_string(s);
-  if (j) return j;
-  char *c = strdup(s);
-  if (!c) return NULL;
-  for (unsigned char *p = (unsigned char *)c; *p; p++)
-    if (*p >= 0x80) *p = '?';
-  j = json_string(c);
-  free(c);
-  return j;
-}
-
-static json_t *jnum(double x) { return isfinite(x) ? json_real(x) : json_null(); }
-static json_t *jbody(const us_Structure *s, int b) {
-  return b >= 0 ? jtext(s->bodies[b].id) : json_null();
+static void jbody(JLine *l, const us_Structure *s, int b) {
+  if (b >= 0) jl_str(l, s->bodies[b].id);
+  else jl_raw(l, "null");
 }
 
 /* A list of ids: v[from..to-1]. */
-static json_t *jids(const us_Structure *s, const int *v, int from, int to) {
-  json_t *a = json_array();
-  for (int q = from; a && q < to; q++) json_array_append_new(a, jtext(s->bodies[v[q]].id));
-  return a;
+static void jids(JLine *l, const us_Structure *s, const int *v, int from, int to) {
+  jl_raw(l, "[");
+  for (int q = from; q < to; q++) {
+    if (q > from) jl_raw(l, ",");
+    jl_str(l, s->bodies[v[q]].id);
+  }
+  jl_raw(l, "]");
 }
+
+static void jkey_int(JLine *l, const char *key, long long v) { jl_key(l, key), jl_int(l, v); }
+static void jkey_str(JLine *l, const char *key, const char *v) { jl_key(l, key), jl_str(l, v); }
 
 /* plan: status, steps and the order (a list of steps, each a list of
  * ids), or the bodies that block. */
-static void plan_fields(json_t *o, const us_Structure *s, const us_Plan *p) {
-  json_object_set_new(o, "status", json_string(us_plan_status_name(p->status)));
-  json_object_set_new(o, "exit", json_integer(cli_plan_exit(p)));
-  json_object_set_new(o, "tests", json_integer(p->stats.tests));
-  json_object_set_new(o, "bodies", json_integer(us_structure_movable_count(s)));
+static void plan_fields(JLine *l, const us_Structure *s, const us_Plan *p) {
+  jkey_str(l, "status", us_plan_status_name(p->status));
+  jkey_int(l, "exit", cli_plan_exit(p));
+  jkey_int(l, "tests", p->stats.tests);
+  jkey_int(l, "bodies", us_structure_movable_count(s));
   if (p->status == US_PLAN_FOUND) {
-    json_t *order = json_array();
-    for (int k = 0; order && k < p->ngroups; k++)
-      json_array_append_new(order, p->group_start ? jids(s, p->order, p->group_start[k],
-                                                         p->group_start[k + 1])
-                                                  : jids(s, p->order, k, k + 1));
-    json_object_set_new(o, "steps", json_integer(p->ngroups));
-    json_object_set_new(o, "order", order);
+    jkey_int(l, "steps", p->ngroups);
+    jl_key(l, "order");
+    jl_raw(l, "[");
+    for (int k = 0; k < p->ngroups; k++) {
+      if (k) jl_raw(l, ",");
+      if (p->group_start) jids(l, s, p->order, p->group_start[k], p->group_start[k + 1]);
+      else jids(l, s, p->order, k, k + 1);
+    }
+    jl_raw(l, "]");
   } else if (p->blocked) {
-    json_object_set_new(o, "blocked", jids(s, p->blocked, 0, p->nblocked));
+    jl_key(l, "blocked");
+    jids(l, s, p->blocked, 0, p->nblocked);
   }
-  if (p->status == US_PLAN_UNDECIDED && p->note[0]) json_object_set_new(o, "note", jtext(p->note));
+  if (p->status == US_PLAN_UNDECIDED && p->note[0]) jkey_str(l, "note", p->note);
 }
 
-static void check_fields(json_t *o, const us_Structure *s, const CliCheckOutcome *c) {
-  json_object_set_new(o, "verdict", json_string(us_verdict_name(c->res.verdict)));
-  json_object_set_new(o, "exit", json_integer(cli_check_exit(c->res.verdict)));
-  json_object_set_new(o, "tests", json_integer(c->info.tests));
-  json_object_set_new(o, "bodies", json_integer(us_structure_movable_count(s)));
-  json_object_set_new(o, "contacts", json_integer(s->ncontact));
-  if (c->res.verdict != US_STABLE) json_object_set_new(o, "unstable_body", jbody(s, c->res.unstable_body));
-  if (c->res.note[0] && c->res.verdict != US_STABLE) json_object_set_new(o, "note", jtext(c->res.note));
+static void check_fields(JLine *l, const us_Structure *s, const CliCheckOutcome *c) {
+  jkey_str(l, "verdict", us_verdict_name(c->res.verdict));
+  jkey_int(l, "exit", cli_check_exit(c->res.verdict));
+  jkey_int(l, "tests", c->info.tests);
+  jkey_int(l, "bodies", us_structure_movable_count(s));
+  jkey_int(l, "contacts", s->ncontact);
+  if (c->res.verdict != US_STABLE) jl_key(l, "unstable_body"), jbody(l, s, c->res.unstable_body);
+  if (c->res.note[0] && c->res.verdict != US_STABLE) jkey_str(l, "note", c->res.note);
 }
 
 /* classify: the classes of `unstack classify --json` that answer yes or
  * no, with the same words. */
-static void classify_fields(json_t *o, const us_Structure *s, const us_Classification *c) {
-  json_object_set_new(o, "status", json_string(c->undecided ? "undecided" : "classified"));
-  json_object_set_new(o, "exit", json_integer(cli_classify_exit(c)));
-  json_object_set_new(o, "tests", json_integer(c->dfs_tests + c->sequence_tests + c->group_tests));
-  json_object_set_new(o, "bodies", json_integer(c->nbody));
-  json_object_set_new(o, "stands", json_boolean(c->stands));
-  json_object_set_new(o, "unstable_body", jbody(s, c->unstable_body));
-  json_object_set_new(o, "mu_critical", jnum(c->mu_critical));
-  json_object_set_new(o, "topdown", c->topdown < 0 ? json_null() : json_boolean(c->topdown));
-  json_object_set_new(o, "sequence_status", json_string(us_plan_status_name(c->sequence_status)));
-  json_object_set_new(o, "min_group", c->group_status == US_PLAN_FOUND ? json_integer(c->min_group)
-                                                                       : json_null());
+static void classify_fields(JLine *l, const us_Structure *s, const us_Classification *c) {
+  jkey_str(l, "status", c->undecided ? "undecided" : "classified");
+  jkey_int(l, "exit", cli_classify_exit(c));
+  jkey_int(l, "tests", c->dfs_tests + c->sequence_tests + c->group_tests);
+  jkey_int(l, "bodies", c->nbody);
+  jl_key(l, "stands"), jl_raw(l, c->stands ? "true" : "false");
+  jl_key(l, "unstable_body"), jbody(l, s, c->unstable_body);
+  jl_key(l, "mu_critical"), jl_real(l, c->mu_critical);
+  jl_key(l, "topdown"), jl_raw(l, c->topdown < 0 ? "null" : c->topdown ? "true" : "false");
+  jkey_str(l, "sequence_status", us_plan_status_name(c->sequence_status));
+  jl_key(l, "min_group");
+  if (c->group_status == US_PLAN_FOUND) jl_int(l, c->min_group);
+  else jl_raw(l, "null");
 }
 
 /* The task on a loaded structure: its fields into o; US_OK or err set. */
-static us_Status run_task(const Batch *b, const us_Structure *s, double deadline, json_t *o,
+static us_Status run_task(const Batch *b, const us_Structure *s, double deadline, JLine *o,
                           us_Error *err) {
   double left = deadline > 0 ? fmax(deadline - us_now(), 1e-3) : 0.0;
   us_Status st;
@@ -109,19 +104,19 @@ static us_Status run_task(const Batch *b, const us_Structure *s, double deadline
 }
 
 /* Loading cut by --time-limit: an outcome, undecided, as the single command says. */
-static void cut_fields(json_t *o, const Batch *b, const us_Error *err) {
-  json_object_set_new(o, b->task == BATCH_CHECK ? "verdict" : "status", json_string("undecided"));
-  json_object_set_new(o, "exit", json_integer(CLI_EXIT_UNDECIDED));
+static void cut_fields(JLine *o, const Batch *b, const us_Error *err) {
+  jkey_str(o, b->task == BATCH_CHECK ? "verdict" : "status", "undecided");
+  jkey_int(o, "exit", CLI_EXIT_UNDECIDED);
   char note[sizeof err->msg + 64];
   snprintf(note, sizeof note, "loading was cut by the time limit: %s", err->msg);
-  json_object_set_new(o, "note", jtext(note));
+  jkey_str(o, "note", note);
 }
 
-static void error_fields(json_t *o, const Batch *b, const us_Error *err) {
+static void error_fields(JLine *o, const Batch *b, const us_Error *err) {
   char line[sizeof err->msg + 128];
   cli_error_text(line, sizeof line, batch_task_name(b->task), err);
-  json_object_set_new(o, "error", jtext(line));
-  json_object_set_new(o, "exit", json_integer(CLI_EXIT_ERR));
+  jkey_str(o, "error", line);
+  jkey_int(o, "exit", CLI_EXIT_ERR);
 }
 
 char *batch_run_one(const Batch *b, const char *path, int *failed) {
@@ -129,21 +124,16 @@ char *batch_run_one(const Batch *b, const char *path, int *failed) {
   const CliCommon *c = b->task == BATCH_CLASSIFY ? &b->classify.common : &b->common;
   us_Error err;
   us_error_clear(&err);
-  json_t *o = json_object();
-  if (!o) return NULL;
-  json_object_set_new(o, "file", jtext(path));
+  JLine o;
+  jl_open(&o);
+  jkey_str(&o, "file", path);
   us_Structure *s = cli_load_quiet(path, c, deadline, &err);
-  us_Status st = s ? run_task(b, s, deadline, o, &err) : err.code;
+  us_Status st = s ? run_task(b, s, deadline, &o, &err) : err.code;
   *failed = st != US_OK && !(!s && st == US_ERR_TIME_LIMIT);
-  if (!s && st == US_ERR_TIME_LIMIT) cut_fields(o, b, &err);
-  else if (st) error_fields(o, b, &err);
-  json_object_set_new(o, "time", json_real(round((us_now() - t0) * 1e6) / 1e6));
+  if (!s && st == US_ERR_TIME_LIMIT) cut_fields(&o, b, &err);
+  else if (st) error_fields(&o, b, &err);
+  jl_key(&o, "time");
+  jl_real(&o, round((us_now() - t0) * 1e6) / 1e6);
   us_structure_free(s);
-  char *text = json_dumps(o, JSON_COMPACT | JSON_PRESERVE_ORDER | JSON_REAL_PRECISION(9));
-  json_decref(o);
-  size_t len = text ? strlen(text) : 0;
-  char *line = text ? realloc(text, len + 2) : NULL;
-  if (!line) return free(text), NULL;
-  line[len] = '\n', line[len + 1] = '\0';
-  return line;
+  return jl_close(&o);
 }
