@@ -361,28 +361,6 @@ static void stacker_assembly_agrees(void) {
   CHECK(t.lever > 0); /* the levers took part in the agreement */
 }
 
-/* Levers whose change flows down through other counterweighted bodies
- * (plumb.c, the flow: pairs, drained spreads, pressers of pressers): the
- * stacker's taller stacks (30 rows, width 20: cantilevers on cantilevers'
- * paths), in the planner's pattern, both frictions. Every verdict against
- * the full system, every stable certificate re-checked; the levers must
- * settle many tests (else the flow, and its side contacts that carry
- * shear in the LP's forces, would be untested here). */
-static void stacker_flows_agree(void) {
-  Tally t = {0};
-  static const double mus[] = {0.0, 0.5};
-  for (int m = 0; m < 2; m++)
-    for (unsigned long seed = 4; seed <= 5; seed++) {
-      us_GenSettings g = us_gen_default_settings();
-      us_Error err;
-      g.friction = mus[m], g.seed = seed, g.rows = 30, g.width = 20;
-      CHECK_INT(assembly_replay(us_gen_stacker(&g, &err), &t), ==, 0);
-    }
-  report("stacker flows", &t);
-  CHECK(t.unstable > 0 && t.local > t.tests / 2);
-  CHECK(t.lever >= 100); /* 13 before side contacts joined the flow, 148 with them */
-}
-
 /* Local tests off, on, and the planner: the same plans. */
 static void plans_agree(void) {
   for (int kind = 0; kind < 4; kind++) {
@@ -408,5 +386,4 @@ static void plans_agree(void) {
 US_TEST_MAIN({"generators_agree", generators_agree}, {"random_piles_agree", random_piles_agree},
              {"global_instability_decided", global_instability_decided},
              {"mechanism_check_rejects", mechanism_check_rejects}, {"plans_agree", plans_agree},
-             {"stacker_assembly_agrees", stacker_assembly_agrees},
-             {"stacker_flows_agree", stacker_flows_agree})
+             {"stacker_assembly_agrees", stacker_assembly_agrees})

@@ -44,9 +44,6 @@
 #define CONE_SLACK 1e-12 /* relative slack of the hop's own cone test */
 #define PLUMB_HOPS 4096  /* hops one added body's lines may take */
 #define PLUMB_MAX_TRI 48 /* 3D: support points of a body searched for triangles at most */
-#define FLOW_POINTS 32   /* a lever's flow: support points of a body at most */
-#define FLOW_POPS 8192   /* a lever's flow: bodies passed on at most */
-#define FLOW_DEPTH 1     /* a lever's flow: levels of look-ahead (deeper measured worse) */
 
 typedef struct Hop {
   int n;         /* points carrying the load: 1 to 3 */
@@ -156,17 +153,7 @@ int us_plumb_init(us_Plumb *p, const us_Structure *s, const int *inc_start, cons
   p->width = us_malloc(nb * sizeof(double));
   p->sup_start = us_calloc(nb + 1, sizeof(int));
   p->sup = us_malloc((size_t)(2 * s->ncontact + 1) * sizeof(us_PlumbSupport));
-  p->acc = us_calloc(2 * nb, sizeof(double));
-  p->queued = us_calloc(nb, 1);
-  p->height = us_malloc(nb * sizeof(double));
-  size_t ns = 2 * (size_t)(2 * s->ncontact + 1);
-  p->cap_val = us_malloc(ns * sizeof(double));
-  p->cap_stamp = us_calloc(ns, sizeof(long));
-  p->done = us_calloc(nb, sizeof(long));
-  if (!p->mark || !p->width || !p->sup_start || !p->sup || !p->acc || !p->queued || !p->height ||
-      !p->cap_val || !p->cap_stamp || !p->done)
-    return -1;
-  for (int u = 0; u < s->nbody; u++) p->height[u] = dot3(s->bodies[u].com, up);
+  if (!p->mark || !p->width || !p->sup_start || !p->sup) return -1;
   list_supports(p);
   return 0;
 }
@@ -187,14 +174,6 @@ void us_plumb_free(us_Plumb *p) {
   us_free(p->width);
   us_free(p->sup_start);
   us_free(p->sup);
-  us_free(p->acc);
-  us_free(p->queued);
-  us_free(p->height);
-  us_free(p->fheap);
-  us_free(p->excl);
-  us_free(p->cap_val);
-  us_free(p->cap_stamp);
-  us_free(p->done);
   memset(p, 0, sizeof *p);
 }
 
@@ -338,10 +317,11 @@ static int push_line(us_Plumb *p, int u, const double c[2], double load) {
 
 /* The lines hop h (of a line at c) goes on as: one per movable body
  * below, its share w[j] of the load at the share-weighted mean of its
- * points (c itself when one body takes the whole hop). Returns their
- * number (at most 3). */
-static int hop_children(const us_Plumb *p, const Hop *h, const double c[2], int body[3],
-                        double w[3], double at[3][2]) {
+ * points (c itself when one body takes the whole hop). Signed hops
+ * (sgn 1) have shares of any sign, and a body whose shares cancel gets
+ * no line. Returns their number (at most 3). */
+static int hop_children(const us_Plumb *p, const Hop *h, const double c[2], int sgn,
+                        int body[3], double w[3], double at[3][2]) {
   int n = 0;
   for (int q = 0; q < h->n; q++) {
     int v = h->below[q], first = 1;
@@ -353,8 +333,10 @@ static int hop_children(const us_Plumb *p, const Hop *h, const double c[2], int 
       s += h->w[r];
       x[0] += h->w[r] * h->pos[r][0], x[1] += h->w[r] * h->pos[r][1];
     }
-    if (s >= 1.0 - 1e-15) x[0] = c[0], x[1] = c[1]; /* one body: on the line */
+    int whole = sgn ? fabs(s - 1.0) <= 1e-15 : s >= 1.0 - 1e-15;
+    if (whole) x[0] = c[0], x[1] = c[1]; /* one body: on the line */
     else if (s != 0.0) x[0] /= s, x[1] /= s;
+    else if (sgn) continue;
     body[n] = v, w[n] = s, at[n][0] = x[0], at[n][1] = x[1];
     n++;
   }
@@ -366,7 +348,7 @@ static int take_hop(us_Plumb *p, const Hop *h, int u, const double c[2], double 
     if (add_force(p, h->k[q], u, h->w[q] * load, f)) return -1;
   int body[3];
   double w[3], at[3][2];
-  for (int j = 0, n = hop_children(p, h, c, body, w, at); j < n; j++) {
+  for (int j = 0, n = hop_children(p, h, c, 0, body, w, at); j < n; j++) {
     mark_body(p, body[j]);
     if (push_line(p, body[j], at[j], w[j] * load)) return -1;
   }
@@ -410,365 +392,11 @@ int us_plumb_route(us_Plumb *p, const us_Bitset *cur, const int *added, int nadd
 
 /* ------------------------------------------------------------ levers */
 
-/* Support point m of u usable by a lever's flow: its body below present
+/* Support point m of u usable by a lever's lines: its body below present
  * and not the cantilever itself (skip). */
-static int usable(const us_Plumb *p, const us_Bitset *cur, int u, int m, int skip) {
+static int usable(const us_Plumb *p, const us_Bitset *cur, int m, int skip) {
   int v = p->sup[m].below;
-  if ((skip >= 0 && v == skip) || !present(p, cur, v)) return 0;
-  for (int e = 0; e < p->nexcl; e++) /* a presser does not lean back on what it holds */
-    if (p->excl[2 * e] == u && p->excl[2 * e + 1] == v) return 0;
-  return 1;
-}
-
-/* Contact j of u's incidence (inc[j]) as a point of u's flow: the body on
- * its other side present, not the cantilever (skip), not a body u holds
- * as a presser, not resting on u (the flow goes down and sideways, never
- * up), not a side neighbour that already passed its change on (no load
- * goes back and forth between neighbours), and not contact `back`. 1
- * usable, 0 not. */
-static int flow_point(const us_Plumb *p, const us_Bitset *cur, int skip, int u, int j, int back) {
-  const us_Contact *k = &p->s->contacts[p->inc[j]];
-  int v = other_side(k, u);
-  if (p->inc[j] == back || (v >= 0 && v == skip) || !present(p, cur, v) || supports(p, k, v))
-    return 0;
-  if (!held(p, v) && p->done[v] == p->lever_id && !supports(p, k, u))
-    return 0; /* sideways only to a body that has not passed its change on */
-  for (int e = 0; e < p->nexcl; e++) /* a presser does not lean back on what it holds */
-    if (p->excl[2 * e] == u && p->excl[2 * e + 1] == v) return 0;
-  return 1;
-}
-
-/* The vertical loads contact kc can add on u on top of its force in f and
- * stay in its cone: [lo, hi] with lo <= 0 <= hi. Each cone face g0 + load
- * g1 >= 0 bounds it below (g1 > 0) or above (g1 < 0); a support's faces
- * all have g1 > 0 (the vertical is inside its cone), a side contact's
- * friction faces one each way. */
-static void vertical_bounds(const us_Plumb *p, int kc, int u, const double *f, double *lo,
-                            double *hi) {
-  const us_Contact *k = &p->s->contacts[kc];
-  const double *fk = f + (size_t)p->s->dim * (size_t)kc;
-  double d[3], g0[3], g1[3];
-  components(p, k, u, 1.0, d);
-  int nf = isinf(k->mu) ? 1 : 3;
-  g0[0] = fk[0], g1[0] = d[0];
-  for (int q = 1; q < nf; q++) {
-    double sg = q == 1 ? -1.0 : 1.0;
-    g0[q] = k->mu * fk[0] + sg * fk[1], g1[q] = k->mu * d[0] + sg * d[1];
-  }
-  *lo = -INFINITY, *hi = INFINITY;
-  for (int q = 0; q < nf; q++) {
-    if (g1[q] > 0.0) *lo = US_MAX(*lo, -g0[q] / g1[q]);
-    else if (g1[q] < 0.0) *hi = US_MIN(*hi, g0[q] / -g1[q]);
-  }
-  *lo = US_MIN(*lo, 0.0), *hi = US_MAX(*hi, 0.0);
-}
-
-/* A spread of a body's change over its flow points (at most
- * FLOW_POINTS; m[] their incidence indices): amt[q] at point pt[q]. */
-typedef struct Spread {
-  int n, pt[FLOW_POINTS];
-  double amt[FLOW_POINTS];
-  double x[FLOW_POINTS], lo[FLOW_POINTS], hi[FLOW_POINTS]; /* the usable points, bounds */
-  int m[FLOW_POINTS], nm;
-} Spread;
-
-/* The pair (i, k) carrying load P with moment M: amounts into a[2]. 0 when
- * the points coincide. */
-static int pair_amounts(const Spread *sp, int i, int k, double P, double M, double a[2]) {
-  double dx = sp->x[i] - sp->x[k];
-  if (!(fabs(dx) > 0.0)) return 0;
-  a[0] = (M - P * sp->x[k]) / dx;
-  a[1] = P - a[0];
-  return 1;
-}
-
-/* The best pair: both amounts >= 0 if some pair has them (a load inside
- * the span goes down as a plain lever), else any within the bounds; most
- * slack (amount - bound) on its weaker point. 1 found, 0 none. */
-static int best_pair(Spread *sp, double P, double M) {
-  double best = -1.0, a[2];
-  int tier = 0;
-  for (int i = 0; i < sp->nm; i++)
-    for (int k = i + 1; k < sp->nm; k++) {
-      if (!pair_amounts(sp, i, k, P, M, a) || a[0] < sp->lo[i] || a[1] < sp->lo[k] ||
-          a[0] > sp->hi[i] || a[1] > sp->hi[k])
-        continue;
-      int t = a[0] >= 0.0 && a[1] >= 0.0;
-      double slack = US_MIN(US_MIN(a[0] - sp->lo[i], a[1] - sp->lo[k]),
-                            US_MIN(sp->hi[i] - a[0], sp->hi[k] - a[1]));
-      if (t < tier || (t == tier && slack <= best)) continue;
-      tier = t, best = slack;
-      sp->n = 2, sp->pt[0] = i, sp->pt[1] = k, sp->amt[0] = a[0], sp->amt[1] = a[1];
-    }
-  return best >= 0.0;
-}
-
-/* Every point drained to its lower bound, the rest (a load >= 0) on the
- * two points bracketing its resultant: without upper bounds a spread
- * exists iff this one does (any spread is the drained one plus loads >= 0). */
-static int drained(Spread *sp, double P, double M, double tol) {
-  double R = P, Rm = M;
-  for (int i = 0; i < sp->nm; i++) R -= sp->lo[i], Rm -= sp->lo[i] * sp->x[i];
-  if (!(R > 0.0) || !isfinite(R) || !isfinite(Rm)) return 0;
-  double c = Rm / R;
-  int lo = -1, hi = -1;
-  for (int i = 0; i < sp->nm; i++) {
-    if (sp->x[i] <= c + tol && (lo < 0 || sp->x[i] > sp->x[lo])) lo = i;
-    if (sp->x[i] >= c - tol && (hi < 0 || sp->x[i] < sp->x[hi])) hi = i;
-  }
-  if (lo < 0 || hi < 0) return 0;
-  double a[2] = {R, 0.0};
-  if (lo != hi && !pair_amounts(sp, lo, hi, R, Rm, a)) a[0] = R, a[1] = 0.0;
-  sp->n = sp->nm;
-  for (int i = 0; i < sp->nm; i++) {
-    sp->pt[i] = i, sp->amt[i] = sp->lo[i] + (i == lo ? a[0] : 0.0) + (i == hi && hi != lo ? a[1] : 0.0);
-    if (sp->amt[i] > sp->hi[i]) return sp->n = 0;
-  }
-  return 1;
-}
-
-static double point_capacity(us_Plumb *p, const us_Bitset *cur, int skip, int u, int j,
-                             double sg, const double *f, int depth);
-
-/* The bounds of flow point j of u for a spread: its cone's
- * (vertical_bounds) and what the body on its other side can take or give
- * there (point_capacity); the ground and fixed bodies take anything. */
-static void point_bounds(us_Plumb *p, const us_Bitset *cur, int skip, int u, int j,
-                         const double *f, int depth, double *lo, double *hi) {
-  vertical_bounds(p, p->inc[j], u, f, lo, hi);
-  if (held(p, other_side(&p->s->contacts[p->inc[j]], u)) || depth >= FLOW_DEPTH) return;
-  *lo = US_MAX(*lo, -point_capacity(p, cur, skip, u, j, -1.0, f, depth + 1));
-  *hi = US_MIN(*hi, point_capacity(p, cur, skip, u, j, 1.0, f, depth + 1));
-}
-
-/* The largest t >= 0 such that a load sg t (sg = +-1) at x on v spreads
- * over v's points xs[0..n) within [lo, hi] (one point or one pair). */
-static double best_capacity(const double *xs, const double *lo, const double *hi, int n,
-                            double x, double sg, double tol) {
-  double best = 0.0;
-  for (int i = 0; i < n; i++) {
-    if (fabs(xs[i] - x) <= tol) best = US_MAX(best, sg > 0 ? hi[i] : -lo[i]);
-    for (int k = i + 1; k < n; k++) {
-      double dx = xs[i] - xs[k];
-      if (!(fabs(dx) > tol)) continue;
-      double a[2] = {sg * (x - xs[k]) / dx, 0.0}, t = INFINITY; /* shares per unit t */
-      a[1] = sg - a[0];
-      const int ij[2] = {i, k};
-      for (int q = 0; q < 2; q++)
-        t = US_MIN(t, a[q] > 0.0 ? hi[ij[q]] / a[q] : a[q] < 0.0 ? lo[ij[q]] / a[q] : INFINITY);
-      best = US_MAX(best, t);
-    }
-  }
-  return best;
-}
-
-/* Look-ahead: the largest t >= 0 such that a load sg t (sg = +-1) at
- * flow point j of u spreads over the body v on its other side, by one of
- * v's points or pairs within their bounds (memoised per point and look-
- * ahead; FLOW_DEPTH levels deep, a cycle counts 0). A heuristic for
- * choosing spreads: the check decides. */
-static double point_capacity(us_Plumb *p, const us_Bitset *cur, int skip, int u, int j,
-                             double sg, const double *f, int depth) {
-  const us_Contact *k = &p->s->contacts[p->inc[j]];
-  int v = other_side(k, u);
-  size_t key = 2 * (size_t)j + (sg > 0);
-  if (p->cap_stamp[key] == p->flow_id) return p->cap_val[key];
-  p->cap_stamp[key] = p->flow_id, p->cap_val[key] = 0.0; /* on a cycle: 0 */
-  double xs[FLOW_POINTS], lo[FLOW_POINTS], hi[FLOW_POINTS], x[2];
-  int n = 0;
-  for (int jj = p->inc_start[v]; jj < p->inc_start[v + 1] && n < FLOW_POINTS; jj++) {
-    if (!flow_point(p, cur, skip, v, jj, p->inc[j])) continue;
-    us_plumb_horizontal(p, p->s->contacts[p->inc[jj]].p, x);
-    xs[n] = x[0];
-    point_bounds(p, cur, skip, v, jj, f, depth, &lo[n], &hi[n]);
-    n++;
-  }
-  us_plumb_horizontal(p, k->p, x);
-  double t = best_capacity(xs, lo, hi, n, x[0], sg, AT_POINT * p->width[v]);
-  p->cap_val[key] = t;
-  return t;
-}
-
-/* Spread the change of u (load P down, moment M about the axis origin)
- * over its flow points: amounts a_i within each point's bounds with sum P
- * and moment M. A point on the resultant first, then the best
- * pair, then the drained spread. 1 found, 0 none. */
-static int spread(us_Plumb *p, const us_Bitset *cur, int skip, int u, double P, double M,
-                  const double *f, Spread *sp) {
-  double tol = AT_POINT * p->width[u];
-  sp->nm = sp->n = 0;
-  for (int j = p->inc_start[u]; j < p->inc_start[u + 1]; j++) {
-    if (!flow_point(p, cur, skip, u, j, -1)) continue;
-    if (sp->nm == FLOW_POINTS) return 0;
-    int n = sp->nm++;
-    double x[2];
-    us_plumb_horizontal(p, p->s->contacts[p->inc[j]].p, x);
-    sp->m[n] = j, sp->x[n] = x[0];
-    point_bounds(p, cur, skip, u, j, f, 0, &sp->lo[n], &sp->hi[n]);
-  }
-  for (int i = 0; i < sp->nm && P > 0.0; i++)
-    if (fabs(M - P * sp->x[i]) <= tol * P && P <= sp->hi[i]) {
-      sp->n = 1, sp->pt[0] = i, sp->amt[0] = P;
-      return 1;
-    }
-  return best_pair(sp, P, M) || drained(sp, P, M, tol);
-}
-
-/* Add a change (load P down at moment M) to movable body v's account and
- * queue v (a max-heap by height, so a body passes its change on once
- * everything above it has arrived). 0 or -1 on OOM. */
-static int flow_add(us_Plumb *p, int v, double P, double M) {
-  if (held(p, v)) return 0;
-  p->acc[2 * (size_t)v] += P, p->acc[2 * (size_t)v + 1] += M;
-  if (p->queued[v]) return 0;
-  if (US_GROW(p->fheap, p->cap_fheap, p->nfheap + 1)) return -1;
-  p->queued[v] = 1;
-  mark_body(p, v);
-  int i = p->nfheap++;
-  for (; i > 0 && p->height[p->fheap[(i - 1) / 2]] < p->height[v]; i = (i - 1) / 2)
-    p->fheap[i] = p->fheap[(i - 1) / 2];
-  p->fheap[i] = v;
-  return 0;
-}
-
-static int flow_pop(us_Plumb *p) {
-  int top = p->fheap[0], v = p->fheap[--p->nfheap], i = 0, n = p->nfheap;
-  for (;;) {
-    int c = 2 * i + 1;
-    if (c >= n) break;
-    if (c + 1 < n && p->height[p->fheap[c + 1]] > p->height[p->fheap[c]]) c++;
-    if (!(p->height[p->fheap[c]] > p->height[v])) break;
-    p->fheap[i] = p->fheap[c], i = c;
-  }
-  if (n > 0) p->fheap[i] = v;
-  p->queued[top] = 0;
-  return top;
-}
-
-/* The cantilever's tipping point s (its outermost present support toward
- * its centre c) and the presser point across it: a point of a present
- * movable body resting on a, on the other side of s, farthest from it.
- * 1 found (*ms, *mp: support entries, of a and of the presser), else 0. */
-static int lever_points(const us_Plumb *p, const us_Bitset *cur, int a, double c, int skip,
-                        int *ms, int *mp) {
-  double tol = AT_POINT * p->width[a];
-  int lo = -1, hi = -1;
-  for (int m = p->sup_start[a]; m < p->sup_start[a + 1]; m++) {
-    if (!present(p, cur, p->sup[m].below)) continue;
-    if (lo < 0 || p->sup[m].pos[0] < p->sup[lo].pos[0]) lo = m;
-    if (hi < 0 || p->sup[m].pos[0] > p->sup[hi].pos[0]) hi = m;
-  }
-  if (lo < 0) return 0;
-  int right = c > p->sup[hi].pos[0] + tol;
-  if (!right && !(c < p->sup[lo].pos[0] - tol)) return 0; /* not a cantilever */
-  *ms = right ? hi : lo;
-  double sx = p->sup[*ms].pos[0];
-  *mp = -1;
-  for (int j = p->inc_start[a]; j < p->inc_start[a + 1]; j++) {
-    int v = other_side(&p->s->contacts[p->inc[j]], a);
-    if (held(p, v) || v == skip || !us_bitset_get(cur, v)) continue;
-    for (int m = p->sup_start[v]; m < p->sup_start[v + 1]; m++) {
-      const us_PlumbSupport *q = &p->sup[m];
-      if (q->contact != p->inc[j] || q->below != a) continue;
-      double arm = right ? sx - q->pos[0] : q->pos[0] - sx;
-      if (arm > tol && (*mp < 0 || arm > fabs(sx - p->sup[*mp].pos[0]))) *mp = m;
-    }
-  }
-  return *mp >= 0;
-}
-
-/* A body of the flow whose load (P > 0) lies beyond its supports is a
- * cantilever in its turn: its presser d (lever_points, not the flow's
- * cantilever) pushes it down across its outermost support s, so that the
- * resultant moves to s, and takes that push off its own supports (its
- * account, never leaning back on u). 1 done (P, M updated), 0 no presser,
- * -1 OOM. */
-static int flow_press(us_Plumb *p, const us_Bitset *cur, int skip, int u, double *P, double *M,
-                      double *f) {
-  int ms, mp;
-  if (!(*P > 0.0) || !lever_points(p, cur, u, *M / *P, skip, &ms, &mp)) return 0;
-  const us_PlumbSupport *qs = &p->sup[ms], *qp = &p->sup[mp];
-  double c = *M / *P, load = *P * (c - qs->pos[0]) / (qs->pos[0] - qp->pos[0]);
-  int d = other_side(&p->s->contacts[qp->contact], u);
-  if (US_GROW(p->excl, p->cap_excl, 2 * (p->nexcl + 1))) return -1;
-  p->excl[2 * p->nexcl] = d, p->excl[2 * p->nexcl + 1] = u, p->nexcl++;
-  if (add_force(p, qp->contact, d, load, f) || flow_add(p, d, -load, -load * qp->pos[0]))
-    return -1;
-  *P += load, *M += load * qp->pos[0];
-  return 1;
-}
-
-/* Pass body u's account down to its supports (spread) and on to the
- * bodies below. 1 done, 0 no spread, -1 OOM. */
-static int flow_body(us_Plumb *p, const us_Bitset *cur, int skip, int u, double P, double M,
-                     double *f) {
-  Spread sp;
-  p->flow_id++; /* forces changed since the last look-ahead */
-  int r = spread(p, cur, skip, u, P, M, f, &sp) ? 2 : flow_press(p, cur, skip, u, &P, &M, f);
-  if (r < 0) return -1;
-  if (r == 0 || (r == 1 && !spread(p, cur, skip, u, P, M, f, &sp))) return 0;
-  for (int q = 0; q < sp.n; q++) {
-    int i = sp.pt[q];
-    int kc = p->inc[sp.m[i]], v = other_side(&p->s->contacts[kc], u);
-    if (sp.amt[q] == 0.0) continue;
-    if (add_force(p, kc, u, sp.amt[q], f) || flow_add(p, v, sp.amt[q], sp.amt[q] * sp.x[i]))
-      return -1;
-  }
-  return 1;
-}
-
-/* Run the queued changes down to the ground, highest body first (each
- * account emptied when popped, so the queue is left empty whatever
- * happens). 1 done, 0 some body found no spread or the budget ran out,
- * -1 OOM. */
-static int flow_run(us_Plumb *p, const us_Bitset *cur, int skip, double *f) {
-  int r = 1;
-  for (int pops = 0; p->nfheap > 0; pops++) {
-    int u = flow_pop(p);
-    p->done[u] = p->lever_id;
-    double P = p->acc[2 * (size_t)u], M = p->acc[2 * (size_t)u + 1];
-    p->acc[2 * (size_t)u] = p->acc[2 * (size_t)u + 1] = 0.0;
-    if (r > 0 && pops >= FLOW_POPS) r = 0;
-    if (r > 0 && (P != 0.0 || M != 0.0)) r = flow_body(p, cur, skip, u, P, M, f);
-  }
-  return r;
-}
-
-/* Is c within the span of u's present support points? */
-static int within(const us_Plumb *p, const us_Bitset *cur, int u, double c) {
-  double tol = AT_POINT * p->width[u], lo = INFINITY, hi = -INFINITY;
-  for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++)
-    if (present(p, cur, p->sup[m].below))
-      lo = US_MIN(lo, p->sup[m].pos[0]), hi = US_MAX(hi, p->sup[m].pos[0]);
-  return c >= lo - tol && c <= hi + tol;
-}
-
-/* The lines hop h (of a line at c) goes on as (the lever's lines): one per movable body
- * below, its share w[j] of the load at the share-weighted mean of its
- * points (c itself when one body takes the whole hop). Signed hops
- * (sgn 1) have shares of any sign, and a body whose shares cancel gets
- * no line. Returns their number (at most 3). */
-static int hop_children_signed(const us_Plumb *p, const Hop *h, const double c[2], int sgn,
-                        int body[3], double w[3], double at[3][2]) {
-  int n = 0;
-  for (int q = 0; q < h->n; q++) {
-    int v = h->below[q], first = 1;
-    for (int r = 0; r < q; r++) first = first && h->below[r] != v;
-    if (!first || held(p, v)) continue;
-    double s = 0.0, x[2] = {0.0, 0.0};
-    for (int r = q; r < h->n; r++) {
-      if (h->below[r] != v) continue;
-      s += h->w[r];
-      x[0] += h->w[r] * h->pos[r][0], x[1] += h->w[r] * h->pos[r][1];
-    }
-    int whole = sgn ? fabs(s - 1.0) <= 1e-15 : s >= 1.0 - 1e-15;
-    if (whole) x[0] = c[0], x[1] = c[1]; /* one body: on the line */
-    else if (s != 0.0) x[0] /= s, x[1] /= s;
-    else if (sgn) continue;
-    body[n] = v, w[n] = s, at[n][0] = x[0], at[n][1] = x[1];
-    n++;
-  }
-  return n;
+  return (skip < 0 || v != skip) && present(p, cur, v);
 }
 
 /* The far point of an extended lever rule for a load on u at c beyond its
@@ -782,7 +410,7 @@ static int release_point(const us_Plumb *p, const us_Bitset *cur, int skip, int 
   size_t dim = (size_t)p->s->dim;
   for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++) {
     double x = p->sup[m].pos[0];
-    if (!usable(p, cur, u, m, skip) || !(fabs(x - sn) > tol) || (x - sn) * (c - sn) > 0) continue;
+    if (!usable(p, cur, m, skip) || !(fabs(x - sn) > tol) || (x - sn) * (c - sn) > 0) continue;
     double share = (c - sn) / (x - sn), d[3]; /* x's share of the load (< 0) */
     components(p, &p->s->contacts[p->sup[m].contact], u, share * load, d);
     double left = f[dim * (size_t)p->sup[m].contact] + d[0];
@@ -802,7 +430,7 @@ static int hop_signed(const us_Plumb *p, const us_Bitset *cur, int skip, int u, 
   double tol = AT_POINT * p->width[u];
   int best[2] = {-1, -1}, lo = -1, hi = -1;
   for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++) {
-    if (!usable(p, cur, u, m, skip)) continue;
+    if (!usable(p, cur, m, skip)) continue;
     double x = p->sup[m].pos[0];
     if (fabs(x - c[0]) <= tol) {
       h->n = 1;
@@ -842,7 +470,7 @@ static int route_signed(us_Plumb *p, const us_Bitset *cur, int skip, double *f) 
     }
     int body[3];
     double w[3], at[3][2];
-    for (int j = 0, n = hop_children_signed(p, &h, l.pos, 1, body, w, at); j < n; j++) {
+    for (int j = 0, n = hop_children(p, &h, l.pos, 1, body, w, at); j < n; j++) {
       mark_body(p, body[j]);
       if (push_line(p, body[j], at[j], w[j] * l.load)) return -1;
     }
@@ -850,63 +478,77 @@ static int route_signed(us_Plumb *p, const us_Bitset *cur, int skip, double *f) 
   return 1;
 }
 
-/* The lever as signed lines (the route before the flow, kept where the
- * flow finds no spread: its lines pick the far point with the most force
- * left, and the caller's check decides): a's line at s carries w + load,
- * the presser's release -load at q, each split by the extended lever
- * rule. 1 routed, 0 none, -1 OOM; f unchanged unless 1. */
-static int lever_lines(us_Plumb *p, const us_Bitset *cur, int a, double *f) {
-  double c[2], w = p->s->bodies[a].mass / p->mass_total;
-  us_plumb_horizontal(p, p->s->bodies[a].com, c);
-  int ms, mp;
-  p->nstack = 0;
-  p->nexcl = 0;
-  mark_body(p, a);
-  if (!lever_points(p, cur, a, c[0], -1, &ms, &mp)) {
-    int r = push_line(p, a, c, w) ? -1 : route_signed(p, cur, -1, f);
-    if (r <= 0) us_plumb_undo(p, f);
-    return r;
+/* Is c within the span of u's present support points? */
+static int within(const us_Plumb *p, const us_Bitset *cur, int u, double c) {
+  double tol = AT_POINT * p->width[u], lo = INFINITY, hi = -INFINITY;
+  for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++)
+    if (present(p, cur, p->sup[m].below))
+      lo = US_MIN(lo, p->sup[m].pos[0]), hi = US_MAX(hi, p->sup[m].pos[0]);
+  return c >= lo - tol && c <= hi + tol;
+}
+
+/* The cantilever's tipping point s (its outermost present support toward
+ * its centre c) and the presser point across it: a point of a present
+ * movable body resting on a, on the other side of s, farthest from it.
+ * 1 found (*ms, *mp: support entries, of a and of the presser), else 0. */
+static int lever_points(const us_Plumb *p, const us_Bitset *cur, int a, double c, int *ms,
+                        int *mp) {
+  double tol = AT_POINT * p->width[a];
+  int lo = -1, hi = -1;
+  for (int m = p->sup_start[a]; m < p->sup_start[a + 1]; m++) {
+    if (!present(p, cur, p->sup[m].below)) continue;
+    if (lo < 0 || p->sup[m].pos[0] < p->sup[lo].pos[0]) lo = m;
+    if (hi < 0 || p->sup[m].pos[0] > p->sup[hi].pos[0]) hi = m;
   }
-  const us_PlumbSupport *qs = &p->sup[ms], *qp = &p->sup[mp];
-  double load = w * (c[0] - qs->pos[0]) / (qs->pos[0] - qp->pos[0]);
-  int d = other_side(&p->s->contacts[qp->contact], a);
-  mark_body(p, d);
-  int r = add_force(p, qp->contact, d, load, f) ? -1 : 1;
-  if (r > 0 && (push_line(p, a, qs->pos, w + load) || push_line(p, d, qp->pos, -load))) r = -1;
-  if (r > 0) r = route_signed(p, cur, a, f);
-  if (r <= 0) us_plumb_undo(p, f);
-  return r;
+  if (lo < 0) return 0;
+  int right = c > p->sup[hi].pos[0] + tol;
+  if (!right && !(c < p->sup[lo].pos[0] - tol)) return 0; /* not a cantilever */
+  *ms = right ? hi : lo;
+  double sx = p->sup[*ms].pos[0];
+  *mp = -1;
+  for (int j = p->inc_start[a]; j < p->inc_start[a + 1]; j++) {
+    int v = other_side(&p->s->contacts[p->inc[j]], a);
+    if (held(p, v) || !us_bitset_get(cur, v)) continue;
+    for (int m = p->sup_start[v]; m < p->sup_start[v + 1]; m++) {
+      const us_PlumbSupport *q = &p->sup[m];
+      if (q->contact != p->inc[j] || q->below != a) continue;
+      double arm = right ? sx - q->pos[0] : q->pos[0] - sx;
+      if (arm > tol && (*mp < 0 || arm > fabs(sx - p->sup[*mp].pos[0]))) *mp = m;
+    }
+  }
+  return *mp >= 0;
 }
 
 int us_plumb_lever(us_Plumb *p, const us_Bitset *cur, int a, double *f) {
   for (int q = 0; q < p->npath; q++) p->mark[p->path[q]] = 0;
   p->npath = 0;
   p->nlog = 0;
+  p->nstack = 0;
   if (p->nax != 1) return 0;
   if (US_GROW(p->path, p->cap_path, p->s->nbody + 1)) return -1;
   double c[2], w = p->s->bodies[a].mass / p->mass_total;
   us_plumb_horizontal(p, p->s->bodies[a].com, c);
-  int ms, mp, bad = 0;
-  double P = w, M = w * c[0];
-  p->nexcl = 0;
-  p->lever_id++;
-  if (lever_points(p, cur, a, c[0], -1, &ms, &mp)) {
-    /* the presser d pushes a down at q with the load that puts the
-       resultant of a's weight and the push on s; d takes it off its
-       own supports: its account gets minus the load at q */
-    const us_PlumbSupport *qs = &p->sup[ms], *qp = &p->sup[mp];
-    double load = w * (c[0] - qs->pos[0]) / (qs->pos[0] - qp->pos[0]);
-    int d = other_side(&p->s->contacts[qp->contact], a);
-    P += load, M += load * qp->pos[0];
-    bad = add_force(p, qp->contact, d, load, f) || flow_add(p, d, -load, -load * qp->pos[0]);
-  } else if (!within(p, cur, a, c[0])) {
-    return 0; /* a beyond its supports with nothing on it: it tips */
+  int ms, mp;
+  mark_body(p, a);
+  if (!lever_points(p, cur, a, c[0], &ms, &mp)) { /* a's own line, extended levers below */
+    if (!within(p, cur, a, c[0]))
+      return 0; /* a beyond its supports with nothing on it: it tips */
+    int r = push_line(p, a, c, w) ? -1 : route_signed(p, cur, -1, f);
+    if (r <= 0) us_plumb_undo(p, f);
+    return r;
   }
-  bad = bad || flow_add(p, a, P, M);
-  int r = flow_run(p, cur, a, f); /* empties the queue whatever happened */
-  if (bad) r = -1;
+  const us_PlumbSupport *qs = &p->sup[ms], *qp = &p->sup[mp];
+  double load = w * (c[0] - qs->pos[0]) / (qs->pos[0] - qp->pos[0]); /* the presser's push */
+  int d = other_side(&p->s->contacts[qp->contact], a);
+  mark_body(p, d);
+  /* a: up w + load at s, down load at the presser's point (its weight's
+     torque about s balanced); the presser: up load there, and as much
+     released from its other supports at the same point */
+  int r = add_force(p, qp->contact, d, load, f) ? -1 : 1;
+  if (r > 0 && (push_line(p, a, qs->pos, w + load) || push_line(p, d, qp->pos, -load))) r = -1;
+  if (r > 0) r = route_signed(p, cur, a, f);
   if (r <= 0) us_plumb_undo(p, f);
-  return r == 0 ? lever_lines(p, cur, a, f) : r;
+  return r;
 }
 
 /* ------------------------------------------------------ lazy routing */
@@ -1030,7 +672,7 @@ static int open_frame(const us_Plumb *p, const us_Bitset *cur, int u, const doub
   for (int q = 0; q < h.n; q++) F->x.k[q] = h.k[q], F->x.w[q] = h.w[q], F->below[q] = h.below[q];
   int body[3];
   double w[3], at[3][2];
-  for (int j = 0, n = hop_children(p, &h, c, body, w, at); j < n; j++) {
+  for (int j = 0, n = hop_children(p, &h, c, 0, body, w, at); j < n; j++) {
     if (!(w[j] > 0)) continue; /* no load goes that way */
     F->kid[F->nkid] = body[j], F->kid_w[F->nkid] = w[j];
     F->kid_pos[F->nkid][0] = at[j][0], F->kid_pos[F->nkid][1] = at[j][1];

@@ -89,15 +89,6 @@ typedef struct us_Plumb {
   int cap_added_l;
   struct us_PlumbFrame *frames; /* the lazy route's stack of lines being built */
   int cap_frames;
-  /* the lever's flow: each body's account (load down, moment), queued
-     bodies in a max-heap by height (up . com) */
-  double *acc, *height;
-  unsigned char *queued;
-  int *fheap, nfheap, cap_fheap;
-  int *excl, nexcl, cap_excl; /* pairs (presser, held body): no load back */
-  double *cap_val;       /* look-ahead per support entry and sign, valid */
-  long *cap_stamp, flow_id; /* while its stamp is the current flow_id */
-  long *done, lever_id;  /* a body passed its change on in lever lever_id */
   int nnew;              /* lines the last lazy route checked (new entries) */
   double worst_line;     /* their largest hop residual (relative) */
 } us_Plumb;
@@ -122,20 +113,14 @@ int us_plumb_route(us_Plumb *p, const us_Bitset *cur, const int *added, int nadd
 /* The lever (2D, docs/local.md "Levers"): added body a whose centre lies
  * beyond its outermost support s (a cantilever) and a body d resting on a
  * across s (its counterweight), at point q: d pushes a down at q with
- * load = w (c - s) / (s - q) (w: a's weight share), a passes w + load
- * down at s, and d passes minus the load at q down its other supports.
- * A's own body without a counterweight passes its weight down. The
- * change then flows down as one account (load, moment) per body, highest
- * body first: each body spreads its account over its support points
- * (one point, a pair, or every point drained to its bound), keeping each
- * point's force in its cone and within what the body below can take or
- * give at that point (one level of look-ahead); a body whose load lies
- * beyond its supports calls on its own presser the same way. Eager, into
- * f (logged: us_plumb_undo takes it back); p->path lists every body whose
- * forces changed. The spreads keep the cones by construction, but the
- * caller re-checks the path's bodies all the same (the independent
- * check). 1 routed, 0 no lever or no spread (f unchanged), -1 OOM (f
- * unchanged). */
+ * load = w (c - s) / (s - q), a's line at s carries w + load down, and d
+ * releases load from its other supports at q (a negative line, which may
+ * take a load off a support and put part of it on another; no line rests
+ * on a). Eager, into f (logged: us_plumb_undo takes it back); p->path
+ * lists every body whose forces changed. Nothing is proven here: a
+ * release may leave a contact outside its cone, so the caller re-checks
+ * the path's bodies. 1 routed, 0 no lever or no route (f unchanged), -1
+ * OOM (f unchanged). */
 int us_plumb_lever(us_Plumb *p, const us_Bitset *cur, int a, double *f);
 /* Undo the last successful route (f back to its values before it). */
 void us_plumb_undo(us_Plumb *p, double *f);
