@@ -24,12 +24,30 @@ us_Status us_io_bad(const us_IoCtx *c, const char *where, const char *fmt, ...)
 #endif
     ;
 
+/* The jansson flags of every document read: numbers as doubles, duplicate
+ * keys rejected (util.c). */
+#define US_IO_JSON_FLAGS (JSON_DECODE_INT_AS_REAL | JSON_REJECT_DUPLICATES)
 /* Parse text (len bytes) as JSON; on a syntax error set US_ERR_PARSE with
  * "NAME:LINE:COLUMN: text" and return NULL. */
 json_t *us_io_parse_json(const us_IoCtx *c, const char *text, size_t len);
 /* The same, stopped with US_ERR_TIME_LIMIT once the clock passes deadline
  * (0: none; read every 1 MB of text). */
 json_t *us_io_parse_json_until(const us_IoCtx *c, const char *text, size_t len, double deadline);
+/* structure_split.c: the byte spans of the elements of a structure file's
+ * top-level "bodies" array (arr_off, arr_len: the array itself), so that
+ * they can be parsed one at a time. 1 when found, 0 when the text is not
+ * plainly so (the caller parses it whole), -1 out of memory; free with
+ * us_io_spans_free in every case. */
+typedef struct us_JsonSpan {
+  size_t off, len;
+} us_JsonSpan;
+typedef struct us_BodySpans {
+  size_t arr_off, arr_len;
+  us_JsonSpan *el;
+  int n, cap;
+} us_BodySpans;
+int us_io_split_bodies(const char *text, size_t len, us_BodySpans *out);
+void us_io_spans_free(us_BodySpans *b);
 /* Read a whole file into a NUL-terminated buffer (us_free it). */
 char *us_io_slurp(const char *path, size_t *len, us_Error *err);
 

@@ -57,7 +57,7 @@ json_t *us_io_parse_json(const us_IoCtx *c, const char *text, size_t len) {
 json_t *us_io_parse_json_until(const us_IoCtx *c, const char *text, size_t len, double deadline) {
   json_error_t je;
   if (len >= 3 && !memcmp(text, "\xEF\xBB\xBF", 3)) text += 3, len -= 3; /* UTF-8 BOM */
-  size_t flags = JSON_DECODE_INT_AS_REAL | JSON_REJECT_DUPLICATES;
+  size_t flags = US_IO_JSON_FLAGS;
   Feed f = {text, len, 0, (size_t)1 << 20, deadline, 0};
   json_t *root = deadline > 0 ? json_load_callback(feed, &f, flags, &je) : json_loadb(text, len, flags, &je);
   if (root) return root;
