@@ -155,15 +155,21 @@ static void drop_duplicates_slow(us_CandList *l, int from, double tol) {
   l->n = n;
 }
 
+#define DUP_SMALL 32
+
 static int drop_duplicates(us_CandList *l, int from, double tol) {
   int m = l->n - from;
   if (m < 2) return 0;
   us_Cand *cd = l->c + from;
-  Key *key = us_malloc((size_t)m * sizeof *key);
-  int *pos = us_malloc((size_t)m * sizeof *pos);
-  unsigned char *keep = us_malloc((size_t)m);
+  Key key_s[DUP_SMALL]; /* a pair's few candidates need no allocation */
+  int pos_s[DUP_SMALL];
+  unsigned char keep_s[DUP_SMALL];
+  int small = m <= DUP_SMALL;
+  Key *key = small ? key_s : us_malloc((size_t)m * sizeof *key);
+  int *pos = small ? pos_s : us_malloc((size_t)m * sizeof *pos);
+  unsigned char *keep = small ? keep_s : us_malloc((size_t)m);
   if (!key || !pos || !keep) {
-    us_free(key), us_free(pos), us_free(keep);
+    if (!small) us_free(key), us_free(pos), us_free(keep);
     return -1;
   }
   int ax = spread_axis(cd, m), n = 0;
@@ -174,7 +180,7 @@ static int drop_duplicates(us_CandList *l, int from, double tol) {
   for (int c = 0; c < m; c++)
     if (keep[c]) cd[n++] = cd[c];
   l->n = from + n;
-  us_free(key), us_free(pos), us_free(keep);
+  if (!small) us_free(key), us_free(pos), us_free(keep);
   return 0;
 }
 
