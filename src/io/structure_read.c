@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "io.h"
+#include "model/model.h"
 
 #define MAX_VERTS 10000000 /* far beyond any real polygon; keeps int sizes safe */
 
@@ -264,6 +265,8 @@ static us_Status read_bodies(Reader *r, json_t *root) {
   if (!json_is_array(arr)) return us_io_bad(&r->c, "", "bodies: expected an array");
   size_t n = r->spans ? (size_t)r->spans->n : json_array_size(arr);
   if (n > (size_t)INT_MAX / 4) return us_io_bad(&r->c, "", "bodies: too many bodies");
+  if (r->spans && us_structure_reserve(r->s, (int)n))
+    return us_error_set(r->c.err, US_ERR_NOMEM, "%s: out of memory", r->c.name);
   for (size_t k = 0; k < n; k++) {
     if ((k & 1023) == 1023 && us_past(r->deadline))
       return us_error_set(r->c.err, US_ERR_TIME_LIMIT, "%s: time limit reached reading the bodies "

@@ -74,6 +74,14 @@ static int index_id(us_Structure *s, int i) {
   return us_idmap_put(in->id_index, s->bodies[i].id, i);
 }
 
+int us_structure_reserve(us_Structure *s, int n) {
+  struct us_StructureInternal *in = s->internal;
+  if (US_GROW(s->bodies, in->cap_body, n)) return -1;
+  if (in->id_index || n < 1) return 0;
+  if (!(in->id_index = us_calloc(1, sizeof(us_IdMap)))) return -1;
+  return us_idmap_init(in->id_index, n);
+}
+
 /* Append a body with the given id; returns its index or -1. */
 static int add_body(us_Structure *s, const char *id, us_Error *err) {
   if (!id || !*id) {
