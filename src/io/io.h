@@ -48,6 +48,10 @@ typedef struct us_BodySpans {
 } us_BodySpans;
 int us_io_split_bodies(const char *text, size_t len, us_BodySpans *out);
 void us_io_spans_free(us_BodySpans *b);
+/* The value of a body object's "polygon" when it is plain (at most cap
+ * [x, y] pairs of short decimal numbers, see structure_split.c): its span
+ * in *val, the vertices in xy; returns their count, 0 when not plain. */
+int us_io_split_polygon(const char *text, size_t len, us_JsonSpan *val, double *xy, int cap);
 /* Read a whole file into a NUL-terminated buffer (us_free it). */
 char *us_io_slurp(const char *path, size_t *len, us_Error *err);
 

@@ -45,6 +45,8 @@ typedef struct Reader {
   const char *text;
   const us_BodySpans *spans;
   int finalizing; /* every value was read: errors from here on are final */
+  const double *lane_xy; /* streamed: the body's plain polygon, read from */
+  int lane_n;            /* the text (structure_split.c); NULL: none */
 } Reader;
 
 /* A friction field: a number >= 0, or "infinite" (INFINITY). */
@@ -174,8 +176,11 @@ static us_Status add_polygon_body(Reader *r, const char *where, const char *id, 
     return us_io_bad(&r->c, where, "'center' and 'inertia' are only for bodies without a polygon");
   us_BodyDef d = material_def(id, f);
   double *xy = NULL;
-  us_Status st = read_polygon(r, where, json_object_get(b, "polygon"), &xy, &d.nvert);
-  d.xy = xy;
+  us_Status st = US_OK;
+  if (r->lane_xy)
+    d.xy = r->lane_xy, d.nvert = r->lane_n;
+  else
+    st = read_polygon(r, where, json_object_get(b, "polygon"), &xy, &d.nvert), d.xy = xy;
   if (!st && us_structure_add_body(r->s, &d, r->c.err) < 0) st = r->c.err->code;
   us_free(xy);
   return st;
@@ -248,13 +253,32 @@ static us_Status read_body(Reader *r, int k, json_t *b) {
   return st;
 }
 
-/* Streamed: body k parsed from its span, read, and its tree freed. */
+#define LANE_MAX 64       /* vertices of a polygon taken from the text */
+#define LANE_TEXT 2048    /* the rest of a body's text, on the stack */
+
+/* Streamed: body k parsed from its span, read, and its tree freed. A
+ * plain polygon is read from the text, and jansson gets the rest of the
+ * body with "polygon": []. */
 static us_Status read_span(Reader *r, int k) {
   const us_JsonSpan *sp = &r->spans->el[k];
+  const char *t = r->text + sp->off;
+  double xy[2 * LANE_MAX];
+  char rest[LANE_TEXT];
+  us_JsonSpan pv;
+  size_t n = sp->len;
+  int nv = sp->len < LANE_TEXT ? us_io_split_polygon(t, sp->len, &pv, xy, LANE_MAX) : 0;
+  if (nv) {
+    memcpy(rest, t, pv.off);
+    memcpy(rest + pv.off, "[]", 2);
+    memcpy(rest + pv.off + 2, t + pv.off + pv.len, sp->len - pv.off - pv.len);
+    n = sp->len - pv.len + 2, t = rest;
+  }
   json_error_t je;
-  json_t *b = json_loadb(r->text + sp->off, sp->len, US_IO_JSON_FLAGS, &je);
+  json_t *b = json_loadb(t, n, US_IO_JSON_FLAGS, &je);
   if (!b) return us_error_set(r->c.err, US_ERR_PARSE, "%s: bodies[%d] does not parse", r->c.name, k);
+  r->lane_xy = nv ? xy : NULL, r->lane_n = nv;
   us_Status st = read_body(r, k, b);
+  r->lane_xy = NULL;
   json_decref(b);
   return st;
 }
@@ -436,7 +460,7 @@ us_Structure *us_structure_parse_with(const char *text, const char *name,
   if (!set) set = &def;
   us_Error local;
   us_error_clear(&local);
-  Reader r = {{name ? name : "<input>", &local}, NULL, 0, set->deadline, NULL, NULL, 0};
+  Reader r = {{name ? name : "<input>", &local}, NULL, 0, set->deadline, NULL, NULL, 0, NULL, 0};
   us_Status st = read_text(&r, text, set->contact_tol);
   if (st) {
     us_structure_free(r.s);

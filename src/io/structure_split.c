@@ -118,3 +118,99 @@ void us_io_spans_free(us_BodySpans *b) {
   us_free(b->el);
   memset(b, 0, sizeof *b);
 }
+
+/* The polygon lane. A body's "polygon" is most of its values (13 of 17 for
+ * a block), so the reader takes plain polygons from the text itself and
+ * gives jansson the body with "polygon": []. Plain means: an array of at
+ * least 3 and at most `cap` arrays of two numbers, JSON whitespace between
+ * tokens, numbers without exponent and with at most 15 significant digits
+ * (at most 22 after the point). Such a number is M / 10^k with M < 2^53
+ * and 10^k exact, so one division gives the correctly rounded value, the
+ * one strtod (jansson) gives. Anything else is left to jansson. */
+#define MAX_DIGITS 15
+
+static const double pow10_exact[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                       1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                       1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+
+static int is_digit(char c) { return c >= '0' && c <= '9'; }
+
+/* Digits at s->at into *m (significant ones counted in *sig, all in
+ * *count); 0 when there are too many significant digits. */
+static int read_digits(Scan *s, uint64_t *m, int *sig, int *count) {
+  for (*count = 0; s->at < s->n && is_digit(s->t[s->at]); s->at++, (*count)++) {
+    int d = s->t[s->at] - '0';
+    if (*m == 0 && d == 0) continue; /* leading zeros are not significant */
+    if (++*sig > MAX_DIGITS) return 0;
+    *m = *m * 10 + (uint64_t)d;
+  }
+  return 1;
+}
+
+/* A plain number (see above) at s->at into *out; 0 when not plain. */
+static int plain_number(Scan *s, double *out) {
+  int neg = s->at < s->n && s->t[s->at] == '-', sig = 0, ni = 0, nf = 0;
+  uint64_t m = 0;
+  s->at += (size_t)neg;
+  if (s->at >= s->n || !is_digit(s->t[s->at])) return 0;
+  if (s->t[s->at] == '0' && s->at + 1 < s->n && is_digit(s->t[s->at + 1])) return 0;
+  if (!read_digits(s, &m, &sig, &ni)) return 0;
+  if (s->at < s->n && s->t[s->at] == '.') {
+    s->at++;
+    if (!read_digits(s, &m, &sig, &nf) || nf == 0 || nf > 22) return 0;
+  }
+  if (s->at < s->n && (s->t[s->at] == 'e' || s->t[s->at] == 'E')) return 0;
+  double v = (double)m / pow10_exact[nf];
+  *out = neg ? -v : v;
+  return 1;
+}
+
+/* Is the next token the character c? Consumed when it is. */
+static int token(Scan *s, char c) {
+  skip_ws(s);
+  if (s->at >= s->n || s->t[s->at] != c) return 0;
+  s->at++;
+  return 1;
+}
+
+/* [x, y] at s->at into xy. */
+static int plain_pair(Scan *s, double *xy) {
+  if (!token(s, '[')) return 0;
+  skip_ws(s);
+  if (!plain_number(s, &xy[0]) || !token(s, ',')) return 0;
+  skip_ws(s);
+  return plain_number(s, &xy[1]) && token(s, ']');
+}
+
+/* A plain polygon at s->at into xy (at most cap vertices): their count, or
+ * 0 when not plain. */
+static int plain_polygon(Scan *s, double *xy, int cap) {
+  int n = 0;
+  if (!token(s, '[')) return 0;
+  do {
+    if (n == cap || !plain_pair(s, xy + 2 * n)) return 0;
+    n++;
+  } while (token(s, ','));
+  return token(s, ']') && n >= 3 ? n : 0;
+}
+
+int us_io_split_polygon(const char *text, size_t len, us_JsonSpan *val, double *xy, int cap) {
+  Scan s = {text, len, 0};
+  int found = 0;
+  if (!token(&s, '{')) return 0;
+  if (token(&s, '}')) return 0;
+  do {
+    skip_ws(&s);
+    size_t key = s.at;
+    if (s.at >= s.n || text[s.at] != '"' || !skip_string(&s)) return 0;
+    int poly = s.at - key == 9 && !memcmp(text + key, "\"polygon\"", 9);
+    if (!token(&s, ':')) return 0;
+    skip_ws(&s);
+    size_t from = s.at;
+    if (poly && found) return 0; /* a repeated key: jansson says so */
+    int n = poly ? plain_polygon(&s, xy, cap) : skip_value(&s);
+    if (!n) return 0;
+    if (poly) found = n, *val = (us_JsonSpan){from, s.at - from};
+  } while (token(&s, ','));
+  return token(&s, '}') ? found : 0;
+}
