@@ -32,7 +32,9 @@
 
 typedef struct Box {
   double lo[3], hi[3];
+  double blo[2], bhi[2]; /* the polygon's own box (2D), without tolerance */
   int body;
+  int square;    /* 2D: every edge horizontal or vertical */
   us_Vec2 axis;  /* unit normal of the body's longest edge */
   double alo, ahi; /* the body's own projection on it */
 } Box;
@@ -69,6 +71,15 @@ static void long_axis(const us_Body *b, Box *x) {
   project(b, x->axis, &x->alo, &x->ahi);
 }
 
+/* Is every edge of b horizontal or vertical? */
+static int axis_aligned(const us_Body *b) {
+  for (int e = 0; e < b->nvert; e++) {
+    us_Vec2 p = us_poly_vertex(b->verts, b->nvert, e), q = us_poly_vertex(b->verts, b->nvert, e + 1);
+    if (p.x != q.x && p.y != q.y) return 0;
+  }
+  return 1;
+}
+
 /* Fill boxes of polygon bodies; returns their count. */
 static int make_boxes(const us_Structure *s, const double *tol, Box *bx) {
   int n = 0;
@@ -78,7 +89,8 @@ static int make_boxes(const us_Structure *s, const double *tol, Box *bx) {
     double bb[4];
     us_poly_bbox(b->verts, b->nvert, bb);
     double t = tol[i];
-    bx[n] = (Box){{bb[0] - t, bb[1] - t, 0}, {bb[2] + t, bb[3] + t, 0}, i, us_v2(0, 0), 0, 0};
+    bx[n] = (Box){{bb[0] - t, bb[1] - t, 0}, {bb[2] + t, bb[3] + t, 0}, {bb[0], bb[1]},
+                  {bb[2], bb[3]}, i, axis_aligned(b), us_v2(0, 0), 0, 0};
     long_axis(b, &bx[n]);
     n++;
   }
@@ -93,7 +105,7 @@ static int make_boxes3(const us_Structure *s, const double *tol, Box *bx) {
     if (b->npart < 1) continue;
     double bb[6];
     us_body_bbox3(b, bb);
-    bx[n] = (Box){{0}, {0}, i, us_v2(0, 0), 0, 0};
+    bx[n] = (Box){{0}, {0}, {0}, {0}, i, 0, us_v2(0, 0), 0, 0};
     for (int d = 0; d < 3; d++) bx[n].lo[d] = bb[d] - tol[i], bx[n].hi[d] = bb[d + 3] + tol[i];
     n++;
   }
@@ -151,12 +163,24 @@ static int long_axis_separates(const Box *x, const us_Body *other, double gap) {
   return lo - x->ahi > gap || x->alo - hi > gap;
 }
 
+/* Two polygons whose edges are all horizontal or vertical: their edge
+ * normals are (+-1, 0) and (0, +-1), so the test below is the gap between
+ * their boxes on x and y (the normals' rounding aside: either way a pair
+ * dropped is more than twice its tolerance apart, where the narrow phase
+ * finds neither contact nor overlap, so the contacts are the same). */
+static int boxes_apart(const Box *x, const Box *y, double gap) {
+  for (int d = 0; d < 2; d++)
+    if (y->blo[d] - x->bhi[d] > gap || x->blo[d] - y->bhi[d] > gap) return 1;
+  return 0;
+}
+
 static int separated(const us_Structure *s, const double *tol, const Box *x, const Box *y) {
   if (s->dim == 3) return 0; /* the narrow phase's own axis test */
   int i = x->body, j = y->body;
   const us_Body *a = &s->bodies[i], *b = &s->bodies[j];
   if (a->nvert + b->nvert > SEP_MAX_VERTS) return 0;
   double gap = 2.0 * US_MIN(tol[i], tol[j]);
+  if (x->square && y->square) return boxes_apart(x, y, gap);
   if (long_axis_separates(x, b, gap) || long_axis_separates(y, a, gap)) return 1;
   return normal_separates(a, b, gap) || normal_separates(b, a, gap);
 }

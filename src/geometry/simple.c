@@ -79,13 +79,14 @@ static us_PolyDefect check_edges(const double *xy, int n, int ax, double tol, Sp
 
 us_PolyDefect us_poly_check_simple(const double *xy, int n, double tol, int *i, int *j) {
   if (n < 3) return US_POLY_SIMPLE; /* callers reject n < 3 themselves */
-  Span *sp = us_malloc((size_t)n * sizeof *sp);
+  Span small[16]; /* blocks: no allocation */
+  Span *sp = n <= 16 ? small : us_malloc((size_t)n * sizeof *sp);
   if (!sp) return US_POLY_NOMEM;
   double bb[4];
   us_poly_bbox(xy, n, bb);
   int ax = bb[3] - bb[1] > bb[2] - bb[0]; /* sweep along the longer side */
   us_PolyDefect d = check_vertices(xy, n, ax, tol, sp, i, j);
   if (d == US_POLY_SIMPLE) d = check_edges(xy, n, ax, tol, sp, i, j);
-  us_free(sp);
+  if (sp != small) us_free(sp);
   return d;
 }

@@ -225,7 +225,9 @@ static us_Status read_id(Reader *r, const char *where, json_t *b, const char **i
   if (!**id) return us_io_bad(&r->c, where, "id: must not be empty");
   if (!strcmp(*id, "ground"))
     return us_io_bad(&r->c, where, "id 'ground' is reserved for the ground");
-  int other = us_structure_find_body(r->s, *id);
+  /* streamed, the builder's own check finds a duplicate (and the text is
+   * then read whole for this message) */
+  int other = r->spans ? -1 : us_structure_find_body(r->s, *id);
   if (other >= 0)
     return us_io_bad(&r->c, where, "duplicate id '%s' (also bodies[%d])", us_id_text(*id).s, other);
   return US_OK;
