@@ -52,6 +52,11 @@ void us_io_spans_free(us_BodySpans *b);
  * [x, y] pairs of short decimal numbers, see structure_split.c): its span
  * in *val, the vertices in xy; returns their count, 0 when not plain. */
 int us_io_split_polygon(const char *text, size_t len, us_JsonSpan *val, double *xy, int cap);
+/* structure_read.c: the reader without the split, one JSON tree for the
+ * whole text: the reference that the streamed reader must equal, message
+ * for message (tests). */
+us_Structure *us_io_parse_whole(const char *text, const char *name, double contact_tol,
+                                us_Error *err);
 /* Read a whole file into a NUL-terminated buffer (us_free it). */
 char *us_io_slurp(const char *path, size_t *len, us_Error *err);
 

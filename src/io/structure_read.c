@@ -456,20 +456,33 @@ static us_Status read_text(Reader *r, const char *text, double contact_tol) {
   return read_whole(r, text, len, contact_tol);
 }
 
-us_Structure *us_structure_parse_with(const char *text, const char *name,
-                                      const us_LoadSettings *set, us_Error *err) {
+/* Streamed (whole = 0) or as one tree (the reference). */
+static us_Structure *parse(const char *text, const char *name, const us_LoadSettings *set,
+                           int whole, us_Error *err) {
   us_LoadSettings def = us_load_default_settings();
   if (!set) set = &def;
   us_Error local;
   us_error_clear(&local);
   Reader r = {{name ? name : "<input>", &local}, NULL, 0, set->deadline, NULL, NULL, 0, NULL, 0};
-  us_Status st = read_text(&r, text, set->contact_tol);
+  us_Status st = whole ? read_whole(&r, text, strlen(text), set->contact_tol)
+                       : read_text(&r, text, set->contact_tol);
   if (st) {
     us_structure_free(r.s);
     if (err) *err = local;
     return NULL;
   }
   return r.s;
+}
+
+us_Structure *us_structure_parse_with(const char *text, const char *name,
+                                      const us_LoadSettings *set, us_Error *err) {
+  return parse(text, name, set, 0, err);
+}
+
+us_Structure *us_io_parse_whole(const char *text, const char *name, double contact_tol,
+                                us_Error *err) {
+  us_LoadSettings set = {contact_tol, 0.0};
+  return parse(text, name, &set, 1, err);
 }
 
 us_Structure *us_structure_read(const char *path, double contact_tol, us_Error *err) {
