@@ -56,7 +56,8 @@ static const char *const base_doc =
     " \"density\": 2},\n"
     "  {\"polygon\": [[-1, 0], [-0.0, 0], [0e0, 1], [-1, 1]], \"id\": \"c\\\"q\\\\\"},\n"
     "  {\"id\": \"d\", \"fixed\": true, \"polygon\": [[2, 0], [3.000000000000001, 0], "
-    "[3, 1.5], [2, 1.5]]}\n"
+    "[3, 1.5], [2, 1.5]]},\n"
+    "  {\"id\": \"e\", \"fixed\": false, \"polygon\": [[3, 0], [4, 0], [4, 1], [3, 1]]}\n"
     "], \"_note\": \"{[\\\"]}\"}\n";
 
 /* ------------------------------------------------------------------ cases */
@@ -93,6 +94,22 @@ static void streamed_equals_whole(void) {
       "[1, 2]",
       "{\"bodies\": [\"a\\\"]\", 3]}",
       base_doc,
+      /* the whole-body lane: plain id, polygon, fixed, and its near misses */
+      "{\"bodies\": [{\"id\": \"a\", \"fixed\": true, \"polygon\": [[0,0],[1,0],[1,1],[0,1]]}]}",
+      "{\"bodies\": [{\"id\": \"a\", \"fixed\": 1, \"polygon\": [[0,0],[1,0],[1,1],[0,1]]}]}",
+      "{\"bodies\": [{\"id\": \"a\", \"fixed\": truex, \"polygon\": [[0,0],[1,0],[1,1],[0,1]]}]}",
+      "{\"bodies\": [{\"id\": \"ground\", \"polygon\": [[0,0],[1,0],[1,1],[0,1]]}]}",
+      "{\"bodies\": [{\"id\": \"\", \"polygon\": [[0,0],[1,0],[1,1],[0,1]]}]}",
+      "{\"bodies\": [{\"id\": \"a\", \"id\": \"b\", \"polygon\": [[0,0],[1,0],[1,1],[0,1]]}]}",
+      "{\"bodies\": [{\"id\": \"\\u0067round\", \"polygon\": [[0,0],[1,0],[1,1],[0,1]]}]}",
+      "{\"bodies\": [{\"id\": \"\xC3\xA9t\xC3\xA9\", \"polygon\": [[0,0],[1,0],[1,1],[0,1]]}]}",
+      "{\"bodies\": [{\"id\": \"a\", \"polygon\": [[0,0],[1,0],[1,1],[0,1]]}], \"dimension\": 3}",
+      "{\"dimension\": 2, \"bodies\": [{\"id\": \"a\", \"polygon\": [[0,0],[1,0],[1,1],[0,1]]},"
+      " {\"id\": \"a\", \"polygon\": [[2,0],[3,0],[3,1],[2,1]]}]}",
+      "{\"bodies\": [{\"id\": \"a\", \"polygon\": [[0,0],[1,0],[1,1],[0,1]]},"
+      " {\"id\": \"b\", \"polygon\": [[0,0],[1,0],[1,1],[0,1]]}]}",
+      "{\"ground\": false, \"bodies\": [{\"id\": \"a\", \"polygon\": [[0,-1],[1,-1],[1,1],[0,1]]}]}",
+      "{\"bodies\": [{\"id\": \"a\", \"polygon\": [[0,-1],[1,-1],[1,1],[0,1]]}]}",
   };
   for (size_t k = 0; k < sizeof docs / sizeof docs[0]; k++) CHECK(readers_agree(docs[k]));
 }
@@ -185,6 +202,33 @@ static void polygon_lane_refuses(void) {
   CHECK(xy[2] == 0.000125 && xy[3] == -2 && xy[4] == 123456789012345.0);
 }
 
+/* The whole-body lane takes only id, polygon and fixed, each once and
+ * plain; it reads the id and the flag as jansson would. */
+static void lane_body(void) {
+  double xy[8];
+  us_LaneBody lb;
+  const char *ok = " { \"fixed\" : true , \"polygon\":[[0,0],[1,0],[1,1]], \"id\": \"b 7\" } ";
+  CHECK_INT(us_io_lane_body(ok, strlen(ok), xy, 4, &lb), ==, 1);
+  CHECK(!strcmp(lb.id, "b 7") && lb.fixed == 1 && lb.nv == 3 && xy[4] == 1);
+  static const char *const refused[] = {
+      "{\"id\": \"a\"}",                                         /* no polygon */
+      "{\"polygon\": [[0,0],[1,0],[1,1]]}",                        /* no id */
+      "{\"id\": \"a\\n\", \"polygon\": [[0,0],[1,0],[1,1]]}",     /* an escape */
+      "{\"id\": \"a\", \"polygon\": [[0,0],[1,0],[1,1]], \"mass\": 1}", /* another key */
+      "{\"id\": \"a\", \"polygon\": [[0,0],[1,0],[1,1]], \"fixed\": null}",
+      "{\"id\": \"a\", \"polygon\": [[0,0],[1,0],[1,1]], \"fixed\": true, \"fixed\": true}",
+      "{\"id\": \"a\", \"polygon\": [[0,0],[1,0],[1,1]]} x",
+      "{\"id\": 3, \"polygon\": [[0,0],[1,0],[1,1]]}",
+      "{\"id\": \"0123456789012345678901234567890123456789012345678901234567890123\", "
+      "\"polygon\": [[0,0],[1,0],[1,1]]}", /* 64 characters */
+  };
+  for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++)
+    if (us_io_lane_body(refused[k], strlen(refused[k]), xy, 4, &lb) != 0) {
+      fprintf(stderr, "taken: %s\n", refused[k]);
+      CHECK(0);
+    }
+}
+
 /* The split follows strings and nesting, and gives up on what is not a
  * plain top-level "bodies" array. */
 static void split_spans(void) {
@@ -242,4 +286,4 @@ static void number_writer(void) {
 }
 
 US_TEST_MAIN(T(streamed_equals_whole), T(streamed_equals_whole_mutations), T(polygon_lane_numbers),
-             T(polygon_lane_refuses), T(split_spans), T(number_writer))
+             T(polygon_lane_refuses), T(lane_body), T(split_spans), T(number_writer))

@@ -52,6 +52,16 @@ void us_io_spans_free(us_BodySpans *b);
  * [x, y] pairs of short decimal numbers, see structure_split.c): its span
  * in *val, the vertices in xy; returns their count, 0 when not plain. */
 int us_io_split_polygon(const char *text, size_t len, us_JsonSpan *val, double *xy, int cap);
+/* A body object with nothing but a plain "id" (printable ASCII, no
+ * escapes, shorter than US_LANE_ID), a plain "polygon" and maybe "fixed":
+ * 1 with the id, the vertices (xy, their count nv) and fixed filled in, so
+ * the reader needs no JSON tree for it; 0 when the body is not so. */
+#define US_LANE_ID 64
+typedef struct us_LaneBody {
+  char id[US_LANE_ID];
+  int nv, fixed;
+} us_LaneBody;
+int us_io_lane_body(const char *text, size_t len, double *xy, int cap, us_LaneBody *lb);
 /* structure_read.c: the reader without the split, one JSON tree for the
  * whole text: the reference that the streamed reader must equal, message
  * for message (tests). */

@@ -258,13 +258,27 @@ static us_Status read_body(Reader *r, int k, json_t *b) {
 #define LANE_MAX 64       /* vertices of a polygon taken from the text */
 #define LANE_TEXT 2048    /* the rest of a body's text, on the stack */
 
+/* Streamed: a body of only a plain id, polygon and fixed flag, added as
+ * read_body adds it (the defaults of every other field), with no tree.
+ * Whatever read_body would refuse is an error without a message: the
+ * text is then read whole. */
+static us_Status add_lane_body(Reader *r, const us_LaneBody *lb, const double *xy) {
+  if (r->s->dim != 2 || !lb->id[0] || !strcmp(lb->id, "ground")) return US_ERR_INPUT;
+  BodyFields f = {0, 0, -1, 0, {0, 0, 0}, lb->fixed};
+  us_BodyDef d = material_def(lb->id, &f);
+  d.xy = xy, d.nvert = lb->nv;
+  return us_structure_add_body(r->s, &d, r->c.err) < 0 ? r->c.err->code : US_OK;
+}
+
 /* Streamed: body k parsed from its span, read, and its tree freed. A
- * plain polygon is read from the text, and jansson gets the rest of the
- * body with "polygon": []. */
+ * plain body needs no tree; a plain polygon is read from the text, and
+ * jansson gets the rest of the body with "polygon": []. */
 static us_Status read_span(Reader *r, int k) {
   const us_JsonSpan *sp = &r->spans->el[k];
   const char *t = r->text + sp->off;
   double xy[2 * LANE_MAX];
+  us_LaneBody lb;
+  if (us_io_lane_body(t, sp->len, xy, LANE_MAX, &lb)) return add_lane_body(r, &lb, xy);
   char rest[LANE_TEXT];
   us_JsonSpan pv;
   size_t n = sp->len;

@@ -194,6 +194,60 @@ static int plain_polygon(Scan *s, double *xy, int cap) {
   return token(s, ']') && n >= 3 ? n : 0;
 }
 
+/* A plain id: a string of printable ASCII without escapes, its characters
+ * into lb (at most US_LANE_ID - 1 of them). */
+static int plain_id(Scan *s, us_LaneBody *lb) {
+  if (!token(s, '"')) return 0;
+  size_t from = s->at;
+  while (s->at < s->n && s->t[s->at] >= 0x20 && s->t[s->at] < 0x7f && s->t[s->at] != '"' &&
+         s->t[s->at] != '\\')
+    s->at++;
+  size_t n = s->at - from;
+  if (!token(s, '"') || n >= US_LANE_ID) return 0;
+  memcpy(lb->id, s->t + from, n);
+  lb->id[n] = '\0';
+  return 1;
+}
+
+/* true or false, as a whole token. */
+static int plain_bool(Scan *s, int *out) {
+  skip_ws(s);
+  int t = s->n - s->at >= 4 && !memcmp(s->t + s->at, "true", 4);
+  int f = s->n - s->at >= 5 && !memcmp(s->t + s->at, "false", 5);
+  if (!t && !f) return 0;
+  s->at += t ? 4 : 5;
+  *out = t;
+  return s->at >= s->n || is_ws(s->t[s->at]) || s->t[s->at] == ',' || s->t[s->at] == '}';
+}
+
+/* The lane's keys, quotes included: 0 "id", 1 "polygon", 2 "fixed"; -1. */
+static int key_index(const char *k, size_t n) {
+  static const char *const keys[] = {"\"id\"", "\"polygon\"", "\"fixed\""};
+  for (int i = 0; i < 3; i++)
+    if (n == strlen(keys[i]) && !memcmp(k, keys[i], n)) return i;
+  return -1;
+}
+
+int us_io_lane_body(const char *text, size_t len, double *xy, int cap, us_LaneBody *lb) {
+  Scan s = {text, len, 0};
+  int seen[3] = {0, 0, 0}; /* id, polygon, fixed */
+  lb->fixed = 0, lb->nv = 0;
+  if (!token(&s, '{')) return 0;
+  do {
+    skip_ws(&s);
+    size_t key = s.at;
+    if (s.at >= s.n || text[s.at] != '"' || !skip_string(&s)) return 0;
+    int k = key_index(text + key, s.at - key);
+    if (k < 0 || seen[k]++ || !token(&s, ':')) return 0; /* another key, or a repeated one */
+    if (k == 0 && !plain_id(&s, lb)) return 0;
+    if (k == 1 && !(lb->nv = plain_polygon(&s, xy, cap))) return 0;
+    if (k == 2 && !plain_bool(&s, &lb->fixed)) return 0;
+  } while (token(&s, ','));
+  if (!token(&s, '}')) return 0;
+  skip_ws(&s);
+  return s.at == s.n && seen[0] && seen[1];
+}
+
 int us_io_split_polygon(const char *text, size_t len, us_JsonSpan *val, double *xy, int cap) {
   Scan s = {text, len, 0};
   int found = 0;
