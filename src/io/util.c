@@ -13,7 +13,10 @@
  * are valid UTF-8. Control characters (\u001b, newlines) are accepted in ids;
  * every message quotes ids through us_id_text and the SVG writer replaces
  * what XML cannot hold, so they never reach a terminal or a file raw. */
+#define _POSIX_C_SOURCE 200809L /* fileno */
 #include <errno.h>
+#include <stdint.h>
+#include <sys/stat.h>
 #include <math.h>
 #include <stdarg.h>
 #include <string.h>
@@ -79,6 +82,10 @@ char *us_io_slurp(const char *path, size_t *len, us_Error *err) {
     return NULL;
   }
   size_t n = 0, cap = 1 << 16;
+  struct stat st; /* a regular file is read in one go into a block of its size */
+  if (fstat(fileno(fp), &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0 &&
+      (uintmax_t)st.st_size < SIZE_MAX / 2)
+    cap = (size_t)st.st_size + 2;
   char *buf = us_malloc(cap);
   while (buf) {
     n += fread(buf + n, 1, cap - 1 - n, fp);
