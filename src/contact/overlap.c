@@ -105,7 +105,13 @@ static int cut_params(us_Vec2 q0, us_Vec2 q1, const us_Body *p, us_EdgeGrid *gp,
     if (us_segment_intersect(q0, q1, p0, p1, &t, NULL) == US_SEG_PROPER) ts[m++] = t;
     if (us_point_segment_dist(p0, q0, q1, &t) <= tol) ts[m++] = t;
   }
-  qsort(ts, (size_t)m, sizeof *ts, dbl_cmp);
+  if (m > 16) qsort(ts, (size_t)m, sizeof *ts, dbl_cmp);
+  else /* a few cuts: insertion (equal values are interchangeable) */
+    for (int a = 1; a < m; a++)
+      for (int b = a; b > 0 && ts[b - 1] > ts[b]; b--) {
+        double t = ts[b];
+        ts[b] = ts[b - 1], ts[b - 1] = t;
+      }
   return m;
 }
 

@@ -174,7 +174,13 @@ static int drop_duplicates(us_CandList *l, int from, double tol) {
   }
   int ax = spread_axis(cd, m), n = 0;
   for (int k = 0; k < m; k++) key[k] = (Key){ax ? cd[k].p.y : cd[k].p.x, k};
-  qsort(key, (size_t)m, sizeof *key, key_cmp);
+  if (m > 16) qsort(key, (size_t)m, sizeof *key, key_cmp);
+  else /* a pair's few candidates: insertion, the same total order */
+    for (int a = 1; a < m; a++)
+      for (int b = a; b > 0 && key_cmp(&key[b - 1], &key[b]) > 0; b--) {
+        Key t = key[b];
+        key[b] = key[b - 1], key[b - 1] = t;
+      }
   for (int r = 0; r < m; r++) pos[key[r].idx] = r;
   for (int c = 0; c < m; c++) keep[c] = !dup_of_kept(cd, key, m, pos[c], keep, tol);
   for (int c = 0; c < m; c++)
