@@ -230,5 +230,31 @@ static void cleanup(void) {
   if (test_dir[0]) CHECK(rmdir(test_dir) == 0);
 }
 
+/* The id map against a linear search: random ids with repeats, from a
+ * zeroed map through many doublings, every lookup and every refusal of a
+ * repeated key as the reference says. */
+static void idmap_matches_linear_search(void) {
+  enum { N = 3000 };
+  static char ids[N][12];
+  unsigned long long rng = 5;
+  us_IdMap m = {0, 0, NULL};
+  int first[N], n = 0;
+  for (int k = 0; k < N; k++) {
+    snprintf(ids[k], sizeof ids[k], "b%d", (int)(test_rnd(&rng) * 2000));
+    int want = -1;
+    for (int q = 0; q < k && want < 0; q++)
+      if (!strcmp(ids[q], ids[k])) want = first[q];
+    first[k] = want >= 0 ? want : k;
+    CHECK_INT(us_idmap_get(&m, ids[k]), ==, want);
+    CHECK_INT(us_idmap_put(&m, ids[k], k), ==, want >= 0 ? -1 : 0);
+    n += want < 0;
+  }
+  CHECK_INT(m.count, ==, n);
+  for (int k = 0; k < N; k++) CHECK_INT(us_idmap_get(&m, ids[k]), ==, first[k]);
+  CHECK_INT(us_idmap_get(&m, "b2000"), ==, -1);
+  us_idmap_free(&m);
+}
+
 US_TEST_MAIN(T(bitset_basics), T(bitset_set_many), T(alloc_failure_hook), T(error_messages),
-             T(id_text), T(output_files), T(output_refusals), T(output_nomem), T(cleanup))
+             T(id_text), T(output_files), T(output_refusals), T(output_nomem), T(cleanup),
+             T(idmap_matches_linear_search))

@@ -638,8 +638,63 @@ static void small_wall(void) {
   us_structure_free(s);
 }
 
+/* Fast detection (grid broad phase, side-by-side pairs, sweep fallback)
+ * and the every-pair reference agree contact for contact, or give the same
+ * error: square walls, a tall column, tilted and mixed sizes, long fixed
+ * slabs under them (boxes over many cells), and a pair that overlaps. */
+static void fast_detection_matches_reference(void) {
+  unsigned long long rng = 11;
+  for (int trial = 0; trial < 8; trial++) {
+    us_Error err;
+    us_Structure *s = us_structure_new(2);
+    int n = 0;
+    char id[24];
+    for (int k = 0; trial == 3 && k < 8; k++) { /* long fixed slabs */
+      double slab[8] = {-50, k, 60, k, 60, k + 1, -50, k + 1};
+      snprintf(id, sizeof id, "slab%d", k);
+      CHECK(us_structure_add_polygon(s, id, 4, slab, 1, 0, 1, -1, &err) >= 0);
+    }
+    if (trial == 3) {
+      for (int k = 0; k < 60; k++) {
+        double x = -50 + 1.5 * k, xy[8] = {x, 8, x + 1, 8, x + 1, 9, x, 9};
+        snprintf(id, sizeof id, "s%d", n++);
+        CHECK(add_poly(s, id, 4, xy, &err) >= 0);
+      }
+    }
+    int cols = trial % 2 ? 3 : 12, rows = trial % 2 ? 30 : 12;
+    for (int r = 0; r < rows; r++)
+      for (int c = 0; c < cols; c++) {
+        double w = trial >= 4 && trial < 7 ? 0.5 + test_rnd(&rng) : 1.0, x = c * 1.0 + (r % 2) * 0.5;
+        double y = r * 0.5 + (trial == 3 ? 9 : 0), tilt = trial >= 6 ? 0.05 * test_rnd(&rng) : 0;
+        double xy[8] = {x, y, x + US_MIN(w, 1.0), y + tilt, x + US_MIN(w, 1.0), y + 0.5, x, y + 0.5};
+        if (trial == 7 && r == 5 && c == 1) xy[0] -= 0.3, xy[6] -= 0.3; /* into its neighbour */
+        snprintf(id, sizeof id, "b%d", n++);
+        CHECK(add_poly(s, id, 4, xy, &err) >= 0);
+      }
+    us_Error e1, e2;
+    us_Status st = us_model_validate(s, 0, &err);
+    if (!st) us_model_measure(s), st = us_model_mass_properties(s, &err);
+    CHECK_OK(st, &err);
+    us_ContactList a = {0}, b = {0};
+    us_ContactSettings fast = {0, 0}, ref = {0, 1};
+    us_Status s1 = us_detect_contacts(s, &fast, &a, &e1), s2 = us_detect_contacts(s, &ref, &b, &e2);
+    int same = s1 == s2 && a.n == b.n && (s1 != US_OK ? !strcmp(e1.msg, e2.msg) : a.n > rows);
+    for (int k = 0; same && k < a.n; k++)
+      same = a.c[k].a == b.c[k].a && a.c[k].b == b.c[k].b &&
+             !memcmp(a.c[k].p, b.c[k].p, sizeof a.c[k].p) && !memcmp(a.c[k].n, b.c[k].n, sizeof a.c[k].n);
+    if (!same) fprintf(stderr, "trial %d: %d/%d contacts, %s / %s\n", trial, a.n, b.n,
+                       s1 ? e1.msg : "ok", s2 ? e2.msg : "ok");
+    if (trial == 7) CHECK_INT(s1, ==, US_ERR_INPUT);
+    us_contact_list_free(&a);
+    us_contact_list_free(&b);
+    us_structure_free(s);
+    CHECK(same);
+  }
+}
+
 US_TEST_MAIN(T(block_on_ground), T(stacked_aligned), T(running_bond), T(side_by_side),
              T(leaning_slab), T(triangle_apex), T(apex_on_corner), T(tiny_tilt),
              T(corner_to_corner), T(box_in_l_notch), T(block_in_u), T(friction_rule),
              T(fixed_bodies), T(tolerance), T(overlaps), T(deterministic), T(arch),
-             T(direct_call_clockwise), T(small_wall), T(random_rows))
+             T(direct_call_clockwise), T(small_wall), T(random_rows),
+             T(fast_detection_matches_reference))

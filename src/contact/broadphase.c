@@ -12,6 +12,17 @@
  * the other axis. Pairs of two fixed bodies are dropped (no contact between
  * them matters). The pair list is finally sorted by (i, j).
  *
+ * A sweep along one axis compares a box with every box overlapping it on
+ * that axis: in a square wall of n bricks that is a whole column of
+ * courses, n^1.5 in all. So the boxes are first put in a uniform grid
+ * over the two axes of largest spread (cells of the mean box size) and
+ * compared only within a cell, each pair in the one cell holding the
+ * corner (largest low end on both axes) that lies in both boxes. Both
+ * ways give the set of pairs whose closed boxes meet and pass the filters
+ * below, and the list is sorted, so the result is the same; the sweep
+ * remains for boxes the grid would list too often (a few huge bodies).
+ * The pairs are sorted by counting on i.
+ *
  * Boxes of long thin bodies lying at an angle (the voussoirs of an arch of
  * many thin blocks) overlap the boxes of thousands of neighbours they are
  * nowhere near. So a pair whose boxes overlap is kept only if no edge
@@ -29,10 +40,13 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 typedef struct Box {
   double lo[3], hi[3];
+  double blo[2], bhi[2]; /* the polygon's own box (2D), without tolerance */
   int body;
+  int square;    /* 2D: every edge horizontal or vertical */
   us_Vec2 axis;  /* unit normal of the body's longest edge */
   double alo, ahi; /* the body's own projection on it */
 } Box;
@@ -69,6 +83,15 @@ static void long_axis(const us_Body *b, Box *x) {
   project(b, x->axis, &x->alo, &x->ahi);
 }
 
+/* Is every edge of b horizontal or vertical? */
+static int axis_aligned(const us_Body *b) {
+  for (int e = 0; e < b->nvert; e++) {
+    us_Vec2 p = us_poly_vertex(b->verts, b->nvert, e), q = us_poly_vertex(b->verts, b->nvert, e + 1);
+    if (p.x != q.x && p.y != q.y) return 0;
+  }
+  return 1;
+}
+
 /* Fill boxes of polygon bodies; returns their count. */
 static int make_boxes(const us_Structure *s, const double *tol, Box *bx) {
   int n = 0;
@@ -78,7 +101,8 @@ static int make_boxes(const us_Structure *s, const double *tol, Box *bx) {
     double bb[4];
     us_poly_bbox(b->verts, b->nvert, bb);
     double t = tol[i];
-    bx[n] = (Box){{bb[0] - t, bb[1] - t, 0}, {bb[2] + t, bb[3] + t, 0}, i, us_v2(0, 0), 0, 0};
+    bx[n] = (Box){{bb[0] - t, bb[1] - t, 0}, {bb[2] + t, bb[3] + t, 0}, {bb[0], bb[1]},
+                  {bb[2], bb[3]}, i, axis_aligned(b), us_v2(0, 0), 0, 0};
     long_axis(b, &bx[n]);
     n++;
   }
@@ -93,7 +117,7 @@ static int make_boxes3(const us_Structure *s, const double *tol, Box *bx) {
     if (b->npart < 1) continue;
     double bb[6];
     us_body_bbox3(b, bb);
-    bx[n] = (Box){{0}, {0}, i, us_v2(0, 0), 0, 0};
+    bx[n] = (Box){{0}, {0}, {0}, {0}, i, 0, us_v2(0, 0), 0, 0};
     for (int d = 0; d < 3; d++) bx[n].lo[d] = bb[d] - tol[i], bx[n].hi[d] = bb[d + 3] + tol[i];
     n++;
   }
@@ -151,12 +175,24 @@ static int long_axis_separates(const Box *x, const us_Body *other, double gap) {
   return lo - x->ahi > gap || x->alo - hi > gap;
 }
 
+/* Two polygons whose edges are all horizontal or vertical: their edge
+ * normals are (+-1, 0) and (0, +-1), so the test below is the gap between
+ * their boxes on x and y (the normals' rounding aside: either way a pair
+ * dropped is more than twice its tolerance apart, where the narrow phase
+ * finds neither contact nor overlap, so the contacts are the same). */
+static int boxes_apart(const Box *x, const Box *y, double gap) {
+  for (int d = 0; d < 2; d++)
+    if (y->blo[d] - x->bhi[d] > gap || x->blo[d] - y->bhi[d] > gap) return 1;
+  return 0;
+}
+
 static int separated(const us_Structure *s, const double *tol, const Box *x, const Box *y) {
   if (s->dim == 3) return 0; /* the narrow phase's own axis test */
   int i = x->body, j = y->body;
   const us_Body *a = &s->bodies[i], *b = &s->bodies[j];
   if (a->nvert + b->nvert > SEP_MAX_VERTS) return 0;
   double gap = 2.0 * US_MIN(tol[i], tol[j]);
+  if (x->square && y->square) return boxes_apart(x, y, gap);
   if (long_axis_separates(x, b, gap) || long_axis_separates(y, a, gap)) return 1;
   return normal_separates(a, b, gap) || normal_separates(b, a, gap);
 }
@@ -189,6 +225,154 @@ static int sweep(const us_Structure *s, const double *tol, const Box *bx, int n,
   return 0;
 }
 
+/* The grid: cells of size h from org along axes a[0], a[1]; cell c
+ * lists items[start[c] .. start[c+1]) (box positions). */
+typedef struct Grid {
+  int a[2], nc[2];
+  double org[2], h[2];
+  int *start, *items;
+} Grid;
+
+static int cell_of(const Grid *g, int d, double v) {
+  double c = (v - g->org[d]) / g->h[d];
+  if (!(c > 0)) return 0;
+  return c >= (double)(g->nc[d] - 1) ? g->nc[d] - 1 : (int)c;
+}
+
+/* Cells of the grid: mean box size per axis, at most about 2n cells. */
+static void grid_shape(Grid *g, const Box *bx, int n) {
+  for (int d = 0; d < 2; d++) {
+    double lo = INFINITY, hi = -INFINITY, sum = 0.0;
+    for (int k = 0; k < n; k++) {
+      lo = US_MIN(lo, bx[k].lo[g->a[d]]), hi = US_MAX(hi, bx[k].hi[g->a[d]]);
+      sum += bx[k].hi[g->a[d]] - bx[k].lo[g->a[d]];
+    }
+    double h = sum / n, span = hi - lo;
+    g->org[d] = lo;
+    g->h[d] = h > 0 ? h : 1.0;
+    g->nc[d] = (int)US_MIN(ceil(span / g->h[d]), 2.0 * n + 16);
+    if (g->nc[d] < 1) g->nc[d] = 1;
+  }
+  while ((double)g->nc[0] * g->nc[1] > 2.0 * n + 16) /* coarser until few enough */
+    for (int d = 0; d < 2; d++) g->h[d] *= 2, g->nc[d] = (g->nc[d] + 1) / 2;
+}
+
+/* Cell ranges of box b: r = {c0, r0, c1, r1}. */
+static void grid_range(const Grid *g, const Box *b, int r[4]) {
+  r[0] = cell_of(g, 0, b->lo[g->a[0]]), r[1] = cell_of(g, 1, b->lo[g->a[1]]);
+  r[2] = cell_of(g, 0, b->hi[g->a[0]]), r[3] = cell_of(g, 1, b->hi[g->a[1]]);
+}
+
+/* List every box in the cells it covers: 0, 1 when that would list too
+ * many entries (the sweep is used), -1 out of memory. */
+static int grid_fill(Grid *g, const Box *bx, int n) {
+  long cells = (long)g->nc[0] * g->nc[1], total = 0;
+  if (!(g->start = us_calloc((size_t)cells + 1, sizeof *g->start))) return -1;
+  for (int k = 0, r[4]; k < n; k++) {
+    grid_range(g, &bx[k], r);
+    total += (long)(r[2] - r[0] + 1) * (r[3] - r[1] + 1);
+    if (total > 8L * n + 1024) return 1;
+    for (int y = r[1]; y <= r[3]; y++)
+      for (int x = r[0]; x <= r[2]; x++) g->start[(long)y * g->nc[0] + x + 1]++;
+  }
+  for (long c = 0; c < cells; c++) g->start[c + 1] += g->start[c];
+  int *pos = us_malloc((size_t)(cells + 1) * sizeof *pos);
+  g->items = us_malloc((size_t)(total > 0 ? total : 1) * sizeof *g->items);
+  if (!pos || !g->items) return us_free(pos), -1;
+  memcpy(pos, g->start, (size_t)(cells + 1) * sizeof *pos);
+  for (int k = 0, r[4]; k < n; k++) {
+    grid_range(g, &bx[k], r);
+    for (int y = r[1]; y <= r[3]; y++)
+      for (int x = r[0]; x <= r[2]; x++) g->items[pos[(long)y * g->nc[0] + x]++] = k;
+  }
+  us_free(pos);
+  return 0;
+}
+
+/* Is c the cell of the corner of a and b (their largest low ends)? */
+static int home_cell(const Grid *g, const Box *a, const Box *b, long c) {
+  int x = cell_of(g, 0, US_MAX(a->lo[g->a[0]], b->lo[g->a[0]]));
+  int y = cell_of(g, 1, US_MAX(a->lo[g->a[1]], b->lo[g->a[1]]));
+  return (long)y * g->nc[0] + x == c;
+}
+
+/* Do the closed boxes meet on every axis? */
+static int boxes_meet(const Box *a, const Box *b, int dim) {
+  return overlap_others(a, b, -1, dim);
+}
+
+/* The pairs of each cell, each in its home cell only. */
+static int grid_pairs(const us_Structure *s, const double *tol, const Grid *g, const Box *bx,
+                      us_BodyPair **pairs, int *np, int *cap) {
+  int dim = s->dim == 3 ? 3 : 2;
+  for (long c = 0; c < (long)g->nc[0] * g->nc[1]; c++)
+    for (int p = g->start[c]; p < g->start[c + 1]; p++)
+      for (int q = p + 1; q < g->start[c + 1]; q++) {
+        const Box *x = &bx[g->items[p]], *y = &bx[g->items[q]];
+        if (!boxes_meet(x, y, dim) || !home_cell(g, x, y, c)) continue;
+        if (s->bodies[x->body].fixed && s->bodies[y->body].fixed) continue;
+        if (separated(s, tol, x, y)) continue;
+        if (push_pair(pairs, np, cap, x->body, y->body)) return -1;
+      }
+  return 0;
+}
+
+/* The two axes (of dim) along which the box centres spread most. */
+static void grid_axes(const Box *bx, int n, int dim, int a[2]) {
+  a[0] = 0, a[1] = 1;
+  if (dim < 3) return;
+  int drop = 0;
+  double spread[3];
+  for (int d = 0; d < 3; d++) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (int k = 0; k < n; k++) {
+      double c = 0.5 * (bx[k].lo[d] + bx[k].hi[d]);
+      lo = US_MIN(lo, c), hi = US_MAX(hi, c);
+    }
+    spread[d] = n > 0 ? hi - lo : 0.0;
+    if (spread[d] < spread[drop]) drop = d;
+  }
+  a[0] = drop == 0 ? 1 : 0, a[1] = drop == 2 ? 1 : 2;
+}
+
+/* Candidate pairs through the grid: 0, 1 (not used: sweep instead), -1. */
+static int grid_phase(const us_Structure *s, const double *tol, const Box *bx, int n,
+                      us_BodyPair **pairs, int *np, int *cap) {
+  Grid g = {{0, 1}, {1, 1}, {0, 0}, {1, 1}, NULL, NULL};
+  if (n < 2) return 0;
+  grid_axes(bx, n, s->dim == 3 ? 3 : 2, g.a);
+  grid_shape(&g, bx, n);
+  int rc = grid_fill(&g, bx, n);
+  if (rc == 0) rc = grid_pairs(s, tol, &g, bx, pairs, np, cap);
+  us_free(g.start);
+  us_free(g.items);
+  return rc;
+}
+
+/* Sort pairs by (i, j): counting on i, then each i's few j in place. */
+static int sort_pairs(us_BodyPair *p, int np, int nbody) {
+  int *start = us_calloc((size_t)nbody + 1, sizeof *start);
+  us_BodyPair *tmp = us_malloc((size_t)(np > 0 ? np : 1) * sizeof *tmp);
+  if (!start || !tmp) return us_free(start), us_free(tmp), -1;
+  for (int k = 0; k < np; k++) start[p[k].i + 1]++;
+  for (int i = 0; i < nbody; i++) start[i + 1] += start[i];
+  for (int k = 0; k < np; k++) tmp[start[p[k].i]++] = p[k];
+  for (int i = 0, from = 0; i < nbody; from = start[i++]) {
+    int m = start[i] - from;
+    if (m > 16) qsort(tmp + from, (size_t)m, sizeof *tmp, pair_cmp);
+    else
+      for (int a = from + 1; a < start[i]; a++)
+        for (int b = a; b > from && tmp[b - 1].j > tmp[b].j; b--) {
+          us_BodyPair t = tmp[b];
+          tmp[b] = tmp[b - 1], tmp[b - 1] = t;
+        }
+  }
+  memcpy(p, tmp, (size_t)np * sizeof *p);
+  us_free(start);
+  us_free(tmp);
+  return 0;
+}
+
 us_Status us_broadphase(const us_Structure *s, const double *tol, us_BodyPair **pairs,
                         int *npairs, us_Error *err) {
   *pairs = NULL;
@@ -201,9 +385,14 @@ us_Status us_broadphase(const us_Structure *s, const double *tol, us_BodyPair **
   }
   int dim = s->dim == 3 ? 3 : 2;
   int n = dim == 3 ? make_boxes3(s, tol, bx) : make_boxes(s, tol, bx);
-  int ax = choose_axis(bx, n, dim);
-  qsort(bx, (size_t)n, sizeof *bx, ax == 2 ? box_cmp_z : ax ? box_cmp_y : box_cmp_x);
-  int rc = sweep(s, tol, bx, n, ax, pairs, npairs, &cap);
+  int rc = grid_phase(s, tol, bx, n, pairs, npairs, &cap);
+  if (rc == 1) { /* too many entries: the sweep */
+    int ax = choose_axis(bx, n, dim);
+    *npairs = 0;
+    qsort(bx, (size_t)n, sizeof *bx, ax == 2 ? box_cmp_z : ax ? box_cmp_y : box_cmp_x);
+    rc = sweep(s, tol, bx, n, ax, pairs, npairs, &cap);
+  }
+  if (!rc) rc = sort_pairs(*pairs, *npairs, s->nbody);
   us_free(bx);
   if (rc) {
     us_free(*pairs);
@@ -211,7 +400,6 @@ us_Status us_broadphase(const us_Structure *s, const double *tol, us_BodyPair **
     *npairs = 0;
     return us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");
   }
-  qsort(*pairs, (size_t)*npairs, sizeof **pairs, pair_cmp);
   return US_OK;
 }
 

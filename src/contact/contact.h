@@ -44,13 +44,19 @@ us_Status us_broadphase_all(const us_Structure *s, us_BodyPair **pairs, int *npa
 
 /* One detection run: the structure, each body's own tolerance and each
  * polygon's edge index, built on first use with the body's own tolerance
- * as padding (at least any pair tolerance of the body), kept to the end. */
+ * as padding (at least any pair tolerance of the body), kept to the end.
+ * Small polygons (at most US_EDGE_GRID_MIN edges) need no index, only a
+ * result buffer: they take one of two slots (the least recently used
+ * goes), enough for the two bodies of a pair, so the per-body array is
+ * never touched for them (23 MB of pages at 100,000 blocks). */
 typedef struct us_Detect {
   const us_Structure *s;
   int reference; /* us_ContactSettings.reference: no index, no filter */
   const double *tol;
   us_EdgeGrid *grid;
   unsigned char *built;
+  us_EdgeGrid slot[2];
+  int slot_body[2], slot_last; /* body in each slot (-1: none), last used */
 } us_Detect;
 
 /* Body i's edge index; NULL when out of memory. */

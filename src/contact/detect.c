@@ -57,7 +57,7 @@ static us_Status pair_phase(const us_Structure *s, int reference, const double *
   us_BodyPair *pairs = NULL;
   int np = 0, nb = s->nbody > 0 ? s->nbody : 1;
   us_Detect d = {s, reference, tol, us_calloc((size_t)nb, sizeof(us_EdgeGrid)),
-                 us_calloc((size_t)nb, 1)};
+                 us_calloc((size_t)nb, 1), {{0}}, {-1, -1}, 0};
   us_Status st = US_OK;
   if (!d.grid || !d.built)
     st = us_error_set(err, US_ERR_NOMEM, "out of memory in contact detection");

@@ -6,9 +6,23 @@
 
 #include <math.h>
 
+/* A small polygon's slot: its own if it holds one, else the least
+ * recently used one (initializing a small one allocates nothing). */
+static us_EdgeGrid *small_grid(us_Detect *d, int i, double pad) {
+  const us_Body *b = &d->s->bodies[i];
+  int k = d->slot_body[0] == i ? 0 : d->slot_body[1] == i ? 1 : 1 - d->slot_last;
+  if (d->slot_body[k] != i) {
+    us_edge_grid_init(&d->slot[k], b->verts, b->nvert, pad);
+    d->slot_body[k] = i;
+  }
+  d->slot_last = k;
+  return &d->slot[k];
+}
+
 us_EdgeGrid *us_detect_grid(us_Detect *d, int i) {
   const us_Body *b = &d->s->bodies[i];
   double pad = d->reference ? INFINITY : d->tol[i];
+  if (b->nvert <= US_EDGE_GRID_MIN) return small_grid(d, i, pad);
   if (!d->built[i] && us_edge_grid_init(&d->grid[i], b->verts, b->nvert, pad)) return NULL;
   d->built[i] = 1;
   return &d->grid[i];

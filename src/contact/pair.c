@@ -155,26 +155,38 @@ static void drop_duplicates_slow(us_CandList *l, int from, double tol) {
   l->n = n;
 }
 
+#define DUP_SMALL 32
+
 static int drop_duplicates(us_CandList *l, int from, double tol) {
   int m = l->n - from;
   if (m < 2) return 0;
   us_Cand *cd = l->c + from;
-  Key *key = us_malloc((size_t)m * sizeof *key);
-  int *pos = us_malloc((size_t)m * sizeof *pos);
-  unsigned char *keep = us_malloc((size_t)m);
+  Key key_s[DUP_SMALL]; /* a pair's few candidates need no allocation */
+  int pos_s[DUP_SMALL];
+  unsigned char keep_s[DUP_SMALL];
+  int small = m <= DUP_SMALL;
+  Key *key = small ? key_s : us_malloc((size_t)m * sizeof *key);
+  int *pos = small ? pos_s : us_malloc((size_t)m * sizeof *pos);
+  unsigned char *keep = small ? keep_s : us_malloc((size_t)m);
   if (!key || !pos || !keep) {
-    us_free(key), us_free(pos), us_free(keep);
+    if (!small) us_free(key), us_free(pos), us_free(keep);
     return -1;
   }
   int ax = spread_axis(cd, m), n = 0;
   for (int k = 0; k < m; k++) key[k] = (Key){ax ? cd[k].p.y : cd[k].p.x, k};
-  qsort(key, (size_t)m, sizeof *key, key_cmp);
+  if (m > 16) qsort(key, (size_t)m, sizeof *key, key_cmp);
+  else /* a pair's few candidates: insertion, the same total order */
+    for (int a = 1; a < m; a++)
+      for (int b = a; b > 0 && key_cmp(&key[b - 1], &key[b]) > 0; b--) {
+        Key t = key[b];
+        key[b] = key[b - 1], key[b - 1] = t;
+      }
   for (int r = 0; r < m; r++) pos[key[r].idx] = r;
   for (int c = 0; c < m; c++) keep[c] = !dup_of_kept(cd, key, m, pos[c], keep, tol);
   for (int c = 0; c < m; c++)
     if (keep[c]) cd[n++] = cd[c];
   l->n = from + n;
-  us_free(key), us_free(pos), us_free(keep);
+  if (!small) us_free(key), us_free(pos), us_free(keep);
   return 0;
 }
 

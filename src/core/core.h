@@ -54,11 +54,15 @@ size_t us_bitset_set_bytes(const us_BitsetSet *s);
 
 /* Hash map from borrowed strings to non-negative ints (body ids to
  * indices); grows as needed. A zeroed map is empty and valid. */
+typedef struct us_IdSlot {
+  const char *key; /* NULL = empty slot */
+  uint32_t hash;   /* of key: most probes end without reading another key */
+  int val;
+} us_IdSlot;
 typedef struct us_IdMap {
-  size_t cap;        /* power of two, at least twice the count; 0 = unset */
+  size_t cap; /* power of two, at least twice the count; 0 = unset */
   size_t count;
-  const char **keys; /* NULL = empty slot */
-  int *vals;
+  us_IdSlot *slots;
 } us_IdMap;
 int us_idmap_init(us_IdMap *m, int expected); /* 0 or -1 on OOM */
 void us_idmap_free(us_IdMap *m);

@@ -29,12 +29,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The padded box of edge e (0 <= e < n). */
 static void edge_box(const us_EdgeGrid *g, int e, double b[4]) {
-  us_Vec2 p = us_poly_vertex(g->xy, g->n, e), q = us_poly_vertex(g->xy, g->n, e + 1);
-  b[0] = US_MIN(p.x, q.x) - g->pad;
-  b[1] = US_MIN(p.y, q.y) - g->pad;
-  b[2] = US_MAX(p.x, q.x) + g->pad;
-  b[3] = US_MAX(p.y, q.y) + g->pad;
+  const double *p = g->xy + 2 * e, *q = g->xy + 2 * (e + 1 < g->n ? e + 1 : 0);
+  b[0] = US_MIN(p[0], q[0]) - g->pad;
+  b[1] = US_MIN(p[1], q[1]) - g->pad;
+  b[2] = US_MAX(p[0], q[0]) + g->pad;
+  b[3] = US_MAX(p[1], q[1]) + g->pad;
 }
 
 static int cell_of(double v, double lo, double h, int m) {

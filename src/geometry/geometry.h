@@ -44,9 +44,13 @@ static inline double us_v2_dist(us_Vec2 a, us_Vec2 b) { return us_v2_norm(us_v2_
 static inline double us_orient(us_Vec2 o, us_Vec2 a, us_Vec2 b) {
   return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
 }
-/* Vertex i of a flat polygon array (i taken modulo n). */
+/* Vertex i of a flat polygon array (i taken modulo n). Callers step one
+ * or two past either end, which a compare wraps without the two integer
+ * divisions of the general case (this is the innermost call of contact
+ * detection). */
 static inline us_Vec2 us_poly_vertex(const double *xy, int n, int i) {
-  int k = ((i % n) + n) % n;
+  int k = i >= 0 && i < n ? i : i >= n && i < 2 * n ? i - n : i < 0 && i >= -n ? i + n
+                                                           : ((i % n) + n) % n;
   return us_v2(xy[2 * k], xy[2 * k + 1]);
 }
 

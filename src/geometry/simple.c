@@ -25,6 +25,20 @@ static int span_cmp(const void *pa, const void *pb) {
   return (a->idx > b->idx) - (a->idx < b->idx);
 }
 
+/* Sort spans (a total order: ties by index); a few by insertion, the
+ * same order qsort gives. */
+static void sort_spans(Span *sp, int n) {
+  if (n > 16) {
+    qsort(sp, (size_t)n, sizeof *sp, span_cmp);
+    return;
+  }
+  for (int a = 1; a < n; a++)
+    for (int b = a; b > 0 && span_cmp(&sp[b - 1], &sp[b]) > 0; b--) {
+      Span t = sp[b];
+      sp[b] = sp[b - 1], sp[b - 1] = t;
+    }
+}
+
 static void set_pair(int *i, int *j, int a, int b) {
   if (i) *i = US_MIN(a, b);
   if (j) *j = US_MAX(a, b);
@@ -33,7 +47,7 @@ static void set_pair(int *i, int *j, int a, int b) {
 static us_PolyDefect check_vertices(const double *xy, int n, int ax, double tol, Span *sp, int *i,
                                     int *j) {
   for (int k = 0; k < n; k++) sp[k] = (Span){xy[2 * k + ax], xy[2 * k + ax], k};
-  qsort(sp, (size_t)n, sizeof *sp, span_cmp);
+  sort_spans(sp, n);
   for (int a = 0; a < n; a++)
     for (int b = a + 1; b < n && sp[b].lo <= sp[a].hi + tol; b++) {
       us_Vec2 p = us_poly_vertex(xy, n, sp[a].idx), q = us_poly_vertex(xy, n, sp[b].idx);
@@ -68,7 +82,7 @@ static us_PolyDefect check_edges(const double *xy, int n, int ax, double tol, Sp
     double x0 = xy[2 * k + ax], x1 = xy[2 * ((k + 1) % n) + ax];
     sp[k] = (Span){US_MIN(x0, x1), US_MAX(x0, x1), k};
   }
-  qsort(sp, (size_t)n, sizeof *sp, span_cmp);
+  sort_spans(sp, n);
   for (int a = 0; a < n; a++)
     for (int b = a + 1; b < n && sp[b].lo <= sp[a].hi + tol; b++) {
       us_PolyDefect d = edge_pair(xy, n, sp[a].idx, sp[b].idx, tol, i, j);
@@ -79,13 +93,14 @@ static us_PolyDefect check_edges(const double *xy, int n, int ax, double tol, Sp
 
 us_PolyDefect us_poly_check_simple(const double *xy, int n, double tol, int *i, int *j) {
   if (n < 3) return US_POLY_SIMPLE; /* callers reject n < 3 themselves */
-  Span *sp = us_malloc((size_t)n * sizeof *sp);
+  Span small[16]; /* blocks: no allocation */
+  Span *sp = n <= 16 ? small : us_malloc((size_t)n * sizeof *sp);
   if (!sp) return US_POLY_NOMEM;
   double bb[4];
   us_poly_bbox(xy, n, bb);
   int ax = bb[3] - bb[1] > bb[2] - bb[0]; /* sweep along the longer side */
   us_PolyDefect d = check_vertices(xy, n, ax, tol, sp, i, j);
   if (d == US_POLY_SIMPLE) d = check_edges(xy, n, ax, tol, sp, i, j);
-  us_free(sp);
+  if (sp != small) us_free(sp);
   return d;
 }

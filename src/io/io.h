@@ -24,12 +24,49 @@ us_Status us_io_bad(const us_IoCtx *c, const char *where, const char *fmt, ...)
 #endif
     ;
 
+/* The jansson flags of every document read: numbers as doubles, duplicate
+ * keys rejected (util.c). */
+#define US_IO_JSON_FLAGS (JSON_DECODE_INT_AS_REAL | JSON_REJECT_DUPLICATES)
 /* Parse text (len bytes) as JSON; on a syntax error set US_ERR_PARSE with
  * "NAME:LINE:COLUMN: text" and return NULL. */
 json_t *us_io_parse_json(const us_IoCtx *c, const char *text, size_t len);
 /* The same, stopped with US_ERR_TIME_LIMIT once the clock passes deadline
  * (0: none; read every 1 MB of text). */
 json_t *us_io_parse_json_until(const us_IoCtx *c, const char *text, size_t len, double deadline);
+/* structure_split.c: the byte spans of the elements of a structure file's
+ * top-level "bodies" array (arr_off, arr_len: the array itself), so that
+ * they can be parsed one at a time. 1 when found, 0 when the text is not
+ * plainly so (the caller parses it whole), -1 out of memory; free with
+ * us_io_spans_free in every case. */
+typedef struct us_JsonSpan {
+  size_t off, len;
+} us_JsonSpan;
+typedef struct us_BodySpans {
+  size_t arr_off, arr_len;
+  us_JsonSpan *el;
+  int n, cap;
+} us_BodySpans;
+int us_io_split_bodies(const char *text, size_t len, us_BodySpans *out);
+void us_io_spans_free(us_BodySpans *b);
+/* The value of a body object's "polygon" when it is plain (at most cap
+ * [x, y] pairs of short decimal numbers, see structure_split.c): its span
+ * in *val, the vertices in xy; returns their count, 0 when not plain. */
+int us_io_split_polygon(const char *text, size_t len, us_JsonSpan *val, double *xy, int cap);
+/* A body object with nothing but a plain "id" (printable ASCII, no
+ * escapes, shorter than US_LANE_ID), a plain "polygon" and maybe "fixed":
+ * 1 with the id, the vertices (xy, their count nv) and fixed filled in, so
+ * the reader needs no JSON tree for it; 0 when the body is not so. */
+#define US_LANE_ID 64
+typedef struct us_LaneBody {
+  char id[US_LANE_ID];
+  int nv, fixed;
+} us_LaneBody;
+int us_io_lane_body(const char *text, size_t len, double *xy, int cap, us_LaneBody *lb);
+/* structure_read.c: the reader without the split, one JSON tree for the
+ * whole text: the reference that the streamed reader must equal, message
+ * for message (tests). */
+us_Structure *us_io_parse_whole(const char *text, const char *name, double contact_tol,
+                                us_Error *err);
 /* Read a whole file into a NUL-terminated buffer (us_free it). */
 char *us_io_slurp(const char *path, size_t *len, us_Error *err);
 

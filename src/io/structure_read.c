@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "io.h"
+#include "model/model.h"
 
 #define MAX_VERTS 10000000 /* far beyond any real polygon; keeps int sizes safe */
 
@@ -32,12 +33,20 @@ static const char *const body_keys[] = {"id",     "polygon",  "density",  "mass"
                                         "vertices", "box",    "parts",    NULL};
 static const char *const contact_keys[] = {"a", "b", "point", "normal", "friction", NULL};
 
-/* Reader state: the structure under construction. */
+/* Reader state: the structure under construction. Streamed (spans set),
+ * the bodies are parsed one at a time from text; a failure before
+ * finalize is then only a signal to read the text whole, so the messages
+ * of bodies are not formatted. */
 typedef struct Reader {
   us_IoCtx c;
   us_Structure *s;
   int explicit_contacts;
   double deadline; /* us_LoadSettings.deadline */
+  const char *text;
+  const us_BodySpans *spans;
+  int finalizing; /* every value was read: errors from here on are final */
+  const double *lane_xy; /* streamed: the body's plain polygon, read from */
+  int lane_n;            /* the text (structure_split.c); NULL: none */
 } Reader;
 
 /* A friction field: a number >= 0, or "infinite" (INFINITY). */
@@ -167,8 +176,11 @@ static us_Status add_polygon_body(Reader *r, const char *where, const char *id, 
     return us_io_bad(&r->c, where, "'center' and 'inertia' are only for bodies without a polygon");
   us_BodyDef d = material_def(id, f);
   double *xy = NULL;
-  us_Status st = read_polygon(r, where, json_object_get(b, "polygon"), &xy, &d.nvert);
-  d.xy = xy;
+  us_Status st = US_OK;
+  if (r->lane_xy)
+    d.xy = r->lane_xy, d.nvert = r->lane_n;
+  else
+    st = read_polygon(r, where, json_object_get(b, "polygon"), &xy, &d.nvert), d.xy = xy;
   if (!st && us_structure_add_body(r->s, &d, r->c.err) < 0) st = r->c.err->code;
   us_free(xy);
   return st;
@@ -213,20 +225,22 @@ static us_Status read_id(Reader *r, const char *where, json_t *b, const char **i
   if (!**id) return us_io_bad(&r->c, where, "id: must not be empty");
   if (!strcmp(*id, "ground"))
     return us_io_bad(&r->c, where, "id 'ground' is reserved for the ground");
-  int other = us_structure_find_body(r->s, *id);
+  /* streamed, the builder's own check finds a duplicate (and the text is
+   * then read whole for this message) */
+  int other = r->spans ? -1 : us_structure_find_body(r->s, *id);
   if (other >= 0)
     return us_io_bad(&r->c, where, "duplicate id '%s' (also bodies[%d])", us_id_text(*id).s, other);
   return US_OK;
 }
 
 static us_Status read_body(Reader *r, int k, json_t *b) {
-  char where[160];
-  snprintf(where, sizeof where, "bodies[%d]", k);
+  char where[160] = "bodies";
+  if (!r->spans) snprintf(where, sizeof where, "bodies[%d]", k);
   if (!json_is_object(b)) return us_io_bad(&r->c, where, "expected an object");
   const char *id = NULL;
   us_Status st = read_id(r, where, b, &id);
   if (st) return st;
-  snprintf(where, sizeof where, "bodies[%d] (id '%s')", k, us_id_text(id).s);
+  if (!r->spans) snprintf(where, sizeof where, "bodies[%d] (id '%s')", k, us_id_text(id).s);
   BodyFields f;
   st = us_io_check_keys(&r->c, where, b, body_keys);
   if (!st) st = read_material(r, where, b, &f);
@@ -241,17 +255,63 @@ static us_Status read_body(Reader *r, int k, json_t *b) {
   return st;
 }
 
+#define LANE_MAX 64       /* vertices of a polygon taken from the text */
+#define LANE_TEXT 2048    /* the rest of a body's text, on the stack */
+
+/* Streamed: a body of only a plain id, polygon and fixed flag, added as
+ * read_body adds it (the defaults of every other field), with no tree.
+ * Whatever read_body would refuse is an error without a message: the
+ * text is then read whole. */
+static us_Status add_lane_body(Reader *r, const us_LaneBody *lb, const double *xy) {
+  if (r->s->dim != 2 || !lb->id[0] || !strcmp(lb->id, "ground")) return US_ERR_INPUT;
+  BodyFields f = {0, 0, -1, 0, {0, 0, 0}, lb->fixed};
+  us_BodyDef d = material_def(lb->id, &f);
+  d.xy = xy, d.nvert = lb->nv;
+  return us_structure_add_body(r->s, &d, r->c.err) < 0 ? r->c.err->code : US_OK;
+}
+
+/* Streamed: body k parsed from its span, read, and its tree freed. A
+ * plain body needs no tree; a plain polygon is read from the text, and
+ * jansson gets the rest of the body with "polygon": []. */
+static us_Status read_span(Reader *r, int k) {
+  const us_JsonSpan *sp = &r->spans->el[k];
+  const char *t = r->text + sp->off;
+  double xy[2 * LANE_MAX];
+  us_LaneBody lb;
+  if (us_io_lane_body(t, sp->len, xy, LANE_MAX, &lb)) return add_lane_body(r, &lb, xy);
+  char rest[LANE_TEXT];
+  us_JsonSpan pv;
+  size_t n = sp->len;
+  int nv = sp->len < LANE_TEXT ? us_io_split_polygon(t, sp->len, &pv, xy, LANE_MAX) : 0;
+  if (nv) {
+    memcpy(rest, t, pv.off);
+    memcpy(rest + pv.off, "[]", 2);
+    memcpy(rest + pv.off + 2, t + pv.off + pv.len, sp->len - pv.off - pv.len);
+    n = sp->len - pv.len + 2, t = rest;
+  }
+  json_error_t je;
+  json_t *b = json_loadb(t, n, US_IO_JSON_FLAGS, &je);
+  if (!b) return us_error_set(r->c.err, US_ERR_PARSE, "%s: bodies[%d] does not parse", r->c.name, k);
+  r->lane_xy = nv ? xy : NULL, r->lane_n = nv;
+  us_Status st = read_body(r, k, b);
+  r->lane_xy = NULL;
+  json_decref(b);
+  return st;
+}
+
 static us_Status read_bodies(Reader *r, json_t *root) {
   json_t *arr = json_object_get(root, "bodies");
   if (!arr) return us_io_bad(&r->c, "", "missing field 'bodies'");
   if (!json_is_array(arr)) return us_io_bad(&r->c, "", "bodies: expected an array");
-  if (json_array_size(arr) > (size_t)INT_MAX / 4)
-    return us_io_bad(&r->c, "", "bodies: too many bodies");
-  for (size_t k = 0; k < json_array_size(arr); k++) {
+  size_t n = r->spans ? (size_t)r->spans->n : json_array_size(arr);
+  if (n > (size_t)INT_MAX / 4) return us_io_bad(&r->c, "", "bodies: too many bodies");
+  if (r->spans && us_structure_reserve(r->s, (int)n))
+    return us_error_set(r->c.err, US_ERR_NOMEM, "%s: out of memory", r->c.name);
+  for (size_t k = 0; k < n; k++) {
     if ((k & 1023) == 1023 && us_past(r->deadline))
       return us_error_set(r->c.err, US_ERR_TIME_LIMIT, "%s: time limit reached reading the bodies "
-                          "(%zu of %zu read)", r->c.name, k, json_array_size(arr));
-    us_Status st = read_body(r, (int)k, json_array_get(arr, k));
+                          "(%zu of %zu read)", r->c.name, k, n);
+    us_Status st = r->spans ? read_span(r, (int)k) : read_body(r, (int)k, json_array_get(arr, k));
     if (st) return st;
   }
   return US_OK;
@@ -345,6 +405,7 @@ static us_Status read_document(Reader *r, json_t *root, double contact_tol) {
   if (st) return st;
   r->s->explicit_contacts = r->explicit_contacts;
   if (contact_tol > 0) r->s->contact_tol = contact_tol;
+  r->finalizing = 1;
   st = us_structure_finalize_until(r->s, r->deadline, r->c.err);
   return st ? prefix_file(&r->c, st) : US_OK;
 }
@@ -357,23 +418,85 @@ us_Structure *us_structure_parse(const char *text, const char *name, double cont
   return us_structure_parse_with(text, name, &set, err);
 }
 
-us_Structure *us_structure_parse_with(const char *text, const char *name,
-                                      const us_LoadSettings *set, us_Error *err) {
+/* The document without its bodies: the text with the bodies array
+ * emptied, parsed; NULL when it does not parse. */
+static json_t *parse_rest(const char *text, size_t len, const us_BodySpans *b) {
+  size_t tail = b->arr_off + b->arr_len, n = b->arr_off + 2 + (len - tail);
+  char *rest = us_malloc(n);
+  if (!rest) return NULL;
+  memcpy(rest, text, b->arr_off);
+  memcpy(rest + b->arr_off, "[]", 2);
+  memcpy(rest + b->arr_off + 2, text + tail, len - tail);
+  json_error_t je;
+  json_t *root = json_loadb(rest, n, US_IO_JSON_FLAGS, &je);
+  us_free(rest);
+  return root;
+}
+
+/* Read the text one body at a time (structure_split.c): US_OK, or an error
+ * whose message is final only when r->finalizing is set, or for a time
+ * limit or out of memory; otherwise the caller reads the text whole. */
+static us_Status read_streamed(Reader *r, const char *text, size_t len, double contact_tol) {
+  us_BodySpans b;
+  int split = us_io_split_bodies(text, len, &b);
+  json_t *root = split == 1 ? parse_rest(text, len, &b) : NULL;
+  us_Status st = root ? US_OK : split < 0 ? US_ERR_NOMEM : US_ERR_PARSE;
+  if (st == US_ERR_NOMEM) us_error_set(r->c.err, st, "%s: out of memory", r->c.name);
+  r->text = text, r->spans = &b;
+  if (!st) st = read_document(r, root, contact_tol);
+  r->text = NULL, r->spans = NULL;
+  json_decref(root);
+  us_io_spans_free(&b);
+  return st;
+}
+
+/* Read the text as one JSON tree: the reference for every message. */
+static us_Status read_whole(Reader *r, const char *text, size_t len, double contact_tol) {
+  json_t *root = us_io_parse_json_until(&r->c, text, len, r->deadline);
+  us_Status st = root ? US_OK : r->c.err->code;
+  if (!st) st = read_document(r, root, contact_tol);
+  json_decref(root);
+  return st;
+}
+
+/* Streamed first; a failure that is not final is read again whole. */
+static us_Status read_text(Reader *r, const char *text, double contact_tol) {
+  size_t len = strlen(text), bom = len >= 3 && !memcmp(text, "\xEF\xBB\xBF", 3) ? 3 : 0;
+  us_Status st = read_streamed(r, text + bom, len - bom, contact_tol);
+  if (!st || r->finalizing || st == US_ERR_NOMEM || st == US_ERR_TIME_LIMIT) return st;
+  us_structure_free(r->s);
+  r->s = NULL;
+  us_error_clear(r->c.err);
+  return read_whole(r, text, len, contact_tol);
+}
+
+/* Streamed (whole = 0) or as one tree (the reference). */
+static us_Structure *parse(const char *text, const char *name, const us_LoadSettings *set,
+                           int whole, us_Error *err) {
   us_LoadSettings def = us_load_default_settings();
   if (!set) set = &def;
   us_Error local;
   us_error_clear(&local);
-  Reader r = {{name ? name : "<input>", &local}, NULL, 0, set->deadline};
-  json_t *root = us_io_parse_json_until(&r.c, text, strlen(text), set->deadline);
-  us_Status st = root ? US_OK : local.code;
-  if (!st) st = read_document(&r, root, set->contact_tol);
-  json_decref(root);
+  Reader r = {{name ? name : "<input>", &local}, NULL, 0, set->deadline, NULL, NULL, 0, NULL, 0};
+  us_Status st = whole ? read_whole(&r, text, strlen(text), set->contact_tol)
+                       : read_text(&r, text, set->contact_tol);
   if (st) {
     us_structure_free(r.s);
     if (err) *err = local;
     return NULL;
   }
   return r.s;
+}
+
+us_Structure *us_structure_parse_with(const char *text, const char *name,
+                                      const us_LoadSettings *set, us_Error *err) {
+  return parse(text, name, set, 0, err);
+}
+
+us_Structure *us_io_parse_whole(const char *text, const char *name, double contact_tol,
+                                us_Error *err) {
+  us_LoadSettings set = {contact_tol, 0.0};
+  return parse(text, name, &set, 1, err);
 }
 
 us_Structure *us_structure_read(const char *path, double contact_tol, us_Error *err) {

@@ -13,7 +13,10 @@
  * are valid UTF-8. Control characters (\u001b, newlines) are accepted in ids;
  * every message quotes ids through us_id_text and the SVG writer replaces
  * what XML cannot hold, so they never reach a terminal or a file raw. */
+#define _POSIX_C_SOURCE 200809L /* fileno */
 #include <errno.h>
+#include <stdint.h>
+#include <sys/stat.h>
 #include <math.h>
 #include <stdarg.h>
 #include <string.h>
@@ -57,7 +60,7 @@ json_t *us_io_parse_json(const us_IoCtx *c, const char *text, size_t len) {
 json_t *us_io_parse_json_until(const us_IoCtx *c, const char *text, size_t len, double deadline) {
   json_error_t je;
   if (len >= 3 && !memcmp(text, "\xEF\xBB\xBF", 3)) text += 3, len -= 3; /* UTF-8 BOM */
-  size_t flags = JSON_DECODE_INT_AS_REAL | JSON_REJECT_DUPLICATES;
+  size_t flags = US_IO_JSON_FLAGS;
   Feed f = {text, len, 0, (size_t)1 << 20, deadline, 0};
   json_t *root = deadline > 0 ? json_load_callback(feed, &f, flags, &je) : json_loadb(text, len, flags, &je);
   if (root) return root;
@@ -79,6 +82,10 @@ char *us_io_slurp(const char *path, size_t *len, us_Error *err) {
     return NULL;
   }
   size_t n = 0, cap = 1 << 16;
+  struct stat st; /* a regular file is read in one go into a block of its size */
+  if (fstat(fileno(fp), &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0 &&
+      (uintmax_t)st.st_size < SIZE_MAX / 2)
+    cap = (size_t)st.st_size + 2;
   char *buf = us_malloc(cap);
   while (buf) {
     n += fread(buf + n, 1, cap - 1 - n, fp);

@@ -61,6 +61,11 @@ us_Status us_solid_check_shape(const us_Structure *s, us_Body *b, double deadlin
  * 3D body from its parts' hulls. */
 void us_solid_mass_props(us_Body *b);
 
+/* structure.c: room for n bodies in the body array and the id index, so
+ * a reader that knows the count neither copies nor rehashes them; 0 or -1
+ * out of memory. */
+int us_structure_reserve(us_Structure *s, int n);
+
 /* Fill the tangent basis of a contact from its normal. */
 void us_contact_frame(int dim, us_Contact *c);
 

@@ -74,6 +74,14 @@ static int index_id(us_Structure *s, int i) {
   return us_idmap_put(in->id_index, s->bodies[i].id, i);
 }
 
+int us_structure_reserve(us_Structure *s, int n) {
+  struct us_StructureInternal *in = s->internal;
+  if (US_GROW(s->bodies, in->cap_body, n)) return -1;
+  if (in->id_index || n < 1) return 0;
+  if (!(in->id_index = us_calloc(1, sizeof(us_IdMap)))) return -1;
+  return us_idmap_init(in->id_index, n);
+}
+
 /* Append a body with the given id; returns its index or -1. */
 static int add_body(us_Structure *s, const char *id, us_Error *err) {
   if (!id || !*id) {
@@ -218,6 +226,21 @@ void us_contact_frame(int dim, us_Contact *c) {
   c->t[1][0] = t2.x, c->t[1][1] = t2.y, c->t[1][2] = t2.z;
 }
 
+/* Contact c from its sides, point, normal (of length len > 0) and mu;
+ * p and n may point into c itself. */
+static void set_contact(const us_Structure *s, us_Contact *c, int a, int b, const double *p,
+                        const double *n, double len, double mu) {
+  double pp[3] = {0, 0, 0}, nn[3] = {0, 0, 0};
+  for (int j = 0; j < s->dim; j++) pp[j] = p[j], nn[j] = n[j] / len;
+  memset(c, 0, sizeof *c);
+  c->a = a;
+  c->b = b;
+  memcpy(c->p, pp, sizeof pp);
+  memcpy(c->n, nn, sizeof nn);
+  us_contact_frame(s->dim, c);
+  c->mu = mu >= 0 ? mu : us_structure_pair_friction(s, a, b);
+}
+
 int us_structure_add_contact(us_Structure *s, int a, int b, const double *p, const double *n,
                              double mu, us_Error *err) {
   if (a < US_GROUND || a >= s->nbody || b < 0 || b >= s->nbody || a == b) {
@@ -238,16 +261,7 @@ int us_structure_add_contact(us_Structure *s, int a, int b, const double *p, con
     us_error_set(err, US_ERR_NOMEM, "out of memory adding a contact");
     return -1;
   }
-  us_Contact *c = &s->contacts[s->ncontact];
-  memset(c, 0, sizeof *c);
-  c->a = a;
-  c->b = b;
-  for (int j = 0; j < dim; j++) {
-    c->p[j] = p[j];
-    c->n[j] = n[j] / len;
-  }
-  us_contact_frame(dim, c);
-  c->mu = mu >= 0 ? mu : us_structure_pair_friction(s, a, b);
+  set_contact(s, &s->contacts[s->ncontact], a, b, p, n, len, mu);
   return s->ncontact++;
 }
 
@@ -307,20 +321,24 @@ void us_model_measure(us_Structure *s) {
   s->weight = g * mass > 0 ? g * mass : 1.0;
 }
 
-/* Replace the structure's contacts by a detected list (friction rule and
- * tangent basis through us_structure_add_contact). */
-static us_Status install(us_Structure *s, const us_ContactList *l, us_Error *err) {
-  s->ncontact = 0;
+/* Replace the structure's contacts by a detected list, taking over its
+ * array (friction rule and tangent basis as us_structure_add_contact
+ * gives them; the list is valid, so nothing can fail). */
+static void install(us_Structure *s, us_ContactList *l) {
+  us_free(s->contacts);
+  s->contacts = l->c;
+  s->internal->cap_contact = l->cap;
+  s->ncontact = l->n;
   s->explicit_contacts = 0;
   for (int k = 0; k < l->n; k++) {
-    const us_Contact *c = &l->c[k];
-    if (us_structure_add_contact(s, c->a, c->b, c->p, c->n, -1.0, err) < 0) {
-      s->ncontact = 0;
-      return US_ERR_NOMEM; /* the only failure left: the list is valid */
-    }
+    us_Contact *c = &l->c[k];
+    double len = 0.0;
+    for (int j = 0; j < s->dim; j++) len += c->n[j] * c->n[j];
+    set_contact(s, c, c->a, c->b, c->p, c->n, sqrt(len), -1.0);
   }
+  l->c = NULL;
+  l->n = l->cap = 0;
   s->contacts_detected = 1;
-  return US_OK;
 }
 
 static us_Status detect_until(us_Structure *s, const us_ContactSettings *set, double deadline,
@@ -330,7 +348,7 @@ static us_Status detect_until(us_Structure *s, const us_ContactSettings *set, do
   us_ContactSettings own = {s->contact_tol, 0};
   us_ContactList l = {NULL, 0, 0};
   us_Status st = us_detect_contacts_until(s, set ? set : &own, deadline, &l, err);
-  if (!st) st = install(s, &l, err);
+  if (!st) install(s, &l);
   us_contact_list_free(&l);
   return st;
 }
