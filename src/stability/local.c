@@ -457,11 +457,20 @@ static int int_cmp(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-/* added / removed against the base, from the diff list, each in
- * increasing order (as a word-wise scan gives them: regions and routes do
- * not depend on how the change was stated). */
+/* added / removed against the base, each in increasing order (regions
+ * and routes do not depend on how the change was stated): from the diff
+ * list, sorted; a diff longer than the bitsets' words, word by word. */
 static void diff_base(us_Local *L, const us_Bitset *cur) {
   L->nadd = L->nrem = 0;
+  if (L->nd > cur->nwords) {
+    for (int k = 0; k < cur->nwords; k++)
+      for (uint64_t x = cur->w[k] ^ L->base.w[k]; x; x &= x - 1) {
+        int i = k * 64 + __builtin_ctzll(x);
+        if (us_bitset_get(cur, i)) L->added[L->nadd++] = i;
+        else L->removed[L->nrem++] = i;
+      }
+    return;
+  }
   for (int q = 0; q < L->nd; q++) {
     int i = L->dlist[q];
     if (us_bitset_get(cur, i)) L->added[L->nadd++] = i;
