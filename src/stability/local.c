@@ -209,7 +209,8 @@ us_Local *us_local_new(const us_Structure *s, const us_StabilitySettings *set,
   L->dpos = us_malloc(nb * sizeof(int));
   for (size_t i = 0; L->slot && i < nb; i++) L->slot[i] = -1;
   for (size_t i = 0; L->dpos && i < nb; i++) L->dpos[i] = -1;
-  int bad = !L->list || !L->slot || !L->dlist || !L->dpos || !L->lo || !L->hi || !L->fbase || !L->in_r || !L->reg ||
+  int bad = !L->list || !L->slot || !L->lo || !L->hi || !L->fbase || !L->in_r || !L->reg ||
+            !L->dlist || !L->dpos ||
             !L->added || !L->removed || build_incidence(L) || us_eq_init(&L->eq, s) || us_bitset_init(&L->base, s->nbody);
   if (bad) {
     us_local_free(L);
@@ -304,7 +305,8 @@ int us_local_delta_consistent(const us_Local *L, const us_Bitset *cur) {
     if (L->dpos[L->dlist[q]] != q ||
         us_bitset_get(&L->base, L->dlist[q]) == us_bitset_get(cur, L->dlist[q]))
       return 0;
-  return L->ncur == us_bitset_count(cur) && L->dep_absent == absent && (!L->have_base || L->nd == nd);
+  return L->ncur == us_bitset_count(cur) && L->dep_absent == absent &&
+         (!L->have_base || L->nd == nd);
 }
 
 /* The base after S stood: B ∪ S when keep (B \ S shares no contact with

@@ -353,15 +353,18 @@ static void set_cur(us_Stability *w, const us_Bitset *present) {
 static us_Status change(us_Stability *w, int body, int on, us_Error *err) {
   us_Error local;
   if (!err) err = &local;
-  if (!w) return us_error_set(err, US_ERR_USAGE, "us_stability_%s: NULL workspace", on ? "add" : "remove");
+  const char *what = on ? "add" : "remove";
+  if (!w) return us_error_set(err, US_ERR_USAGE, "us_stability_%s: NULL workspace", what);
   if (body < 0 || body >= w->s->nbody)
     return us_error_set(err, US_ERR_USAGE, "us_stability_%s: no body with index %d (%d bodies)",
-                        on ? "add" : "remove", body, w->s->nbody);
+                        what, body, w->s->nbody);
   if (us_bitset_get(&w->movable, body) && us_bitset_get(&w->cur, body) != on) toggle_body(w, body);
   return US_OK;
 }
 
-us_Status us_stability_add(us_Stability *w, int body, us_Error *err) { return change(w, body, 1, err); }
+us_Status us_stability_add(us_Stability *w, int body, us_Error *err) {
+  return change(w, body, 1, err);
+}
 
 us_Status us_stability_remove(us_Stability *w, int body, us_Error *err) {
   return change(w, body, 0, err);
@@ -370,7 +373,8 @@ us_Status us_stability_remove(us_Stability *w, int body, us_Error *err) {
 us_Status us_stability_set_current(us_Stability *w, const us_Bitset *present, us_Error *err) {
   us_Error local;
   if (!err) err = &local;
-  if (!w || !present) return us_error_set(err, US_ERR_USAGE, "us_stability_set_current: NULL argument");
+  if (!w || !present)
+    return us_error_set(err, US_ERR_USAGE, "us_stability_set_current: NULL argument");
   if (present->nbits != w->s->nbody || !present->w)
     return us_error_set(err, US_ERR_USAGE, "us_stability_set_current: sub-assembly has %d bits, "
                         "the structure %d bodies", present->nbits, w->s->nbody);
