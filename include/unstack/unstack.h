@@ -490,6 +490,28 @@ US_API void us_stability_set_deadline(us_Stability *w, double deadline);
 /* Test the whole structure (every movable body present). */
 US_API us_Status us_stability_test_full(us_Stability *w, us_StabilityResult *res, us_Error *err);
 
+/* Tests by change (docs/planning.md, "Tests by change"): the workspace
+ * holds a current sub-assembly, empty after us_stability_new, which the
+ * caller changes one body at a time and then tests; a test costs what the
+ * change costs, whatever the number of bodies (us_stability_test's bitset
+ * costs a word-wise pass over it). add / remove: body (an index) becomes
+ * present / absent; no change if it already was, nor for a fixed body
+ * (always present); US_ERR_USAGE for an index out of range. set_current
+ * makes the movable bits of `present` the current sub-assembly (a pass
+ * over its words); us_stability_test(w, present) is set_current then
+ * test_current, so both APIs can be mixed and give the same verdicts. */
+US_API us_Status us_stability_add(us_Stability *w, int body, us_Error *err);
+US_API us_Status us_stability_remove(us_Stability *w, int body, us_Error *err);
+US_API us_Status us_stability_set_current(us_Stability *w, const us_Bitset *present,
+                                          us_Error *err);
+/* Test the current sub-assembly (as us_stability_test). */
+US_API us_Status us_stability_test_current(us_Stability *w, us_StabilityResult *res,
+                                           us_Error *err);
+/* The current sub-assembly (movable bits; owned by the workspace, valid
+ * until its next change) and its number of bodies. */
+US_API const us_Bitset *us_stability_current(const us_Stability *w);
+US_API int us_stability_current_count(const us_Stability *w);
+
 /* Which of the many admissible force sets to show (forces are not unique;
  * src/stability/represent.c, docs/render.md "Forces"): the solver's own
  * (a vertex), the one that maximises the smallest normal force with the

@@ -71,6 +71,7 @@ typedef struct Asm {
   int *roots;             /* scratch: distinct roots adjacent to a set */
   us_Bitset w;            /* scratch: the would-be component */
   us_Bitset cw;           /* C itself, kept as bodies are placed */
+  int synced;             /* the stability workspace's current set is C */
   us_BitsetSet failed;    /* groups: components W known not to stand */
   int nwithin, nplaced;
 } Asm;
@@ -228,16 +229,24 @@ static void mark_w(Asm *a, const int *grp, int ng, int on) {
 }
 
 /* Test C ∪ grp through its component W: 1 stable, 0 not, < 0 stop. When
- * W is all of C ∪ grp (C connected, as in a wall), C's own bitset is used:
- * O(|grp|) instead of O(|W|) per test. */
+ * W is all of C ∪ grp (C connected, as in a wall), the test is stated as
+ * a change of the stability workspace's current set, kept equal to C
+ * (tests by change): O(|grp|) per test instead of O(|W|), and nothing of
+ * size n. Else W is marked and tested as a bitset, which leaves the
+ * workspace's set at W, so C is set again (O(n / 64)) before the next
+ * test by change. */
 static int test_step(Asm *a, const int *grp, int ng, us_Error *err) {
+  us_Stability *w = a->ctx->stab;
   if (would_be_size(a, grp, ng) == a->nplaced + ng) {
-    for (int j = 0; j < ng; j++) us_bitset_set(&a->cw, grp[j]);
-    int r = us_plan_test(a->ctx, &a->cw, err);
-    for (int j = 0; j < ng; j++) us_bitset_clear(&a->cw, grp[j]);
+    if (!a->synced && us_stability_set_current(w, &a->cw, err)) return US_STEP_ERROR;
+    a->synced = 1;
+    for (int j = 0; j < ng; j++) us_stability_add(w, grp[j], NULL);
+    int r = us_plan_test_current(a->ctx, err);
+    for (int j = 0; j < ng; j++) us_stability_remove(w, grp[j], NULL);
     return r;
   }
   mark_w(a, grp, ng, 1);
+  a->synced = 0;
   int r = us_plan_test(a->ctx, &a->w, err);
   mark_w(a, grp, ng, 0);
   return r;
@@ -284,6 +293,7 @@ static int place_one(Asm *a, int b, int record) {
   a->state[b] = PLACED;
   us_bitset_set(&a->out->built, b);
   us_bitset_set(&a->cw, b);
+  if (a->synced) us_stability_add(a->ctx->stab, b, NULL);
   if (record) a->out->seq[a->out->nseq++] = b;
   a->nplaced++;
   for (int k = g->start[b]; k < g->start[b + 1]; k++) {

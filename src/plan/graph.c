@@ -11,15 +11,16 @@ static int cmp_int(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-static int is_support(const us_Structure *s, int i) { return i < 0 || s->bodies[i].fixed; }
-
-/* Count (pass 0) or store (pass 1) the movable-movable half edges. */
-static void fill_edges(us_Graph *g, const us_Structure *s, int *fill) {
+/* Count (pass 0) or store (pass 1) the movable-movable half edges.
+ * fixed[i + 1]: body i is a support (fixed[0]: the ground), a byte table
+ * so that the passes read the contacts in order and touch no body. */
+static void fill_edges(us_Graph *g, const us_Structure *s, const unsigned char *fixed, int *fill) {
   for (int k = 0; k < s->ncontact; k++) {
     int a = s->contacts[k].a, b = s->contacts[k].b;
-    if (is_support(s, a) && !is_support(s, b)) g->grounded[b] = 1;
-    if (is_support(s, b) && !is_support(s, a)) g->grounded[a] = 1;
-    if (is_support(s, a) || is_support(s, b) || a == b) continue;
+    int sa = fixed[a < 0 ? 0 : a + 1], sb = fixed[b < 0 ? 0 : b + 1];
+    if (sa && !sb) g->grounded[b] = 1;
+    if (sb && !sa) g->grounded[a] = 1;
+    if (sa || sb || a == b) continue;
     if (fill) {
       g->adj[fill[a]++] = b;
       g->adj[fill[b]++] = a;
@@ -30,12 +31,25 @@ static void fill_edges(us_Graph *g, const us_Structure *s, int *fill) {
   }
 }
 
+/* Sort a row: insertion for the short rows of most bodies, else qsort. */
+static void sort_row(int *v, int n) {
+  if (n > 16) {
+    qsort(v, (size_t)n, sizeof(int), cmp_int);
+    return;
+  }
+  for (int i = 1; i < n; i++) {
+    int x = v[i], j = i;
+    for (; j > 0 && v[j - 1] > x; j--) v[j] = v[j - 1];
+    v[j] = x;
+  }
+}
+
 /* Sort each row and drop repeated neighbours (several contacts per pair). */
 static void dedup_rows(us_Graph *g) {
   int out = 0;
   for (int i = 0; i < g->n; i++) {
     int b = g->start[i], e = g->start[i + 1];
-    qsort(g->adj + b, (size_t)(e - b), sizeof(int), cmp_int);
+    sort_row(g->adj + b, e - b);
     g->start[i] = out;
     for (int k = b; k < e; k++)
       if (k == b || g->adj[k] != g->adj[k - 1]) g->adj[out++] = g->adj[k];
@@ -48,18 +62,23 @@ int us_graph_init(us_Graph *g, const us_Structure *s) {
   g->n = s->nbody;
   g->start = us_calloc((size_t)g->n + 1, sizeof(int));
   g->grounded = us_calloc((size_t)g->n + 1, 1);
-  if (!g->start || !g->grounded) return us_graph_free(g), -1;
-  fill_edges(g, s, NULL);
+  unsigned char *fixed = us_malloc((size_t)g->n + 1);
+  if (!g->start || !g->grounded || !fixed) return us_free(fixed), us_graph_free(g), -1;
+  fixed[0] = 1;
+  for (int i = 0; i < g->n; i++) fixed[i + 1] = s->bodies[i].fixed != 0;
+  fill_edges(g, s, fixed, NULL);
   for (int i = 0; i < g->n; i++) g->start[i + 1] += g->start[i];
   int *fill = us_malloc(((size_t)g->n + 1) * sizeof(int));
   g->adj = us_malloc(((size_t)g->start[g->n] + 1) * sizeof(int));
   if (!fill || !g->adj) {
     us_free(fill);
+    us_free(fixed);
     return us_graph_free(g), -1;
   }
   memcpy(fill, g->start, (size_t)g->n * sizeof(int));
-  fill_edges(g, s, fill);
+  fill_edges(g, s, fixed, fill);
   us_free(fill);
+  us_free(fixed);
   dedup_rows(g);
   return 0;
 }

@@ -31,6 +31,11 @@ us_Status us_plan_stability_test(us_Stability *w, const us_Bitset *node, us_Stab
   return hooked(us_stability_test(w, node, res, err), node, res);
 }
 
+us_Status us_plan_stability_test_current(us_Stability *w, us_StabilityResult *res, us_Error *err) {
+  us_Status st = us_stability_test_current(w, res, err);
+  return hooked(st, us_stability_current(w), res);
+}
+
 us_Status us_plan_held_test(us_Stability *w, const us_Bitset *present, const int *reg, int nreg,
                             us_StabilityResult *res, us_Error *err) {
   return hooked(us_stability_held(w, present, reg, nreg, res, err), present, res);

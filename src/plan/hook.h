@@ -26,6 +26,10 @@ void us_plan_set_test_hook(us_PlanTestHook fn, void *user);
 us_Status us_plan_stability_test(us_Stability *w, const us_Bitset *node, us_StabilityResult *res,
                                  us_Error *err);
 
+/* The same for the workspace's current set (us_stability_test_current);
+ * the hook sees that set as its node. */
+us_Status us_plan_stability_test_current(us_Stability *w, us_StabilityResult *res, us_Error *err);
+
 /* Can bodies reg[0..nreg) of `present` stand with the rest of `present`
  * held still (us_stability_held)? US_UNSTABLE in res is a proof that they
  * cannot (a checked mechanism); then the hook, as above. */

@@ -47,14 +47,23 @@ static void count_verdict(us_SearchCtx *ctx) {
   }
 }
 
-int us_plan_test(us_SearchCtx *ctx, const us_Bitset *node, us_Error *err) {
+/* One test of node, or of the workspace's current set when node is NULL. */
+static int test_node(us_SearchCtx *ctx, const us_Bitset *node, us_Error *err) {
   if (us_plan_limit_reached(ctx)) return US_STEP_LIMIT;
   if (ctx->exact_end > 0 && ctx->st->tests >= ctx->exact_end) return US_STEP_LIMIT;
   if (ctx->budget_end > 0 && ctx->st->tests >= ctx->budget_end) return US_STEP_RESTART;
   long timed_out = us_stability_info(ctx->stab)->timed_out;
-  if (us_plan_stability_test(ctx->stab, node, &ctx->res, err)) return US_STEP_ERROR;
+  us_Status st = node ? us_plan_stability_test(ctx->stab, node, &ctx->res, err)
+                      : us_plan_stability_test_current(ctx->stab, &ctx->res, err);
+  if (st) return US_STEP_ERROR;
   /* stopped by the deadline inside a solve: the limit, not an undecided test */
   if (us_stability_info(ctx->stab)->timed_out > timed_out) return US_STEP_LIMIT;
   count_verdict(ctx);
   return ctx->res.verdict == US_STABLE;
 }
+
+int us_plan_test(us_SearchCtx *ctx, const us_Bitset *node, us_Error *err) {
+  return test_node(ctx, node, err);
+}
+
+int us_plan_test_current(us_SearchCtx *ctx, us_Error *err) { return test_node(ctx, NULL, err); }

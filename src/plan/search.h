@@ -82,6 +82,9 @@ typedef enum us_Step {
  * (unstable, or undecided: counted in st->undecided, so that a search
  * ending in none knows its answer is no proof), or a us_Step. */
 int us_plan_test(us_SearchCtx *ctx, const us_Bitset *node, us_Error *err);
+/* The same for the stability workspace's current set, which the caller
+ * changes body by body (us_stability_add / remove): O(change) per test. */
+int us_plan_test_current(us_SearchCtx *ctx, us_Error *err);
 /* 1 when the planner's time limit or test budget is spent. */
 int us_plan_limit_reached(const us_SearchCtx *ctx);
 /* 1 when `node` is the goal of the search direction. */

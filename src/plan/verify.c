@@ -43,26 +43,33 @@ static void note_step(us_VerifyReport *rep, const us_StabilityResult *res) {
     rep->max_torque_residual = res->check.max_torque_residual;
 }
 
-/* Step k's bodies (k >= 0) back into node. */
-static void put_back(us_Bitset *node, const int *order, const int *gs, int k) {
-  for (int q = gs ? gs[k] : k; q < (gs ? gs[k + 1] : k + 1); q++) us_bitset_set(node, order[q]);
+/* Step k's bodies (k >= 0) back into the workspace's current set; their
+ * number. */
+static int put_back(us_Stability *w, const int *order, const int *gs, int k) {
+  int q0 = gs ? gs[k] : k, q1 = gs ? gs[k + 1] : k + 1;
+  for (int q = q0; q < q1; q++) us_stability_add(w, order[q], NULL);
+  return q1 - q0;
 }
 
 /* Test every remainder, from the last one up to the full structure (each
- * test adds one step to the previous one, so the stability workspace's
- * local tests apply and the full structure is never solved from
- * scratch). The answer is the one of a walk down the order: the first
- * step (smallest k) after which the remainder falls, else the first
- * undecided test, else valid. node: the full structure on entry. */
+ * test adds one step to the previous one, stated as that change (tests by
+ * change), so the stability workspace's local tests apply, the full
+ * structure is never solved from scratch, and a step costs what its
+ * bodies cost, not the structure's size). The answer is the one of a walk
+ * down the order: the first step (smallest k) after which the remainder
+ * falls, else the first undecided test, else valid. node: the full
+ * structure on entry. */
 static us_Status walk(us_Stability *w, us_Bitset *node, const int *order, const int *gs,
                       int nsteps, us_VerifyReport *rep, us_StabilityResult *res, us_Error *err) {
   for (int k = 0; k < nsteps; k++)
     for (int q = gs ? gs[k] : k; q < (gs ? gs[k + 1] : k + 1); q++) us_bitset_clear(node, order[q]);
-  int left = us_bitset_count(node), failed = nsteps, undecided = nsteps;
+  int left = us_bitset_count(node), failed = nsteps, undecided = nsteps, now = left;
+  us_Status set = us_stability_set_current(w, node, err);
+  if (set) return set;
   for (int k = nsteps - 1; k >= -1; k--) {
-    if (k < nsteps - 1) put_back(node, order, gs, k + 1);
+    if (k < nsteps - 1) now += put_back(w, order, gs, k + 1);
     long timed_out = us_stability_info(w)->timed_out;
-    us_Status st = us_plan_stability_test(w, node, res, err);
+    us_Status st = us_plan_stability_test_current(w, res, err);
     if (st) return st;
     if (us_stability_info(w)->timed_out > timed_out) { /* the time limit: no answer */
       rep->undecided = 1;
@@ -80,7 +87,7 @@ static us_Status walk(us_Stability *w, us_Bitset *node, const int *order, const 
     }
     if (res->verdict == US_UNSTABLE) {
       failed = k;
-      rep->remaining = us_bitset_count(node);
+      rep->remaining = now;
       rep->unstable_body = res->unstable_body;
     }
   }

@@ -42,7 +42,10 @@
  *
  * Cost per test: O(|added| + |removed| * degree) to find D, then LPs over
  * R only; the full structure is never swept, except to report forces
- * (us_local_forces) when a caller wants them.
+ * (us_local_forces) when a caller wants them. The diff B xor S is kept as
+ * a list that follows every change of S (us_local_toggle) and every move
+ * of the base, with the count of S and of the memo's bodies absent from
+ * S, so no test scans a bitset.
  */
 #include "local.h"
 
@@ -54,6 +57,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #define LOCAL_MIN_BODIES 1    /* default: smaller sub-assemblies go to the full system */
@@ -78,6 +82,9 @@ struct us_Local {
   double up[3];          /* against gravity */
   us_Bitset base;
   int have_base;
+  int *dlist, *dpos, nd; /* B xor S: the bodies, and each one's slot or -1 */
+  int ncur;              /* |S| */
+  int dep_absent;        /* bodies of the plumb memo's dep not in S */
   double *fbase;         /* [ncontact * dim] */
   unsigned char *in_r;   /* [nbody] */
   int *reg, nreg;        /* [nbody] the region */
@@ -164,6 +171,8 @@ void us_local_free(us_Local *L) {
   us_free(L->lo);
   us_free(L->hi);
   us_bitset_free(&L->base);
+  us_free(L->dlist);
+  us_free(L->dpos);
   us_free(L->fbase);
   us_free(L->in_r);
   us_free(L->reg);
@@ -196,8 +205,12 @@ us_Local *us_local_new(const us_Structure *s, const us_StabilitySettings *set,
   L->removed = us_malloc(nb * sizeof(int));
   L->list = us_malloc((size_t)(2 * s->ncontact + 1) * sizeof(int));
   L->slot = us_malloc(nb * sizeof(int));
+  L->dlist = us_malloc(nb * sizeof(int));
+  L->dpos = us_malloc(nb * sizeof(int));
   for (size_t i = 0; L->slot && i < nb; i++) L->slot[i] = -1;
+  for (size_t i = 0; L->dpos && i < nb; i++) L->dpos[i] = -1;
   int bad = !L->list || !L->slot || !L->lo || !L->hi || !L->fbase || !L->in_r || !L->reg ||
+            !L->dlist || !L->dpos ||
             !L->added || !L->removed || build_incidence(L) || us_eq_init(&L->eq, s) || us_bitset_init(&L->base, s->nbody);
   if (bad) {
     us_local_free(L);
@@ -232,12 +245,104 @@ void us_local_set_deadline(us_Local *L, double deadline) {
     for (int k = 0; k < 2; k++) L->be->set_deadline(L->bws[k], deadline);
 }
 
+static void memo_flush(us_Local *L);
+
 void us_local_forget(us_Local *L) {
   L->have_base = 0;
-  us_plumb_flush(&L->plumb);
+  memo_flush(L);
 }
 
 /* ---------------------------------------------------------------- base */
+
+/* The plumb memo emptied: no body of it is absent. */
+static void memo_flush(us_Local *L) {
+  us_plumb_flush(&L->plumb);
+  L->dep_absent = 0;
+}
+
+/* Body i into the diff list, or out of it. */
+static void d_toggle(us_Local *L, int i) {
+  int q = L->dpos[i];
+  if (q < 0) {
+    L->dpos[i] = L->nd;
+    L->dlist[L->nd++] = i;
+    return;
+  }
+  int last = L->dlist[--L->nd];
+  L->dlist[q] = last;
+  L->dpos[last] = q;
+  L->dpos[i] = -1;
+}
+
+static void d_clear(us_Local *L) {
+  for (int q = 0; q < L->nd; q++) L->dpos[L->dlist[q]] = -1;
+  L->nd = 0;
+}
+
+void us_local_toggle(us_Local *L, const us_Bitset *cur, int i) {
+  int in = us_bitset_get(cur, i);
+  L->ncur += in ? 1 : -1;
+  if (L->plumb.dep.w && us_bitset_get(&L->plumb.dep, i)) L->dep_absent += in ? -1 : 1;
+  if (L->have_base) d_toggle(L, i); /* else rebuilt when a base is taken */
+}
+
+void us_local_sync(us_Local *L, const us_Bitset *cur) {
+  L->ncur = us_bitset_count(cur);
+  L->dep_absent = 0;
+  for (int k = 0; L->plumb.dep.w && k < cur->nwords; k++)
+    L->dep_absent += __builtin_popcountll(L->plumb.dep.w[k] & ~cur->w[k]);
+  d_clear(L);
+  L->have_base = 0;
+}
+
+int us_local_delta_consistent(const us_Local *L, const us_Bitset *cur) {
+  int nd = 0, absent = 0;
+  for (int k = 0; k < cur->nwords; k++) {
+    if (L->plumb.dep.w) absent += __builtin_popcountll(L->plumb.dep.w[k] & ~cur->w[k]);
+    if (L->have_base) nd += __builtin_popcountll(L->base.w[k] ^ cur->w[k]);
+  }
+  for (int q = 0; L->have_base && q < L->nd; q++)
+    if (L->dpos[L->dlist[q]] != q ||
+        us_bitset_get(&L->base, L->dlist[q]) == us_bitset_get(cur, L->dlist[q]))
+      return 0;
+  return L->ncur == us_bitset_count(cur) && L->dep_absent == absent &&
+         (!L->have_base || L->nd == nd);
+}
+
+/* The base after S stood: B ∪ S when keep (B \ S shares no contact with
+ * S), else S; the diff list follows (B \ S, or empty), in O(|diff|). */
+static void base_take(us_Local *L, const us_Bitset *cur, int keep) {
+  if (!L->have_base) { /* the list is stale: a whole copy */
+    memcpy(L->base.w, cur->w, (size_t)cur->nwords * sizeof(uint64_t));
+    d_clear(L);
+    L->have_base = 1;
+    return;
+  }
+  int n = 0;
+  for (int q = 0; q < L->nd; q++) {
+    int i = L->dlist[q], in = us_bitset_get(cur, i);
+    if (!in && keep) { /* stays in B, still differs */
+      L->dpos[i] = n;
+      L->dlist[n++] = i;
+      continue;
+    }
+    if (in) us_bitset_set(&L->base, i);
+    else us_bitset_clear(&L->base, i);
+    L->dpos[i] = -1;
+  }
+  L->nd = n;
+}
+
+/* No base yet: B is empty, so every body of S differs. */
+static void base_restart(us_Local *L, const us_Bitset *cur) {
+  memset(L->base.w, 0, (size_t)L->base.nwords * sizeof(uint64_t));
+  memset(L->fbase, 0, (size_t)L->s->ncontact * (size_t)L->dim * sizeof(double));
+  memo_flush(L);
+  d_clear(L);
+  L->have_base = 1;
+  for (int k = 0; k < cur->nwords; k++)
+    for (uint64_t x = cur->w[k]; x; x &= x - 1) d_toggle(L, k * 64 + __builtin_ctzll(x));
+}
 
 /* Does some body of B \ S touch a body of cur? (diff_base first) */
 static int removal_touches(const us_Local *L, const us_Bitset *cur) {
@@ -270,19 +375,19 @@ void us_local_set_base(us_Local *L, const us_Bitset *cur, const us_EqSystem *e,
   if (!keep) memset(L->fbase, 0, (size_t)L->s->ncontact * dim * sizeof(double));
   for (int ci = 0; ci < e->ncontact; ci++)
     memcpy(L->fbase + (size_t)e->contact[ci] * dim, f + (size_t)ci * dim, dim * sizeof(double));
-  for (int k = 0; k < cur->nwords; k++) L->base.w[k] = keep ? L->base.w[k] | cur->w[k] : cur->w[k];
-  L->have_base = 1;
+  base_take(L, cur, keep);
 }
 
 void us_local_seed_base(us_Local *L, const us_Bitset *cur, const us_Forces *f) {
   size_t dim = (size_t)L->dim;
   us_plumb_drop(&L->plumb); /* pending loads belong to the old base */
-  us_plumb_flush(&L->plumb);
+  memo_flush(L);
   memset(L->fbase, 0, (size_t)L->s->ncontact * dim * sizeof(double));
   for (int j = 0; j < f->ncontact; j++)
     for (size_t k = 0; k < dim; k++)
       L->fbase[(size_t)f->contact[j] * dim + k] = f->f[(size_t)j * dim + k] / L->eq.force_scale;
   memcpy(L->base.w, cur->w, (size_t)cur->nwords * sizeof(uint64_t));
+  d_clear(L);
   L->have_base = 1;
 }
 
@@ -349,18 +454,32 @@ static int under_foot(const us_Local *L, int v) {
   return 1;
 }
 
-/* added / removed against the base, word by word. */
+static int int_cmp(const void *a, const void *b) {
+  int x = *(const int *)a, y = *(const int *)b;
+  return (x > y) - (x < y);
+}
+
+/* added / removed against the base, each in increasing order (regions
+ * and routes do not depend on how the change was stated): from the diff
+ * list, sorted; a diff longer than the bitsets' words, word by word. */
 static void diff_base(us_Local *L, const us_Bitset *cur) {
   L->nadd = L->nrem = 0;
-  for (int k = 0; k < cur->nwords; k++) {
-    uint64_t x = cur->w[k] ^ L->base.w[k];
-    while (x) {
-      int i = k * 64 + __builtin_ctzll(x);
-      x &= x - 1;
-      if (us_bitset_get(cur, i)) L->added[L->nadd++] = i;
-      else L->removed[L->nrem++] = i;
-    }
+  if (L->nd > cur->nwords) {
+    for (int k = 0; k < cur->nwords; k++)
+      for (uint64_t x = cur->w[k] ^ L->base.w[k]; x; x &= x - 1) {
+        int i = k * 64 + __builtin_ctzll(x);
+        if (us_bitset_get(cur, i)) L->added[L->nadd++] = i;
+        else L->removed[L->nrem++] = i;
+      }
+    return;
   }
+  for (int q = 0; q < L->nd; q++) {
+    int i = L->dlist[q];
+    if (us_bitset_get(cur, i)) L->added[L->nadd++] = i;
+    else L->removed[L->nrem++] = i;
+  }
+  if (L->nadd > 1) qsort(L->added, (size_t)L->nadd, sizeof(int), int_cmp);
+  if (L->nrem > 1) qsort(L->removed, (size_t)L->nrem, sizeof(int), int_cmp);
 }
 
 /* The seeds D into the region: the added bodies, and the bodies of S that
@@ -534,7 +653,7 @@ static int merge_and_check(us_Local *L, const us_Bitset *cur, us_StabilityResult
 /* The base after a local stable verdict of cur. */
 static void advance_base(us_Local *L, const us_Bitset *cur) {
   if (!L->touching) { /* B \ S shares no contact with S: B ∪ S stands */
-    for (int k = 0; k < cur->nwords; k++) L->base.w[k] |= cur->w[k];
+    base_take(L, cur, 1);
     return;
   }
   size_t dim = (size_t)L->dim;
@@ -543,7 +662,7 @@ static void advance_base(us_Local *L, const us_Bitset *cur) {
     for (int m = L->inc_start[r]; m < L->inc_start[r + 1]; m++)
       memset(L->fbase + (size_t)L->inc[m] * dim, 0, dim * sizeof(double));
   }
-  memcpy(L->base.w, cur->w, (size_t)cur->nwords * sizeof(uint64_t));
+  base_take(L, cur, 0);
 }
 
 static int bucket_of(int n) {
@@ -653,7 +772,7 @@ static int try_fixed(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
  * again were checked when first routed and rest on bodies still present. */
 static int try_plumb(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
                      us_StabilityInfo *info, us_Error *err) {
-  if (L->touching || !L->nadd || !us_plumb_lazy_valid(&L->plumb, cur)) return 0;
+  if (L->touching || !L->nadd || L->dep_absent) return 0;
   int r = us_plumb_route_lazy(&L->plumb, cur, L->added, L->nadd, L->set.cert_tol);
   if (r < 0) return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)"), -1;
   if (r == 0) return 0;
@@ -752,22 +871,18 @@ static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityR
 int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
                   us_StabilityInfo *info, us_Error *err) {
   int min = L->set.local_min_bodies > 0 ? L->set.local_min_bodies : LOCAL_MIN_BODIES;
-  int size = min > 1 ? us_bitset_count(cur) : -1; /* counted when needed: O(n / 64) */
-  if (size >= 0 && size < min) return US_LOCAL_GLOBAL;
-  if (!L->have_base) { /* from the empty set: every body is added (plumb lines can
-                          prove a whole structure, as `check` asks, one visit
-                          per distinct line) */
-    memset(L->base.w, 0, (size_t)L->base.nwords * sizeof(uint64_t));
-    memset(L->fbase, 0, (size_t)L->s->ncontact * (size_t)L->dim * sizeof(double));
-    us_plumb_flush(&L->plumb);
-    L->have_base = 1;
-  }
+  int size = L->ncur;
+  if (size < min) return US_LOCAL_GLOBAL;
+  if (!L->have_base) /* from the empty set: every body is added (plumb lines can
+                        prove a whole structure, as `check` asks, one visit
+                        per distinct line) */
+    base_restart(L, cur);
   diff_base(L, cur);
   /* removals change B's certificate on their contacts, and a memo line
      resting on a body not in S is void: make B's forces explicit first */
-  int valid = us_plumb_lazy_valid(&L->plumb, cur);
+  int valid = L->dep_absent == 0;
   if ((L->nrem > 0 || !valid) && materialize(L, err)) return -1;
-  if (!valid) us_plumb_flush(&L->plumb);
+  if (!valid) memo_flush(L);
   seed_region(L, cur);
   int r;
   if (L->nreg == 0) { /* S inside B, apart from what left: B's forces hold */
@@ -785,7 +900,7 @@ int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
     r = -1;
   } else if ((r = try_lever(L, cur, res, info, err)) != 0) {
     if (r > 0) r = settle_n(US_LOCAL_STABLE, L->plumb.npath, info);
-  } else if (L->nreg > 16 + (size = size >= 0 ? size : us_bitset_count(cur)) / 8) {
+  } else if (L->nreg > 16 + size / 8) {
     r = US_LOCAL_GLOBAL;
   } else {
     r = run_levels(L, cur, size, res, info, err);

@@ -53,6 +53,16 @@ void us_local_set_base(us_Local *L, const us_Bitset *cur, const us_EqSystem *e,
  * same bodies and contacts. */
 void us_local_seed_base(us_Local *L, const us_Bitset *cur, const us_Forces *f);
 
+/* Body i of the caller's current set cur has just flipped (present or
+ * absent): the diff against the base, the count and the plumb memo's
+ * absent bodies follow, in O(1). Every change of cur between tests must
+ * be told so (stability.c, toggle_body). us_local_sync: start from cur as
+ * it is (a tester made after cur was filled; O(n / 64)). */
+void us_local_toggle(us_Local *L, const us_Bitset *cur, int i);
+void us_local_sync(us_Local *L, const us_Bitset *cur);
+/* 1 when that bookkeeping agrees with a recount from cur (tests). */
+int us_local_delta_consistent(const us_Local *L, const us_Bitset *cur);
+
 /* Forget the base (after an error). */
 void us_local_forget(us_Local *L);
 

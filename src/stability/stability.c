@@ -8,6 +8,14 @@
  * its normalized forces by the total weight W back to newtons, and re-check
  * them with the independent certificate check.
  *
+ * Tests by change: the workspace's current set `cur` changes one body at a
+ * time (toggle_body), and every change is told to the local tests at once
+ * (us_local_toggle), which keep their diff against their base as a list;
+ * so a test that the local tests decide costs O(change), not O(n / 64).
+ * A whole bitset (us_stability_test) becomes the current set by toggling
+ * the bits that differ, the same path. Only a full-system solve (O(n)
+ * anyway) still compares bitsets word by word.
+ *
  * Boundary band (docs/planning.md, "The boundary band"): a stable claim
  * whose certificate's worst measure exceeds US_BAND_CERT, or an unstable
  * one whose mechanism's margin is below US_BAND_MECH (both relative to the
@@ -44,7 +52,8 @@ struct us_Stability {
   void *bws;               /* backend state */
   us_EqSystem eq;
   us_Bitset movable;       /* mask of movable bodies */
-  us_Bitset cur;           /* movable bits of the sub-assembly under test */
+  us_Bitset cur;           /* movable bits of the current sub-assembly */
+  int ncur;                /* its number of bodies */
   us_Bitset last;          /* ... of the last one the backend solved */
   int have_last;
   int *added, *removed;    /* [nbody] */
@@ -319,6 +328,69 @@ static void diff_last(us_Stability *w, int *nadded, int *nremoved) {
   }
 }
 
+/* ------------------------------------------------------------- changes */
+
+/* Flip body i (movable) in the current set; the local tests hear of it. */
+static void toggle_body(us_Stability *w, int i) {
+  w->cur.w[i >> 6] ^= (uint64_t)1 << (i & 63);
+  w->ncur += us_bitset_get(&w->cur, i) ? 1 : -1;
+  if (w->local) us_local_toggle(w->local, &w->cur, i);
+}
+
+/* The movable bits of present become the current set: the bits that
+ * differ are toggled, in increasing order. */
+static void set_cur(us_Stability *w, const us_Bitset *present) {
+  for (int k = 0; k < w->cur.nwords; k++) {
+    uint64_t x = (present->w[k] & w->movable.w[k]) ^ w->cur.w[k];
+    while (x) {
+      toggle_body(w, k * 64 + __builtin_ctzll(x));
+      x &= x - 1;
+    }
+  }
+}
+
+/* Body `body` present (on) or absent: checked, then toggled if needed. */
+static us_Status change(us_Stability *w, int body, int on, us_Error *err) {
+  us_Error local;
+  if (!err) err = &local;
+  const char *what = on ? "add" : "remove";
+  if (!w) return us_error_set(err, US_ERR_USAGE, "us_stability_%s: NULL workspace", what);
+  if (body < 0 || body >= w->s->nbody)
+    return us_error_set(err, US_ERR_USAGE, "us_stability_%s: no body with index %d (%d bodies)",
+                        what, body, w->s->nbody);
+  if (us_bitset_get(&w->movable, body) && us_bitset_get(&w->cur, body) != on) toggle_body(w, body);
+  return US_OK;
+}
+
+us_Status us_stability_add(us_Stability *w, int body, us_Error *err) {
+  return change(w, body, 1, err);
+}
+
+us_Status us_stability_remove(us_Stability *w, int body, us_Error *err) {
+  return change(w, body, 0, err);
+}
+
+us_Status us_stability_set_current(us_Stability *w, const us_Bitset *present, us_Error *err) {
+  us_Error local;
+  if (!err) err = &local;
+  if (!w || !present)
+    return us_error_set(err, US_ERR_USAGE, "us_stability_set_current: NULL argument");
+  if (present->nbits != w->s->nbody || !present->w)
+    return us_error_set(err, US_ERR_USAGE, "us_stability_set_current: sub-assembly has %d bits, "
+                        "the structure %d bodies", present->nbits, w->s->nbody);
+  set_cur(w, present);
+  return US_OK;
+}
+
+const us_Bitset *us_stability_current(const us_Stability *w) { return w ? &w->cur : NULL; }
+
+int us_stability_current_count(const us_Stability *w) { return w ? w->ncur : 0; }
+
+int us_stability_delta_consistent(const us_Stability *w) {
+  if (us_bitset_count(&w->cur) != w->ncur) return 0;
+  return !w->local || us_local_delta_consistent(w->local, &w->cur);
+}
+
 static void reset_result(us_StabilityResult *res) {
   res->verdict = US_UNDECIDED;
   res->forces.ncontact = 0;
@@ -534,9 +606,7 @@ static us_Status loose_mechanism(us_Stability *w, int r, us_StabilityResult *res
 }
 
 static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err) {
-  int empty = 1;
-  for (int k = 0; k < w->cur.nwords && empty; k++) empty = w->cur.w[k] == 0;
-  if (empty) { /* nothing can fall */
+  if (w->ncur == 0) { /* nothing can fall */
     res->verdict = US_STABLE;
     snprintf(res->note, sizeof res->note, "no movable body present");
     w->eq.ncontact = 0;
@@ -625,22 +695,14 @@ static void report_progress(us_Stability *w) {
   double now = us_now();
   if (now - w->t_progress < 0.25) return;
   w->t_progress = now;
-  us_Progress p = {w->info.tests, us_bitset_count(&w->cur), now - w->t_created,
+  us_Progress p = {w->info.tests, w->ncur, now - w->t_created,
                    w->deadline > 0 ? US_MAX(w->deadline - now, 0.0) : -1.0};
   w->set.progress(&p, w->set.progress_user);
 }
 
-us_Status us_stability_test(us_Stability *w, const us_Bitset *present, us_StabilityResult *res,
-                            us_Error *err) {
-  us_Error local;
-  if (!err) err = &local;
-  if (!w || !present || !res)
-    return us_error_set(err, US_ERR_USAGE, "us_stability_test: NULL argument");
-  if (present->nbits != w->s->nbody || !present->w)
-    return us_error_set(err, US_ERR_USAGE, "us_stability_test: sub-assembly has %d bits, "
-                        "the structure %d bodies", present->nbits, w->s->nbody);
+/* Test the current set (the two entry points' common part). */
+static us_Status test_cur(us_Stability *w, us_StabilityResult *res, us_Error *err) {
   reset_result(res);
-  for (int k = 0; k < w->cur.nwords; k++) w->cur.w[k] = present->w[k] & w->movable.w[k];
   us_Status st = past_deadline(w) ? US_OK : decide(w, res, err);
   if (!st && in_band(w, res)) st = referee(w, res, err);
   if (st) {
@@ -654,9 +716,29 @@ us_Status us_stability_test(us_Stability *w, const us_Bitset *present, us_Stabil
   w->info.tests++;
   report_progress(w);
   if (w->set.verbose > 1)
-    fprintf(stderr, "stability: %d bodies: %s (%s)\n", us_bitset_count(&w->cur),
+    fprintf(stderr, "stability: %d bodies: %s (%s)\n", w->ncur,
             us_verdict_name(res->verdict), res->note);
   return US_OK;
+}
+
+us_Status us_stability_test(us_Stability *w, const us_Bitset *present, us_StabilityResult *res,
+                            us_Error *err) {
+  us_Error local;
+  if (!err) err = &local;
+  if (!w || !present || !res)
+    return us_error_set(err, US_ERR_USAGE, "us_stability_test: NULL argument");
+  if (present->nbits != w->s->nbody || !present->w)
+    return us_error_set(err, US_ERR_USAGE, "us_stability_test: sub-assembly has %d bits, "
+                        "the structure %d bodies", present->nbits, w->s->nbody);
+  set_cur(w, present);
+  return test_cur(w, res, err);
+}
+
+us_Status us_stability_test_current(us_Stability *w, us_StabilityResult *res, us_Error *err) {
+  us_Error local;
+  if (!err) err = &local;
+  if (!w || !res) return us_error_set(err, US_ERR_USAGE, "us_stability_test_current: NULL argument");
+  return test_cur(w, res, err);
 }
 
 us_Status us_stability_seed(us_Stability *w, const us_Bitset *present, const us_Forces *f,
@@ -672,7 +754,7 @@ us_Status us_stability_seed(us_Stability *w, const us_Bitset *present, const us_
   for (int j = 0; j < f->ncontact; j++)
     if (f->contact[j] < 0 || f->contact[j] >= w->s->ncontact)
       return us_error_set(err, US_ERR_USAGE, "us_stability_seed: contact %d out of range", f->contact[j]);
-  for (int k = 0; k < w->cur.nwords; k++) w->cur.w[k] = present->w[k] & w->movable.w[k];
+  set_cur(w, present);
   /* the forces must be a certificate of present here, whatever their origin */
   us_CertCheck check;
   us_certificate_check_buf(w->s, &w->cur, f, w->set.cert_tol, w->acc, w->seen, &check);
@@ -692,8 +774,9 @@ us_Status us_stability_held(us_Stability *w, const us_Bitset *present, const int
     if (!w->local) return err->code ? err->code : US_ERR_NOMEM;
     w->local_held_only = 1;
     us_local_set_deadline(w->local, w->deadline);
+    us_local_sync(w->local, &w->cur); /* it starts from the current set */
   }
-  for (int k = 0; k < w->cur.nwords; k++) w->cur.w[k] = present->w[k] & w->movable.w[k];
+  set_cur(w, present);
   double t0 = us_now();
   int r = past_deadline(w) ? 0 : us_local_held(w->local, &w->cur, reg, nreg, res, &w->info, err);
   w->info.solve_time += us_now() - t0;

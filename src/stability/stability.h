@@ -50,4 +50,10 @@ us_Status us_stability_held(us_Stability *w, const us_Bitset *present, const int
 us_Status us_stability_seed(us_Stability *w, const us_Bitset *present, const us_Forces *f,
                             int *taken, us_Error *err);
 
+/* Tests of the tests-by-change bookkeeping (us_stability_add ...): 1 when
+ * the current set's count, and the local tests' diff against their base,
+ * their count and their memo's absent bodies, all agree with a recount
+ * from the bitsets (O(n)); 0 when some does not. */
+int us_stability_delta_consistent(const us_Stability *w);
+
 #endif
