@@ -116,14 +116,15 @@ static void fill_tableau(SmallWs *w, const us_EqSystem *sys, int m, int n) {
     T(w, m, i, n) = w->ray[i] * sys->rhs[i];
     w->basis[i] = n + i;
   }
-  for (int j = 0; j < n; j++)
-    for (int k = g->start[j]; k < g->start[j + 1]; k++)
-      T(w, m, g->row[k], j) = w->ray[g->row[k]] * g->val[k];
-  for (int j = 0; j <= n; j++) {
+  for (int j = 0; j < n; j++) { /* a column and its phase-1 cost, minus its sum */
     double c = 0.0;
-    for (int i = 0; i < m; i++) c -= T(w, m, i, j);
+    for (int k = g->start[j]; k < g->start[j + 1]; k++)
+      c -= T(w, m, g->row[k], j) = w->ray[g->row[k]] * g->val[k];
     T(w, m, m, j) = w->cost[j] = c;
   }
+  double c = 0.0;
+  for (int i = 0; i < m; i++) c -= T(w, m, i, n);
+  T(w, m, m, n) = w->cost[n] = c;
 }
 
 /* Pivot on (pr, pc). Only the columns with a nonzero in the pivot row
