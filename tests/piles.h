@@ -35,6 +35,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "test.h"
 #include "unstack/unstack.h"
 
 #define PILE_MAX_RECTS 16
@@ -42,10 +43,7 @@
 /* xorshift64 in [0, 1); a zero state is moved off the fixed point. */
 static inline double pile_rnd(unsigned long long *s) {
   if (!*s) *s = 0x9e3779b97f4a7c15ULL;
-  *s ^= *s << 13;
-  *s ^= *s >> 7;
-  *s ^= *s << 17;
-  return (double)(*s >> 11) * (1.0 / 9007199254740992.0);
+  return test_rnd(s);
 }
 
 /* Uniform multiple of 1/16 in [lo, hi]. */

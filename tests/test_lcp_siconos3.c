@@ -45,10 +45,7 @@ enum { SCALE = 4 }; /* fewer random subsets under the sanitizers */
 enum { SCALE = 1 };
 #endif
 
-static double rnd(unsigned long long *s) {
-  *s = *s * 6364136223846793005ull + 1442695040888963407ull;
-  return (double)(*s >> 11) * (1.0 / 9007199254740992.0);
-}
+static double rnd(unsigned long long *s) { return test_lcg(s); }
 
 /* Kind 0 tower of 5, 1 turned tower of 5, 2 pyramid3d of 3 levels, 3
  * wall3d 2 x 3; friction mu, gravity tilted by `tilt` towards `az`. */

@@ -203,11 +203,8 @@ static int reference_found(const us_Structure *s) {
   return found; /* -1 full unstable, 0 none, 1 found */
 }
 
-static unsigned long rng_state = 12345;
-static double rnd(void) {
-  rng_state = rng_state * 6364136223846793005UL + 1442695040888963407UL;
-  return (double)(rng_state >> 11) / 9007199254740992.0;
-}
+static unsigned long long rng_state = 12345;
+static double rnd(void) { return test_lcg(&rng_state); }
 
 /* Random piles: boxes of random widths dropped at random offsets onto the
  * exact skyline of the boxes below (not necessarily stable, and sometimes

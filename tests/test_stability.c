@@ -358,11 +358,8 @@ static us_Status spy_solve(void *ws, const us_BackendProblem *pb, us_BackendOut 
 static const us_Backend spy_backend = {
     .method = US_METHOD_LP, .create = spy_create, .destroy = spy_destroy, .solve = spy_solve};
 
-static unsigned long rng_state = 12345;
-static double rnd(void) {
-  rng_state = rng_state * 6364136223846793005UL + 1442695040888963407UL;
-  return (double)(rng_state >> 11) / 9007199254740992.0;
-}
+static unsigned long long rng_state = 12345;
+static double rnd(void) { return test_lcg(&rng_state); }
 
 /* A 3 x 3 wall of unit bricks (odd row shifted by 0.3) on a fixed pier. */
 static us_Structure *small_wall(void) {

@@ -21,10 +21,7 @@ enum { SCALE = 16 }; /* a sixteenth of the sample under the sanitizers */
 enum { SCALE = 1 };
 #endif
 
-static double rnd(unsigned long long *s) {
-  *s = *s * 6364136223846793005ull + 1442695040888963407ull;
-  return (double)(*s >> 11) * (1.0 / 9007199254740992.0);
-}
+static double rnd(unsigned long long *s) { return test_lcg(s); }
 
 /* Structure `kind` (0 tower, 1 turned tower, 2 pyramid3d, 3 wall3d, 4
  * jenga, 5 random3d, 6 dome) with friction mu, gravity tilted by `tilt`

@@ -15,11 +15,8 @@
 #include "scenes.h"
 #include "test.h"
 
-static unsigned long rng_state = 2024;
-static double rnd(void) {
-  rng_state = rng_state * 6364136223846793005UL + 1442695040888963407UL;
-  return (double)(rng_state >> 11) / 9007199254740992.0;
-}
+static unsigned long long rng_state = 2024;
+static double rnd(void) { return test_lcg(&rng_state); }
 static double uniform(double a, double b) { return a + (b - a) * rnd(); }
 
 /* Verdicts of both backends on one workspace each. */
