@@ -164,7 +164,6 @@ int batch_mpi_run(const Batch *b, char *const *raw, int nraw) {
   char why[512];
   const us_MpiApi *m = load(why, sizeof why);
   if (!m) return cli_fail("batch", "launched with several MPI ranks, but %s", why);
-  setenv("OPENBLAS_NUM_THREADS", "1", 0); /* ranks share the cores */
   int rank, size;
   if (m->init(&rank, &size)) return cli_fail("batch", "MPI_Init failed");
   int r = size < 2 ? cli_fail("batch", "MPI gives 1 rank: run without mpirun")

@@ -175,11 +175,7 @@ int cmd_batch(int argc, char **argv) {
   if (!raw) return cli_fail("batch", "out of memory");
   int nraw, r = parse(argc, argv, &b, raw, &nraw);
   if (r) return free(raw), r < 0 ? CLI_EXIT_OK : r;
-  /* one thread per input, also with one job: CLP's OpenBLAS would start a
-     thread per core when loaded, each spinning before it sleeps (the
-     module then asks for one thread, src/module/clp.c; set here, before
-     any thread, they are never made) */
-  setenv("OPENBLAS_NUM_THREADS", "1", 0);
+  /* one BLAS thread per input: main() has set OPENBLAS_NUM_THREADS */
   json_object_seed(0); /* jansson's hash seed, once, before any thread */
   r = batch_mpi_ranks() > 1 ? batch_mpi_run(&b, raw, nraw) : run_local(&b, raw, nraw);
   free(raw);

@@ -1,4 +1,5 @@
 /* unstack: command-line entry point; dispatches to one file per subcommand. */
+#define _POSIX_C_SOURCE 200809L /* setenv */
 #include "batch.h"
 #include "cli.h"
 #include "options.h"
@@ -6,6 +7,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 /* The top-level help; generate's kinds come from its table. */
 static void usage(FILE *f) {
@@ -37,8 +41,33 @@ static void usage(FILE *f) {
         f);
 }
 
+/* Process-wide settings that only the program may choose (a library must
+ * not write the environment or the allocator's policy; docs/local.md,
+ * "Process settings", has the figures):
+ * - OpenBLAS (CLP's LAPACK on Debian) starts a thread per core when it is
+ *   loaded, each spinning on sched_yield before it sleeps, for LPs far too
+ *   small to share; asked for one before any module is loaded, it never
+ *   makes them (src/module/clp.c asks again once loaded, for library
+ *   users). A user's own choice of threads is kept.
+ * - glibc gives the top of its heap back to the kernel whenever 128 KB of
+ *   it is free, and every LP allocates and frees its work arrays: a plan
+ *   of a 876-block stack made 7,800 brk calls and 250,000 page faults,
+ *   a third of its time in the kernel. Kept, the heap is reused; its peak
+ *   is unchanged. A user's GLIBC_TUNABLES wins. */
+static void process_settings(void) {
+  if (!getenv("OPENBLAS_NUM_THREADS") && !getenv("GOTO_NUM_THREADS") && !getenv("OMP_NUM_THREADS"))
+    setenv("OPENBLAS_NUM_THREADS", "1", 0);
+#ifdef __GLIBC__
+  if (!getenv("GLIBC_TUNABLES")) {
+    mallopt(M_TRIM_THRESHOLD, 256 << 20);
+    mallopt(M_TOP_PAD, 16 << 20);
+  }
+#endif
+}
+
 int main(int argc, char **argv) {
   cli_clock_start();
+  process_settings();
   static const struct {
     const char *name;
     int (*fn)(int, char **);

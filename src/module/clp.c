@@ -27,9 +27,9 @@ static const us_ClpModule api = {&us_backend_clp, us_represent_run};
  * call for this, found without linking OpenBLAS (another LAPACK has no
  * such symbol and is left alone). It changes which thread computes a
  * block, not what is computed, and every verdict is re-checked anyway.
- * (The threads OpenBLAS made when it was loaded stay, asleep; `unstack
- * batch` sets OPENBLAS_NUM_THREADS=1 before any thread so that even those
- * are never made.) */
+ * (The threads OpenBLAS made when it was loaded stay, asleep; the
+ * `unstack` program sets OPENBLAS_NUM_THREADS=1 in main(), before any
+ * module is loaded, so that even those are never made.) */
 static void one_blas_thread(void) {
   if (getenv("OPENBLAS_NUM_THREADS") || getenv("GOTO_NUM_THREADS") || getenv("OMP_NUM_THREADS"))
     return;
