@@ -65,6 +65,11 @@
                                   (0.5 and 0.75 measured slower on random stacks) */
 #define SUPPORT_COS 1e-3      /* a contact supports if its push has this much "up" */
 
+/* Whether an optional LP finds proofs often enough to run (pays()). */
+typedef struct us_Pays {
+  long tries, hits, chances;
+} us_Pays;
+
 struct us_Local {
   const us_Structure *s;
   us_StabilitySettings set;
@@ -94,7 +99,7 @@ struct us_Local {
   double *f, *saved;     /* LP solution; base values it replaces */
   int cap_f, cap_saved;
   int *list, *slot;      /* mechanism check: contacts of R, body slots */
-  long seed_tries, seed_hits; /* level-0 support LPs run, and proofs found */
+  us_Pays seed_pays;     /* level-0 support LPs: run, and proofs found */
   double mass;           /* movable mass, summed once for the checks */
   us_Plumb plumb;        /* plumb-line load paths (plumb.h) */
   us_ConeSet *cones;     /* 3D: the friction polygons (shared), or NULL */
@@ -819,23 +824,27 @@ static int materialize(us_Local *L, us_Error *err) {
   return 0;
 }
 
-/* Level 0 pays when it finds proofs: it is skipped while fewer than one
- * in eight of its recent runs did (every 16th test runs it anyway, to
- * notice when the workload changes). */
-static int seed_level_pays(us_Local *L) {
-  if (L->seed_tries < 32 || (L->seed_tries + L->seed_hits) % 16 == 0) return 1;
-  return 8 * L->seed_hits >= L->seed_tries;
+/* An optional support LP pays when it finds proofs: it is skipped while
+ * fewer than one in eight of its recent runs did (every 16th chance runs
+ * it anyway, to notice when the workload changes). */
+static int pays(us_Pays *p) {
+  return p->tries < 32 || p->chances++ % 16 == 0 || 8 * p->hits >= p->tries;
+}
+
+/* A run of it, and whether it proved "unstable" (1) or failed (-1). */
+static int paid(us_Pays *p, int r) {
+  p->tries++;
+  if (r > 0) p->hits++;
+  if (p->tries >= 256) p->tries /= 2, p->hits /= 2; /* recent history */
+  return r;
 }
 
 /* The levels; a US_LOCAL_* verdict or -1. */
 static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityResult *res,
                       us_StabilityInfo *info, us_Error *err) {
-  int r, seeded = seed_level_pays(L);
+  int r, seeded = pays(&L->seed_pays);
   if (seeded) {
-    r = try_support(L, cur, res, info, err);
-    L->seed_tries++;
-    if (r > 0) L->seed_hits++;
-    if (L->seed_tries >= 256) L->seed_tries /= 2, L->seed_hits /= 2; /* recent history */
+    r = paid(&L->seed_pays, try_support(L, cur, res, info, err));
     if (r) return r < 0 ? -1 : settle(L, US_LOCAL_UNSTABLE, info);
   }
   int nseed = seeded ? L->nreg : -1, nfirst = L->nreg, pressed = 0;
@@ -846,7 +855,11 @@ static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityR
       if (L->nreg > limit && !closed) return US_LOCAL_GLOBAL;
     r = try_fixed(L, cur, res, info, err);
     if (r) return r < 0 ? -1 : settle(L, US_LOCAL_STABLE, info);
-    if (L->nreg > nseed) { /* R = D had its support LP already */
+    /* R = D had its support LP already. (Skipping the grown regions'
+       support LPs while they rarely prove anything saved 5-18 % of the
+       region LPs on stacks of 337 to 947 blocks, but sent 119 more tests
+       of a 9,352-block stack to the full system: 20 % slower.) */
+    if (L->nreg > nseed) {
       r = try_support(L, cur, res, info, err);
       if (r) return r < 0 ? -1 : settle(L, US_LOCAL_UNSTABLE, info);
     }
