@@ -236,6 +236,30 @@ static void steep_contact(void) {
   }
 }
 
+/* A plank X from a block V to a pier W, its centre over the gap. V rests
+ * on a pier U under its left part only, so V's right corner overhangs
+ * U: the support point of X nearest X's centre on V's side is that
+ * corner, and a line there finds no support on its right in V. The
+ * other end of X's joint with V is over U: the lazy route, refused at the
+ * corner, starts over without that point and routes (the eager routing,
+ * with no second try, refuses); the forces pass the full check, and the
+ * LP agrees that all stands. */
+static void retry_other_point(void) {
+  us_Structure *s = us_structure_new(2);
+  scene_box(s, "U", 0, 0, 1.6, 1, 1);
+  scene_box(s, "V", 0, 1, 2, 1, 1);
+  scene_box(s, "W", 3, 0, 1, 2, 1);
+  scene_box(s, "X", 1.5, 2, 2.5, 0.2, 1);
+  CHECK(scene_seal(s));
+  CHECK_INT(route_all_lazy(s), ==, 1);
+  Rig g;
+  CHECK(rig_open(&g, s, 1) == 0);
+  CHECK_INT(us_plumb_route(&g.p, &g.cur, g.added, g.nadd, g.f), ==, 0);
+  rig_close(&g);
+  CHECK_INT(lp_verdict(s), ==, US_STABLE);
+  us_structure_free(s);
+}
+
 /* Whole plans of a wall and a pyramid: the assembly's tests are proven by
  * plumb lines (not by LPs), and the plans verify. */
 static void plans_use_plumb_lines(void) {
@@ -328,4 +352,4 @@ static void lazy_walks(void) {
 }
 
 US_TEST_MAIN(T(column_routes), T(bridge_splits), T(cantilever_refused), T(steep_contact),
-             T(plans_use_plumb_lines), T(lazy_walks))
+             T(retry_other_point), T(plans_use_plumb_lines), T(lazy_walks))

@@ -43,6 +43,7 @@
 #define SAME_NORMAL 1e-9 /* normals closer than this (1 - cos) are one contact face */
 #define CONE_SLACK 1e-12 /* relative slack of the hop's own cone test */
 #define PLUMB_HOPS 4096  /* hops one added body's lines may take */
+#define PLUMB_RETRIES 8  /* a lazy route starts over at most this often */
 #define PLUMB_MAX_TRI 48 /* 3D: support points of a body searched for triangles at most */
 
 typedef struct Hop {
@@ -56,6 +57,14 @@ typedef struct Hop {
 static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 static int held(const us_Plumb *p, int v) { return v < 0 || p->s->bodies[v].fixed; }
+
+/* Is support point m of body u excluded from this route (a line through
+ * it failed further down: line_entry)? */
+static int excluded(const us_Plumb *p, int u, int m) {
+  for (int i = 0; i < p->nexcl; i++)
+    if (p->excl[i].body == u && p->excl[i].contact == p->sup[m].contact) return 1;
+  return 0;
+}
 
 static int present(const us_Plumb *p, const us_Bitset *cur, int v) {
   return held(p, v) || us_bitset_get(cur, v);
@@ -164,6 +173,7 @@ void us_plumb_free(us_Plumb *p) {
   us_free(p->tab);
   us_bitset_free(&p->dep);
   us_free(p->heap);
+  us_free(p->excl);
   us_free(p->added_e);
   us_free(p->added_l);
   us_free(p->log_c);
@@ -190,7 +200,7 @@ static int point_on_line(const us_Plumb *p, const us_Bitset *cur, int u, const d
                          double tol) {
   for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++) {
     const us_PlumbSupport *q = &p->sup[m];
-    if (present(p, cur, q->below) && fabs(q->pos[0] - c[0]) <= tol &&
+    if (present(p, cur, q->below) && !excluded(p, u, m) && fabs(q->pos[0] - c[0]) <= tol &&
         fabs(q->pos[1] - c[1]) <= tol)
       return m;
   }
@@ -203,7 +213,7 @@ static int hop_lever(const us_Plumb *p, const us_Bitset *cur, int u, const doubl
   int best[2] = {-1, -1};
   for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++) {
     const us_PlumbSupport *q = &p->sup[m];
-    if (!present(p, cur, q->below)) continue;
+    if (!present(p, cur, q->below) || excluded(p, u, m)) continue;
     int side = q->pos[0] > c[0];
     if (best[side] < 0 ||
         (side ? q->pos[0] < p->sup[best[1]].pos[0] : q->pos[0] > p->sup[best[0]].pos[0]))
@@ -244,13 +254,17 @@ static int hop_triangle(const us_Plumb *p, const us_Bitset *cur, int u, const do
   int m0 = p->sup_start[u], m1 = p->sup_start[u + 1];
   for (int i = m0; i < m1; i++) {
     const us_PlumbSupport *qi = &p->sup[i];
-    if (!present(p, cur, qi->below)) continue;
+    if (!present(p, cur, qi->below) || excluded(p, u, i)) continue;
     for (int j = i + 1; j < m1; j++) {
       const us_PlumbSupport *qj = &p->sup[j];
-      if ((same_body && qj->below != qi->below) || !present(p, cur, qj->below)) continue;
+      if ((same_body && qj->below != qi->below) || !present(p, cur, qj->below) ||
+          excluded(p, u, j))
+        continue;
       for (int k = j + 1; k < m1; k++) {
         const us_PlumbSupport *qk = &p->sup[k];
-        if ((same_body && qk->below != qi->below) || !present(p, cur, qk->below)) continue;
+        if ((same_body && qk->below != qi->below) || !present(p, cur, qk->below) ||
+            excluded(p, u, k))
+          continue;
         double w[3];
         if (!barycentric(qi->pos, qj->pos, qk->pos, c, tol, w)) continue;
         h->n = 3;
@@ -704,6 +718,21 @@ static int close_frame(us_Plumb *p, const us_Bitset *cur, const us_PlumbFrame *F
   return e;
 }
 
+/* A child line on v of frame F found no hop: F's points on v are
+ * excluded from F's body for this route, which starts over (-3; the
+ * lines checked so far stay memoised), or -2 when they were already
+ * excluded or -1 on OOM. */
+static int exclude(us_Plumb *p, const us_PlumbFrame *F, int v) {
+  int n = 0;
+  for (int q = 0; q < F->x.n; q++) {
+    if (F->below[q] != v) continue;
+    if (US_GROW(p->excl, p->cap_excl, p->nexcl + 1)) return -1;
+    p->excl[p->nexcl++] = (us_PlumbExcl){F->x.body, F->x.k[q]};
+    n++;
+  }
+  return n ? -3 : -2;
+}
+
 /* The entry of line (u, c): memoised, or routed now, its child lines
  * first (an explicit stack, at most PLUMB_HOPS deep), each checked.
  * Returns it, -2 no route (or a check failed), -1 OOM. */
@@ -723,7 +752,7 @@ static int line_entry(us_Plumb *p, const us_Bitset *cur, int u, const double c[2
       if (nf >= PLUMB_HOPS) return -2;
       double at[2] = {F->kid_pos[F->next][0], F->kid_pos[F->next][1]};
       if (US_GROW(p->frames, p->cap_frames, nf + 1)) return -1;
-      if (!open_frame(p, cur, v, at, &p->frames[nf++])) return -2;
+      if (!open_frame(p, cur, v, at, &p->frames[nf++])) return exclude(p, &p->frames[nf - 2], v);
       continue;
     }
     e = close_frame(p, cur, F, tol);
@@ -731,6 +760,17 @@ static int line_entry(us_Plumb *p, const us_Bitset *cur, int u, const double c[2
     if (--nf > 0) attach(p, &p->frames[nf - 1], e);
   }
   return e;
+}
+
+/* line_entry, started over while a failed child line excludes more
+ * support points (at most PLUMB_RETRIES times); the exclusions end with
+ * the route. */
+static int line_entry_retry(us_Plumb *p, const us_Bitset *cur, int u, const double c[2],
+                            double tol) {
+  int e = -3;
+  for (int t = 0; t <= PLUMB_RETRIES && e == -3; t++) e = line_entry(p, cur, u, c, tol);
+  p->nexcl = 0;
+  return e == -3 ? -2 : e;
 }
 
 static int heap_above(const us_Plumb *p, int i, int j) {
@@ -791,7 +831,7 @@ int us_plumb_route_lazy(us_Plumb *p, const us_Bitset *cur, const int *added, int
     const us_Body *b = &p->s->bodies[added[q]];
     double c[2];
     us_plumb_horizontal(p, b->com, c);
-    int e = line_entry(p, cur, added[q], c, tol);
+    int e = line_entry_retry(p, cur, added[q], c, tol);
     r = e >= 0 ? (add_pending(p, e, b->mass / p->mass_total) ? -1 : 1) : e == -1 ? -1 : 0;
   }
   if (r != 1) /* take the loads back; the lines checked stay memoised */

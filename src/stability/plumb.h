@@ -55,6 +55,11 @@ typedef struct us_PlumbEntry {
   int in_heap;
 } us_PlumbEntry;
 
+/* A support point (its contact) of a body that a route may not use. */
+typedef struct us_PlumbExcl {
+  int body, contact;
+} us_PlumbExcl;
+
 typedef struct us_Plumb {
   /* the structure, its incidence (body -> contacts) and frame */
   const us_Structure *s;
@@ -89,6 +94,8 @@ typedef struct us_Plumb {
   int cap_added_l;
   struct us_PlumbFrame *frames; /* the lazy route's stack of lines being built */
   int cap_frames;
+  us_PlumbExcl *excl;    /* the lazy route's excluded support points */
+  int nexcl, cap_excl;
   int nnew;              /* lines the last lazy route checked (new entries) */
   double worst_line;     /* their largest hop residual (relative) */
 } us_Plumb;
