@@ -262,4 +262,95 @@ static void fixed_body(void) {
   us_structure_free(s);
 }
 
-US_TEST_MAIN(T(same_verdicts_2d), T(same_verdicts_3d), T(set_bookkeeping), T(fixed_body))
+/* The component of C ∪ {b} that holds b (bodies joined by contacts) into
+ * w; its size. queue: scratch of nbody ints. */
+static int component_of(const us_Structure *s, const us_Bitset *c, int b, us_Bitset *w,
+                        int *queue) {
+  memset(w->w, 0, (size_t)w->nwords * sizeof(uint64_t));
+  us_bitset_set(w, b);
+  int n = 0, head = 0;
+  queue[n++] = b;
+  while (head < n) {
+    int u = queue[head++];
+    for (int k = 0; k < s->ncontact; k++) {
+      const us_Contact *ct = &s->contacts[k];
+      int v = ct->a == u ? ct->b : ct->b == u ? ct->a : -1;
+      if (v < 0 || us_bitset_get(w, v) || !us_bitset_get(c, v)) continue;
+      us_bitset_set(w, v);
+      queue[n++] = v;
+    }
+  }
+  return n;
+}
+
+/* The assembly's tests by component (assemble.c: C ∪ {b} is tested
+ * through the component W that holds b, as a bitset): the base keeps
+ * B ∪ S while B \ S touches nothing of S, so it gathers the other
+ * components, and a later test whose body bridges to them must see them
+ * touch S again. Along the build order of stacks of several towers, each
+ * body's W and, before it, the W of a random absent body (often one that
+ * cannot stand yet) are tested on one workspace: verdicts as a fresh one
+ * without local tests, certificates checked, the bookkeeping recounted. */
+static void by_component(void) {
+  long tests = 0, split = 0, bridged = 0, stable = 0, unstable = 0;
+  for (int mu = 0; mu < 2; mu++)
+    for (unsigned long seed = 1; seed <= 3; seed++) {
+      us_GenSettings g = us_gen_default_settings();
+      g.friction = mu ? 0.6 : 0.0;
+      g.seed = seed;
+      g.rows = 6;
+      g.width = 40;
+      us_Structure *s = us_gen_stacker(&g, NULL);
+      CHECK(s != NULL);
+      us_StabilitySettings set = local_settings(1);
+      us_Stability *w = us_stability_new(s, &set, NULL);
+      int n = s->nbody, *order = malloc((size_t)n * sizeof(int)),
+          *queue = malloc((size_t)n * sizeof(int));
+      us_Bitset c, node;
+      CHECK(w && order && queue && !us_bitset_init(&c, n) && !us_bitset_init(&node, n));
+      int norder = build_order(s, order);
+      CHECK_INT(norder, ==, n);
+      unsigned long long rng = 7 + seed;
+      us_StabilityResult r;
+      us_stability_result_init(&r);
+      int prev = -1; /* the size of C's component of the previous body */
+      for (int q = 0; q < norder; q++) {
+        for (int k = 0; k < 2; k++) {
+          int b = k ? order[q] : pick(s, &c, 0, &rng);
+          if (b < 0 || (k == 0 && b == order[q])) continue;
+          int size = component_of(s, &c, b, &node, queue);
+          split += size < us_bitset_count(&c) + 1;
+          bridged += k && prev >= 0 && size > prev + 1;
+          us_Error err;
+          CHECK_OK(us_stability_test(w, &node, &r, &err), &err);
+          us_Verdict ref = fresh_verdict(s, &node);
+          if (r.verdict != ref || !certified(s, &node, &r) || !us_stability_delta_consistent(w))
+            fprintf(stderr, "stacker seed %lu mu %d step %d body %d (%d bodies): %s (%s), fresh %s\n",
+                    seed, mu, q, b, size, us_verdict_name(r.verdict), r.note, us_verdict_name(ref));
+          CHECK_INT(r.verdict, ==, ref);
+          CHECK(certified(s, &node, &r));
+          CHECK(us_stability_delta_consistent(w));
+          tests++;
+          stable += r.verdict == US_STABLE;
+          unstable += r.verdict == US_UNSTABLE;
+          if (k) prev = size;
+        }
+        us_bitset_set(&c, order[q]);
+      }
+      us_stability_result_free(&r);
+      us_bitset_free(&c);
+      us_bitset_free(&node);
+      free(order);
+      free(queue);
+      us_stability_free(w);
+      us_structure_free(s);
+    }
+  /* the case must occur: tests on one component of several, and bodies
+     that join components the base kept */
+  CHECK_INT(split, >, tests / 4);
+  CHECK_INT(bridged, >, 0);
+  CHECK_INT(stable, >, tests / 4);
+  CHECK_INT(unstable, >, tests / 20);
+}
+
+US_TEST_MAIN(T(same_verdicts_2d), T(same_verdicts_3d), T(by_component), T(set_bookkeeping), T(fixed_body))

@@ -40,12 +40,15 @@
  * re-check hands the test back. The base becomes S (or B ∪ S when no
  * removed body touches S: then B \ S and S share no contact).
  *
- * Cost per test: O(|added| + |removed| * degree) to find D, then LPs over
- * R only; the full structure is never swept, except to report forces
- * (us_local_forces) when a caller wants them. The diff B xor S is kept as
- * a list that follows every change of S (us_local_toggle) and every move
- * of the base, with the count of S and of the memo's bodies absent from
- * S, so no test scans a bitset.
+ * Cost per test: O(|added| + |removed touching S| * degree) to find D,
+ * then LPs over R only; the full structure is never swept, except to
+ * report forces (us_local_forces) when a caller wants them. The diff B xor
+ * S is kept as lists that follow every change of S (us_local_toggle,
+ * O(degree): each body's count of contacts with S) and every move of the
+ * base, with the list of the bodies of B \ S that touch S, the count of S
+ * and of the memo's bodies absent from S, so no test scans a bitset or
+ * the bodies of B \ S that touch nothing (the other components an
+ * assembly by components leaves in B).
  */
 #include "local.h"
 
@@ -90,7 +93,12 @@ struct us_Local {
   double up[3];          /* against gravity */
   us_Bitset base;
   int have_base;
-  int *dlist, *dpos, nd; /* B xor S: the bodies, and each one's slot or -1 */
+  /* B xor S as two lists, S \ B (alist) and B \ S (rlist): a body is in
+     the one its base bit names while it differs, at slot dpos (else -1);
+     tlist: the bodies of B \ S that touch S (tcur > 0), at slot tpos */
+  int *alist, *rlist, *tlist, na, nr, nt;
+  int *dpos, *tpos;
+  int *tcur;             /* [nbody] contacts of each body with a body of S */
   int ncur;              /* |S| */
   int dep_absent;        /* bodies of the plumb memo's dep not in S */
   double *fbase;         /* [ncontact * dim] */
@@ -180,8 +188,12 @@ void us_local_free(us_Local *L) {
   us_free(L->lo);
   us_free(L->hi);
   us_bitset_free(&L->base);
-  us_free(L->dlist);
+  us_free(L->alist);
+  us_free(L->rlist);
+  us_free(L->tlist);
   us_free(L->dpos);
+  us_free(L->tpos);
+  us_free(L->tcur);
   us_free(L->fbase);
   us_free(L->in_r);
   us_free(L->reg);
@@ -214,12 +226,17 @@ us_Local *us_local_new(const us_Structure *s, const us_StabilitySettings *set,
   L->removed = us_malloc(nb * sizeof(int));
   L->list = us_malloc((size_t)(2 * s->ncontact + 1) * sizeof(int));
   L->slot = us_malloc(nb * sizeof(int));
-  L->dlist = us_malloc(nb * sizeof(int));
+  L->alist = us_malloc(nb * sizeof(int));
+  L->rlist = us_malloc(nb * sizeof(int));
+  L->tlist = us_malloc(nb * sizeof(int));
   L->dpos = us_malloc(nb * sizeof(int));
+  L->tpos = us_malloc(nb * sizeof(int));
+  L->tcur = us_calloc(nb, sizeof(int));
   for (size_t i = 0; L->slot && i < nb; i++) L->slot[i] = -1;
   for (size_t i = 0; L->dpos && i < nb; i++) L->dpos[i] = -1;
+  for (size_t i = 0; L->tpos && i < nb; i++) L->tpos[i] = -1;
   int bad = !L->list || !L->slot || !L->lo || !L->hi || !L->fbase || !L->in_r || !L->reg ||
-            !L->dlist || !L->dpos ||
+            !L->alist || !L->rlist || !L->tlist || !L->dpos || !L->tpos || !L->tcur ||
             !L->added || !L->removed || build_incidence(L) || us_eq_init(&L->eq, s) || us_bitset_init(&L->base, s->nbody);
   if (bad) {
     us_local_free(L);
@@ -269,23 +286,45 @@ static void memo_flush(us_Local *L) {
   L->dep_absent = 0;
 }
 
-/* Body i into the diff list, or out of it. */
-static void d_toggle(us_Local *L, int i) {
-  int q = L->dpos[i];
+/* Body i into list `list` (slots in pos), or out of it. */
+static void list_flip(int *list, int *n, int *pos, int i) {
+  int q = pos[i];
   if (q < 0) {
-    L->dpos[i] = L->nd;
-    L->dlist[L->nd++] = i;
+    pos[i] = *n;
+    list[(*n)++] = i;
     return;
   }
-  int last = L->dlist[--L->nd];
-  L->dlist[q] = last;
-  L->dpos[last] = q;
-  L->dpos[i] = -1;
+  int last = list[--*n];
+  list[q] = last;
+  pos[last] = q;
+  pos[i] = -1;
+}
+
+/* Body r into tlist, or out of it, as it now is or is not a body of
+ * B \ S that touches S. */
+static void t_update(us_Local *L, const us_Bitset *cur, int r) {
+  int want = L->have_base && L->dpos[r] >= 0 && !us_bitset_get(cur, r) && L->tcur[r] > 0;
+  if (want != (L->tpos[r] >= 0)) list_flip(L->tlist, &L->nt, L->tpos, r);
+}
+
+/* Body i into the diff (it differs from B now), or out of it: its list
+ * is the one its base bit names. */
+static void d_toggle(us_Local *L, int i) {
+  if (us_bitset_get(&L->base, i)) list_flip(L->rlist, &L->nr, L->dpos, i);
+  else list_flip(L->alist, &L->na, L->dpos, i);
 }
 
 static void d_clear(us_Local *L) {
-  for (int q = 0; q < L->nd; q++) L->dpos[L->dlist[q]] = -1;
-  L->nd = 0;
+  for (int q = 0; q < L->na; q++) L->dpos[L->alist[q]] = -1;
+  for (int q = 0; q < L->nr; q++) L->dpos[L->rlist[q]] = -1;
+  for (int q = 0; q < L->nt; q++) L->tpos[L->tlist[q]] = -1;
+  L->na = L->nr = L->nt = 0;
+}
+
+/* The other side of contact c of body u (a body index, or < 0). */
+static int other_side(const us_Local *L, int c, int u) {
+  const us_Contact *k = &L->s->contacts[c];
+  return k->a == u ? k->b : k->a;
 }
 
 void us_local_toggle(us_Local *L, const us_Bitset *cur, int i) {
@@ -293,6 +332,13 @@ void us_local_toggle(us_Local *L, const us_Bitset *cur, int i) {
   L->ncur += in ? 1 : -1;
   if (L->plumb.dep.w && us_bitset_get(&L->plumb.dep, i)) L->dep_absent += in ? -1 : 1;
   if (L->have_base) d_toggle(L, i); /* else rebuilt when a base is taken */
+  for (int m = L->inc_start[i]; m < L->inc_start[i + 1]; m++) {
+    int v = other_side(L, L->inc[m], i);
+    if (v < 0) continue;
+    L->tcur[v] += in ? 1 : -1;
+    if (L->have_base) t_update(L, cur, v);
+  }
+  if (L->have_base) t_update(L, cur, i);
 }
 
 void us_local_sync(us_Local *L, const us_Bitset *cur) {
@@ -300,46 +346,68 @@ void us_local_sync(us_Local *L, const us_Bitset *cur) {
   L->dep_absent = 0;
   for (int k = 0; L->plumb.dep.w && k < cur->nwords; k++)
     L->dep_absent += __builtin_popcountll(L->plumb.dep.w[k] & ~cur->w[k]);
+  memset(L->tcur, 0, (size_t)L->s->nbody * sizeof(int));
+  for (int c = 0; c < L->s->ncontact; c++) {
+    const us_Contact *k = &L->s->contacts[c];
+    if (k->a >= 0 && k->b >= 0 && us_bitset_get(cur, k->a)) L->tcur[k->b]++;
+    if (k->a >= 0 && k->b >= 0 && us_bitset_get(cur, k->b)) L->tcur[k->a]++;
+  }
   d_clear(L);
   L->have_base = 0;
 }
 
 int us_local_delta_consistent(const us_Local *L, const us_Bitset *cur) {
-  int nd = 0, absent = 0;
+  int nd = 0, absent = 0, nt = 0;
   for (int k = 0; k < cur->nwords; k++) {
     if (L->plumb.dep.w) absent += __builtin_popcountll(L->plumb.dep.w[k] & ~cur->w[k]);
     if (L->have_base) nd += __builtin_popcountll(L->base.w[k] ^ cur->w[k]);
   }
-  for (int q = 0; L->have_base && q < L->nd; q++)
-    if (L->dpos[L->dlist[q]] != q ||
-        us_bitset_get(&L->base, L->dlist[q]) == us_bitset_get(cur, L->dlist[q]))
+  for (int q = 0; L->have_base && q < L->na; q++)
+    if (L->dpos[L->alist[q]] != q || us_bitset_get(&L->base, L->alist[q]) ||
+        !us_bitset_get(cur, L->alist[q]))
       return 0;
-  return L->ncur == us_bitset_count(cur) && L->dep_absent == absent &&
-         (!L->have_base || L->nd == nd);
+  for (int q = 0; L->have_base && q < L->nr; q++)
+    if (L->dpos[L->rlist[q]] != q || !us_bitset_get(&L->base, L->rlist[q]) ||
+        us_bitset_get(cur, L->rlist[q]))
+      return 0;
+  for (int i = 0; i < L->s->nbody; i++) {
+    int t = 0;
+    for (int m = L->inc_start[i]; m < L->inc_start[i + 1]; m++) {
+      int v = other_side(L, L->inc[m], i);
+      t += v >= 0 && us_bitset_get(cur, v);
+    }
+    int touch = L->have_base && L->dpos[i] >= 0 && !us_bitset_get(cur, i) && t > 0;
+    if (t != L->tcur[i] || touch != (L->tpos[i] >= 0) ||
+        (touch && L->tlist[L->tpos[i]] != i))
+      return 0;
+    nt += touch;
+  }
+  return L->ncur == us_bitset_count(cur) && L->dep_absent == absent && L->nt == nt &&
+         (!L->have_base || L->na + L->nr == nd);
 }
 
 /* The base after S stood: B ∪ S when keep (B \ S shares no contact with
- * S), else S; the diff list follows (B \ S, or empty), in O(|diff|). */
+ * S), else S; the lists follow (S \ B joins B; B \ S stays, or leaves B),
+ * in O(|S \ B|), and O(|B \ S|) when it leaves. */
 static void base_take(us_Local *L, const us_Bitset *cur, int keep) {
-  if (!L->have_base) { /* the list is stale: a whole copy */
+  if (!L->have_base) { /* the lists are stale: a whole copy */
     memcpy(L->base.w, cur->w, (size_t)cur->nwords * sizeof(uint64_t));
     d_clear(L);
     L->have_base = 1;
     return;
   }
-  int n = 0;
-  for (int q = 0; q < L->nd; q++) {
-    int i = L->dlist[q], in = us_bitset_get(cur, i);
-    if (!in && keep) { /* stays in B, still differs */
-      L->dpos[i] = n;
-      L->dlist[n++] = i;
-      continue;
-    }
-    if (in) us_bitset_set(&L->base, i);
-    else us_bitset_clear(&L->base, i);
-    L->dpos[i] = -1;
+  for (int q = 0; q < L->na; q++) {
+    us_bitset_set(&L->base, L->alist[q]);
+    L->dpos[L->alist[q]] = -1;
   }
-  L->nd = n;
+  L->na = 0;
+  if (keep) return;
+  for (int q = 0; q < L->nr; q++) {
+    us_bitset_clear(&L->base, L->rlist[q]);
+    L->dpos[L->rlist[q]] = -1;
+  }
+  for (int q = 0; q < L->nt; q++) L->tpos[L->tlist[q]] = -1;
+  L->nr = L->nt = 0;
 }
 
 /* No base yet: B is empty, so every body of S differs. */
@@ -353,22 +421,6 @@ static void base_restart(us_Local *L, const us_Bitset *cur) {
     for (uint64_t x = cur->w[k]; x; x &= x - 1) d_toggle(L, k * 64 + __builtin_ctzll(x));
 }
 
-/* Does some body of B \ S touch a body of cur? (diff_base first) */
-static int removal_touches(const us_Local *L, const us_Bitset *cur) {
-  const us_Structure *s = L->s;
-  for (int q = 0; q < L->nrem; q++) {
-    int r = L->removed[q];
-    for (int m = L->inc_start[r]; m < L->inc_start[r + 1]; m++) {
-      const us_Contact *k = &s->contacts[L->inc[m]];
-      int v = k->a == r ? k->b : k->a;
-      if (v >= 0 && us_bitset_get(cur, v)) return 1;
-    }
-  }
-  return 0;
-}
-
-static void diff_base(us_Local *L, const us_Bitset *cur);
-
 void us_local_set_base(us_Local *L, const us_Bitset *cur, const us_EqSystem *e,
                        const double *f) {
   size_t dim = (size_t)L->dim;
@@ -377,10 +429,7 @@ void us_local_set_base(us_Local *L, const us_Bitset *cur, const us_EqSystem *e,
     us_plumb_drop(&L->plumb);
     L->have_base = 0;
   }
-  if (L->have_base) {
-    diff_base(L, cur);
-    keep = !removal_touches(L, cur);
-  }
+  if (L->have_base) keep = L->nt == 0; /* no body of B \ S touches S */
   if (!keep) memset(L->fbase, 0, (size_t)L->s->ncontact * dim * sizeof(double));
   for (int ci = 0; ci < e->ncontact; ci++)
     memcpy(L->fbase + (size_t)e->contact[ci] * dim, f + (size_t)ci * dim, dim * sizeof(double));
@@ -468,25 +517,16 @@ static int int_cmp(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-/* added / removed against the base, each in increasing order (regions
- * and routes do not depend on how the change was stated): from the diff
- * list, sorted; a diff longer than the bitsets' words, word by word. */
-static void diff_base(us_Local *L, const us_Bitset *cur) {
-  L->nadd = L->nrem = 0;
-  if (L->nd > cur->nwords) {
-    for (int k = 0; k < cur->nwords; k++)
-      for (uint64_t x = cur->w[k] ^ L->base.w[k]; x; x &= x - 1) {
-        int i = k * 64 + __builtin_ctzll(x);
-        if (us_bitset_get(cur, i)) L->added[L->nadd++] = i;
-        else L->removed[L->nrem++] = i;
-      }
-    return;
-  }
-  for (int q = 0; q < L->nd; q++) {
-    int i = L->dlist[q];
-    if (us_bitset_get(cur, i)) L->added[L->nadd++] = i;
-    else L->removed[L->nrem++] = i;
-  }
+/* added (S \ B) and removed (the bodies of B \ S that touch S), each in
+ * increasing order (regions and routes do not depend on how the change was
+ * stated): copies of the lists, sorted. The bodies of B \ S that touch
+ * nothing of S (other components, as the assembly's tests by component
+ * leave them in B) are not listed: O(|change|) per test, not O(|B \ S|). */
+static void diff_base(us_Local *L) {
+  L->nadd = L->na;
+  L->nrem = L->nt;
+  memcpy(L->added, L->alist, (size_t)L->na * sizeof(int));
+  memcpy(L->removed, L->tlist, (size_t)L->nt * sizeof(int));
   if (L->nadd > 1) qsort(L->added, (size_t)L->nadd, sizeof(int), int_cmp);
   if (L->nrem > 1) qsort(L->removed, (size_t)L->nrem, sizeof(int), int_cmp);
 }
@@ -666,8 +706,8 @@ static void advance_base(us_Local *L, const us_Bitset *cur) {
     return;
   }
   size_t dim = (size_t)L->dim;
-  for (int q = 0; q < L->nrem; q++) {
-    int r = L->removed[q];
+  for (int q = 0; q < L->nr; q++) { /* every body of B \ S leaves B */
+    int r = L->rlist[q];
     for (int m = L->inc_start[r]; m < L->inc_start[r + 1]; m++)
       memset(L->fbase + (size_t)L->inc[m] * dim, 0, dim * sizeof(double));
   }
@@ -924,7 +964,7 @@ int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
                         prove a whole structure, as `check` asks, one visit
                         per distinct line) */
     base_restart(L, cur);
-  diff_base(L, cur);
+  diff_base(L);
   /* removals change B's certificate on their contacts, and a memo line
      resting on a body not in S is void: make B's forces explicit first */
   int valid = L->dep_absent == 0;
