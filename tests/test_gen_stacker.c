@@ -8,6 +8,7 @@
  * prints the generation times quoted in the file head. */
 #include "scenes.h"
 #include "test.h"
+#include "gen/gen.h"
 
 static us_Structure *stacker(int rows, double width, unsigned long seed, double mu) {
   us_Error err;
@@ -263,6 +264,31 @@ static void stacker_sizes(void) {
   }
 }
 
-US_TEST_MAIN(T(deterministic_per_seed), T(finished_structure_stands), T(block_counts),
+/* Carried forces and tests by change (stacker.c, test_T) decide every row
+ * test as one LP of the whole structure does: the same structures, seed
+ * by seed, with and without friction, low and tall. */
+static void same_as_whole_lps(void) {
+  static const int size[][2] = {{14, 12}, {8, 30}, {24, 10}, {30, 30}};
+  int n = 0, cants = 0;
+  for (int z = 0; z < 4; z++)
+    for (unsigned long seed = 1; seed <= (z < 3 ? 4u : 2u); seed++) {
+      us_GenSettings g = us_gen_default_settings();
+      g.rows = size[z][0], g.width = size[z][1], g.seed = seed;
+      g.friction = seed % 2 ? 0.5 : 0.0;
+      us_Error err;
+      us_Structure *a = us_gen_stacker_ref(&g, 0, &err), *b = us_gen_stacker_ref(&g, 1, &err);
+      CHECK(a != NULL && b != NULL);
+      if (!same_geometry(a, b))
+        fprintf(stderr, "%d x %d seed %lu: %d and %d bodies\n", size[z][0], size[z][1], seed,
+                a->nbody, b->nbody);
+      CHECK(same_geometry(a, b));
+      n += a->nbody, cants += count_cantilevers(a);
+      us_structure_free(a);
+      us_structure_free(b);
+    }
+  CHECK_INT(cants, >, n / 20); /* the rows that need the counterweights' tests */
+}
+
+US_TEST_MAIN(T(deterministic_per_seed), T(same_as_whole_lps), T(finished_structure_stands), T(block_counts),
              T(cantilevers_need_the_rows_above), T(bad_settings), T(gives_up),
              T(out_of_memory), T(stacker_sizes))

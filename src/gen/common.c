@@ -9,9 +9,11 @@
  * setting; nothing is allocated when they are rejected. The random
  * generators draw from one splitmix64 stream seeded with g->seed. */
 #include "gen.h"
+#include "stability/stability.h"
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 us_GenSettings us_gen_default_settings(void) {
@@ -152,5 +154,99 @@ us_Status us_gen_check_blocks(const us_GenSettings *g, const char *what, int n, 
   if (!st && total > US_GEN_MAX_BODIES)
     st = us_error_set(err, US_ERR_USAGE, "%s: %ld blocks is more than the limit of %ld", what,
                       total, US_GEN_MAX_BODIES);
+  return st;
+}
+
+/* ------------------------------------------------------ carried forces */
+
+/* The order of carried contacts: bodies, point, normal, tangents. */
+static int contact_cmp(const us_Contact *x, const us_Contact *y) {
+  if (x->a != y->a) return x->a < y->a ? -1 : 1;
+  if (x->b != y->b) return x->b < y->b ? -1 : 1;
+  const double *u[4] = {x->p, x->n, x->t[0], x->t[1]}, *v[4] = {y->p, y->n, y->t[0], y->t[1]};
+  for (int a = 0; a < 4; a++)
+    for (int k = 0; k < 3; k++)
+      if (u[a][k] != v[a][k]) return u[a][k] < v[a][k] ? -1 : 1;
+  return 0;
+}
+
+typedef struct Slot {
+  us_Contact c;
+  int idx;
+} Slot;
+
+static int slot_qcmp(const void *x, const void *y) {
+  const Slot *a = x, *b = y;
+  int r = contact_cmp(&a->c, &b->c);
+  return r ? r : (a->idx > b->idx) - (a->idx < b->idx);
+}
+
+void us_gen_carry_free(us_GenCarry *k) {
+  us_free(k->c);
+  us_free(k->f);
+  us_free(k->body);
+  memset(k, 0, sizeof *k);
+}
+
+us_Status us_gen_carry_keep(us_GenCarry *k, const us_Structure *s, const us_Bitset *present,
+                            const us_Forces *f, us_Error *err) {
+  size_t dim = (size_t)s->dim, n = (size_t)(f->ncontact > 0 ? f->ncontact : 1);
+  us_Contact *c = us_realloc(k->c, n * sizeof *c);
+  if (c) k->c = c;
+  double *fv = c ? us_realloc(k->f, n * dim * sizeof *fv) : NULL;
+  if (fv) k->f = fv;
+  int *body = fv ? us_realloc(k->body, (size_t)(s->nbody > 0 ? s->nbody : 1) * sizeof *body) : NULL;
+  if (body) k->body = body;
+  if (!body) return us_error_set(err, US_ERR_NOMEM, "generator: out of memory keeping forces");
+  /* sorted with their forces: sort indices by contact, then gather */
+  Slot *sl = us_malloc(n * sizeof *sl);
+  if (!sl) return us_error_set(err, US_ERR_NOMEM, "generator: out of memory keeping forces");
+  for (int j = 0; j < f->ncontact; j++) sl[j].c = s->contacts[f->contact[j]], sl[j].idx = j;
+  qsort(sl, (size_t)f->ncontact, sizeof *sl, slot_qcmp);
+  for (int j = 0; j < f->ncontact; j++) {
+    k->c[j] = sl[j].c;
+    memcpy(k->f + (size_t)j * dim, f->f + (size_t)sl[j].idx * dim, dim * sizeof(double));
+  }
+  us_free(sl);
+  k->n = f->ncontact;
+  k->dim = s->dim;
+  k->nbody = 0;
+  for (int i = 0; i < s->nbody; i++)
+    if (us_bitset_get(present, i)) k->body[k->nbody++] = i;
+  return US_OK;
+}
+
+us_Status us_gen_carry_seed(const us_GenCarry *k, const us_Structure *s, us_Stability *w,
+                            us_Bitset *present, int *taken, us_Error *err) {
+  *taken = 0;
+  if (!k->body || k->dim != s->dim) return US_OK;
+  for (int q = 0; q < k->nbody; q++)
+    if (k->body[q] >= s->nbody) return US_OK; /* a stage that is gone */
+  size_t nc = (size_t)(s->ncontact > 0 ? s->ncontact : 1), dim = (size_t)s->dim;
+  Slot *sl = us_malloc(nc * sizeof *sl);
+  us_Forces f = {0, s->ncontact, us_malloc(nc * sizeof(int)), us_malloc(nc * dim * sizeof(double))};
+  us_Status st = sl && f.contact && f.f ? US_OK
+                                        : us_error_set(err, US_ERR_NOMEM, "generator: out of memory carrying forces");
+  int matched = 0;
+  if (!st) { /* s's contacts sorted the same way, merged with the kept ones */
+    for (int c = 0; c < s->ncontact; c++) sl[c].c = s->contacts[c], sl[c].idx = c;
+    qsort(sl, (size_t)s->ncontact, sizeof *sl, slot_qcmp);
+    int c = 0;
+    for (int j = 0; j < k->n; j++) {
+      while (c < s->ncontact && contact_cmp(&sl[c].c, &k->c[j]) < 0) c++;
+      if (c == s->ncontact || contact_cmp(&sl[c].c, &k->c[j]) != 0) break;
+      f.contact[f.ncontact] = sl[c].idx;
+      memcpy(f.f + (size_t)f.ncontact++ * dim, k->f + (size_t)j * dim, dim * sizeof(double));
+      c++;
+      matched++;
+    }
+  }
+  if (!st && matched == k->n) {
+    memset(present->w, 0, (size_t)present->nwords * sizeof(uint64_t));
+    for (int q = 0; q < k->nbody; q++) us_bitset_set(present, k->body[q]);
+    st = us_stability_seed(w, present, &f, taken, err);
+  }
+  us_free(sl);
+  us_forces_free(&f);
   return st;
 }

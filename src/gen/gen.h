@@ -47,6 +47,38 @@ us_Structure *us_gen_finish(us_Structure *s, us_Error *err);
  * settings: the generators that keep a drop only while all stands). */
 us_Status us_gen_stands(const us_Structure *s, int *stable, us_Error *err);
 
+/* The stacker (stacker.c) with reference = 1: every row test an LP of the
+ * whole structure, nothing carried from row to row (the tests compare the
+ * default with it: the same verdicts, so the same structures). */
+us_Structure *us_gen_stacker_ref(const us_GenSettings *g, int reference, us_Error *err);
+
+/* Forces carried from one generated structure to the next (random3d.c,
+ * stacker.c). A generator that grows a structure tests each stage on a new
+ * structure; the next stage has the same bodies under the same indices
+ * and more, so the contacts among the old bodies are the same (maybe in
+ * another order). The forces of the last stage that stood are kept with
+ * its contacts and the set that stood; the next stage's workspace takes
+ * them as its local tests' base (us_stability_seed re-checks them), and
+ * its tests are decided on regions around what was added since. */
+typedef struct us_GenCarry {
+  us_Contact *c;   /* [n] the contacts that carried force, sorted */
+  double *f;       /* [n * dim] their forces (newtons) */
+  int n, dim;
+  int *body, nbody; /* the set that stood */
+} us_GenCarry;
+
+/* Keep forces f (a certificate of `present` on s). 0, or US_ERR_NOMEM. */
+us_Status us_gen_carry_keep(us_GenCarry *k, const us_Structure *s, const us_Bitset *present,
+                            const us_Forces *f, us_Error *err);
+/* Seed w (a workspace on s) with the kept forces: `present` gets the kept
+ * set; *taken is 1 when every kept contact is one of s's (same bodies,
+ * point, normal and tangents; friction may differ, the re-check uses s's)
+ * and the forces passed w's check, else 0 (nothing kept, another
+ * structure below, or a failed check: the tests go as without). */
+us_Status us_gen_carry_seed(const us_GenCarry *k, const us_Structure *s, us_Stability *w,
+                            us_Bitset *present, int *taken, us_Error *err);
+void us_gen_carry_free(us_GenCarry *k);
+
 /* The masonry grid (regular.c, corner.c): the coordinate of half-block
  * index q, q * (w / 2), and of course boundary k, k * h. One expression
  * each, so a face shared by two blocks has bit-identical coordinates. */

@@ -91,11 +91,9 @@ typedef struct Drops {
                        contact (its top at the box's level), or -1 */
   int reference;    /* 1: every whole test from scratch (no carried forces) */
   us_Random3dStats *stats; /* counters, or NULL */
-  /* the last whole test that stood: its structure's contacts and forces
-     (newtons, 3 per contact, 0 when inactive), the boxes 0..kn-1 */
-  int kn, nkc;
-  us_Contact *kc;
-  double *kf;
+  /* the last whole test that stood: its forces (the boxes 0..kn-1) */
+  int kn;
+  us_GenCarry carry;
 } Drops;
 
 static us_Status check_random3d(const us_GenSettings *g, us_Error *err) {
@@ -263,56 +261,6 @@ static us_Status candidate_column(const Drops *d, int *stable, us_Error *err) {
   return st;
 }
 
-/* The carried forces as forces of s (the kept boxes plus the candidate):
- * s's contacts among boxes 0..kn-1 are, in order, the contacts of the
- * structure they were found on (the same boxes, built the same way),
- * checked field by field. 0, or 1 when they do not match (no seed). */
-static int carry_forces(const Drops *d, const us_Structure *s, us_Forces *f) {
-  int k = 0;
-  f->ncontact = 0;
-  for (int c = 0; c < s->ncontact; c++) {
-    const us_Contact *a = &s->contacts[c];
-    if (a->a >= d->kn || a->b >= d->kn) continue;
-    if (k >= d->nkc) return 1;
-    const us_Contact *b = &d->kc[k];
-    if (a->a != b->a || a->b != b->b || memcmp(a->p, b->p, sizeof a->p) ||
-        memcmp(a->n, b->n, sizeof a->n) || memcmp(a->t, b->t, sizeof a->t) || a->mu != b->mu)
-      return 1;
-    f->contact[f->ncontact] = c;
-    memcpy(f->f + 3 * (size_t)f->ncontact++, d->kf + 3 * (size_t)k++, 3 * sizeof(double));
-  }
-  return k != d->nkc;
-}
-
-/* Keep the forces of a whole test that stood (the boxes 0..d->n). */
-static us_Status keep_forces(Drops *d, const us_Structure *s, const us_Forces *f, us_Error *err) {
-  size_t nc = (size_t)s->ncontact;
-  us_Contact *kc = us_realloc(d->kc, (nc ? nc : 1) * sizeof *kc);
-  if (kc) d->kc = kc;
-  double *kf = kc ? us_realloc(d->kf, (nc ? nc : 1) * 3 * sizeof *kf) : NULL;
-  if (kf) d->kf = kf;
-  if (!kc || !kf) return us_error_set(err, US_ERR_NOMEM, "random3d: out of memory");
-  memcpy(d->kc, s->contacts, nc * sizeof *kc);
-  memset(d->kf, 0, nc * 3 * sizeof *kf);
-  for (int j = 0; j < f->ncontact; j++)
-    memcpy(d->kf + 3 * (size_t)f->contact[j], f->f + 3 * (size_t)j, 3 * sizeof(double));
-  d->nkc = s->ncontact, d->kn = d->n + 1;
-  return US_OK;
-}
-
-/* The carried forces as w's base: `all` gets the boxes 0..kn-1; *taken
- * is 1 when they matched s's contacts and passed the workspace's check. */
-static us_Status seed_base(const Drops *d, const us_Structure *s, us_Stability *w, us_Bitset *all,
-                           int *taken, us_Error *err) {
-  size_t nc = (size_t)(s->ncontact > 0 ? s->ncontact : 1);
-  us_Forces f = {0, s->ncontact, us_malloc(nc * sizeof(int)), us_malloc(nc * 3 * sizeof(double))};
-  us_Status st = f.contact && f.f ? US_OK : us_error_set(err, US_ERR_NOMEM, "random3d: out of memory");
-  for (int i = 0; !st && i < d->kn; i++) us_bitset_set(all, i);
-  if (!st && !carry_forces(d, s, &f)) st = us_stability_seed(w, all, &f, taken, err);
-  us_forces_free(&f);
-  return st;
-}
-
 /* Does the whole (the kept boxes plus the candidate) stand? The kept
  * boxes 0..kn-1 of the last whole test that stood are handed to the
  * workspace with that test's forces (re-checked there) as the local
@@ -333,7 +281,7 @@ static us_Status whole_stands(Drops *d, int *stable, us_Error *err) {
   us_Status st = w ? US_OK : err->code;
   if (!st && us_bitset_init(&all, s->nbody)) st = us_error_set(err, US_ERR_NOMEM, "random3d: out of memory");
   int taken = 0;
-  if (!st && !d->reference && d->kn > 0) st = seed_base(d, s, w, &all, &taken, err);
+  if (!st && !d->reference && d->kn > 0) st = us_gen_carry_seed(&d->carry, s, w, &all, &taken, err);
   /* the boxes kept since without a whole test (plumb lines, the ground)
      one by one, so that the candidate's test adds it alone */
   for (int i = d->kn; !st && taken && i < d->n; i++) {
@@ -349,7 +297,11 @@ static us_Status whole_stands(Drops *d, int *stable, us_Error *err) {
     int r = us_stability_cone_rounds_max(w);
     if (r > d->stats->cone_rounds_max) d->stats->cone_rounds_max = r;
   }
-  if (!st && *stable && !d->reference) st = keep_forces(d, s, &res.forces, err);
+  if (!st && *stable && !d->reference) {
+    for (int i = 0; i < s->nbody; i++) us_bitset_set(&all, i);
+    st = us_gen_carry_keep(&d->carry, s, &all, &res.forces, err);
+    d->kn = d->n + 1;
+  }
   us_stability_result_free(&res);
   us_bitset_free(&all);
   us_stability_free(w);
@@ -408,7 +360,7 @@ us_Structure *us_gen_random3d_stats(const us_GenSettings *g, int reference, us_R
   if (check_random3d(g, err)) return NULL;
   if (stats) memset(stats, 0, sizeof *stats);
   Drops d = {g, (uint64_t)g->seed, (long)floor(4.0 * (g->width - 1.0)) + 1, 0, NULL, 0, NULL, NULL,
-             NULL, NULL, reference, stats, 0, 0, NULL, NULL};
+             NULL, NULL, reference, stats, 0, {0}};
   d.side = d.nq + 3;
   d.top = us_calloc((size_t)(d.side * d.side), sizeof *d.top);
   d.owner = us_malloc((size_t)(d.side * d.side) * sizeof *d.owner);
@@ -425,7 +377,6 @@ us_Structure *us_gen_random3d_stats(const us_GenSettings *g, int reference, us_R
   us_free(d.level);
   us_free(d.owner);
   us_free(d.below);
-  us_free(d.kc);
-  us_free(d.kf);
+  us_gen_carry_free(&d.carry);
   return s;
 }

@@ -57,12 +57,24 @@
  * Test per row: with P_r the pending cantilevers of row r, the structure
  * T_r of rows 0..r without P_r must stand, and so must T_r without P_{r-1}
  * (the counterweights of row r without the cantilevers they hold: with
- * that, taking each cantilever out first leaves a standing structure). T_r is built, finalized and
- * tested once per row (r >= 1) without friction, with the default
- * stability settings (the LP): a structure that stands without friction
- * stands with any, and the frictionless LP is several times faster. The
+ * that, taking each cantilever out first leaves a standing structure).
+ * Both are tested once per row (r >= 1) without friction, with the
+ * default stability settings: a structure that stands without friction
+ * stands with any, and frictionless LPs are several times faster. The
  * finished structure (T of the top row, which has no cantilevers) is
- * tested with the structure's own friction. The structure of rows 0..r
+ * tested with the structure's own friction. The structure tested holds
+ * every kept block (body i is block i), and T_r is a set of it. The forces
+ * of T_{r-1} (frictionless: they hold with any friction) are carried over
+ * as the local tests' base (us_gen_carry_seed, re-checked there), and T_r
+ * is reached from T_{r-1} one block at a time (tests by change, each
+ * decided on a region around the block: docs/local.md), then tested
+ * itself; a block that fails first waits for a second pass, and one whose
+ * failure left a mechanism that also moves T_r (checked on T_r) decides
+ * T_r at once. Exact either way: the verdicts, hence the structures, are
+ * those of one whole-structure LP per test (before 2026-12-02, which cost
+ * 60 x 60: 1.1-1.6 s, now 0.4-0.5 s; 80 x 100: 7.3-8.1 s, now 4.1 s;
+ * 100 x 60, seed 3: 17 s, now 13 s, where rows that fail, whose proof
+ * still takes an LP of the whole, dominate). The structure of rows 0..r
  * with its pending cantilevers (an intermediate build stage) does not stand
  * when row r has one (in the tests, 34 of 78 stages of 14 x 12 piles); the
  * finished one does.
@@ -83,8 +95,9 @@
  * are cantilevers (more in taller structures; fewer than before the
  * counterweights got their tail over B, which needs room). The count is roughly 0.3 R W
  * for tall structures (rows thin out where no block passes) and 0.45 R W
- * for low ones. The cost is about one LP per row (frictionless LPs take a
- * fifth of the time of LPs with friction) plus the probes, O(rows) each.
+ * for low ones. The cost is a local test per block and row test, one LP
+ * of the whole structure per row that fails, and the probes, O(rows)
+ * each.
  *
  * Randomness: one splitmix64 stream (us_rng_next) seeded with g->seed,
  * so a seed gives the same structure on every platform. */
@@ -92,6 +105,7 @@
 
 #include <limits.h>
 #include <stdlib.h>
+#include <string.h>
 
 enum {
   kQMin = 4,      /* narrowest block, quarters */
@@ -105,9 +119,9 @@ enum {
   kPickMax = kWidths * (1 + 4 * kWidths) /* pair candidates of one walk step */
 };
 
-/* Upper bound on rows x width (every row runs an LP of the structure:
- * 80 x 400 gives 5,796 blocks in about 4 minutes on this project's
- * machine). */
+/* Upper bound on rows x width (a row that fails runs an LP of the whole
+ * structure: 80 x 400 gives 5,796 blocks in about 2.5 minutes on this
+ * project's machine). */
 #define STACKER_MAX_AREA 100000.0
 
 typedef struct Blk {
@@ -150,6 +164,11 @@ typedef struct Stk {
   int nseg, nobs, rowcap;
   Load *front, *next; /* probe scratch */
   int cant_ok;     /* this attempt may make cantilevers */
+  /* the forces of T of the top kept row (frictionless), carried to the
+     next row's tests, and those of the row on trial until it is kept */
+  us_GenCarry carry, trial;
+  int trial_ok;
+  int reference;   /* 1: every test an LP of the whole T, nothing carried */
 } Stk;
 
 /* ---------------------------------------------------------------- settings */
@@ -194,6 +213,8 @@ static us_Status stk_init(Stk *k, const us_GenSettings *g, us_Error *err) {
 }
 
 static void stk_free(Stk *k) {
+  us_gen_carry_free(&k->carry);
+  us_gen_carry_free(&k->trial);
   us_free(k->b);
   us_free(k->start);
   us_free(k->fails);
@@ -592,18 +613,23 @@ static us_Status add_blk(us_Structure *s, const Stk *k, const Blk *b, int r, int
                         (double)b->q1 * 0.25, (double)(r + 1) * g->height, err);
 }
 
-/* T: the kept rows without the pending cantilevers of the top one (and,
- * with `bare`, without the cantilevers of the row below it either: their
- * counterweights alone), finalized; frictionless when `smooth`. */
-static us_Structure *build(const Stk *k, int smooth, int bare, us_Error *err) {
+/* Is block i of kept row r out of T: a pending cantilever of the top row
+ * or, with `bare`, a cantilever of the row below it? */
+static int left_out(const Stk *k, int i, int r, int bare) {
+  return k->b[i].side && (r == k->rows - 1 || (bare && r == k->rows - 2));
+}
+
+/* The kept rows, every block (body i is block i, or, with `only_t`, the
+ * blocks of T alone, as the finished structure is), finalized;
+ * frictionless when `smooth`. */
+static us_Structure *build(const Stk *k, int smooth, int only_t, us_Error *err) {
   us_Structure *s = us_gen_begin(k->g, err);
   us_Status st = s ? US_OK : US_ERR_NOMEM;
   int id = 0;
   if (s && smooth) s->friction = 0;
   for (int r = 0; !st && r < k->rows; r++)
     for (int i = k->start[r]; !st && i < k->start[r + 1]; i++)
-      if (!(k->b[i].side && (r == k->rows - 1 || (bare && r == k->rows - 2))))
-        st = add_blk(s, k, &k->b[i], r, &id, err);
+      if (!(only_t && left_out(k, i, r, 0))) st = add_blk(s, k, &k->b[i], r, &id, err);
   if (st) {
     us_structure_free(s);
     return NULL;
@@ -611,21 +637,99 @@ static us_Structure *build(const Stk *k, int smooth, int bare, us_Error *err) {
   return us_gen_finish(s, err);
 }
 
-/* Test T (frictionless when `smooth`) with the default settings: *stable =
- * 1 if it stands; T itself into *out when out is not NULL and it stands. */
-static us_Status test_T(const Stk *k, int smooth, int bare, int *stable, us_Structure **out,
-                        us_Error *err) {
+/* The bodies of T, or of T without the cantilevers of the row below
+ * (bare), as a set over the structure of every kept block. */
+static void mark_t(const Stk *k, int bare, us_Bitset *t) {
+  memset(t->w, 0, (size_t)t->nwords * sizeof(uint64_t));
+  for (int r = 0; r < k->rows; r++)
+    for (int i = k->start[r]; i < k->start[r + 1]; i++)
+      if (!left_out(k, i, r, bare)) us_bitset_set(t, i);
+}
+
+/* From the carried set (current in w) towards target, one body at a time
+ * (tests by change), higher rows first: counterweights before the
+ * cantilevers under them. A body whose test fails waits for the second
+ * pass (a block on a cantilever that is not there yet); only a way to
+ * move the local tests' base in small steps, so the caller tests target
+ * itself after it, unless a failure already decided target: the
+ * mechanism that moves the failed set, checked on target (the bodies
+ * still to come held still), shows target falls too (*fell = 1; res
+ * keeps it). */
+static us_Status grow_towards(us_Stability *w, const us_Structure *s, const us_Bitset *target,
+                              int *pend, us_StabilityResult *res, int *fell, us_Error *err) {
+  const us_Bitset *cur = us_stability_current(w);
+  int np = 0;
+  *fell = 0;
+  for (int i = target->nbits - 1; i >= 0; i--)
+    if (us_bitset_get(target, i) && !us_bitset_get(cur, i)) pend[np++] = i;
+  for (int pass = 0, added = 1; pass < 2 && added && np > 0; pass++) {
+    added = 0;
+    int keep = 0;
+    for (int q = 0; q < np; q++) {
+      long global = us_stability_info(w)->local_global;
+      us_Status st = us_stability_add(w, pend[q], err);
+      if (!st) st = us_stability_test_current(w, res, err);
+      if (st) return st;
+      if (res->verdict == US_STABLE) {
+        added++;
+        continue;
+      }
+      if ((st = us_stability_remove(w, pend[q], err))) return st;
+      if (res->verdict == US_UNSTABLE && res->mechanism.nbody > 0 && res->mechanism.ok &&
+          us_mechanism_check(s, target, &res->mechanism, us_stability_default_settings().cert_tol))
+        return *fell = 1, US_OK;
+      /* a failure only the whole structure's LP decided: target's own
+         test next (its LP starts where that one ended) */
+      if (us_stability_info(w)->local_global > global) return US_OK;
+      pend[keep++] = pend[q];
+    }
+    np = keep;
+  }
+  return US_OK;
+}
+
+/* Test T (frictionless when `smooth`; without the row below's
+ * cantilevers when `bare`) with the default settings: *stable = 1 if it
+ * stands. The structure holds every kept block; T is a set of it. The
+ * forces of the last T that stood (the row below's, frictionless, which
+ * hold with any friction) start the local tests, and T is reached from
+ * there a body at a time, then tested itself: exact, and each step is
+ * decided on a region around the body it adds (docs/local.md) instead of
+ * an LP of the whole structure. A frictionless T that stands leaves its
+ * forces on trial for the next row. */
+static us_Status test_T(Stk *k, int smooth, int bare, int *stable, us_Error *err) {
   us_StabilitySettings set = us_stability_default_settings();
-  us_StabilityResult res = {0};
-  us_Structure *s = build(k, smooth, bare, err);
+  if (k->reference) set.local = -1;
+  us_StabilityResult res;
+  us_stability_result_init(&res);
+  us_Structure *s = build(k, smooth, 0, err);
   if (!s) return err->code;
   us_Stability *w = us_stability_new(s, &set, err);
-  us_Status st = w ? us_stability_test_full(w, &res, err) : err->code;
+  us_Bitset t = {0}, seed = {0};
+  int *pend = us_malloc((size_t)(s->nbody > 0 ? s->nbody : 1) * sizeof *pend);
+  us_Status st = !w ? err->code
+                 : !pend || us_bitset_init(&t, s->nbody) || us_bitset_init(&seed, s->nbody)
+                     ? us_error_set(err, US_ERR_NOMEM, "stacker: out of memory")
+                     : US_OK;
+  int taken = 0, fell = 0;
+  if (!st) {
+    mark_t(k, bare, &t);
+    if (!k->reference) st = us_gen_carry_seed(&k->carry, s, w, &seed, &taken, err);
+  }
+  if (!st && taken) st = grow_towards(w, s, &t, pend, &res, &fell, err);
+  if (!st && !fell) st = us_stability_test(w, &t, &res, err);
   *stable = !st && res.verdict == US_STABLE;
+  k->trial_ok = 0;
+  if (*stable && smooth && !bare) {
+    st = us_gen_carry_keep(&k->trial, s, &t, &res.forces, err);
+    k->trial_ok = !st;
+  }
   us_stability_result_free(&res);
+  us_bitset_free(&t);
+  us_bitset_free(&seed);
+  us_free(pend);
   us_stability_free(w);
-  if (out && *stable) *out = s;
-  else us_structure_free(s);
+  us_structure_free(s);
   return st;
 }
 
@@ -643,17 +747,23 @@ static us_Status attempt_row(Stk *k, us_Structure **out, int *kept, us_Error *er
   *kept = 0;
   if (!draw_row(k)) return US_OK;
   if ((st = keep_row(k, err))) return st;
-  if (top) st = test_T(k, 0, 0, &stable, NULL, err);
-  else if (k->rows > 1) st = test_T(k, 1, 0, &stable, NULL, err);
+  int carried = 0; /* T's forces are on trial */
+  if (top) st = test_T(k, 0, 0, &stable, err);
+  else if (k->rows > 1) st = test_T(k, 1, 0, &stable, err), carried = k->trial_ok;
   /* the counterweights must stand without their cantilevers too, so that
      the structure has a one-at-a-time order (cantilever first) */
   if (!st && stable && k->rows > 1 && row_has_cantilevers(k, k->rows - 2))
-    st = test_T(k, 1, 1, &stable, NULL, err);
+    st = test_T(k, 1, 1, &stable, err);
   if (st || !stable) drop_row(k);
   *kept = !st && stable;
+  if (*kept && carried) { /* the kept row's T starts the next row's tests */
+    us_GenCarry c = k->carry;
+    k->carry = k->trial;
+    k->trial = c;
+  }
   /* the finished structure, once every test of the top row passed (it was
      kept before the last test and leaked when that one failed) */
-  if (*kept && top && out && !(*out = build(k, 0, 0, err))) return err->code ? err->code : US_ERR_NOMEM;
+  if (*kept && top && out && !(*out = build(k, 0, 1, err))) return err->code ? err->code : US_ERR_NOMEM;
   return st;
 }
 
@@ -678,11 +788,12 @@ static us_Status run(Stk *k, us_Structure **out, us_Error *err) {
   return US_OK;
 }
 
-us_Structure *us_gen_stacker(const us_GenSettings *g, us_Error *err) {
+us_Structure *us_gen_stacker_ref(const us_GenSettings *g, int reference, us_Error *err) {
   us_Error local;
   if (!err) err = &local; /* the steps below read err->code */
   if (check_stacker(g, err)) return NULL;
   Stk k = {0};
+  k.reference = reference;
   us_Structure *s = NULL;
   us_Status st = stk_init(&k, g, err);
   if (!st) st = run(&k, &s, err);
@@ -692,4 +803,8 @@ us_Structure *us_gen_stacker(const us_GenSettings *g, us_Error *err) {
     return NULL;
   }
   return s;
+}
+
+us_Structure *us_gen_stacker(const us_GenSettings *g, us_Error *err) {
+  return us_gen_stacker_ref(g, 0, err);
 }
