@@ -289,6 +289,26 @@ static void same_as_whole_lps(void) {
   CHECK_INT(cants, >, n / 20); /* the rows that need the counterweights' tests */
 }
 
-US_TEST_MAIN(T(deterministic_per_seed), T(same_as_whole_lps), T(finished_structure_stands), T(block_counts),
+/* A deadline that has passed stops the generator with US_ERR_TIME_LIMIT
+ * and no structure (it is read before every row attempt); a far one
+ * changes nothing. */
+static void deadline(void) {
+  us_GenSettings g = us_gen_default_settings();
+  g.rows = 14, g.width = 12, g.seed = 5;
+  g.deadline = 1e-9; /* long past */
+  us_Error err;
+  us_Structure *s = us_gen_stacker(&g, &err);
+  CHECK(s == NULL);
+  CHECK_INT(err.code, ==, US_ERR_TIME_LIMIT);
+  CHECK(strstr(err.msg, "stacker") && strstr(err.msg, "time limit"));
+  g.deadline = us_now() + 3600;
+  s = us_gen_stacker(&g, &err);
+  us_Structure *ref = stacker(14, 12, 5, 0.5);
+  CHECK(s && ref && same_geometry(s, ref));
+  us_structure_free(s);
+  us_structure_free(ref);
+}
+
+US_TEST_MAIN(T(deterministic_per_seed), T(same_as_whole_lps), T(deadline), T(finished_structure_stands), T(block_counts),
              T(cantilevers_need_the_rows_above), T(bad_settings), T(gives_up),
              T(out_of_memory), T(stacker_sizes))

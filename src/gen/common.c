@@ -121,8 +121,8 @@ us_Status us_gen_add_box3(us_Structure *s, const us_GenSettings *g, int k, doubl
   return us_gen_add_prism(s, g, k, xy, z0, z1, err);
 }
 
-us_Structure *us_gen_finish(us_Structure *s, us_Error *err) {
-  if (us_structure_finalize(s, err) != US_OK) {
+us_Structure *us_gen_finish(us_Structure *s, const us_GenSettings *g, us_Error *err) {
+  if (us_structure_finalize_until(s, g->deadline, err) != US_OK) {
     us_structure_free(s);
     return NULL;
   }

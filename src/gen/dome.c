@@ -140,5 +140,5 @@ us_Structure *us_gen_dome(const us_GenSettings *g, us_Error *err) {
     us_structure_free(s);
     return NULL;
   }
-  return us_gen_finish(s, err);
+  return us_gen_finish(s, g, err);
 }

@@ -41,8 +41,9 @@ us_Status us_gen_add_prism(us_Structure *s, const us_GenSettings *g, int k, cons
 us_Status us_gen_add_box3(us_Structure *s, const us_GenSettings *g, int k, double x0, double y0,
                           double z0, double x1, double y1, double z1, us_Error *err);
 
-/* Finalize s; on error free it and return NULL (err set). */
-us_Structure *us_gen_finish(us_Structure *s, us_Error *err);
+/* Finalize s, stopped past g->deadline (US_ERR_TIME_LIMIT); on error free
+ * it and return NULL (err set). */
+us_Structure *us_gen_finish(us_Structure *s, const us_GenSettings *g, us_Error *err);
 /* *stable = 1 when the whole of the finalized s stands (default stability
  * settings: the generators that keep a drop only while all stands). */
 us_Status us_gen_stands(const us_Structure *s, int *stable, us_Error *err);

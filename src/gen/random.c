@@ -87,7 +87,7 @@ static us_Structure *build(const Stacker *k, int r, long q, us_Error *err) {
     us_structure_free(s);
     return NULL;
   }
-  return us_gen_finish(s, err);
+  return us_gen_finish(s, k->g, err);
 }
 
 /* Append block (r, q) to the kept blocks. */
@@ -144,6 +144,10 @@ us_Structure *us_gen_random(const us_GenSettings *g, us_Error *err) {
                         "random: gave up after %d attempts without a new highest row "
                         "(highest row %d of 0..%d, %d blocks kept)",
                         g->max_tries, k.top, g->rows - 1, k.n);
+      break;
+    }
+    if (us_past(g->deadline)) {
+      st = us_error_set(err, US_ERR_TIME_LIMIT, "random: time limit reached (%d blocks kept)", k.n);
       break;
     }
     int kept = 0;

@@ -205,7 +205,7 @@ static us_Structure *build(const Drops *d, int count, const char *movable, us_Er
     us_structure_free(s);
     return NULL;
   }
-  return us_gen_finish(s, err);
+  return us_gen_finish(s, d->g, err);
 }
 
 /* Can the candidate (box d->n) stand with every box that could touch it
@@ -231,7 +231,7 @@ static us_Status candidate_alone(const Drops *d, int *stable, us_Error *err) {
     us_structure_free(s);
     return st;
   }
-  s = us_gen_finish(s, err);
+  s = us_gen_finish(s, d->g, err);
   if (!s) return err->code;
   st = us_gen_stands(s, stable, err);
   us_structure_free(s);

@@ -44,7 +44,7 @@ us_Structure *us_gen_column(const us_GenSettings *g, us_Error *err) {
     us_structure_free(s);
     return NULL;
   }
-  return us_gen_finish(s, err);
+  return us_gen_finish(s, g, err);
 }
 
 /* Pyramid in stack bond: g->n rows; row r holds n - r blocks and starts
@@ -62,7 +62,7 @@ us_Structure *us_gen_pyramid(const us_GenSettings *g, us_Error *err) {
     us_structure_free(s);
     return NULL;
   }
-  return us_gen_finish(s, err);
+  return us_gen_finish(s, g, err);
 }
 
 /* One wall row: even rows hold C full bricks; odd rows a half brick, C - 1
@@ -101,7 +101,7 @@ static us_Structure *wall(const us_GenSettings *g, int dim, us_Error *err) {
     us_structure_free(s);
     return NULL;
   }
-  return us_gen_finish(s, err);
+  return us_gen_finish(s, g, err);
 }
 
 us_Structure *us_gen_wall(const us_GenSettings *g, us_Error *err) { return wall(g, 2, err); }

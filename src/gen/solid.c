@@ -72,7 +72,7 @@ us_Structure *us_gen_tower(const us_GenSettings *g, us_Error *err) {
     us_structure_free(s);
     return NULL;
   }
-  return us_gen_finish(s, err);
+  return us_gen_finish(s, g, err);
 }
 
 us_Structure *us_gen_pyramid3d(const us_GenSettings *g, us_Error *err) {
@@ -92,5 +92,5 @@ us_Structure *us_gen_pyramid3d(const us_GenSettings *g, us_Error *err) {
     us_structure_free(s);
     return NULL;
   }
-  return us_gen_finish(s, err);
+  return us_gen_finish(s, g, err);
 }

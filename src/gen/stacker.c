@@ -634,7 +634,7 @@ static us_Structure *build(const Stk *k, int smooth, int only_t, us_Error *err) 
     us_structure_free(s);
     return NULL;
   }
-  return us_gen_finish(s, err);
+  return us_gen_finish(s, k->g, err);
 }
 
 /* The bodies of T, or of T without the cantilevers of the row below
@@ -705,6 +705,7 @@ static us_Status test_T(Stk *k, int smooth, int bare, int *stable, us_Error *err
   us_Structure *s = build(k, smooth, 0, err);
   if (!s) return err->code;
   us_Stability *w = us_stability_new(s, &set, err);
+  if (w) us_stability_set_deadline(w, k->g->deadline);
   us_Bitset t = {0}, seed = {0};
   int *pend = us_malloc((size_t)(s->nbody > 0 ? s->nbody : 1) * sizeof *pend);
   us_Status st = !w ? err->code
@@ -718,6 +719,10 @@ static us_Status test_T(Stk *k, int smooth, int bare, int *stable, us_Error *err
   }
   if (!st && taken) st = grow_towards(w, s, &t, pend, &res, &fell, err);
   if (!st && !fell) st = us_stability_test(w, &t, &res, err);
+  /* past the deadline a verdict may be "undecided": none is used */
+  if (!st && us_past(k->g->deadline))
+    st = us_error_set(err, US_ERR_TIME_LIMIT, "stacker: time limit reached (%d of %d rows kept)",
+                      k->rows - 1, k->g->rows);
   *stable = !st && res.verdict == US_STABLE;
   k->trial_ok = 0;
   if (*stable && smooth && !bare) {
@@ -774,6 +779,9 @@ static us_Status run(Stk *k, us_Structure **out, us_Error *err) {
   const us_GenSettings *g = k->g;
   for (long attempts = 0; k->rows < g->rows; attempts++) {
     int r = k->rows, kept = 0;
+    if (us_past(g->deadline))
+      return us_error_set(err, US_ERR_TIME_LIMIT, "stacker: time limit reached (%d of %d rows kept)",
+                          k->rows, g->rows);
     if (attempts >= g->max_tries)
       return us_error_set(err, US_ERR_INPUT,
                           "stacker: gave up after %d row attempts (%d of %d rows kept)",

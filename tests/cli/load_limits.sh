@@ -31,6 +31,15 @@ expect 3 "render: loading cut by the limit" -- "$CLI" render "$T/wall.json" --ti
 expect 3 "generate random3d: stopped by the limit" -- "$CLI" generate random3d --blocks 50 --time-limit 1e-9 -o "$T/r.json"
 contains "$T/out" "random3d: time limit reached" "generate: says it stopped"
 [ -e "$T/r.json" ] && bad "generate: wrote a file" || ok "generate: nothing written"
+# stacker and random read it between row attempts (and their stability
+# tests stop at it); the other kinds while finding contacts
+for kind in "stacker --rows 80 --width 40" "random --rows 40 --width 8" "wall --rows 300 --cols 300"; do
+  k=${kind%% *}
+  expect 3 "generate $k: stopped by the limit" -- "$CLI" generate $kind --time-limit 1e-9 -o "$T/g.json"
+  contains "$T/out" "time limit" "generate $k: says it stopped"
+  [ -e "$T/g.json" ] && bad "generate $k: wrote a file" || ok "generate $k: nothing written"
+done
+expect 0 "generate stacker with room" -- "$CLI" generate stacker --rows 6 --width 6 --time-limit 600 -o "$T/g.json"
 expect 0 "generate random3d with room" -- "$CLI" generate random3d --blocks 3 --time-limit 600 -o "$T/r.json"
 expect 2 "generate --time-limit 0" -- "$CLI" generate random3d --time-limit 0 -o "$T/r0.json"
 finish
