@@ -268,10 +268,15 @@ static void stacker_sizes(void) {
  * test as one LP of the whole structure does: the same structures, seed
  * by seed, with and without friction, low and tall. */
 static void same_as_whole_lps(void) {
-  static const int size[][2] = {{14, 12}, {8, 30}, {24, 10}, {30, 30}};
+  static const int size[][2] = {{30, 30}, {14, 12}, {8, 30}, {24, 10}};
+#ifdef US_TEST_SANITIZED
+  const int nsize = 2; /* 30 x 30 seed 1 is the stack a wrong shortcut changes */
+#else
+  const int nsize = 4;
+#endif
   int n = 0, cants = 0;
-  for (int z = 0; z < 4; z++)
-    for (unsigned long seed = 1; seed <= (z < 3 ? 4u : 2u); seed++) {
+  for (int z = 0; z < nsize; z++)
+    for (unsigned long seed = 1; seed <= (z == 0 ? 2u : 4u); seed++) {
       us_GenSettings g = us_gen_default_settings();
       g.rows = size[z][0], g.width = size[z][1], g.seed = seed;
       g.friction = seed % 2 ? 0.5 : 0.0;
