@@ -133,9 +133,10 @@ static int parse(int argc, char **argv, us_GenSettings *g, Extra *x, const char 
       GEN_INT("--max-tries", "N", &g->max_tries, "random, stacker: attempts before giving up "
               "(default 10000); random3d: discarded drops in a row before stopping (200)",
               .given = &x->tries_given),
-      CLI_OPT_TIME_LIMIT(&x->time_limit, "stop after S seconds (random, stacker, random3d: between steps and in "
-                         "their stability tests; others: finding contacts), nothing written, "
-                         "exit 3"),
+      CLI_OPT_TIME_LIMIT(&x->time_limit,
+                         "stop after S seconds (stacker, random3d: between steps and in "
+                         "their stability tests; random: between attempts; every kind: "
+                         "finding contacts), nothing written, exit 3"),
       CLI_END};
   const CliSpec spec = {"generate", head, tail, opts, NULL, 0, NULL};
   if (argc == 0) return cli_print_help(&spec, stderr), CLI_EXIT_ERR;

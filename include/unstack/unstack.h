@@ -784,10 +784,11 @@ typedef struct us_GenSettings {
                         this fraction of their width and of the course
                         height, in [0, 0.5) (default 0.02, as cut stone's
                         arrised edges; 0: sharp, see docs/format.md) */
-  double deadline;   /* a us_now() time (0, the default: none): random,
-                        stacker and random3d (between steps and inside
-                        their stability tests) and the finalize of every
-                        generator stop past it with US_ERR_TIME_LIMIT */
+  double deadline;   /* a us_now() time (0, the default: none): stacker
+                        and random3d (between steps and inside their
+                        stability tests), random (between attempts) and
+                        the finalize of every generator stop past it
+                        with US_ERR_TIME_LIMIT */
 } us_GenSettings;
 US_API us_GenSettings us_gen_default_settings(void);
 
