@@ -253,11 +253,17 @@ static int raw(const us_Structure *s, const us_Bitset *present, us_StrongMethod 
  * every "no" passes the check, and where the LP says the sub-assembly
  * does not stand both say no. Counts the cases where weak and strong
  * differ (stands, yet a motion exists). */
+#ifdef US_TEST_SANITIZED
+enum { MIP_PILES = 30 }; /* the sanitizers look for memory errors: half the piles */
+#else
+enum { MIP_PILES = 60 };
+#endif
+
 static void mip_matches_enumeration_at(double mu, unsigned long long rng) {
   int cases = 0, differ = 0, yes = 0;
   long nodes_e = 0, nodes_m = 0;
   double t_e = 0, t_m = 0;
-  for (int it = 0; it < 60; it++) {
+  for (int it = 0; it < MIP_PILES; it++) {
     us_Structure *s = pile_random(&rng, 4 + it % 3);
     if (!s) continue;
     for (int c = 0; c < s->ncontact; c++) s->contacts[c].mu = mu;
@@ -288,7 +294,7 @@ static void mip_matches_enumeration_at(double mu, unsigned long long rng) {
   fprintf(stderr, "%d sub-assemblies: %d strongly stable, %d weakly but not strongly; "
           "LPs %ld in %.2f s, MIP nodes %ld in %.2f s (not asserted)\n", cases, yes, differ,
           nodes_e, t_e, nodes_m, t_m);
-  CHECK(cases >= 100);
+  CHECK(cases >= 5 * MIP_PILES / 3); /* two sub-assemblies a pile, a few piles fail to generate */
   CHECK(yes > 0);
 }
 

@@ -175,7 +175,7 @@ static void extruded_2d_cases(void) {
   CHECK(s);
   CHECK_INT(scene_verdict(s, US_METHOD_LP, NULL), ==, US_STABLE);
 #if defined(__SANITIZE_ADDRESS__)
-  int v = verdict3(s);
+  int v = verdict3_budget(s, 300); /* memory errors, not the verdict: it needs 30,000 */
   CHECK(v == 0 || v == -1);
 #else
   CHECK_INT(verdict3_budget(s, 30000), ==, 0);
@@ -256,7 +256,7 @@ static void tampered_witness_rejected(void) {
 static void extruded_piles_match_2d(void) {
   unsigned long long rng = 20261126;
 #if defined(__SANITIZE_ADDRESS__)
-  int n = 8, cases = 0, decided = 0, yes = 0;
+  int n = 4, cases = 0, decided = 0, yes = 0;
 #else
   int n = 24, cases = 0, decided = 0, yes = 0;
 #endif
@@ -273,7 +273,9 @@ static void extruded_piles_match_2d(void) {
     us_Structure *s3 = test_extrude(s2, 1.0, 0.3, 0.5, -0.25);
     CHECK(s3);
     for (int c = 0; s3 && c < s3->ncontact; c++) s3->contacts[c].mu = 0.5;
-    int v3 = s3 ? verdict3(s3) : -2;
+    /* 300 nodes: the 18 of 24 piles that 3,000 decide are decided by 300
+       (the 6 others cost 1-15 s each undecided at 3,000, 0.3-2 s at 300) */
+    int v3 = s3 ? verdict3_budget(s3, 300) : -2;
     if (r2.strong == 0) CHECK(v3 != 1);
     if (v3 == 1) CHECK_INT(r2.strong, ==, 1);
     CHECK(v3 >= -1);

@@ -106,7 +106,14 @@ static void under_one_percent(void) {
       {"stacker seed 4", 0, 15, 4, 0.01, {0, 2}, {0, 0}},
       {"stacker seed 5", 0, 15, 5, 0.01, {0, 0}, {0, 0}},
   };
+#ifdef US_TEST_SANITIZED /* memory errors, not statistics: seeds 1 and 4 (its re-seeds) */
+  static const int pick[] = {0, 1, 2, 3, 6};
+  Load some[sizeof pick / sizeof pick[0]];
+  for (size_t k = 0; k < sizeof pick / sizeof pick[0]; k++) some[k] = loads[pick[k]];
+  check_loads(some, (int)(sizeof some / sizeof some[0]));
+#else
   check_loads(loads, (int)(sizeof loads / sizeof loads[0]));
+#endif
 }
 
 US_TEST_MAIN({"under_one_percent", under_one_percent})

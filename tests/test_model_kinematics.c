@@ -62,7 +62,7 @@ static int free_dir_is(int b, double dx, double dy, double width) {
 static void column(void) {
   g_s = us_structure_new(2);
   for (int k = 0; k < 3; k++) {
-    char id[8];
+    char id[32];
     snprintf(id, sizeof id, "c%d", k);
     CHECK(scene_box(g_s, id, 0, k, 1, 1, 1) == k);
   }
@@ -151,7 +151,7 @@ static void angle_tolerance(void) {
     g_s = us_structure_new(2);
     double c[2] = {0, 0}, p[3] = {0, 0, 0};
     for (int i = 0; i < 4; i++) {
-      char id[8];
+      char id[32];
       snprintf(id, sizeof id, "p%d", i);
       CHECK(us_structure_add_point_body(g_s, id, 1, c, 0, &err) == i);
     }
@@ -446,7 +446,7 @@ static int mixed_scene(us_Structure *s, double k) {
     int n = (int)polys[i][0];
     double xy[16];
     for (int j = 0; j < 2 * n; j++) xy[j] = k * polys[i][1 + j];
-    char id[8];
+    char id[32];
     snprintf(id, sizeof id, "m%d", i);
     if (scene_polygon(s, id, n, xy, 0) != i) return -1;
   }

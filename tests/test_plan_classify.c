@@ -198,7 +198,7 @@ static void arch_needs_a_group(void) {
   /* R* is the two springers on each side; the crown b3..b8 must go at once */
   CHECK_INT(c.nbuildable, ==, 4);
   CHECK_INT(c.nblocked, ==, 6);
-  char id[8];
+  char id[32];
   for (int i = 3; i <= 8; i++) {
     snprintf(id, sizeof id, "b%d", i);
     CHECK(has_id(s, &c, id));
@@ -296,7 +296,7 @@ static void equality_known_answers(void) {
      one rigid body held by the ground face [0, 1] -> yes */
   us_Structure *s = us_structure_new(2);
   for (int i = 0; i < 3; i++) {
-    char id[8];
+    char id[32];
     snprintf(id, sizeof id, "s%d", i);
     scene_box(s, id, 0.6 * i, 0.25 * i, 1.0, 0.25, 1.0);
   }
@@ -494,7 +494,7 @@ static void topdown_probe_limit(void) {
  * brick and one brick shorter. */
 static us_Structure *wall(int rows, int cols) {
   us_Structure *s = us_structure_new(2);
-  char id[24];
+  char id[32];
   for (int r = 0; r < rows; r++)
     for (int c = 0; c < cols - (r & 1); c++) {
       snprintf(id, sizeof id, "w%d_%d", r, c);

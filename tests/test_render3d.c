@@ -509,7 +509,7 @@ static void stick_cycle(void) {
       xyz[3 * c + 1] = a[1] + f * d[1] + side * nrm[1];
       xyz[3 * c + 2] = 0.2 + f * 1.0 + ((c & 4) ? 0.3 : 0.0);
     }
-    char id[8];
+    char id[32];
     snprintf(id, sizeof id, "s%d", i);
     us_BodyDef def = us_default_body_def();
     def.id = id, def.nvert = 8, def.xyz = xyz;

@@ -366,7 +366,7 @@ static us_Structure *small_wall(void) {
   us_Structure *s = us_structure_new(2);
   double pier[8] = {-1, 0, 4, 0, 4, 0.5, -1, 0.5};
   scene_polygon(s, "pier", 4, pier, 1);
-  char id[16];
+  char id[32];
   for (int r = 0; r < 3; r++)
     for (int c = 0; c < 3; c++) {
       snprintf(id, sizeof id, "b%d%d", r, c);

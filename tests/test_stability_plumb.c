@@ -339,7 +339,7 @@ static void lazy_walks(void) {
   /* two columns with a plank overhanging the right one on top: the plank
      is refused, the rest routes */
   s = us_structure_new(2);
-  char id[16];
+  char id[32];
   for (int c = 0; c < 2; c++)
     for (int r = 0; r < 5; r++) {
       snprintf(id, sizeof id, "c%d_%d", c, r);
