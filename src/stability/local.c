@@ -663,7 +663,7 @@ static us_Status solve_region(us_Local *L, const us_Bitset *cur, int fixed, us_V
   /* a region system: no lists, no restart (backend.h) */
   const us_BackendProblem pb = {.sys = &L->eq};
   us_BackendOut out = {US_UNDECIDED, L->f, info, res->note, sizeof res->note};
-  if (us_small_fits(&L->eq)) {
+  if (us_small_fits_region(&L->eq)) {
     st = us_backend_small.solve(L->small, &pb, &out, err);
     *v = out.verdict;
     if (!st && *v != US_UNDECIDED) {
