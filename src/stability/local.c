@@ -622,6 +622,17 @@ static int grow_pressers(us_Local *L, const us_Bitset *cur, int nseed) {
   return L->nreg - before;
 }
 
+/* Level 1c: the supporters under the extent of every body of R (not only
+ * of the changed ones), followed down: a wider column than level 1's,
+ * narrower than level 2's cone. The number of bodies added. */
+static int grow_widened(us_Local *L, const us_Bitset *cur) {
+  int before = L->nreg;
+  foot_set(L, INFINITY, -INFINITY);
+  for (int q = 0; q < L->nreg; q++) widen_foot(L, L->reg[q]);
+  grow_supporters(L, cur);
+  return L->nreg - before;
+}
+
 /* One ring of present neighbours; the number of bodies added. */
 static int grow_ring(us_Local *L, const us_Bitset *cur) {
   const us_Structure *s = L->s;
@@ -920,10 +931,11 @@ static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityR
   }
   int nseed = seeded ? L->nreg : -1, nfirst = L->nreg, pressed = 0, last = L->nreg;
   int supported = -1; /* the region size of the latest support LP */
-  /* regions the small solver takes whole are never handed back early */
   /* level 1c in 2D only: on a 200-box random3d pile it added 36 region
      LPs and 3-5 % to the plan for 2 fewer full-system tests */
-  int closed = 0, coned = 0, widened = L->dim != 2, limit = US_MAX((int)(LOCAL_GLOBAL_SHARE * size), US_SMALL_ROWS / L->eq.nw);
+  int closed = 0, coned = 0, widened = L->dim != 2;
+  /* regions the small solver takes whole are never handed back early */
+  int limit = US_MAX((int)(LOCAL_GLOBAL_SHARE * size), US_SMALL_ROWS / L->eq.nw);
   grow_supporters(L, cur);
   /* a seed that a present body rests on: level 1 alone never held one
      (0 of 894 such tests on stacks of 632 to 9,352 blocks), so the first
@@ -956,14 +968,9 @@ static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityR
       pressed = 1;
       if (grow_pressers(L, cur, nfirst)) continue;
     }
-    if (!widened) { /* level 1c: the supporters under R's own extent (not
-                       only the change's), followed down: a wider column */
+    if (!widened) { /* level 1c: a wider column */
       widened = 1;
-      int before = L->nreg;
-      foot_set(L, INFINITY, -INFINITY);
-      for (int q = 0; q < L->nreg; q++) widen_foot(L, L->reg[q]);
-      grow_supporters(L, cur);
-      if (L->nreg > before) continue;
+      if (grow_widened(L, cur)) continue;
     }
     if (!coned) { /* level 2: every supporter of R, followed down */
       coned = 1;
