@@ -34,6 +34,34 @@ static void bitset_basics(void) {
   us_bitset_free(&c);
 }
 
+/* us_bitset_next visits exactly the set bits, in order, against a plain
+ * scan: sizes around word boundaries, random densities from empty to
+ * full. */
+static void bitset_next_matches_scan(void) {
+  uint64_t x = 12345;
+  int sizes[] = {1, 63, 64, 65, 127, 128, 129, 700};
+  for (size_t k = 0; k < sizeof sizes / sizeof *sizes; k++)
+    for (int density = 0; density <= 8; density++) {
+      us_Bitset b;
+      CHECK(us_bitset_init(&b, sizes[k]) == 0);
+      for (int i = 0; i < sizes[k]; i++) {
+        x = x * 6364136223846793005ULL + 1442695040888963407ULL;
+        if ((int)((x >> 33) % 8) < density) us_bitset_set(&b, i);
+      }
+      int i = us_bitset_next(&b, -1), seen = 0;
+      for (int j = 0; j < sizes[k]; j++) {
+        if (!us_bitset_get(&b, j)) continue;
+        CHECK_INT(i, ==, j);
+        i = us_bitset_next(&b, i);
+        seen++;
+      }
+      CHECK_INT(i, ==, -1);
+      CHECK_INT(seen, ==, us_bitset_count(&b));
+      CHECK_INT(us_bitset_next(&b, sizes[k] - 1), ==, -1);
+      us_bitset_free(&b);
+    }
+}
+
 /* Insert many distinct subsets (more than 64 bits wide) and find each. */
 static void bitset_set_many(void) {
   us_BitsetSet set;
@@ -255,6 +283,6 @@ static void idmap_matches_linear_search(void) {
   us_idmap_free(&m);
 }
 
-US_TEST_MAIN(T(bitset_basics), T(bitset_set_many), T(alloc_failure_hook), T(error_messages),
+US_TEST_MAIN(T(bitset_basics), T(bitset_next_matches_scan), T(bitset_set_many), T(alloc_failure_hook), T(error_messages),
              T(id_text), T(output_files), T(output_refusals), T(output_nomem), T(cleanup),
              T(idmap_matches_linear_search))

@@ -168,3 +168,16 @@ size_t us_bitset_set_bytes(const us_BitsetSet *s) {
   return s->cap * (sizeof(uint64_t) + sizeof(size_t)) +
          s->pool_cap * (size_t)s->nwords * sizeof(uint64_t);
 }
+
+int us_bitset_next(const us_Bitset *b, int i) {
+  int j = i + 1;
+  if (j < 0 || j >= b->nbits) return -1;
+  int wi = j >> 6;
+  uint64_t m = b->w[wi] & (~0ULL << (j & 63));
+  while (!m) {
+    if (++wi >= b->nwords) return -1;
+    m = b->w[wi];
+  }
+  j = (wi << 6) + __builtin_ctzll(m);
+  return j < b->nbits ? j : -1;
+}

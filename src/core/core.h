@@ -42,6 +42,11 @@ typedef struct us_BitsetSet {
   size_t pool_cap;       /* keys the pool can hold */
 } us_BitsetSet;
 
+/* The first set bit of b after bit i (i = -1: from the start), or -1:
+ * O(words skipped), for loops over a sparse sub-assembly of a large
+ * structure. */
+int us_bitset_next(const us_Bitset *b, int i);
+
 int us_bitset_set_init(us_BitsetSet *s, int nbits);
 void us_bitset_set_free(us_BitsetSet *s);
 int us_bitset_set_contains(const us_BitsetSet *s, const us_Bitset *b);

@@ -228,9 +228,8 @@ static int add_forces(const us_Structure *s, const Units *u, const us_Bitset *pr
 static void residuals(const us_Structure *s, const Units *u, const us_Bitset *present,
                       const double *acc, us_CertCheck *r) {
   double worst = -1.0;
-  for (int i = 0; i < s->nbody; i++) {
-    const us_Body *b = &s->bodies[i];
-    if (b->fixed || !us_bitset_get(present, i)) continue;
+  for (int i = us_bitset_next(present, -1); i >= 0; i = us_bitset_next(present, i)) {
+    if (s->bodies[i].fixed) continue;
     double fr, tr;
     body_residuals(s, u, i, acc + US_CERT_ACC * (size_t)i, &fr, &tr);
     r->max_force_residual = US_MAX(r->max_force_residual, fr);
@@ -254,12 +253,15 @@ int us_certificate_check_mode(const us_Structure *s, const us_Bitset *present,
   us_CertCheck r;
   memset(&r, 0, sizeof r);
   r.worst_body = r.worst_contact = -1;
-  memset(acc, 0, US_CERT_ACC * (size_t)s->nbody * sizeof(double));
-  memset(seen, 0, (size_t)s->ncontact);
   if (present->nbits != s->nbody || f->ncontact < 0 || (f->ncontact > 0 && (!f->contact || !f->f))) {
     *out = failed_check();
     return -1;
   }
+  /* scratch cleared where this check reads it: O(sub-assembly), not O(structure) */
+  for (int i = us_bitset_next(present, -1); i >= 0; i = us_bitset_next(present, i))
+    memset(acc + US_CERT_ACC * (size_t)i, 0, US_CERT_ACC * sizeof(double));
+  for (int i = 0; i < f->ncontact; i++)
+    if (f->contact[i] >= 0 && f->contact[i] < s->ncontact) seen[f->contact[i]] = 0;
   Units u = units_of(s);
   if (add_forces(s, &u, present, f, bilateral, acc, seen, &r)) {
     int c = r.worst_contact;

@@ -25,6 +25,7 @@
 #include "model/massprops.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 int us_eq_init(us_EqSystem *e, const us_Structure *s) {
@@ -53,6 +54,8 @@ void us_eq_free(us_EqSystem *e) {
   us_free(e->w);
   us_free(e->rhs);
   us_free(e->mu);
+  us_free(e->inc_start);
+  us_free(e->inc);
   memset(e, 0, sizeof *e);
 }
 
@@ -147,41 +150,90 @@ static void write_contact(us_EqSystem *e, int ci, int c) {
   }
 }
 
-/* Number the present movable bodies and write their gravity rows. */
-static void number_bodies(us_EqSystem *e, const us_Bitset *present) {
+static void clear_rows(us_EqSystem *e);
+
+/* The structure's contacts by body (CSR), built at the first whole-system
+ * build: a build then walks only the present bodies' contacts. */
+static int build_incidence(us_EqSystem *e) {
   const us_Structure *s = e->s;
-  e->nbody = 0;
-  for (int i = 0; i < s->nbody; i++) {
-    const us_Body *b = &s->bodies[i];
-    if (b->fixed || !us_bitset_get(present, i)) {
-      e->row_of_body[i] = -1;
-      continue;
-    }
-    int r = e->nbody++;
-    e->row_of_body[i] = r;
-    e->body[r] = i;
-    double *rhs = e->rhs + (size_t)r * (size_t)e->nw;
-    memset(rhs, 0, (size_t)e->nw * sizeof(double));
-    double share = b->mass / e->mass_total;
-    for (int j = 0; j < e->dim; j++) rhs[j] = -share * e->gdir[j];
+  int n = s->nbody;
+  e->inc_start = us_calloc((size_t)n + 1, sizeof(int));
+  e->inc = us_malloc((size_t)(2 * s->ncontact + 1) * sizeof(int));
+  if (!e->inc_start || !e->inc) {
+    us_free(e->inc_start), us_free(e->inc);
+    e->inc_start = e->inc = NULL;
+    return -1;
   }
+  for (int c = 0; c < s->ncontact; c++) {
+    const us_Contact *k = &s->contacts[c];
+    if (k->a >= 0) e->inc_start[k->a + 1]++;
+    if (k->b >= 0) e->inc_start[k->b + 1]++;
+  }
+  for (int i = 0; i < n; i++) e->inc_start[i + 1] += e->inc_start[i];
+  for (int c = 0; c < s->ncontact; c++) { /* fill, then shift the starts back */
+    const us_Contact *k = &s->contacts[c];
+    if (k->a >= 0) e->inc[e->inc_start[k->a]++] = c;
+    if (k->b >= 0) e->inc[e->inc_start[k->b]++] = c;
+  }
+  for (int i = n; i > 0; i--) e->inc_start[i] = e->inc_start[i - 1];
+  e->inc_start[0] = 0;
+  return 0;
 }
 
+/* Row r for body i, with its gravity row. */
+static void number_body(us_EqSystem *e, int i, int r) {
+  e->row_of_body[i] = r;
+  e->body[r] = i;
+  double *rhs = e->rhs + (size_t)r * (size_t)e->nw;
+  memset(rhs, 0, (size_t)e->nw * sizeof(double));
+  double share = e->s->bodies[i].mass / e->mass_total;
+  for (int j = 0; j < e->dim; j++) rhs[j] = -share * e->gdir[j];
+}
+
+static int int_cmp(const void *a, const void *b) {
+  int x = *(const int *)a, y = *(const int *)b;
+  return (x > y) - (x < y);
+}
+
+/* The next present movable body after body i (-1: from the start), or -1. */
+static int next_present(const us_Structure *s, const us_Bitset *present, int i) {
+  do
+    i = us_bitset_next(present, i);
+  while (i >= 0 && s->bodies[i].fixed);
+  return i;
+}
+
+/* O(present bodies + their contacts), not O(structure): the planner
+ * builds whole systems of one component of a large structure. The
+ * contacts keep ascending order (the backends' column order). */
 int us_eq_build(us_EqSystem *e, const us_Bitset *present) {
   const us_Structure *s = e->s;
+  if (!e->inc_start && build_incidence(e)) return -1;
   /* sizes first (counting is cheap) so that an OOM leaves nothing half-built */
   int nb = 0, nc = 0;
-  for (int i = 0; i < s->nbody; i++) nb += !s->bodies[i].fixed && us_bitset_get(present, i);
-  for (int c = 0; c < s->ncontact; c++) nc += us_contact_active(s, present, c);
+  for (int i = next_present(s, present, -1); i >= 0; i = next_present(s, present, i)) {
+    nb++;
+    nc += e->inc_start[i + 1] - e->inc_start[i];
+  }
   if (reserve(e, nb, nc)) return -1;
-  number_bodies(e, present);
+  clear_rows(e);
+  for (int i = next_present(s, present, -1); i >= 0; i = next_present(s, present, i))
+    number_body(e, i, e->nbody++);
   e->ncontact = 0;
-  for (int c = 0; c < s->ncontact; c++) {
-    if (!us_contact_active(s, present, c)) continue;
-    int ci = e->ncontact++;
-    e->contact[ci] = c;
-    e->mu[ci] = s->contacts[c].mu;
-    write_contact(e, ci, c);
+  for (int r = 0; r < e->nbody; r++) { /* each active contact once, from its first movable side */
+    int u = e->body[r];
+    for (int m = e->inc_start[u]; m < e->inc_start[u + 1]; m++) {
+      int c = e->inc[m];
+      const us_Contact *k = &s->contacts[c];
+      int v = k->a == u ? k->b : k->a;
+      if (v >= 0 && e->row_of_body[v] >= 0 && v < u) continue;
+      if (us_contact_active(s, present, c)) e->contact[e->ncontact++] = c;
+    }
+  }
+  qsort(e->contact, (size_t)e->ncontact, sizeof(int), int_cmp);
+  for (int ci = 0; ci < e->ncontact; ci++) {
+    e->mu[ci] = s->contacts[e->contact[ci]].mu;
+    write_contact(e, ci, e->contact[ci]);
   }
   return 0;
 }
@@ -212,15 +264,7 @@ static void clear_rows(us_EqSystem *e) {
 
 /* Rows of the region's bodies, in the order given, with their gravity. */
 static void number_region(us_EqSystem *e, const int *reg, int nreg) {
-  for (int q = 0; q < nreg; q++) {
-    int i = reg[q], r = e->nbody++;
-    e->row_of_body[i] = r;
-    e->body[r] = i;
-    double *rhs = e->rhs + (size_t)r * (size_t)e->nw;
-    memset(rhs, 0, (size_t)e->nw * sizeof(double));
-    double share = e->s->bodies[i].mass / e->mass_total;
-    for (int j = 0; j < e->dim; j++) rhs[j] = -share * e->gdir[j];
-  }
+  for (int q = 0; q < nreg; q++) number_body(e, reg[q], e->nbody++);
 }
 
 /* Move the known force fb (dim components) of contact c on row body u to

@@ -51,6 +51,8 @@ typedef struct us_EqSystem {
                           free in sign: +-n, +-t generators); set by the
                           caller after us_eq_init, kept by the builds */
   int cap_body, cap_contact;
+  int *inc_start, *inc; /* the structure's contacts by body (us_eq_build's
+                           own, built at its first call) */
 } us_EqSystem;
 
 int us_eq_init(us_EqSystem *e, const us_Structure *s);
