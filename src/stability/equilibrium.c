@@ -230,7 +230,7 @@ int us_eq_build(us_EqSystem *e, const us_Bitset *present) {
       if (us_contact_active(s, present, c)) e->contact[e->ncontact++] = c;
     }
   }
-  qsort(e->contact, (size_t)e->ncontact, sizeof(int), int_cmp);
+  if (e->ncontact > 1) qsort(e->contact, (size_t)e->ncontact, sizeof(int), int_cmp);
   for (int ci = 0; ci < e->ncontact; ci++) {
     e->mu[ci] = s->contacts[e->contact[ci]].mu;
     write_contact(e, ci, e->contact[ci]);
