@@ -27,6 +27,10 @@ typedef struct us_BackendProblem {
   const int *removed;
   int nremoved;
   int restart;
+  /* Optional (NULL: none): forces near the answer, normalized, per
+   * structure contact (dim each); a backend may start from the columns
+   * they use (the local tests pass the base forces). */
+  const double *hint;
 } us_BackendProblem;
 
 /* What a backend answers: the verdict; on stable, dim * ncontact

@@ -57,6 +57,7 @@
 #include "certificate.h"
 #include "lp_gen.h"
 #include "lp_small.h"
+#include "lp_sparse.h"
 #include "plumb.h"
 #include "model/massprops.h"
 
@@ -85,6 +86,7 @@ struct us_Local {
   void *bws[2];          /* the support LP's and the fixed LP's (each warm
                             starts from its own previous basis) */
   void *small;           /* the dense simplex for tiny regions (lp_small.h) */
+  void *sparse[2];       /* the sparse simplex (lp_sparse.h): support, fixed */
   const void *ray_ws;    /* the workspace of the last support LP */
   const us_Backend *ray_be;
   us_EqSystem eq;
@@ -184,6 +186,8 @@ void us_local_free(us_Local *L) {
   for (int k = 0; k < 2; k++)
     if (L->bws[k]) L->be->destroy(L->bws[k]);
   if (L->small) us_backend_small.destroy(L->small);
+  for (int k = 0; k < 2; k++)
+    if (L->sparse[k]) us_backend_sparse.destroy(L->sparse[k]);
   us_eq_free(&L->eq);
   us_free(L->inc_start);
   us_free(L->inc);
@@ -261,7 +265,8 @@ us_Local *us_local_new(const us_Structure *s, const us_StabilitySettings *set,
     }
   }
   L->small = us_backend_small.create(s, set, err);
-  if (!L->small) {
+  for (int k = 0; k < 2 && L->small; k++) L->sparse[k] = us_backend_sparse.create(s, set, err);
+  if (!L->small || !L->sparse[0] || !L->sparse[1]) {
     us_local_free(L);
     return NULL;
   }
@@ -674,14 +679,24 @@ static us_Status solve_region(us_Local *L, const us_Bitset *cur, int fixed, us_V
   us_Status st = US_OK;
   *v = US_UNDECIDED;
   /* a region system: no lists, no restart (backend.h) */
-  const us_BackendProblem pb = {.sys = &L->eq};
+  const us_BackendProblem pb = {.sys = &L->eq, .hint = L->fbase};
   us_BackendOut out = {US_UNDECIDED, L->f, info, res->note, sizeof res->note};
-  if (us_small_fits_region(&L->eq)) {
+  /* up to US_SMALL_ROWS rows the dense tableau (the batches of small
+     stacks were measured there), then the sparse simplex, then CLP */
+  if (us_small_fits(&L->eq)) {
     st = us_backend_small.solve(L->small, &pb, &out, err);
     *v = out.verdict;
     if (!st && *v != US_UNDECIDED) {
       L->ray_be = &us_backend_small;
       L->ray_ws = L->small;
+    }
+  }
+  if (!st && *v == US_UNDECIDED && us_sparse_fits_region(&L->eq)) {
+    st = us_backend_sparse.solve(L->sparse[fixed], &pb, &out, err);
+    *v = out.verdict;
+    if (!st && *v != US_UNDECIDED) {
+      L->ray_be = &us_backend_sparse;
+      L->ray_ws = L->sparse[fixed];
     }
   }
   if (!st && *v == US_UNDECIDED) {

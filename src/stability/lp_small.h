@@ -22,23 +22,12 @@ static inline int us_small_fits(const us_EqSystem *e) {
   return e->dim == 2 && e->nbody * e->nw <= US_SMALL_ROWS;
 }
 
-/* A local test's region LP (local.c) goes to the small solver up to this
- * many rows, more than a whole small system: CLP runs a region warm from
- * the latest statuses, and costs 1-2.5 ms a solve nearly whatever the size
- * from 90 to 360 rows (its model, factorizations and steepest-edge
- * weights), while the dense tableau grows with the size. Timed on the same
- * region LPs (2026-12-02; small / CLP, ms per solve), the 876-block stack
- * (`generate stacker --rows 100 --width 60 --seed 3`): 90-119 rows 0.47 /
- * 1.92, 120-149 0.88 / 1.56, 150-179 1.63 / 1.89, 180-209 2.40 / 2.01;
- * the 632-block one (`--rows 60 --width 60 --seed 1`): 0.41 / 1.06, 0.89 /
- * 1.36, 1.43 / 1.79, 1.95 / 2.42. Plans (user CPU, same orders) at 90 /
- * 165: 876 blocks 1.05-1.11 / 0.82-0.90 s, 5,796 blocks 12.3-12.4 /
- * 10.4-10.6 s, 9,352 blocks 7.9-8.1 / 7.4-7.7 s; batches of small stacks
- * unchanged (their regions are smaller). */
-#define US_SMALL_REGION_ROWS 165
-static inline int us_small_fits_region(const us_EqSystem *e) {
-  return e->dim == 2 && e->nbody * e->nw <= US_SMALL_REGION_ROWS;
-}
+/* Region LPs of more rows go to the sparse simplex (lp_sparse.h): the
+ * dense tableau pivots m times at O(m n) each. Until 2026-12-02 regions
+ * went to the dense one up to 165 rows (CLP cost 1-2.5 ms a region solve
+ * whatever the size; the dense one 0.4-1.6 ms up to 179 rows); with the
+ * sparse simplex at 0 rows instead of 90, batches of 400 small random
+ * stacks took 0.30-0.38 s of CPU instead of 0.27-0.30 s. */
 
 extern const us_Backend us_backend_small;
 

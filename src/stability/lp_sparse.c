@@ -1,0 +1,641 @@
+/* A sparse revised simplex for the region LPs of the local tests.
+ *
+ * Problem: G l = b, l >= 0 (lp_gen.h: G's columns are cone generators),
+ * a feasibility question. Columns 0 .. n-1 are G's; column n + i is row
+ * i's artificial e_i, whose only feasible value is 0.
+ *
+ * Phase 1, composite: the basis may start infeasible (it is the previous
+ * solve's), so each iteration prices the sum of infeasibilities of the
+ * current basic values, w = sum over basic l_j < 0 of -l_j plus sum over
+ * basic artificials of |a_i|: costs c_B = -1, +1 or -1 on those, 0 on the
+ * rest. y = B^-T c_B; the entering column is the one with the most
+ * negative reduced cost -y . G_j (Dantzig; Bland's lowest index after
+ * STALL degenerate steps); the leaving one is the first basic value to
+ * reach a bound as the entering one grows (a feasible l_j at 0, an
+ * artificial at 0 from either side, an infeasible l_j at 0 from below).
+ * Artificials never enter. w = 0: the basic l is feasible. No entering
+ * column while w > 0: then y . G_j <= 0 for every column and
+ * y . b = c_B . l_B = w > 0, so y is a Farkas ray of the LP.
+ *
+ * Basis: B = L U after a row permutation (left-looking LU, one basis
+ * column at a time; each column's pivot is the smallest row index among
+ * the entries within PIV_REL of its largest, so a load path's column
+ * pivots on its upper body's rows and the factors keep B's sparsity),
+ * then one eta per basis change (product form), refactorized every
+ * MAX_ETAS changes. Columns that are (numerically) dependent on the
+ * earlier ones are left out and the artificials of the rows left
+ * unpivoted complete the basis.
+ *
+ * Warm start: the workspace keeps, per structure contact and cone slot,
+ * whether the column was basic when its last solve ended; the next solve
+ * starts from those columns (a test next to the previous one starts near
+ * its answer, as CLP's statuses do in lp_clp.c).
+ */
+#include "lp_sparse.h"
+
+#include "lp_gen.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define FEAS_TOL 1e-11  /* a basic value this far below 0 (artificial: from 0) is infeasible */
+#define COST_EPS 1e-12  /* reduced costs above -this are optimal */
+#define RATIO_PIV 1e-9  /* ratio-test entries below this are not pivots */
+#define RATIO_TIE 1e-12 /* ratios this close are ties */
+#define PIV_REL 0.1     /* LU: a pivot within this share of the column's largest */
+#define PIV_ABS 1e-9    /* LU: a column whose largest remaining entry is below this is dependent */
+#define MAX_ETAS 32     /* basis changes between factorizations */
+#define STALL 16        /* degenerate steps in a row before Bland's rule */
+#define RESID_TOL 1e-9  /* a feasible claim's max |G l - b| */
+#define HINT_SHARE 1e-12 /* a hint's generator share above this: a starting column */
+
+typedef struct SparseWs {
+  us_EqGen gen;
+  us_LpSettings set;
+  int m, n, cap_m, cap_n;
+  int *basis;          /* [m] column at each basis position (= LU step) */
+  int *where;          /* [n + m] basis position, or -1 */
+  double *xb;          /* [m] basic values */
+  double *x, *z, *w;   /* [m] dense work: rows, positions, positions */
+  double *alpha;       /* [m] the entering column, FTRAN'd */
+  double *cb;          /* [m] the phase-1 costs the duals were computed from */
+  int *prow, *pinv;    /* [m] row pivoted at step k; step of row i or -1 */
+  double *uinv;        /* [m] 1 / U's diagonal */
+  int *lstart, *ustart;  /* [m + 1] */
+  int *lidx, *uidx;      /* L: rows; U: steps */
+  double *lval, *uval;
+  int cap_l, cap_u;
+  int *pat;            /* [m] nonzero rows of the column being factorized */
+  int *heap;           /* [m] the steps it reaches */
+  unsigned char *mark; /* [m] */
+  int *cand;           /* [n + m] candidate basis columns */
+  long long *sortkey;  /* [n + m] their order */
+  double *cost;        /* [n] reduced costs (scratch) */
+  /* etas: position, and the entering column's nonzeros */
+  int neta, *eta_pos, *eta_start, *eta_idx, cap_eta, cap_eidx;
+  double *eta_val;
+  unsigned char *was_basic; /* [structure contacts * slots] */
+  int nslot, nkey;
+  double *ray;
+  int nray, last_body;
+} SparseWs;
+
+static void sparse_destroy(void *ws) {
+  SparseWs *w = ws;
+  if (!w) return;
+  us_eq_gen_free(&w->gen);
+  void *arrays[] = {w->basis, w->where, w->xb, w->x, w->z, w->w, w->alpha, w->prow, w->pinv,
+                    w->uinv, w->lstart, w->ustart, w->lidx, w->uidx, w->lval, w->uval,
+                    w->pat, w->heap, w->cb, w->mark, w->cand, w->sortkey, w->cost, w->eta_pos, w->eta_start, w->eta_idx,
+                    w->eta_val, w->was_basic, w->ray};
+  for (size_t k = 0; k < sizeof arrays / sizeof *arrays; k++) us_free(arrays[k]);
+  us_free(w);
+}
+
+static void *sparse_create(const us_Structure *s, const us_StabilitySettings *set, us_Error *err) {
+  SparseWs *w = us_calloc(1, sizeof *w);
+  if (w) {
+    w->set = us_lp_settings_resolve(&set->lp);
+    w->nslot = us_eq_gen_slots(s->dim);
+    w->nkey = s->ncontact * w->nslot;
+    w->was_basic = us_calloc((size_t)w->nkey + 1, 1);
+    w->last_body = -1;
+  }
+  if (!w || !w->was_basic) {
+    sparse_destroy(w);
+    us_error_set(err, US_ERR_NOMEM, "out of memory creating the sparse LP workspace");
+    return NULL;
+  }
+  return w;
+}
+
+/* Work arrays for m rows and n columns; -1 on OOM. */
+static int reserve(SparseWs *w, int m, int n) {
+  if (m > w->cap_m) {
+    int c = 2 * m + 16;
+    us_free(w->basis), us_free(w->xb), us_free(w->x), us_free(w->z), us_free(w->w);
+    us_free(w->alpha), us_free(w->prow), us_free(w->pinv), us_free(w->uinv);
+    us_free(w->lstart), us_free(w->ustart), us_free(w->pat), us_free(w->mark), us_free(w->ray);
+    us_free(w->heap), us_free(w->cb);
+    w->heap = us_malloc((size_t)c * sizeof(int));
+    w->cb = us_malloc((size_t)c * sizeof(double));
+    w->basis = us_malloc((size_t)c * sizeof(int));
+    w->xb = us_malloc((size_t)c * sizeof(double));
+    w->x = us_calloc((size_t)c, sizeof(double));
+    w->z = us_malloc((size_t)c * sizeof(double));
+    w->w = us_malloc((size_t)c * sizeof(double));
+    w->alpha = us_malloc((size_t)c * sizeof(double));
+    w->prow = us_malloc((size_t)c * sizeof(int));
+    w->pinv = us_malloc((size_t)c * sizeof(int));
+    w->uinv = us_malloc((size_t)c * sizeof(double));
+    w->lstart = us_malloc((size_t)(c + 1) * sizeof(int));
+    w->ustart = us_malloc((size_t)(c + 1) * sizeof(int));
+    w->pat = us_malloc((size_t)c * sizeof(int));
+    w->mark = us_calloc((size_t)c, 1);
+    w->ray = us_malloc((size_t)c * sizeof(double));
+    w->cap_m = w->basis && w->xb && w->x && w->z && w->w && w->alpha && w->prow && w->pinv &&
+                       w->uinv && w->lstart && w->ustart && w->pat && w->mark && w->ray && w->heap && w->cb
+                   ? c
+                   : 0;
+    if (!w->cap_m) return -1;
+  }
+  if (n + m > w->cap_n) {
+    int c = 2 * (n + m) + 16;
+    us_free(w->where), us_free(w->cand), us_free(w->sortkey), us_free(w->cost);
+    w->where = us_malloc((size_t)c * sizeof(int));
+    w->cand = us_malloc((size_t)c * sizeof(int));
+    w->sortkey = us_malloc((size_t)c * sizeof(long long));
+    w->cost = us_malloc((size_t)c * sizeof(double));
+    w->cap_n = w->where && w->cand && w->sortkey && w->cost ? c : 0;
+    if (!w->cap_n) return -1;
+  }
+  return 0;
+}
+
+/* ------------------------------------------------------------ columns */
+
+/* Column j's nonzeros: G's, or the artificial e_(j - n). */
+static int column(const SparseWs *w, int j, const int **row, const double **val, int *art_row) {
+  static const double one = 1.0;
+  if (j < w->n) {
+    int a = w->gen.start[j];
+    *row = w->gen.row + a, *val = w->gen.val + a;
+    return w->gen.start[j + 1] - a;
+  }
+  *art_row = j - w->n;
+  *row = art_row, *val = &one;
+  return 1;
+}
+
+static int key_of(const SparseWs *w, const us_EqSystem *e, int j) {
+  return e->contact[w->gen.col_contact[j]] * w->nslot + w->gen.col_slot[j];
+}
+
+/* ----------------------------------------------------------------- LU */
+
+static int grow_lu(SparseWs *w, int nl, int nu) {
+  if (nl > w->cap_l) {
+    int c = 2 * nl + 64;
+    int *i = us_realloc(w->lidx, (size_t)c * sizeof(int));
+    if (i) w->lidx = i;
+    double *v = us_realloc(w->lval, (size_t)c * sizeof(double));
+    if (v) w->lval = v;
+    if (!i || !v) return -1;
+    w->cap_l = c;
+  }
+  if (nu > w->cap_u) {
+    int c = 2 * nu + 64;
+    int *i = us_realloc(w->uidx, (size_t)c * sizeof(int));
+    if (i) w->uidx = i;
+    double *v = us_realloc(w->uval, (size_t)c * sizeof(double));
+    if (v) w->uval = v;
+    if (!i || !v) return -1;
+    w->cap_u = c;
+  }
+  return 0;
+}
+
+/* Scatter column j into w->x over rows, its pattern into w->pat. */
+static int scatter(SparseWs *w, int j) {
+  const int *row;
+  const double *val;
+  int ar, np = 0, nz = column(w, j, &row, &val, &ar);
+  for (int q = 0; q < nz; q++) {
+    int r = row[q];
+    if (!w->mark[r]) w->mark[r] = 1, w->pat[np++] = r;
+    w->x[r] += val[q];
+  }
+  return np;
+}
+
+/* Min-heap of steps (the L solve visits the reached steps in order). */
+static void heap_push(int *h, int *n, int v) {
+  int i = (*n)++;
+  while (i > 0 && h[(i - 1) / 2] > v) h[i] = h[(i - 1) / 2], i = (i - 1) / 2;
+  h[i] = v;
+}
+
+static int heap_pop(int *h, int *n) {
+  int top = h[0], v = h[--(*n)], i = 0;
+  for (;;) {
+    int c = 2 * i + 1;
+    if (c >= *n) break;
+    if (c + 1 < *n && h[c + 1] < h[c]) c++;
+    if (h[c] >= v) break;
+    h[i] = h[c], i = c;
+  }
+  if (*n > 0) h[i] = v;
+  return top;
+}
+
+/* Factor column j as step k: 1 taken, 0 dependent (nothing kept), -1 OOM.
+ * The L solve visits only the steps the column reaches (a heap of them,
+ * smallest first: L's column s only holds rows pivoted after s). */
+static int factor_column(SparseWs *w, int j, int k) {
+  int np = scatter(w, j), nh = 0;
+  int ul = w->ustart[k], *heap = w->heap;
+  for (int q = 0; q < np; q++)
+    if (w->pinv[w->pat[q]] >= 0) heap_push(heap, &nh, w->pinv[w->pat[q]]);
+  while (nh > 0) {
+    int s = heap_pop(heap, &nh);
+    double v = w->x[w->prow[s]];
+    if (v == 0.0) continue;
+    if (grow_lu(w, 0, ul + 1)) return -1;
+    w->uidx[ul] = s, w->uval[ul++] = v;
+    for (int q = w->lstart[s]; q < w->lstart[s + 1]; q++) {
+      int r = w->lidx[q];
+      if (!w->mark[r]) {
+        w->mark[r] = 1, w->pat[np++] = r;
+        if (w->pinv[r] >= 0) heap_push(heap, &nh, w->pinv[r]);
+      }
+      w->x[r] -= w->lval[q] * v;
+    }
+  }
+  double big = 0.0;
+  for (int q = 0; q < np; q++)
+    if (w->pinv[w->pat[q]] < 0) big = US_MAX(big, fabs(w->x[w->pat[q]]));
+  int p = -1;
+  if (big > PIV_ABS)
+    for (int q = 0; q < np; q++) {
+      int r = w->pat[q];
+      if (w->pinv[r] < 0 && fabs(w->x[r]) >= PIV_REL * big && (p < 0 || r < p)) p = r;
+    }
+  int ok = p >= 0, ll = w->lstart[k];
+  if (ok) {
+    w->ustart[k + 1] = ul;
+    w->prow[k] = p, w->pinv[p] = k, w->uinv[k] = 1.0 / w->x[p];
+    if (grow_lu(w, ll + np, 0)) return -1;
+    for (int q = 0; q < np; q++) {
+      int r = w->pat[q];
+      if (w->pinv[r] < 0 && w->x[r] != 0.0) w->lidx[ll] = r, w->lval[ll++] = w->x[r] * w->uinv[k];
+    }
+    w->lstart[k + 1] = ll;
+  }
+  for (int q = 0; q < np; q++) w->x[w->pat[q]] = 0.0, w->mark[w->pat[q]] = 0;
+  return ok;
+}
+
+/* Factorize a basis from the candidate columns w->cand[0 .. nc) (in the
+ * order given), completed by artificials: 0, or -1 OOM. */
+static int factorize(SparseWs *w, int nc) {
+  int m = w->m, k = 0;
+  for (int i = 0; i < m; i++) w->pinv[i] = -1;
+  for (int j = 0; j < w->n + m; j++) w->where[j] = -1;
+  w->lstart[0] = w->ustart[0] = 0;
+  w->neta = 0;
+  for (int q = 0; q < nc && k < m; q++) {
+    int r = factor_column(w, w->cand[q], k);
+    if (r < 0) return -1;
+    if (r) w->basis[k] = w->cand[q], w->where[w->cand[q]] = k, k++;
+  }
+  for (int i = 0; i < m && k < m; i++) {
+    if (w->pinv[i] >= 0) continue;
+    int r = factor_column(w, w->n + i, k); /* e_i on an unpivoted row: always taken */
+    if (r < 0) return -1;
+    w->basis[k] = w->n + i, w->where[w->n + i] = k, k++;
+  }
+  return 0;
+}
+
+/* Candidate order: by the smallest row each column touches (the region's
+ * bodies are numbered from the change down, so upper bodies first). */
+static int first_row(const SparseWs *w, int j) {
+  const int *row;
+  const double *val;
+  int ar, nz = column(w, j, &row, &val, &ar), lo = w->m;
+  for (int q = 0; q < nz; q++) lo = US_MIN(lo, row[q]);
+  return lo;
+}
+
+static int by_key(const void *a, const void *b) {
+  long long x = *(const long long *)a, y = *(const long long *)b;
+  return (x > y) - (x < y);
+}
+
+static void order_candidates(SparseWs *w, int nc) {
+  long long span = (long long)w->n + w->m;
+  for (int q = 0; q < nc; q++) w->sortkey[q] = first_row(w, w->cand[q]) * span + w->cand[q];
+  qsort(w->sortkey, (size_t)nc, sizeof(long long), by_key);
+  for (int q = 0; q < nc; q++) w->cand[q] = (int)(w->sortkey[q] % span);
+}
+
+/* ------------------------------------------------------ FTRAN / BTRAN */
+
+/* alpha (by position) = B^-1 column j. */
+static void ftran(SparseWs *w, int j, double *out) {
+  const int *row;
+  const double *val;
+  int ar, nz = column(w, j, &row, &val, &ar), m = w->m;
+  double *x = w->x;
+  for (int q = 0; q < nz; q++) x[row[q]] += val[q];
+  for (int s = 0; s < m; s++) {
+    double v = x[w->prow[s]];
+    if (v == 0.0) continue;
+    for (int q = w->lstart[s]; q < w->lstart[s + 1]; q++) x[w->lidx[q]] -= w->lval[q] * v;
+  }
+  for (int k = m - 1; k >= 0; k--) {
+    double v = x[w->prow[k]] * w->uinv[k];
+    out[k] = v;
+    if (v == 0.0) continue;
+    for (int q = w->ustart[k]; q < w->ustart[k + 1]; q++) x[w->prow[w->uidx[q]]] -= w->uval[q] * v;
+  }
+  memset(x, 0, (size_t)m * sizeof(double));
+  for (int t = 0; t < w->neta; t++) {
+    int r = w->eta_pos[t];
+    double zr = out[r] * w->eta_val[w->eta_start[t]]; /* 1 / the pivot entry, stored first */
+    if (zr != 0.0)
+      for (int q = w->eta_start[t] + 1; q < w->eta_start[t + 1]; q++) out[w->eta_idx[q]] -= w->eta_val[q] * zr;
+    out[r] = zr;
+  }
+}
+
+/* b (by position) = B^-1 rhs. */
+static void ftran_rhs(SparseWs *w, const double *rhs, double *out) {
+  int m = w->m;
+  double *x = w->x;
+  memcpy(x, rhs, (size_t)m * sizeof(double));
+  for (int s = 0; s < m; s++) {
+    double v = x[w->prow[s]];
+    if (v == 0.0) continue;
+    for (int q = w->lstart[s]; q < w->lstart[s + 1]; q++) x[w->lidx[q]] -= w->lval[q] * v;
+  }
+  for (int k = m - 1; k >= 0; k--) {
+    double v = x[w->prow[k]] * w->uinv[k];
+    out[k] = v;
+    if (v == 0.0) continue;
+    for (int q = w->ustart[k]; q < w->ustart[k + 1]; q++) x[w->prow[w->uidx[q]]] -= w->uval[q] * v;
+  }
+  memset(x, 0, (size_t)m * sizeof(double));
+  for (int t = 0; t < w->neta; t++) {
+    int r = w->eta_pos[t];
+    double zr = out[r] * w->eta_val[w->eta_start[t]];
+    if (zr != 0.0)
+      for (int q = w->eta_start[t] + 1; q < w->eta_start[t + 1]; q++) out[w->eta_idx[q]] -= w->eta_val[q] * zr;
+    out[r] = zr;
+  }
+}
+
+/* y (by row) = B^-T c (c by position; overwritten). */
+static void btran(SparseWs *w, double *c, double *y) {
+  int m = w->m;
+  for (int t = w->neta - 1; t >= 0; t--) {
+    double v = c[w->eta_pos[t]];
+    for (int q = w->eta_start[t] + 1; q < w->eta_start[t + 1]; q++) v -= w->eta_val[q] * c[w->eta_idx[q]];
+    c[w->eta_pos[t]] = v * w->eta_val[w->eta_start[t]];
+  }
+  double *v = w->z;
+  for (int k = 0; k < m; k++) {
+    double s = c[k];
+    for (int q = w->ustart[k]; q < w->ustart[k + 1]; q++) s -= w->uval[q] * v[w->uidx[q]];
+    v[k] = s * w->uinv[k];
+  }
+  for (int s = m - 1; s >= 0; s--) {
+    double t = v[s];
+    for (int q = w->lstart[s]; q < w->lstart[s + 1]; q++) t -= w->lval[q] * y[w->lidx[q]];
+    y[w->prow[s]] = t;
+  }
+}
+
+/* Record the basis change at position r (alpha: the entering column). */
+static int push_eta(SparseWs *w, int r, const double *alpha) {
+  int m = w->m, nz = 1;
+  for (int i = 0; i < m; i++) nz += i != r && alpha[i] != 0.0;
+  if (w->neta + 2 > w->cap_eta) {
+    int c = 2 * w->neta + 16;
+    int *p = us_realloc(w->eta_pos, (size_t)c * sizeof(int));
+    if (p) w->eta_pos = p;
+    int *s = us_realloc(w->eta_start, (size_t)(c + 1) * sizeof(int));
+    if (s) w->eta_start = s;
+    if (!p || !s) return -1;
+    w->cap_eta = c;
+  }
+  if (w->neta == 0) w->eta_start[0] = 0;
+  int a = w->eta_start[w->neta];
+  if (a + nz > w->cap_eidx) {
+    int c = 2 * (a + nz) + 64;
+    int *i = us_realloc(w->eta_idx, (size_t)c * sizeof(int));
+    if (i) w->eta_idx = i;
+    double *v = us_realloc(w->eta_val, (size_t)c * sizeof(double));
+    if (v) w->eta_val = v;
+    if (!i || !v) return -1;
+    w->cap_eidx = c;
+  }
+  w->eta_idx[a] = r, w->eta_val[a++] = 1.0 / alpha[r];
+  for (int i = 0; i < m; i++)
+    if (i != r && alpha[i] != 0.0) w->eta_idx[a] = i, w->eta_val[a++] = alpha[i];
+  w->eta_pos[w->neta++] = r;
+  w->eta_start[w->neta] = a;
+  return 0;
+}
+
+/* ------------------------------------------------------------ simplex */
+
+/* Phase-1 costs of the basic values into c; returns the infeasibility w. */
+static double phase1_costs(const SparseWs *w, double *c) {
+  double inf = 0.0;
+  for (int k = 0; k < w->m; k++) {
+    double v = w->xb[k];
+    int art = w->basis[k] >= w->n;
+    c[k] = v < -FEAS_TOL ? -1.0 : art && v > FEAS_TOL ? 1.0 : 0.0;
+    inf += c[k] * v;
+  }
+  return inf;
+}
+
+/* The entering column for duals y: most negative reduced cost, or the
+ * lowest index with a negative one (bland); -1 when none. */
+static int price(const SparseWs *w, const double *y, int bland) {
+  int pc = -1;
+  double most = -COST_EPS;
+  for (int j = 0; j < w->n; j++) {
+    if (w->where[j] >= 0) continue;
+    double d = 0.0;
+    for (int q = w->gen.start[j]; q < w->gen.start[j + 1]; q++) d -= y[w->gen.row[q]] * w->gen.val[q];
+    if (d < most) {
+      pc = j;
+      if (bland) break;
+      most = d;
+    }
+  }
+  return pc;
+}
+
+/* The leaving position for the entering column (alpha), its step in
+ * *theta; -1 if no basic value reaches a bound. */
+static int leaving(const SparseWs *w, const double *alpha, double *theta) {
+  int r = -1, rart = 0;
+  double best = INFINITY, rpiv = 0.0;
+  for (int k = 0; k < w->m; k++) {
+    double a = alpha[k], v = w->xb[k], num;
+    if (fabs(a) <= RATIO_PIV) continue;
+    int art = w->basis[k] >= w->n;
+    if (v < -FEAS_TOL) { /* infeasible below 0: a bound when it rises to 0 */
+      if (a > 0) continue;
+      num = v;
+    } else if (art && v > FEAS_TOL) {
+      if (a < 0) continue;
+      num = v;
+    } else if (art) {
+      num = 0.0; /* an artificial at 0 may not move */
+    } else {
+      if (a < 0) continue;
+      num = US_MAX(v, 0.0);
+    }
+    /* num / a >= 0; divide only when it may beat best (|a| > 0) */
+    if (fabs(num) > (best + RATIO_TIE) * fabs(a)) continue;
+    double t = num / a;
+    int better = t < best - RATIO_TIE ||
+                 (t <= best + RATIO_TIE && (art > rart || (art == rart && fabs(a) > rpiv)));
+    if (better) best = US_MIN(t, best), r = k, rart = art, rpiv = fabs(a);
+  }
+  *theta = best;
+  return r;
+}
+
+/* The current basis's structural columns as candidates, then refactorize
+ * and recompute the basic values. */
+static int refactor(SparseWs *w, const us_EqSystem *sys) {
+  int nc = 0;
+  for (int k = 0; k < w->m; k++)
+    if (w->basis[k] < w->n) w->cand[nc++] = w->basis[k];
+  order_candidates(w, nc);
+  if (factorize(w, nc)) return -1;
+  ftran_rhs(w, sys->rhs, w->xb);
+  return 0;
+}
+
+enum { RUN_FEASIBLE = 0, RUN_INFEASIBLE = 1, RUN_LIMIT = 2, RUN_OOM = -1 };
+
+static int run(SparseWs *w, const us_EqSystem *sys) {
+  int limit = 4 * w->m + 200, stall = 0;
+  for (int it = 0; it < limit; it++) {
+    double inf = phase1_costs(w, w->w);
+    if (inf <= 0.0) return RUN_FEASIBLE;
+    btran(w, w->w, w->ray);
+    int pc = price(w, w->ray, stall >= STALL);
+    if (pc < 0) return RUN_INFEASIBLE;
+    ftran(w, pc, w->alpha);
+    double theta;
+    int r = leaving(w, w->alpha, &theta);
+    if (r < 0) return RUN_LIMIT;
+    for (int k = 0; k < w->m; k++) w->xb[k] -= theta * w->alpha[k];
+    w->xb[r] = theta;
+    w->where[w->basis[r]] = -1;
+    w->basis[r] = pc, w->where[pc] = r;
+    stall = theta == 0.0 ? stall + 1 : 0;
+    if (w->neta + 1 >= MAX_ETAS) {
+      if (refactor(w, sys)) return RUN_OOM;
+    } else if (push_eta(w, r, w->alpha)) {
+      return RUN_OOM;
+    }
+  }
+  return RUN_LIMIT;
+}
+
+/* max |G l - b| of the basic solution, l into w->cost (clamped at 0). */
+static double residual(SparseWs *w, const us_EqSystem *sys) {
+  double *l = w->cost, *r = w->x;
+  memset(l, 0, (size_t)w->n * sizeof(double));
+  for (int k = 0; k < w->m; k++)
+    if (w->basis[k] < w->n) l[w->basis[k]] = US_MAX(w->xb[k], 0.0);
+  for (int i = 0; i < w->m; i++) r[i] = -sys->rhs[i];
+  for (int j = 0; j < w->n; j++)
+    for (int q = w->gen.start[j]; q < w->gen.start[j + 1] && l[j] != 0.0; q++)
+      r[w->gen.row[q]] += w->gen.val[q] * l[j];
+  double worst = 0.0;
+  for (int i = 0; i < w->m; i++) worst = US_MAX(worst, fabs(r[i])), r[i] = 0.0;
+  return worst;
+}
+
+/* Keep which columns ended basic, for the next solve's start. */
+static void save_statuses(SparseWs *w, const us_EqSystem *sys) {
+  for (int j = 0; j < w->n; j++) w->was_basic[key_of(w, sys, j)] = w->where[j] >= 0;
+}
+
+/* Column j's share of the hint's force on its contact (2D): > 0 when the
+ * force uses that generator. */
+static double hint_share(const SparseWs *w, const us_EqSystem *sys, int j, const double *hint) {
+  int ci = w->gen.col_contact[j];
+  const double *f = hint + 2 * (size_t)sys->contact[ci];
+  double cn = w->gen.col_coef[3 * (size_t)j], ct = w->gen.col_coef[3 * (size_t)j + 1];
+  double mu = sys->mu[ci];
+  if (mu == 0) return f[0];
+  if (isinf(mu)) return ct == 0 ? f[0] : ct * f[1];
+  if (ct == 0) return 0.0; /* the normal beside the edges: the edges take it */
+  return 0.5 * (f[0] / cn + f[1] / ct);
+}
+
+static int start_basis(SparseWs *w, const us_EqSystem *sys, const double *hint) {
+  int nc = 0, use_hint = hint && sys->dim == 2;
+  for (int j = 0; j < w->n; j++)
+    if (use_hint ? hint_share(w, sys, j, hint) > HINT_SHARE : w->was_basic[key_of(w, sys, j)])
+      w->cand[nc++] = j;
+  order_candidates(w, nc);
+  if (factorize(w, nc)) return -1;
+  ftran_rhs(w, sys->rhs, w->xb);
+  return 0;
+}
+
+static us_Status sparse_solve(void *ws, const us_BackendProblem *pb, us_BackendOut *out,
+                              us_Error *err) {
+  const us_EqSystem *sys = pb->sys;
+  SparseWs *w = ws;
+  w->nray = 0;
+  w->last_body = -1;
+  out->verdict = US_UNDECIDED;
+  if (us_eq_generators(sys, w->set.n_column_mu, &w->gen))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory building the LP");
+  w->m = w->gen.nrow, w->n = w->gen.ncol;
+  if (w->n == 0) {
+    out->verdict = us_eq_no_columns_verdict(sys);
+    snprintf(out->note, out->note_sz, "no active contact");
+    return US_OK;
+  }
+  if (reserve(w, w->m, w->n) || start_basis(w, sys, pb->hint))
+    return us_error_set(err, US_ERR_NOMEM, "out of memory in the sparse LP");
+  int r = run(w, sys);
+  if (r == RUN_OOM) return us_error_set(err, US_ERR_NOMEM, "out of memory in the sparse LP");
+  if (r == RUN_LIMIT) {
+    snprintf(out->note, out->note_sz, "sparse LP: iteration limit");
+    return US_OK;
+  }
+  save_statuses(w, sys);
+  if (r == RUN_FEASIBLE) {
+    if (residual(w, sys) > RESID_TOL) {
+      snprintf(out->note, out->note_sz, "sparse LP: inaccurate");
+      return US_OK;
+    }
+    us_eq_gen_forces(sys, &w->gen, w->cost, out->f);
+    out->verdict = US_STABLE;
+    snprintf(out->note, out->note_sz, "sparse LP: feasible");
+    return US_OK;
+  }
+  w->last_body = us_eq_gen_farkas_body(sys, &w->gen, w->ray, w->set.farkas_slack);
+  if (w->last_body < 0) {
+    snprintf(out->note, out->note_sz, "sparse LP: infeasible, ray rejected");
+    return US_OK;
+  }
+  w->nray = w->m;
+  out->verdict = US_UNSTABLE;
+  snprintf(out->note, out->note_sz, "sparse LP: infeasible (Farkas ray checked)");
+  return US_OK;
+}
+
+static int sparse_unstable_body(void *ws) { return ((SparseWs *)ws)->last_body; }
+
+static int sparse_farkas_ray(void *ws, const double **y) {
+  SparseWs *w = ws;
+  *y = w->nray ? w->ray : NULL;
+  return w->nray;
+}
+
+const us_Backend us_backend_sparse = {
+    .method = US_METHOD_LP,
+    .create = sparse_create,
+    .destroy = sparse_destroy,
+    .solve = sparse_solve,
+    .unstable_body = sparse_unstable_body,
+    .farkas_ray = sparse_farkas_ray,
+};
