@@ -9,6 +9,7 @@
 #include "stability/equilibrium.h"
 #include "stability/lp_small.h"
 #include "scenes.h"
+#include "eqcheck.h"
 #include "test.h"
 
 /* Counts of a sweep, to show what it covered. */
@@ -17,21 +18,6 @@ typedef struct Tally {
   int big;         /* decided systems of more than 60 rows */
   int undecided;   /* left to the caller (CLP in the library) */
 } Tally;
-
-/* A stable answer f (dim components per system contact, normal first)
- * balances every row, |A f - rhs| <= 1e-7, with no pulling contact. */
-static void check_forces(const us_EqSystem *eq, const double *f) {
-  double *y = calloc((size_t)(eq->nbody * eq->nw) + 1, sizeof *y);
-  CHECK(y);
-  if (!y) return;
-  us_eq_mult(eq, f, y);
-  double worst = 0.0, least = INFINITY;
-  for (int r = 0; r < eq->nbody * eq->nw; r++) worst = fmax(worst, fabs(y[r] - eq->rhs[r]));
-  for (int c = 0; c < eq->ncontact; c++) least = fmin(least, f[c * eq->dim]);
-  CHECK(worst <= 1e-7);
-  CHECK(eq->ncontact == 0 || least >= -1e-9);
-  free(y);
-}
 
 /* Small and lp_solve on sub-assembly p of s. */
 static void compare(const us_Structure *s, const us_Bitset *p, void *small, void *lps, Tally *t) {
@@ -57,7 +43,7 @@ static void compare(const us_Structure *s, const us_Bitset *p, void *small, void
       CHECK_INT(a.verdict, ==, b.verdict);
       t->decided[a.verdict == US_UNSTABLE]++;
       t->big += eq.nbody * eq.nw > 60;
-      if (a.verdict == US_STABLE) check_forces(&eq, f);
+      if (a.verdict == US_STABLE) eqcheck_forces(&eq, f);
       if (a.verdict == US_UNSTABLE) CHECK(us_backend_small.unstable_body(small) >= 0);
     }
   }

@@ -14,6 +14,7 @@
 #include "stability/backend.h"
 #include "stability/equilibrium.h"
 #include "stability/lp_sparse.h"
+#include "eqcheck.h"
 #include "test.h"
 
 typedef struct Tally {
@@ -22,20 +23,6 @@ typedef struct Tally {
   int hinted;     /* decided with a hint */
   int undecided;
 } Tally;
-
-/* |A f - rhs| <= 1e-7 on every row, no pulling contact. */
-static void check_forces(const us_EqSystem *eq, const double *f) {
-  double *y = calloc((size_t)(eq->nbody * eq->nw) + 1, sizeof *y);
-  CHECK(y);
-  if (!y) return;
-  us_eq_mult(eq, f, y);
-  double worst = 0.0, least = INFINITY;
-  for (int r = 0; r < eq->nbody * eq->nw; r++) worst = fmax(worst, fabs(y[r] - eq->rhs[r]));
-  for (int c = 0; c < eq->ncontact; c++) least = fmin(least, f[c * eq->dim]);
-  CHECK(worst <= 1e-7);
-  CHECK(eq->ncontact == 0 || least >= -1e-9);
-  free(y);
-}
 
 typedef struct Solvers {
   void *sparse, *lps;
@@ -74,7 +61,7 @@ static void compare(const us_Structure *s, const us_Bitset *p, Solvers *v, int h
       t->big += eq.nbody * eq.nw > 300;
       t->hinted += hinted;
       if (a.verdict == US_STABLE) {
-        check_forces(&eq, f);
+        eqcheck_forces(&eq, f);
         keep_hint(v, s, &eq, f);
       } else {
         const double *y = NULL;

@@ -175,26 +175,25 @@ static int key_of(const SparseWs *w, const us_EqSystem *e, int j) {
 
 /* ----------------------------------------------------------------- LU */
 
-static int grow_lu(SparseWs *w, int nl, int nu) {
-  if (nl > w->cap_l) {
-    int c = 2 * nl + 64;
-    int *i = us_realloc(w->lidx, (size_t)c * sizeof(int));
-    if (i) w->lidx = i;
-    double *v = us_realloc(w->lval, (size_t)c * sizeof(double));
-    if (v) w->lval = v;
-    if (!i || !v) return -1;
-    w->cap_l = c;
-  }
-  if (nu > w->cap_u) {
-    int c = 2 * nu + 64;
-    int *i = us_realloc(w->uidx, (size_t)c * sizeof(int));
-    if (i) w->uidx = i;
-    double *v = us_realloc(w->uval, (size_t)c * sizeof(double));
-    if (v) w->uval = v;
-    if (!i || !v) return -1;
-    w->cap_u = c;
-  }
+/* A sparse vector store (index and value arrays) grown to hold need
+ * entries; -1 on OOM (the arrays stay valid). */
+static int grow_store(int **idx, double **val, int *cap, int need) {
+  if (need <= *cap) return 0;
+  int c = 2 * need + 64;
+  int *i = us_realloc(*idx, (size_t)c * sizeof(int));
+  if (i) *idx = i;
+  double *v = us_realloc(*val, (size_t)c * sizeof(double));
+  if (v) *val = v;
+  if (!i || !v) return -1;
+  *cap = c;
   return 0;
+}
+
+static int grow_lu(SparseWs *w, int nl, int nu) {
+  return grow_store(&w->lidx, &w->lval, &w->cap_l, nl) ||
+                 grow_store(&w->uidx, &w->uval, &w->cap_u, nu)
+             ? -1
+             : 0;
 }
 
 /* Scatter column j into w->x over rows, its pattern into w->pat. */
@@ -323,13 +322,11 @@ static void order_candidates(SparseWs *w, int nc) {
 
 /* ------------------------------------------------------ FTRAN / BTRAN */
 
-/* alpha (by position) = B^-1 column j. */
-static void ftran(SparseWs *w, int j, double *out) {
-  const int *row;
-  const double *val;
-  int ar, nz = column(w, j, &row, &val, &ar), m = w->m;
+/* out (by position) = B^-1 x, x by row in w->x (cleared on return): the
+ * L solve in step order, the U solve backwards, then the etas in order. */
+static void solve_x(SparseWs *w, double *out) {
+  int m = w->m;
   double *x = w->x;
-  for (int q = 0; q < nz; q++) x[row[q]] += val[q];
   for (int s = 0; s < m; s++) {
     double v = x[w->prow[s]];
     if (v == 0.0) continue;
@@ -351,30 +348,19 @@ static void ftran(SparseWs *w, int j, double *out) {
   }
 }
 
-/* b (by position) = B^-1 rhs. */
+/* alpha (by position) = B^-1 column j. */
+static void ftran(SparseWs *w, int j, double *out) {
+  const int *row;
+  const double *val;
+  int ar, nz = column(w, j, &row, &val, &ar);
+  for (int q = 0; q < nz; q++) w->x[row[q]] += val[q];
+  solve_x(w, out);
+}
+
+/* The basic values (by position) = B^-1 rhs. */
 static void ftran_rhs(SparseWs *w, const double *rhs, double *out) {
-  int m = w->m;
-  double *x = w->x;
-  memcpy(x, rhs, (size_t)m * sizeof(double));
-  for (int s = 0; s < m; s++) {
-    double v = x[w->prow[s]];
-    if (v == 0.0) continue;
-    for (int q = w->lstart[s]; q < w->lstart[s + 1]; q++) x[w->lidx[q]] -= w->lval[q] * v;
-  }
-  for (int k = m - 1; k >= 0; k--) {
-    double v = x[w->prow[k]] * w->uinv[k];
-    out[k] = v;
-    if (v == 0.0) continue;
-    for (int q = w->ustart[k]; q < w->ustart[k + 1]; q++) x[w->prow[w->uidx[q]]] -= w->uval[q] * v;
-  }
-  memset(x, 0, (size_t)m * sizeof(double));
-  for (int t = 0; t < w->neta; t++) {
-    int r = w->eta_pos[t];
-    double zr = out[r] * w->eta_val[w->eta_start[t]];
-    if (zr != 0.0)
-      for (int q = w->eta_start[t] + 1; q < w->eta_start[t + 1]; q++) out[w->eta_idx[q]] -= w->eta_val[q] * zr;
-    out[r] = zr;
-  }
+  memcpy(w->x, rhs, (size_t)w->m * sizeof(double));
+  solve_x(w, out);
 }
 
 /* y (by row) = B^-T c (c by position; overwritten). */
@@ -413,15 +399,7 @@ static int push_eta(SparseWs *w, int r, const double *alpha) {
   }
   if (w->neta == 0) w->eta_start[0] = 0;
   int a = w->eta_start[w->neta];
-  if (a + nz > w->cap_eidx) {
-    int c = 2 * (a + nz) + 64;
-    int *i = us_realloc(w->eta_idx, (size_t)c * sizeof(int));
-    if (i) w->eta_idx = i;
-    double *v = us_realloc(w->eta_val, (size_t)c * sizeof(double));
-    if (v) w->eta_val = v;
-    if (!i || !v) return -1;
-    w->cap_eidx = c;
-  }
+  if (grow_store(&w->eta_idx, &w->eta_val, &w->cap_eidx, a + nz)) return -1;
   w->eta_idx[a] = r, w->eta_val[a++] = 1.0 / alpha[r];
   for (int i = 0; i < m; i++)
     if (i != r && alpha[i] != 0.0) w->eta_idx[a] = i, w->eta_val[a++] = alpha[i];
