@@ -58,9 +58,9 @@ typedef struct SparseWs {
   int *basis;          /* [m] column at each basis position (= LU step) */
   int *where;          /* [n + m] basis position, or -1 */
   double *xb;          /* [m] basic values */
-  double *x, *z, *w;   /* [m] dense work: rows, positions, positions */
+  double *x, *z, *w;   /* [m] dense work: x by row (all zero between uses),
+                          z by step (BTRAN), w the phase-1 costs by position */
   double *alpha;       /* [m] the entering column, FTRAN'd */
-  double *cb;          /* [m] the phase-1 costs the duals were computed from */
   int *prow, *pinv;    /* [m] row pivoted at step k; step of row i or -1 */
   double *uinv;        /* [m] 1 / U's diagonal */
   int *lstart, *ustart;  /* [m + 1] */
@@ -72,7 +72,7 @@ typedef struct SparseWs {
   unsigned char *mark; /* [m] */
   int *cand;           /* [n + m] candidate basis columns */
   long long *sortkey;  /* [n + m] their order */
-  double *cost;        /* [n] reduced costs (scratch) */
+  double *cost;        /* [n + m] scratch: the answer's generator shares */
   /* etas: position, and the entering column's nonzeros */
   int neta, *eta_pos, *eta_start, *eta_idx, cap_eta, cap_eidx;
   double *eta_val;
@@ -88,7 +88,7 @@ static void sparse_destroy(void *ws) {
   us_eq_gen_free(&w->gen);
   void *arrays[] = {w->basis, w->where, w->xb, w->x, w->z, w->w, w->alpha, w->prow, w->pinv,
                     w->uinv, w->lstart, w->ustart, w->lidx, w->uidx, w->lval, w->uval,
-                    w->pat, w->heap, w->cb, w->mark, w->cand, w->sortkey, w->cost, w->eta_pos, w->eta_start, w->eta_idx,
+                    w->pat, w->heap, w->mark, w->cand, w->sortkey, w->cost, w->eta_pos, w->eta_start, w->eta_idx,
                     w->eta_val, w->was_basic, w->ray};
   for (size_t k = 0; k < sizeof arrays / sizeof *arrays; k++) us_free(arrays[k]);
   us_free(w);
@@ -118,9 +118,8 @@ static int reserve(SparseWs *w, int m, int n) {
     us_free(w->basis), us_free(w->xb), us_free(w->x), us_free(w->z), us_free(w->w);
     us_free(w->alpha), us_free(w->prow), us_free(w->pinv), us_free(w->uinv);
     us_free(w->lstart), us_free(w->ustart), us_free(w->pat), us_free(w->mark), us_free(w->ray);
-    us_free(w->heap), us_free(w->cb);
+    us_free(w->heap);
     w->heap = us_malloc((size_t)c * sizeof(int));
-    w->cb = us_malloc((size_t)c * sizeof(double));
     w->basis = us_malloc((size_t)c * sizeof(int));
     w->xb = us_malloc((size_t)c * sizeof(double));
     w->x = us_calloc((size_t)c, sizeof(double));
@@ -136,7 +135,7 @@ static int reserve(SparseWs *w, int m, int n) {
     w->mark = us_calloc((size_t)c, 1);
     w->ray = us_malloc((size_t)c * sizeof(double));
     w->cap_m = w->basis && w->xb && w->x && w->z && w->w && w->alpha && w->prow && w->pinv &&
-                       w->uinv && w->lstart && w->ustart && w->pat && w->mark && w->ray && w->heap && w->cb
+                       w->uinv && w->lstart && w->ustart && w->pat && w->mark && w->ray && w->heap
                    ? c
                    : 0;
     if (!w->cap_m) return -1;
