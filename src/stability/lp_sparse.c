@@ -76,7 +76,8 @@ typedef struct SparseWs {
   /* etas: position, and the entering column's nonzeros */
   int neta, *eta_pos, *eta_start, *eta_idx, cap_eta, cap_eidx;
   double *eta_val;
-  unsigned char *was_basic; /* [structure contacts * slots] */
+  unsigned char *was_basic; /* [nkey = structure contacts * slots], allocated
+                               at the first solve */
   int nslot, nkey;
   double *ray;
   int nray, last_body;
@@ -96,18 +97,14 @@ static void sparse_destroy(void *ws) {
 
 static void *sparse_create(const us_Structure *s, const us_StabilitySettings *set, us_Error *err) {
   SparseWs *w = us_calloc(1, sizeof *w);
-  if (w) {
-    w->set = us_lp_settings_resolve(&set->lp);
-    w->nslot = us_eq_gen_slots(s->dim);
-    w->nkey = s->ncontact * w->nslot;
-    w->was_basic = us_calloc((size_t)w->nkey + 1, 1);
-    w->last_body = -1;
-  }
-  if (!w || !w->was_basic) {
-    sparse_destroy(w);
+  if (!w) {
     us_error_set(err, US_ERR_NOMEM, "out of memory creating the sparse LP workspace");
     return NULL;
   }
+  w->set = us_lp_settings_resolve(&set->lp);
+  w->nslot = us_eq_gen_slots(s->dim);
+  w->nkey = s->ncontact * w->nslot; /* was_basic: at the first solve (most never come) */
+  w->last_body = -1;
   return w;
 }
 
@@ -570,7 +567,8 @@ static us_Status sparse_solve(void *ws, const us_BackendProblem *pb, us_BackendO
     snprintf(out->note, out->note_sz, "no active contact");
     return US_OK;
   }
-  if (reserve(w, w->m, w->n) || start_basis(w, sys, pb->hint))
+  if (!w->was_basic) w->was_basic = us_calloc((size_t)w->nkey + 1, 1);
+  if (!w->was_basic || reserve(w, w->m, w->n) || start_basis(w, sys, pb->hint))
     return us_error_set(err, US_ERR_NOMEM, "out of memory in the sparse LP");
   int r = run(w, sys);
   if (r == RUN_OOM) return us_error_set(err, US_ERR_NOMEM, "out of memory in the sparse LP");
