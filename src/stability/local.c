@@ -17,8 +17,10 @@
  * body of S change nothing (their contacts with S do not exist), so a
  * planner that tests one component after another stays local. Then, for
  * regions R ⊇ D of growing size:
- *   level 0:  R = D, the support LP only (is some body of D unable to
- *             stand even if everything around it is held still?);
+ *   level 0:  R = D and the present bodies touching it (D alone past
+ *             the small solver's rows), the support LP only (does some
+ *             body of D fall, or push a neighbour over, even if
+ *             everything further away is held still?);
  *   level 1:  R = D plus its supporters under the footprint of the change
  *             (bodies below a seed whose horizontal extent overlaps the
  *             changed bodies', followed down to the ground): the path the
@@ -31,7 +33,7 @@
  *   level 2:  every supporter of R, followed down (the load's cone);
  *   level k:  rings of neighbours, until R at least doubled;
  * at each level the fixed LP (feasible: stable) and the support LP
- * (infeasible: unstable). When R reaches the share `global_share` of S the
+ * (infeasible: unstable). When R passes a quarter of S and 300 bodies the
  * test is handed back for the full system; when a ring adds nothing, R is
  * a union of components of S and the two LPs coincide, so the loop always
  * ends with a verdict or a hand-back.
@@ -72,6 +74,11 @@
                                   1/16 and 1/32 2.4-3x slower on stacks of 876
                                   and 9,352 blocks: the full system then takes
                                   the tests a level-1 column settles) */
+#define LOCAL_REGION_BODIES 300 /* ... and regions up to this many bodies
+                                  (900 rows in 2D, inside the sparse simplex)
+                                  never go there: a component of 1,076 blocks
+                                  sent 117 tests to the full system at a
+                                  quarter, none at 300 (docs/local.md) */
 #define SUPPORT_COS 1e-3      /* a contact supports if its push has this much "up" */
 
 /* Whether an optional LP finds proofs often enough to run (pays()). */
@@ -114,7 +121,6 @@ struct us_Local {
   double *f, *saved;     /* LP solution; base values it replaces */
   int cap_f, cap_saved;
   int *list, *slot;      /* mechanism check: contacts of R, body slots */
-  us_Pays seed_pays;     /* level-0 support LPs: run, and proofs found */
   us_Pays grow_pays;     /* the support LPs of grown levels before the last */
   double mass;           /* movable mass, summed once for the checks */
   us_Plumb plumb;        /* plumb-line load paths (plumb.h) */
@@ -939,18 +945,23 @@ static int last_support(us_Local *L, const us_Bitset *cur, int nseed, int suppor
  * one (docs/local.md, "Regions"). */
 static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityResult *res,
                       us_StabilityInfo *info, us_Error *err) {
-  int r, seeded = pays(&L->seed_pays, 8);
-  if (seeded) {
-    r = paid(&L->seed_pays, try_support(L, cur, res, info, err));
-    if (r) return r < 0 ? -1 : settle(L, US_LOCAL_UNSTABLE, info);
-  }
-  int nseed = seeded ? L->nreg : -1, nfirst = L->nreg, pressed = 0, last = L->nreg;
+  /* level 0: the seeds and the bodies they touch, the rest held still
+     (a block that tips pushes its neighbour over: 8 of 24 full-system
+     tests of a 931-block stack); the seeds alone past the small solver */
+  int nseed = L->nreg, r;
+  grow_ring(L, cur);
+  if (L->nreg * L->eq.nw > US_SMALL_ROWS) region_truncate(L, nseed);
+  r = try_support(L, cur, res, info, err);
+  if (r) return r < 0 ? -1 : settle(L, US_LOCAL_UNSTABLE, info);
+  region_truncate(L, nseed);
+  int nfirst = L->nreg, pressed = 0, last = L->nreg;
   int supported = -1; /* the region size of the latest support LP */
   /* level 1c in 2D only: on a 200-box random3d pile it added 36 region
      LPs and 3-5 % to the plan for 2 fewer full-system tests */
   int closed = 0, coned = 0, widened = L->dim != 2;
   /* regions the small solver takes whole are never handed back early */
   int limit = US_MAX((int)(LOCAL_GLOBAL_SHARE * size), US_SMALL_ROWS / L->eq.nw);
+  limit = US_MAX(limit, US_MIN(size, LOCAL_REGION_BODIES));
   grow_supporters(L, cur);
   /* a seed that a present body rests on: level 1 alone never held one
      (0 of 894 such tests on stacks of 632 to 9,352 blocks), so the first

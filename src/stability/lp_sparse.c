@@ -73,6 +73,9 @@ typedef struct SparseWs {
   int *cand;           /* [n + m] candidate basis columns */
   long long *sortkey;  /* [n + m] their order */
   double *cost;        /* [n + m] scratch: the answer's generator shares */
+  double *xn;          /* [n + m] a nonbasic column's value: 0, or > 0 for a
+                          superbasic one (a hint's share left out of the
+                          basis), which may move either way */
   /* etas: position, and the entering column's nonzeros */
   int neta, *eta_pos, *eta_start, *eta_idx, cap_eta, cap_eidx;
   double *eta_val;
@@ -90,7 +93,7 @@ static void sparse_destroy(void *ws) {
   void *arrays[] = {w->basis, w->where, w->xb, w->x, w->z, w->w, w->alpha, w->prow, w->pinv,
                     w->uinv, w->lstart, w->ustart, w->lidx, w->uidx, w->lval, w->uval,
                     w->pat, w->heap, w->mark, w->cand, w->sortkey, w->cost, w->eta_pos, w->eta_start, w->eta_idx,
-                    w->eta_val, w->was_basic, w->ray};
+                    w->eta_val, w->was_basic, w->ray, w->xn};
   for (size_t k = 0; k < sizeof arrays / sizeof *arrays; k++) us_free(arrays[k]);
   us_free(w);
 }
@@ -139,12 +142,13 @@ static int reserve(SparseWs *w, int m, int n) {
   }
   if (n + m > w->cap_n) {
     int c = 2 * (n + m) + 16;
-    us_free(w->where), us_free(w->cand), us_free(w->sortkey), us_free(w->cost);
+    us_free(w->where), us_free(w->cand), us_free(w->sortkey), us_free(w->cost), us_free(w->xn);
     w->where = us_malloc((size_t)c * sizeof(int));
     w->cand = us_malloc((size_t)c * sizeof(int));
     w->sortkey = us_malloc((size_t)c * sizeof(long long));
     w->cost = us_malloc((size_t)c * sizeof(double));
-    w->cap_n = w->where && w->cand && w->sortkey && w->cost ? c : 0;
+    w->xn = us_malloc((size_t)c * sizeof(double));
+    w->cap_n = w->where && w->cand && w->sortkey && w->cost && w->xn ? c : 0;
     if (!w->cap_n) return -1;
   }
   return 0;
@@ -353,9 +357,14 @@ static void ftran(SparseWs *w, int j, double *out) {
   solve_x(w, out);
 }
 
-/* The basic values (by position) = B^-1 rhs. */
+/* The basic values (by position) = B^-1 (rhs - N x_N): the superbasic
+ * columns' values taken off the right-hand side. */
 static void ftran_rhs(SparseWs *w, const double *rhs, double *out) {
   memcpy(w->x, rhs, (size_t)w->m * sizeof(double));
+  for (int j = 0; j < w->n; j++)
+    if (w->xn[j] != 0.0)
+      for (int q = w->gen.start[j]; q < w->gen.start[j + 1]; q++)
+        w->x[w->gen.row[q]] -= w->gen.val[q] * w->xn[j];
   solve_x(w, out);
 }
 
@@ -418,31 +427,35 @@ static double phase1_costs(const SparseWs *w, double *c) {
   return inf;
 }
 
-/* The entering column for duals y: most negative reduced cost, or the
- * lowest index with a negative one (bland); -1 when none. */
-static int price(const SparseWs *w, const double *y, int bland) {
+/* The entering column for duals y: the largest gain |d_j| of a column at
+ * 0 with d_j < 0 (it rises) or a superbasic one with d_j != 0 (it moves
+ * against d_j), or the lowest index with a gain (bland); -1 when none.
+ * *dir: +1 the column rises, -1 it falls. */
+static int price(const SparseWs *w, const double *y, int bland, int *dir) {
   int pc = -1;
-  double most = -COST_EPS;
+  double most = COST_EPS;
   for (int j = 0; j < w->n; j++) {
     if (w->where[j] >= 0) continue;
     double d = 0.0;
     for (int q = w->gen.start[j]; q < w->gen.start[j + 1]; q++) d -= y[w->gen.row[q]] * w->gen.val[q];
-    if (d < most) {
-      pc = j;
+    double gain = w->xn[j] > 0.0 ? fabs(d) : -d;
+    if (gain > most) {
+      pc = j, *dir = d < 0.0 ? 1 : -1;
       if (bland) break;
-      most = d;
+      most = gain;
     }
   }
   return pc;
 }
 
-/* The leaving position for the entering column (alpha), its step in
- * *theta; -1 if no basic value reaches a bound. */
-static int leaving(const SparseWs *w, const double *alpha, double *theta) {
+/* The leaving position for the entering column (alpha, moving in
+ * direction dir: the basic values change by -dir * step * alpha), its
+ * step in *theta; -1 if no basic value reaches a bound. */
+static int leaving(const SparseWs *w, const double *alpha, double dir, double *theta) {
   int r = -1, rart = 0;
   double best = INFINITY, rpiv = 0.0;
   for (int k = 0; k < w->m; k++) {
-    double a = alpha[k], v = w->xb[k], num;
+    double a = dir * alpha[k], v = w->xb[k], num;
     if (fabs(a) <= RATIO_PIV) continue;
     int art = w->basis[k] >= w->n;
     if (v < -FEAS_TOL) { /* infeasible below 0: a bound when it rises to 0 */
@@ -488,14 +501,23 @@ static int run(SparseWs *w, const us_EqSystem *sys) {
     double inf = phase1_costs(w, w->w);
     if (inf <= 0.0) return RUN_FEASIBLE;
     btran(w, w->w, w->ray);
-    int pc = price(w, w->ray, stall >= STALL);
+    int dir = 1;
+    int pc = price(w, w->ray, stall >= STALL, &dir);
     if (pc < 0) return RUN_INFEASIBLE;
     ftran(w, pc, w->alpha);
-    double theta;
-    int r = leaving(w, w->alpha, &theta);
+    double theta, sd = (double)dir;
+    int r = leaving(w, w->alpha, sd, &theta);
+    if (dir < 0 && !(theta < w->xn[pc])) { /* it falls to 0 first: a bound flip */
+      theta = w->xn[pc];
+      for (int k = 0; k < w->m; k++) w->xb[k] += theta * w->alpha[k];
+      w->xn[pc] = 0.0;
+      stall = 0;
+      continue;
+    }
     if (r < 0) return RUN_LIMIT;
-    for (int k = 0; k < w->m; k++) w->xb[k] -= theta * w->alpha[k];
-    w->xb[r] = theta;
+    for (int k = 0; k < w->m; k++) w->xb[k] -= sd * theta * w->alpha[k];
+    w->xb[r] = w->xn[pc] + sd * theta;
+    w->xn[pc] = 0.0;
     w->where[w->basis[r]] = -1;
     w->basis[r] = pc, w->where[pc] = r;
     stall = theta == 0.0 ? stall + 1 : 0;
@@ -511,7 +533,8 @@ static int run(SparseWs *w, const us_EqSystem *sys) {
 /* max |G l - b| of the basic solution, l into w->cost (clamped at 0). */
 static double residual(SparseWs *w, const us_EqSystem *sys) {
   double *l = w->cost, *r = w->x;
-  memset(l, 0, (size_t)w->n * sizeof(double));
+  for (int j = 0; j < w->n; j++)
+    if (w->where[j] < 0) l[j] = w->xn[j];
   for (int k = 0; k < w->m; k++)
     if (w->basis[k] < w->n) l[w->basis[k]] = US_MAX(w->xb[k], 0.0);
   for (int i = 0; i < w->m; i++) r[i] = -sys->rhs[i];
@@ -525,7 +548,7 @@ static double residual(SparseWs *w, const us_EqSystem *sys) {
 
 /* Keep which columns ended basic, for the next solve's start. */
 static void save_statuses(SparseWs *w, const us_EqSystem *sys) {
-  for (int j = 0; j < w->n; j++) w->was_basic[key_of(w, sys, j)] = w->where[j] >= 0;
+  for (int j = 0; j < w->n; j++) w->was_basic[key_of(w, sys, j)] = w->where[j] >= 0 || w->xn[j] > 0.0;
 }
 
 /* Column j's share of the hint's force on its contact (2D): > 0 when the
@@ -541,13 +564,24 @@ static double hint_share(const SparseWs *w, const us_EqSystem *sys, int j, const
   return 0.5 * (f[0] / cn + f[1] / ct);
 }
 
+/* The first basis: the hint's columns (2D), else the columns basic when
+ * the last solve ended. Hint columns left out of the basis (a force inside
+ * its cone takes both edges, so a hint that is no vertex has more columns
+ * than rows) stay at their shares as superbasic columns: the start is
+ * the hint itself, off balance only where the change is. */
 static int start_basis(SparseWs *w, const us_EqSystem *sys, const double *hint) {
   int nc = 0, use_hint = hint && sys->dim == 2;
-  for (int j = 0; j < w->n; j++)
-    if (use_hint ? hint_share(w, sys, j, hint) > HINT_SHARE : w->was_basic[key_of(w, sys, j)])
+  for (int j = 0; j < w->n + w->m; j++) w->xn[j] = 0.0;
+  for (int j = 0; j < w->n; j++) {
+    double h = use_hint ? hint_share(w, sys, j, hint) : 0.0;
+    if (use_hint ? h > HINT_SHARE : w->was_basic[key_of(w, sys, j)]) {
       w->cand[nc++] = j;
+      if (use_hint) w->xn[j] = h;
+    }
+  }
   order_candidates(w, nc);
   if (factorize(w, nc)) return -1;
+  for (int k = 0; k < w->m; k++) w->xn[w->basis[k]] = 0.0;
   ftran_rhs(w, sys->rhs, w->xb);
   return 0;
 }
