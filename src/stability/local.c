@@ -18,7 +18,7 @@
  * planner that tests one component after another stays local. Then, for
  * regions R ⊇ D of growing size:
  *   level 0:  R = D and the present bodies touching it (D alone past
- *             the small solver's rows), the support LP only (does some
+ *             90 rows), the support LP only (does some
  *             body of D fall, or push a neighbour over, even if
  *             everything further away is held still?);
  *   level 1:  R = D plus its supporters under the footprint of the change
@@ -58,7 +58,6 @@
 
 #include "certificate.h"
 #include "lp_gen.h"
-#include "lp_small.h"
 #include "lp_sparse.h"
 #include "plumb.h"
 #include "model/massprops.h"
@@ -79,6 +78,7 @@
                                   never go there: a component of 1,076 blocks
                                   sent 117 tests to the full system at a
                                   quarter, none at 300 (docs/local.md) */
+#define LEVEL0_ROWS 90        /* level 0 takes the seeds' neighbours up to this */
 #define SUPPORT_COS 1e-3      /* a contact supports if its push has this much "up" */
 
 /* Whether an optional LP finds proofs often enough to run (pays()). */
@@ -92,7 +92,6 @@ struct us_Local {
   const us_Backend *be;
   void *bws[2];          /* the support LP's and the fixed LP's (each warm
                             starts from its own previous basis) */
-  void *small;           /* the dense simplex for tiny regions (lp_small.h) */
   void *sparse[2];       /* the sparse simplex (lp_sparse.h): support, fixed */
   const void *ray_ws;    /* the workspace of the last support LP */
   const us_Backend *ray_be;
@@ -191,7 +190,6 @@ void us_local_free(us_Local *L) {
   if (!L) return;
   for (int k = 0; k < 2; k++)
     if (L->bws[k]) L->be->destroy(L->bws[k]);
-  if (L->small) us_backend_small.destroy(L->small);
   for (int k = 0; k < 2; k++)
     if (L->sparse[k]) us_backend_sparse.destroy(L->sparse[k]);
   us_eq_free(&L->eq);
@@ -270,9 +268,8 @@ us_Local *us_local_new(const us_Structure *s, const us_StabilitySettings *set,
       return NULL;
     }
   }
-  L->small = us_backend_small.create(s, set, err);
-  for (int k = 0; k < 2 && L->small; k++) L->sparse[k] = us_backend_sparse.create(s, set, err);
-  if (!L->small || !L->sparse[0] || !L->sparse[1]) {
+  for (int k = 0; k < 2; k++) L->sparse[k] = us_backend_sparse.create(s, set, err);
+  if (!L->sparse[0] || !L->sparse[1]) {
     us_local_free(L);
     return NULL;
   }
@@ -687,17 +684,11 @@ static us_Status solve_region(us_Local *L, const us_Bitset *cur, int fixed, us_V
   /* a region system: no lists, no restart (backend.h) */
   const us_BackendProblem pb = {.sys = &L->eq, .hint = L->fbase};
   us_BackendOut out = {US_UNDECIDED, L->f, info, res->note, sizeof res->note};
-  /* up to US_SMALL_ROWS rows the dense tableau (the batches of small
-     stacks were measured there), then the sparse simplex, then CLP */
-  if (us_small_fits(&L->eq)) {
-    st = us_backend_small.solve(L->small, &pb, &out, err);
-    *v = out.verdict;
-    if (!st && *v != US_UNDECIDED) {
-      L->ray_be = &us_backend_small;
-      L->ray_ws = L->small;
-    }
-  }
-  if (!st && *v == US_UNDECIDED && us_sparse_fits_region(&L->eq)) {
+  /* 2D up to US_SPARSE_ROWS rows the sparse simplex, then CLP. The dense
+     tableau of lp_small.c took regions of up to 90 rows until 2026-12-06:
+     with the sparse simplex's superbasic starts (a few pivots) it cost
+     more on every stack measured (docs/local.md) */
+  if (us_sparse_fits_region(&L->eq)) {
     st = us_backend_sparse.solve(L->sparse[fixed], &pb, &out, err);
     *v = out.verdict;
     if (!st && *v != US_UNDECIDED) {
@@ -947,10 +938,10 @@ static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityR
                       us_StabilityInfo *info, us_Error *err) {
   /* level 0: the seeds and the bodies they touch, the rest held still
      (a block that tips pushes its neighbour over: 8 of 24 full-system
-     tests of a 931-block stack); the seeds alone past the small solver */
+     tests of a 931-block stack); the seeds alone past LEVEL0_ROWS */
   int nseed = L->nreg, r;
   grow_ring(L, cur);
-  if (L->nreg * L->eq.nw > US_SMALL_ROWS) region_truncate(L, nseed);
+  if (L->nreg * L->eq.nw > LEVEL0_ROWS) region_truncate(L, nseed);
   r = try_support(L, cur, res, info, err);
   if (r) return r < 0 ? -1 : settle(L, US_LOCAL_UNSTABLE, info);
   region_truncate(L, nseed);
@@ -959,9 +950,7 @@ static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityR
   /* level 1c in 2D only: on a 200-box random3d pile it added 36 region
      LPs and 3-5 % to the plan for 2 fewer full-system tests */
   int closed = 0, coned = 0, widened = L->dim != 2;
-  /* regions the small solver takes whole are never handed back early */
-  int limit = US_MAX((int)(LOCAL_GLOBAL_SHARE * size), US_SMALL_ROWS / L->eq.nw);
-  limit = US_MAX(limit, US_MIN(size, LOCAL_REGION_BODIES));
+  int limit = US_MAX((int)(LOCAL_GLOBAL_SHARE * size), US_MIN(size, LOCAL_REGION_BODIES));
   grow_supporters(L, cur);
   /* a seed that a present body rests on: level 1 alone never held one
      (0 of 894 such tests on stacks of 632 to 9,352 blocks), so the first

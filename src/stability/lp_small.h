@@ -22,12 +22,13 @@ static inline int us_small_fits(const us_EqSystem *e) {
   return e->dim == 2 && e->nbody * e->nw <= US_SMALL_ROWS;
 }
 
-/* Region LPs of more rows go to the sparse simplex (lp_sparse.h): the
- * dense tableau pivots m times at O(m n) each. Until 2026-12-02 regions
- * went to the dense one up to 165 rows (CLP cost 1-2.5 ms a region solve
- * whatever the size; the dense one 0.4-1.6 ms up to 179 rows); with the
- * sparse simplex at 0 rows instead of 90, batches of 400 small random
- * stacks took 0.30-0.38 s of CPU instead of 0.27-0.30 s. */
+/* Region LPs never come here: they go to the sparse simplex (lp_sparse.h)
+ * whatever their size. Until 2026-12-06 regions of up to 90 rows came
+ * here first; once the sparse simplex started from the base forces with
+ * superbasic columns (a few pivots per solve), the dense tableau's m
+ * pivots cost more: instructions of `unstack plan` -27 % on a 632-block
+ * stack, -14 % on 1,076, -32 % on 4,336, and -17 % on a batch of 400
+ * small random stacks. Whole systems of up to 90 rows still come here. */
 
 extern const us_Backend us_backend_small;
 
