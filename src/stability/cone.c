@@ -153,6 +153,16 @@ static void gen_column(const us_EqSystem *e, us_EqGen *g, int ci, int slot, cons
   for (size_t side = 0; side < 2; side++) {
     int blk = e->blk[2 * j0 + side]; /* the same for every component */
     if (blk < 0) continue;
+    if (e->dim == 2 && nw == 3) { /* 2D: the same sums, unrolled (most region LP set-up) */
+      const double *w0 = e->w + (2 * j0 + side) * 3, *w1 = e->w + (2 * (j0 + 1) + side) * 3;
+      for (int r = 0; r < 3; r++) {
+        double v = (cf[0] != 0.0 ? cf[0] * w0[r] : 0.0) + (cf[1] != 0.0 ? cf[1] * w1[r] : 0.0);
+        if (v == 0.0) continue;
+        g->row[nnz] = blk * 3 + r;
+        g->val[nnz++] = v;
+      }
+      continue;
+    }
     for (size_t r = 0; r < nw; r++) {
       double v = 0.0;
       for (int k = 0; k < e->dim; k++)
