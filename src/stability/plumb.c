@@ -43,12 +43,16 @@
 #define SAME_NORMAL 1e-9 /* normals closer than this (1 - cos) are one contact face */
 #define CONE_SLACK 1e-12 /* relative slack of the hop's own cone test */
 #define PLUMB_HOPS 4096  /* hops one added body's lines may take */
-#define LEVER_HOPS 256   /* hops a lever's signed lines may take: they split
+#define LEVER_HOPS 64    /* hops a lever's signed lines may take: they split
                             at every hop and never merge, so a long route
-                            grows to the budget; on stacks of 1,076 / 4,336
-                            / 9,352 blocks this kept 51 of 53 / 419 of 455
-                            / 553 of 566 levers that pass the check, with
-                            15 / 52 / 79 % of the hops */
+                            grows to the budget and its path mostly fails
+                            the check. Instructions of `unstack plan` on a
+                            1,076-block stack: 2.29 G at 4,096 hops (before
+                            2026-12-06), 1.42 G at 256, 1.36 G at 64; 64
+                            also beat 256 by 1-7 % on stacks of 632 to
+                            5,796 blocks. Levers kept: 39 of the 53 / 468
+                            of the 566 tests they settled at 4,096 on the
+                            1,076 / 9,352-block stacks */
 #define PLUMB_RETRIES 8  /* a lazy route starts over at most this often */
 #define PLUMB_MAX_TRI 48 /* 3D: support points of a body searched for triangles at most */
 
