@@ -386,6 +386,10 @@ const us_Bitset *us_stability_current(const us_Stability *w) { return w ? &w->cu
 
 int us_stability_current_count(const us_Stability *w) { return w ? w->ncur : 0; }
 
+int us_stability_tests_locally(const us_Stability *w) {
+  return w->local && !w->local_held_only && !w->bilateral;
+}
+
 int us_stability_delta_consistent(const us_Stability *w) {
   if (us_bitset_count(&w->cur) != w->ncur) return 0;
   return !w->local || us_local_delta_consistent(w->local, &w->cur);
