@@ -232,7 +232,7 @@ static void mark_w(Asm *a, const int *grp, int ng, int on) {
 
 /* Test C ∪ grp through its component W: 1 stable, 0 not, < 0 stop. When
  * W is all of C ∪ grp (C connected, as in a wall), or when the workspace
- * tests locally (then C ∪ grp stands iff W does, by decoupling, and the
+ * tests locally in 2D (then C ∪ grp stands iff W does, by decoupling, and the
  * local test only visits grp's neighbourhood), the test is stated as a
  * change of the stability workspace's current set, kept equal to C
  * (tests by change): O(|grp|) per test instead of O(|W|), and nothing of
@@ -241,10 +241,12 @@ static void mark_w(Asm *a, const int *grp, int ng, int on) {
  * set again (O(n / 64)) before the next test by change. On stacker
  * stacks of 632 to 1,076 blocks, whose C has many components, testing W
  * as a bitset switched 93 bodies in and out per test and emptied the
- * plumb memo at every switch: 7-13 % more instructions, same plans. */
+ * plumb memo at every switch: 7-13 % more instructions, same plans. 2D
+ * only: 3D piles send more tests to the full system, which then solves
+ * all of C instead of W. */
 static int test_step(Asm *a, const int *grp, int ng, us_Error *err) {
   us_Stability *w = a->ctx->stab;
-  if (us_stability_tests_locally(w) || would_be_size(a, grp, ng) == a->nplaced + ng) {
+  if ((a->ctx->s->dim == 2 && us_stability_tests_locally(w)) || would_be_size(a, grp, ng) == a->nplaced + ng) {
     if (!a->synced && us_stability_set_current(w, &a->cw, err)) return US_STEP_ERROR;
     a->synced = 1;
     for (int j = 0; j < ng; j++) us_stability_add(w, grp[j], NULL);

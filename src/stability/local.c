@@ -18,7 +18,8 @@
  * planner that tests one component after another stays local. Then, for
  * regions R ⊇ D of growing size:
  *   level 0:  R = D and the present bodies touching it (D alone past
- *             90 rows), the support LP only (does some
+ *             90 rows, and in 3D, where it runs only while it finds
+ *             proofs), the support LP only (does some
  *             body of D fall, or push a neighbour over, even if
  *             everything further away is held still?);
  *   level 1:  R = D plus its supporters under the footprint of the change
@@ -33,8 +34,8 @@
  *   level 2:  every supporter of R, followed down (the load's cone);
  *   level k:  rings of neighbours, until R at least doubled;
  * at each level the fixed LP (feasible: stable) and the support LP
- * (infeasible: unstable). When R passes a quarter of S and 300 bodies the
- * test is handed back for the full system; when a ring adds nothing, R is
+ * (infeasible: unstable). When R passes a quarter of S (and in 2D 300
+ * bodies) the test is handed back for the full system; when a ring adds nothing, R is
  * a union of components of S and the two LPs coincide, so the loop always
  * ends with a verdict or a hand-back.
  *
@@ -78,7 +79,9 @@
                                   never go there: a component of 1,076 blocks
                                   sent 117 tests to the full system at a
                                   quarter, none at 300 (docs/local.md) */
-#define LEVEL0_ROWS 90        /* level 0 takes the seeds' neighbours up to this */
+#define LEVEL0_ROWS 90        /* 2D level 0 takes the seeds' neighbours up to this;
+                                 regions of up to this many rows are never
+                                 handed to the full system */
 #define SUPPORT_COS 1e-3      /* a contact supports if its push has this much "up" */
 
 /* Whether an optional LP finds proofs often enough to run (pays()). */
@@ -120,6 +123,7 @@ struct us_Local {
   double *f, *saved;     /* LP solution; base values it replaces */
   int cap_f, cap_saved;
   int *list, *slot;      /* mechanism check: contacts of R, body slots */
+  us_Pays seed_pays;     /* 3D level-0 support LPs: run, and proofs found */
   us_Pays grow_pays;     /* the support LPs of grown levels before the last */
   double mass;           /* movable mass, summed once for the checks */
   us_Plumb plumb;        /* plumb-line load paths (plumb.h) */
@@ -936,21 +940,34 @@ static int last_support(us_Local *L, const us_Bitset *cur, int nseed, int suppor
  * one (docs/local.md, "Regions"). */
 static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityResult *res,
                       us_StabilityInfo *info, us_Error *err) {
-  /* level 0: the seeds and the bodies they touch, the rest held still
-     (a block that tips pushes its neighbour over: 8 of 24 full-system
-     tests of a 931-block stack); the seeds alone past LEVEL0_ROWS */
-  int nseed = L->nreg, r;
-  grow_ring(L, cur);
-  if (L->nreg * L->eq.nw > LEVEL0_ROWS) region_truncate(L, nseed);
-  r = try_support(L, cur, res, info, err);
-  if (r) return r < 0 ? -1 : settle(L, US_LOCAL_UNSTABLE, info);
-  region_truncate(L, nseed);
+  /* level 0, the support LP only. 2D: the seeds and the bodies they
+     touch, the rest held still (a block that tips pushes its neighbour
+     over: 8 of 24 full-system tests of a 931-block stack; the seeds alone
+     past LEVEL0_ROWS), at every test. 3D: the seeds alone, while it pays
+     (a 3D region LP is CLP's; on a 200-box random3d pile the 2D rule
+     cost 23 % more instructions) */
+  int nseed = -1, r;
+  if (L->dim == 2 || pays(&L->seed_pays, 8)) {
+    int n0 = L->nreg;
+    if (L->dim == 2) {
+      grow_ring(L, cur);
+      if (L->nreg * L->eq.nw > LEVEL0_ROWS) region_truncate(L, n0);
+      r = try_support(L, cur, res, info, err);
+    } else {
+      r = paid(&L->seed_pays, try_support(L, cur, res, info, err));
+    }
+    if (r) return r < 0 ? -1 : settle(L, US_LOCAL_UNSTABLE, info);
+    region_truncate(L, n0);
+    nseed = n0;
+  }
   int nfirst = L->nreg, pressed = 0, last = L->nreg;
   int supported = -1; /* the region size of the latest support LP */
   /* level 1c in 2D only: on a 200-box random3d pile it added 36 region
      LPs and 3-5 % to the plan for 2 fewer full-system tests */
   int closed = 0, coned = 0, widened = L->dim != 2;
-  int limit = US_MAX((int)(LOCAL_GLOBAL_SHARE * size), US_MIN(size, LOCAL_REGION_BODIES));
+  int limit = US_MAX((int)(LOCAL_GLOBAL_SHARE * size), LEVEL0_ROWS / L->eq.nw);
+  if (L->dim == 2) /* inside the sparse simplex (3D regions go to CLP) */
+    limit = US_MAX(limit, US_MIN(size, LOCAL_REGION_BODIES));
   grow_supporters(L, cur);
   /* a seed that a present body rests on: level 1 alone never held one
      (0 of 894 such tests on stacks of 632 to 9,352 blocks), so the first
