@@ -105,6 +105,9 @@ struct us_Local {
   double *lo, *hi;       /* [nbody * 2] horizontal extents of each body */
   double up[3];          /* against gravity */
   us_Bitset base;
+  us_Bitset part;        /* after a hand-back: the components of S with a seed */
+  int npart;             /* their bodies; -1: none kept (us_local_changed_part) */
+  int *stack;            /* [nbody] scratch of the components' search */
   int have_base;
   /* B xor S as two lists, S \ B (alist) and B \ S (rlist): a body is in
      the one its base bit names while it differs, at slot dpos (else -1);
@@ -202,6 +205,8 @@ void us_local_free(us_Local *L) {
   us_free(L->lo);
   us_free(L->hi);
   us_bitset_free(&L->base);
+  us_bitset_free(&L->part);
+  us_free(L->stack);
   us_free(L->alist);
   us_free(L->rlist);
   us_free(L->tlist);
@@ -967,7 +972,7 @@ static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityR
   int closed = 0, coned = 0, widened = L->dim != 2;
   int limit = US_MAX((int)(LOCAL_GLOBAL_SHARE * size), LEVEL0_ROWS / L->eq.nw);
   if (L->dim == 2) /* inside the sparse simplex (3D regions go to CLP) */
-    limit = US_MAX(limit, US_MIN(size, LOCAL_REGION_BODIES));
+    limit = US_MAX(US_MIN(limit, US_SPARSE_ROWS / L->eq.nw), US_MIN(size, LOCAL_REGION_BODIES));
   grow_supporters(L, cur);
   /* a seed that a present body rests on: level 1 alone never held one
      (0 of 894 such tests on stacks of 632 to 9,352 blocks), so the first
@@ -1015,8 +1020,37 @@ static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityR
   }
 }
 
+/* The components of cur that hold one of the seeds L->reg[0 .. nseed),
+ * into L->part (L->npart bodies): a depth-first search over contacts
+ * between present bodies. -1 on OOM (L->npart stays -1). */
+static int changed_part(us_Local *L, const us_Bitset *cur, int nseed) {
+  int n = L->s->nbody, top = 0, count = 0;
+  if (!L->part.w && us_bitset_init(&L->part, n)) return -1;
+  if (!L->stack && !(L->stack = us_malloc((size_t)(n > 0 ? n : 1) * sizeof(int)))) return -1;
+  memset(L->part.w, 0, (size_t)L->part.nwords * sizeof(uint64_t));
+  for (int q = 0; q < nseed; q++)
+    if (!us_bitset_get(&L->part, L->reg[q])) us_bitset_set(&L->part, L->reg[q]), L->stack[top++] = L->reg[q];
+  while (top > 0) {
+    int u = L->stack[--top];
+    count++;
+    for (int m = L->inc_start[u]; m < L->inc_start[u + 1]; m++) {
+      int v = other_side(L, L->inc[m], u);
+      if (v >= 0 && us_bitset_get(cur, v) && !us_bitset_get(&L->part, v))
+        us_bitset_set(&L->part, v), L->stack[top++] = v;
+    }
+  }
+  L->npart = count;
+  return 0;
+}
+
+int us_local_changed_part(const us_Local *L, const us_Bitset **part) {
+  *part = &L->part;
+  return L->npart;
+}
+
 int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
                   us_StabilityInfo *info, us_Error *err) {
+  L->npart = -1;
   int min = L->set.local_min_bodies > 0 ? L->set.local_min_bodies : LOCAL_MIN_BODIES;
   int size = L->ncur;
   if (size < min) return US_LOCAL_GLOBAL;
@@ -1031,7 +1065,7 @@ int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
   if ((L->nrem > 0 || !valid) && materialize(L, err)) return -1;
   if (!valid) memo_flush(L);
   seed_region(L, cur);
-  int r;
+  int r, nseed = L->nreg;
   if (L->nreg == 0) { /* S inside B, apart from what left: B's forces hold */
     memset(&res->check, 0, sizeof res->check);
     res->check.ok = 1;
@@ -1053,6 +1087,13 @@ int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
     r = run_levels(L, cur, size, res, info, err);
   }
   if (r == US_LOCAL_STABLE) advance_base(L, cur);
+  /* handed back with only bodies added (none removed touches S): S's
+     components without a seed are components of B, unchanged, held by
+     B's forces, so the full system need only solve the others */
+  if (r == US_LOCAL_GLOBAL && L->nt == 0 && nseed > 0) {
+    region_truncate(L, nseed);
+    if (changed_part(L, cur, nseed)) L->npart = -1; /* OOM: the whole system */
+  }
   region_clear(L);
   if (r == US_LOCAL_GLOBAL) info->local_global++;
   return r;

@@ -42,8 +42,18 @@ void us_local_free(us_Local *L);
 int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
                   us_StabilityInfo *info, us_Error *err);
 
+/* After a test that returned US_LOCAL_GLOBAL with only bodies added (no
+ * removed body touches cur): *part is the union K of the components of
+ * cur that hold a changed body, and the result its size; else -1. The
+ * other components of cur are components of the base, unchanged and held
+ * by its forces, so cur stands iff K does: the caller may solve K's
+ * system alone, then hand it to us_local_set_base with cur (the base keeps
+ * its forces off K's contacts). */
+int us_local_changed_part(const us_Local *L, const us_Bitset **part);
+
 /* After a full-system stable verdict of cur with normalized forces f of the
- * system e: the base becomes cur with those forces. */
+ * system e (of cur, or of the part above): the base becomes cur with those
+ * forces on e's contacts. */
 void us_local_set_base(us_Local *L, const us_Bitset *cur, const us_EqSystem *e,
                        const double *f);
 

@@ -53,6 +53,8 @@ struct us_Stability {
   us_EqSystem eq;
   us_Bitset movable;       /* mask of movable bodies */
   us_Bitset cur;           /* movable bits of the current sub-assembly */
+  const us_Bitset *sys;    /* what the full system solves: &cur, or the
+                              local tests' changed part (decide) */
   int ncur;                /* its number of bodies */
   us_Bitset last;          /* ... of the last one the backend solved */
   int have_last;
@@ -276,6 +278,7 @@ us_Stability *us_stability_new_backend(const us_Structure *s, const us_Stability
     us_stability_free(w);
     return NULL;
   }
+  w->sys = &w->cur;
   w->t_created = us_now();
   w->t_progress = 0.0; /* the first test reports at once */
   /* local tests: the CLP backend itself (never a test's stand-in) */
@@ -311,16 +314,17 @@ us_Stability *us_stability_new(const us_Structure *s, const us_StabilitySettings
 
 /* ----------------------------------------------------------------- test */
 
-/* Bodies in cur but not in last (added) and the reverse (removed). */
+/* Bodies in the system solved (sys) but not in last (added) and the
+ * reverse (removed). */
 static void diff_last(us_Stability *w, int *nadded, int *nremoved) {
   *nadded = *nremoved = 0;
   for (int k = 0; k < w->cur.nwords; k++) {
-    uint64_t x = w->cur.w[k] ^ w->last.w[k];
+    uint64_t x = w->sys->w[k] ^ w->last.w[k];
     while (x) {
       int bit = __builtin_ctzll(x);
       x &= x - 1;
       int i = k * 64 + bit;
-      if (us_bitset_get(&w->cur, i))
+      if (us_bitset_get(w->sys, i))
         w->added[(*nadded)++] = i;
       else
         w->removed[(*nremoved)++] = i;
@@ -447,7 +451,7 @@ static us_Status run_backend(us_Stability *w, us_StabilityResult *res, us_Error 
   res->verdict = out.verdict;
   w->info.solve_time += us_now() - t0;
   if (st) return st;
-  memcpy(w->last.w, w->cur.w, (size_t)w->cur.nwords * sizeof(uint64_t));
+  memcpy(w->last.w, w->sys->w, (size_t)w->cur.nwords * sizeof(uint64_t));
   w->have_last = 1;
   return US_OK;
 }
@@ -529,7 +533,7 @@ static us_Status certify(us_Stability *w, us_StabilityResult *res, us_Error *err
   for (int c = 0; c < e->ncontact; c++) res->forces.contact[c] = e->contact[c];
   for (int j = 0; j < e->ncontact * dim; j++) res->forces.f[j] = w->f[j] * e->force_scale;
   double t0 = us_now();
-  us_certificate_check_mode(w->s, &w->cur, &res->forces, w->set.cert_tol, w->bilateral, w->acc,
+  us_certificate_check_mode(w->s, w->sys, &res->forces, w->set.cert_tol, w->bilateral, w->acc,
                             w->seen, &res->check);
   w->info.check_time += us_now() - t0;
   if (!res->check.ok) certificate_failed(res, us_method_name(w->be->method));
@@ -616,11 +620,19 @@ static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err)
     w->eq.ncontact = 0;
     return certify(w, res, err);
   }
+  w->sys = &w->cur;
   if (w->local && !w->local_held_only && !w->bilateral) { /* local tests: unilateral */
     int r = decide_local(w, res, err);
     if (r) return r < 0 ? (err->code ? err->code : US_ERR_NOMEM) : US_OK;
+    /* 2D, no forces handed out: the full system of the changed components
+       alone (local.h; a planner's assembly step by change on a structure
+       of many components). The certificate then covers them, the base's
+       forces the rest. */
+    const us_Bitset *part;
+    int np = us_local_changed_part(w->local, &part);
+    if (w->s->dim == 2 && w->set.skip_forces && np > 0 && np < w->ncur) w->sys = part;
   }
-  if (us_eq_build(&w->eq, &w->cur))
+  if (us_eq_build(&w->eq, w->sys))
     return us_error_set(err, US_ERR_NOMEM, "out of memory building the equilibrium system");
   int loose = unheld_body(w);
   if (loose >= 0) {
@@ -672,6 +684,7 @@ static us_Status referee(us_Stability *w, us_StabilityResult *res, us_Error *err
     if (!w->ref) return err->code ? err->code : US_ERR_NOMEM;
   }
   us_backend_clp.set_deadline(w->ref, w->deadline);
+  w->sys = &w->cur;
   if (us_eq_build(&w->eq, &w->cur))
     return us_error_set(err, US_ERR_NOMEM, "out of memory building the equilibrium system");
   char was[64];
