@@ -545,7 +545,39 @@ static void none_build_order_stands(void) {
   us_structure_free(s);
 }
 
-US_TEST_MAIN(T(stacker_within_two_n_tests), T(assemble_agrees_with_exhaustive_reference), T(graph_searches_and_rules_agree),
+/* A test whose local test hands back after additions only (docs/local.md)
+ * solves only the components that changed, the others held by the base:
+ * the same plans as with the full system of every test (local tests off),
+ * on piles where that happens (the graph searches' tests). */
+static void hand_back_solves_changed_part(void) {
+  unsigned long long rng = 20261206;
+  int tried = 0, part = 0;
+  for (int trial = 0; trial < US_TEST_PILES / 8; trial++) {
+    us_Structure *s = PILE(&rng, 4 + trial % 6);
+    if (!s) continue;
+    tried++;
+    us_PlanSettings on = graph_settings(trial % 4 < 2 ? US_SEARCH_DFS : US_SEARCH_RANDOM,
+                                        (us_Direction)(trial % 2), US_RULE_MEMO);
+    us_PlanSettings off = on;
+    off.stability.local = -1;
+    us_Plan a, b;
+    us_PlanStatus sa = run_plan(s, &on, &a), sb = run_plan(s, &off, &b);
+    int same = sa == sb && a.nsteps == b.nsteps &&
+               (a.nsteps == 0 || !memcmp(a.order, b.order, (size_t)a.nsteps * sizeof(int)));
+    if (!same) fprintf(stderr, "pile %d: local %d, full %d\n", trial, sa, sb);
+    CHECK(same);
+    CHECK(sa != US_PLAN_FOUND || plan_valid(s, &a));
+    part += a.stats.stability.local_global_part > 0;
+    CHECK_INT(b.stats.stability.local_global_part, ==, 0);
+    us_plan_free(&a);
+    us_plan_free(&b);
+    us_structure_free(s);
+  }
+  printf("hand-backs: %d piles, %d with a part solved alone\n", tried, part);
+  CHECK(part >= tried / 20); /* the path under test ran */
+}
+
+US_TEST_MAIN(T(stacker_within_two_n_tests), T(hand_back_solves_changed_part), T(assemble_agrees_with_exhaustive_reference), T(graph_searches_and_rules_agree),
              T(steps_of_two_agree_with_reference), T(arch_next_to_loose_blocks_is_none),
              T(greedy_can_be_stuck_where_an_order_exists), T(rules_report_their_savings),
              T(kinematics_need_a_graph_search), T(out_of_memory_is_clean),

@@ -429,6 +429,8 @@ typedef struct us_StabilityInfo {
                             direction left to add); the certificate decides */
   long band_referee;     /* tests in the boundary band, decided by the referee
                             (docs/planning.md, "The boundary band") */
+  long local_global_part; /* of local_global: only the components that changed
+                            solved, the rest held by the base (docs/local.md) */
 } us_StabilityInfo;
 
 /* The certificate of an unstable verdict: a virtual motion of some bodies

@@ -630,7 +630,10 @@ static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err)
        forces the rest. */
     const us_Bitset *part;
     int np = us_local_changed_part(w->local, &part);
-    if (w->s->dim == 2 && w->set.skip_forces && np > 0 && np < w->ncur) w->sys = part;
+    if (w->s->dim == 2 && w->set.skip_forces && np > 0 && np < w->ncur) {
+      w->sys = part;
+      w->info.local_global_part++;
+    }
   }
   if (us_eq_build(&w->eq, w->sys))
     return us_error_set(err, US_ERR_NOMEM, "out of memory building the equilibrium system");
