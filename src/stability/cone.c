@@ -192,10 +192,16 @@ static void gen_half_space(const us_EqSystem *e, us_EqGen *g, int ci) {
   }
 }
 
+/* The last friction coefficient's edge angle (most contacts share one mu). */
+typedef struct EdgeMemo {
+  double mu, c, s;
+  int set;
+} EdgeMemo;
+
 /* 2D edges e+, e- (slots 1, 2). */
-static void gen_edges_2d(const us_EqSystem *e, us_EqGen *g, int ci) {
-  double c, s;
-  edge_angle(e->mu[ci], &c, &s);
+static void gen_edges_2d(const us_EqSystem *e, us_EqGen *g, int ci, EdgeMemo *m) {
+  if (!m->set || !(m->mu == e->mu[ci])) edge_angle(e->mu[ci], &m->c, &m->s), m->mu = e->mu[ci], m->set = 1;
+  double c = m->c, s = m->s;
   const double ep[3] = {c, s, 0.0}, em[3] = {c, -s, 0.0};
   gen_column(e, g, ci, 1, ep);
   gen_column(e, g, ci, 2, em);
@@ -267,12 +273,13 @@ int us_eq_generators(const us_EqSystem *e, double n_column_mu, us_EqGen *g) {
   g->ncol = 0;
   g->nrow = e->nbody * e->nw;
   g->start[0] = 0;
+  EdgeMemo memo = {0.0, 0.0, 0.0, 0};
   for (int c = 0; c < e->ncontact; c++) {
     int k = gen_kinds(e->mu[c], n_column_mu);
     if (k & 1) gen_normal(e, g, c);
     if (!(k & 2)) continue;
     if (e->dim == 2)
-      gen_edges_2d(e, g, c);
+      gen_edges_2d(e, g, c, &memo);
     else if (isinf(e->mu[c]))
       gen_half_space(e, g, c);
     else

@@ -134,6 +134,28 @@ static void unit_wrench(const us_EqSystem *e, int body, const double *p, const d
 static void write_contact(us_EqSystem *e, int ci, int c) {
   const us_Contact *k = &e->s->contacts[c];
   int ends[2] = {k->a, k->b};
+  if (e->dim == 2 && e->nw == 3) { /* unit_wrench's values, unrolled (region set-up) */
+    double inv_l = 1.0 / e->length_scale;
+    for (int side = 0; side < 2; side++) {
+      int body = ends[side];
+      int blk = body >= 0 ? e->row_of_body[body] : -1;
+      for (int comp = 0; comp < 2; comp++) {
+        size_t j = (size_t)ci * 2 + (size_t)comp;
+        double *w = e->w + (2 * j + (size_t)side) * 3;
+        e->blk[2 * j + (size_t)side] = blk;
+        if (blk < 0) {
+          w[0] = w[1] = w[2] = 0.0;
+          continue;
+        }
+        const double *d = comp == 0 ? k->n : k->t[0], *com = e->s->bodies[body].com;
+        double sign = side == 0 ? -1.0 : 1.0, r0 = k->p[0] - com[0], r1 = k->p[1] - com[1];
+        w[0] = sign * d[0];
+        w[1] = sign * d[1];
+        w[2] = sign * (r0 * d[1] - r1 * d[0]) * inv_l;
+      }
+    }
+    return;
+  }
   for (int comp = 0; comp < e->dim; comp++) {
     const double *d = comp == 0 ? k->n : k->t[comp - 1];
     size_t j = (size_t)ci * (size_t)e->dim + (size_t)comp;
