@@ -48,9 +48,9 @@
                             grows to the budget and its path mostly fails
                             the check. Instructions of `unstack plan` on a
                             1,076-block stack: 2.29 G at 4,096 hops (before
-                            2026-12-06), 1.42 G at 256, 1.36 G at 64; 64
-                            also beat 256 by 1-7 % on stacks of 632 to
-                            5,796 blocks. Levers kept: 39 of the 53 / 468
+                            2026-12-06), 1.73 G at 256; later, 1.42 G at
+                            256 and 1.36 G at 64, which also beat 256 by
+                            1-7 % on stacks of 632 to 5,796 blocks. Levers kept: 39 of the 53 / 468
                             of the 566 tests they settled at 4,096 on the
                             1,076 / 9,352-block stacks */
 #define PLUMB_RETRIES 8  /* a lazy route starts over at most this often */
