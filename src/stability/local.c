@@ -19,9 +19,9 @@
  * regions R ⊇ D of growing size:
  *   level 0:  R = D and the present bodies touching it (D alone past
  *             90 rows, and in 3D, where it runs only while it finds
- *             proofs), the support LP only (does some
- *             body of D fall, or push a neighbour over, even if
- *             everything further away is held still?);
+ *             proofs), the support LP only (does some body of D fall,
+ *             or push a neighbour over, even if everything further away
+ *             is held still?);
  *   level 1:  R = D plus its supporters under the footprint of the change
  *             (bodies below a seed whose horizontal extent overlaps the
  *             changed bodies', followed down to the ground): the path the
@@ -34,10 +34,12 @@
  *   level 2:  every supporter of R, followed down (the load's cone);
  *   level k:  rings of neighbours, until R at least doubled;
  * at each level the fixed LP (feasible: stable) and the support LP
- * (infeasible: unstable). When R passes a quarter of S (and in 2D 300
- * bodies) the test is handed back for the full system; when a ring adds nothing, R is
- * a union of components of S and the two LPs coincide, so the loop always
- * ends with a verdict or a hand-back.
+ * (infeasible: unstable). When R passes the limit (a quarter of S; in 2D
+ * at least 300 bodies and at most 500) the test is handed back for the
+ * full system, which then solves only the components of S that changed
+ * when bodies were only added (us_local_changed_part); when a ring adds
+ * nothing, R is a union of components of S and the two LPs coincide, so
+ * the loop always ends with a verdict or a hand-back.
  *
  * Stable: the merged forces (base values off R's free contacts, the LP's
  * on them) are re-checked on R's bodies by the independent check
