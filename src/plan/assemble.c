@@ -241,12 +241,12 @@ static void mark_w(Asm *a, const int *grp, int ng, int on) {
  * set again (O(n / 64)) before the next test by change. On stacker
  * stacks of 632 to 1,076 blocks, whose C has many components, testing W
  * as a bitset switched 93 bodies in and out per test and emptied the
- * plumb memo at every switch: 7-13 % more instructions, same plans. 2D
- * only: 3D piles send more tests to the full system, which then solves
- * all of C instead of W. */
+ * plumb memo at every switch: 7-13 % more instructions, same plans. Not
+ * in 3D (us_stability_tests_locally): piles there hand more tests to the
+ * full system, which would then solve all of C instead of W. */
 static int test_step(Asm *a, const int *grp, int ng, us_Error *err) {
   us_Stability *w = a->ctx->stab;
-  if ((a->ctx->s->dim == 2 && us_stability_tests_locally(w)) || would_be_size(a, grp, ng) == a->nplaced + ng) {
+  if (us_stability_tests_locally(w) || would_be_size(a, grp, ng) == a->nplaced + ng) {
     if (!a->synced && us_stability_set_current(w, &a->cw, err)) return US_STEP_ERROR;
     a->synced = 1;
     for (int j = 0; j < ng; j++) us_stability_add(w, grp[j], NULL);

@@ -390,8 +390,13 @@ const us_Bitset *us_stability_current(const us_Stability *w) { return w ? &w->cu
 
 int us_stability_current_count(const us_Stability *w) { return w ? w->ncur : 0; }
 
-int us_stability_tests_locally(const us_Stability *w) {
+/* Do this workspace's tests go through the local tests (unilateral)? */
+static int local_on(const us_Stability *w) {
   return w->local && !w->local_held_only && !w->bilateral;
+}
+
+int us_stability_tests_locally(const us_Stability *w) {
+  return local_on(w) && w->s->dim == 2; /* 2D: a hand-back solves the changed part */
 }
 
 int us_stability_delta_consistent(const us_Stability *w) {
@@ -621,7 +626,7 @@ static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err)
     return certify(w, res, err);
   }
   w->sys = &w->cur;
-  if (w->local && !w->local_held_only && !w->bilateral) { /* local tests: unilateral */
+  if (local_on(w)) {
     int r = decide_local(w, res, err);
     if (r) return r < 0 ? (err->code ? err->code : US_ERR_NOMEM) : US_OK;
     /* 2D, no forces handed out: the full system of the changed components
@@ -630,7 +635,7 @@ static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err)
        forces the rest. */
     const us_Bitset *part;
     int np = us_local_changed_part(w->local, &part);
-    if (w->s->dim == 2 && w->set.skip_forces && np > 0 && np < w->ncur) {
+    if (us_stability_tests_locally(w) && w->set.skip_forces && np > 0 && np < w->ncur) {
       w->sys = part;
       w->info.local_global_part++;
     }
@@ -649,7 +654,7 @@ static us_Status decide(us_Stability *w, us_StabilityResult *res, us_Error *err)
   if (st) return st;
   if (res->verdict == US_STABLE) {
     st = certify(w, res, err);
-    if (!st && w->local && !w->local_held_only && !w->bilateral && res->verdict == US_STABLE)
+    if (!st && local_on(w) && res->verdict == US_STABLE)
       us_local_set_base(w->local, &w->cur, &w->eq, w->f);
     return st;
   }

@@ -50,9 +50,11 @@ us_Status us_stability_held(us_Stability *w, const us_Bitset *present, const int
 us_Status us_stability_seed(us_Stability *w, const us_Bitset *present, const us_Forces *f,
                             int *taken, us_Error *err);
 
-/* Whether the workspace's unilateral tests go through the local tests
- * (local.h): a test then costs what the change costs, not what the set
- * costs, so a caller may state a step as a change of a larger set. */
+/* Whether a test costs what its change costs, not what the set costs, so
+ * a caller may state a step as a change of a larger set: the unilateral
+ * tests go through the local tests (local.h), in 2D, where a test they
+ * hand back solves only the components that changed (3D hands more tests
+ * back, and solves the whole set). */
 int us_stability_tests_locally(const us_Stability *w);
 
 /* Tests of the tests-by-change bookkeeping (us_stability_add ...): 1 when
