@@ -337,7 +337,7 @@ scale_row() { # family file method-words max-bodies
 # tests settled by plumb lines, by region LPs (stable or unstable, with the
 # region sizes' histogram) and by the full system (docs/local.md).
 decision_row() { # family bodies log
-  sed -n 's/.*local tests: \([0-9]*\) stable (\([0-9]*\) by plumb lines, \([0-9]*\) by levers), \([0-9]*\) unstable, \([0-9]*\) on the full system; \([0-9]*\) region LPs, mean region \([0-9.]*\) bodies.*/\1 \2 \3 \4 \5 \6 \7/p' "$3" |
+  sed -n 's/.*local tests: \([0-9]*\) stable (\([0-9]*\) by plumb lines, \([0-9]*\) by levers), \([0-9]*\) unstable, \([0-9]*\) on the full system[^;]*; \([0-9]*\) region LPs, mean region \([0-9.]*\) bodies.*/\1 \2 \3 \4 \5 \6 \7/p' "$3" |
     awk -v fam="$1" -v n="$2" -v sizes="$(sed -n 's/.*settled by region size: //p' "$3" | tr ',' ';')" \
       '{t = $1 + $4 + $5; if (t == 0) next
         printf "%s,%s,%d,%.2f,%.2f,%.2f,%.2f,%d,%s,%s\n", fam, n, t, 100 * $2 / t, 100 * $3 / t,

@@ -569,6 +569,7 @@ static void hand_back_solves_changed_part(void) {
     CHECK(sa != US_PLAN_FOUND || plan_valid(s, &a));
     part += a.stats.stability.local_global_part > 0;
     CHECK_INT(b.stats.stability.local_global_part, ==, 0);
+    CHECK_INT(b.stats.stability.local_global_sparse, ==, 0);
     us_plan_free(&a);
     us_plan_free(&b);
     us_structure_free(s);

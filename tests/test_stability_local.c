@@ -361,6 +361,47 @@ static void stacker_assembly_agrees(void) {
   CHECK(t.lever > 0); /* the levers took part in the agreement */
 }
 
+/* Hand-backs from a base (2D): many bodies added to a standing base at
+ * once send the test to the full system, which the sparse simplex decides
+ * from the base's forces (stability.c, us_local_hint); the verdicts are
+ * the full system's of a workspace without local tests, stable ones with
+ * a certificate and unstable ones with a Farkas ray the checks accept. */
+static void hand_backs_start_from_the_base(void) {
+  Tally t = {0};
+  long sparse = 0;
+  static const int kinds[] = {0, 1, 3}, sizes[] = {8, 12, 20};
+  for (int q = 0; q < 3; q++)
+    for (int m = 0; m < 2; m++) {
+      us_Structure *s = gen(kinds[q], m ? 0.5 : 0.0, sizes[q], 5u + (unsigned)q);
+      CHECK(s);
+      Pair p;
+      us_Bitset node = {0};
+      CHECK_INT(pair_open(s, &p) || us_bitset_init(&node, s->nbody), ==, 0);
+      unsigned long long rng = 77u + (unsigned)(10 * q + m);
+      int bad = 0;
+      for (int round = 0; round < 6 && !bad; round++) {
+        /* the base: the lower bodies (generators number bottom-up) */
+        memset(node.w, 0, (size_t)node.nwords * sizeof(uint64_t));
+        for (int i = 0; i < s->nbody / 3; i++) us_bitset_set(&node, i);
+        bad = pair_compare(&p, s, &node, &t) != 0;
+        /* then most of the rest at once; a few left out may make it fall */
+        for (int i = s->nbody / 3; i < s->nbody && !bad; i++)
+          if (pile_rnd(&rng) < 0.9) us_bitset_set(&node, i);
+        if (!bad) bad = pair_compare(&p, s, &node, &t) != 0;
+      }
+      sparse += us_stability_info(p.loc)->local_global_sparse;
+      CHECK_INT(us_stability_info(p.glob)->local_global_sparse, ==, 0);
+      us_bitset_free(&node);
+      pair_close(&p);
+      us_structure_free(s);
+      CHECK_INT(bad, ==, 0);
+    }
+  report("hand-backs from a base", &t);
+  fprintf(stderr, "hand-backs decided by the sparse simplex: %ld\n", sparse);
+  CHECK(t.stable > 0 && t.unstable > 0);
+  CHECK(sparse >= 12); /* the path under test decided hand-backs */
+}
+
 /* Local tests off, on, and the planner: the same plans. */
 static void plans_agree(void) {
   for (int kind = 0; kind < 4; kind++) {
@@ -386,4 +427,5 @@ static void plans_agree(void) {
 US_TEST_MAIN({"generators_agree", generators_agree}, {"random_piles_agree", random_piles_agree},
              {"global_instability_decided", global_instability_decided},
              {"mechanism_check_rejects", mechanism_check_rejects}, {"plans_agree", plans_agree},
-             {"stacker_assembly_agrees", stacker_assembly_agrees})
+             {"stacker_assembly_agrees", stacker_assembly_agrees},
+             {"hand_backs_start_from_the_base", hand_backs_start_from_the_base})

@@ -77,9 +77,9 @@ void cli_print_local_stats(const us_StabilityInfo *in) {
   long settled = in->local_stable + in->local_unstable;
   if (settled + in->local_global == 0) return;
   printf("  local tests: %ld stable (%ld by plumb lines, %ld by levers), %ld unstable, %ld on the "
-         "full system; %ld region LPs, mean region %.1f bodies\n",
+         "full system (%ld by the sparse simplex); %ld region LPs, mean region %.1f bodies\n",
          in->local_stable, in->local_plumb, in->local_lever, in->local_unstable, in->local_global,
-         in->local_lps,
+         in->local_global_sparse, in->local_lps,
          settled ? (double)in->local_region_bodies / (double)settled : 0.0);
   printf("  settled by region size:");
   for (int k = 0; k < US_LOCAL_BUCKETS; k++)

@@ -431,6 +431,8 @@ typedef struct us_StabilityInfo {
                             (docs/planning.md, "The boundary band") */
   long local_global_part; /* of local_global: only the components that changed
                             solved, the rest held by the base (docs/local.md) */
+  long local_global_sparse; /* of local_global: decided by the sparse simplex
+                            from the base's forces (2D, docs/local.md) */
 } us_StabilityInfo;
 
 /* The certificate of an unstable verdict: a virtual motion of some bodies

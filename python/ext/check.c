@@ -57,6 +57,7 @@ PyObject *us_py_stability_info(const us_StabilityInfo *in) {
       put(d, "local_unstable", PyLong_FromLong(in->local_unstable)) ||
       put(d, "local_global", PyLong_FromLong(in->local_global)) ||
       put(d, "local_global_part", PyLong_FromLong(in->local_global_part)) ||
+      put(d, "local_global_sparse", PyLong_FromLong(in->local_global_sparse)) ||
       put(d, "local_plumb", PyLong_FromLong(in->local_plumb)) ||
       put(d, "timed_out", PyLong_FromLong(in->timed_out)))
     return Py_XDECREF(d), NULL;

@@ -35,9 +35,10 @@
  *   level k:  rings of neighbours, until R at least doubled;
  * at each level the fixed LP (feasible: stable) and the support LP
  * (infeasible: unstable). When R passes the limit (a quarter of S; in 2D
- * at least 300 bodies and at most 500) the test is handed back for the
- * full system, which then solves only the components of S that changed
- * when bodies were only added (us_local_changed_part); when a ring adds
+ * 500 bodies) the test is handed back for the full system, which then
+ * solves only the components of S that changed when bodies were only
+ * added (us_local_changed_part), in 2D from the base's forces
+ * (us_local_hint, the sparse simplex); when a ring adds
  * nothing, R is a union of components of S and the two LPs coincide, so
  * the loop always ends with a verdict or a hand-back.
  *
@@ -76,11 +77,12 @@
                                   1/16 and 1/32 2.4-3x slower on stacks of 876
                                   and 9,352 blocks: the full system then takes
                                   the tests a level-1 column settles) */
-#define LOCAL_REGION_BODIES 300 /* ... and regions up to this many bodies
-                                  (900 rows in 2D, inside the sparse simplex)
-                                  never go there: a component of 1,076 blocks
-                                  sent 117 tests to the full system at a
-                                  quarter, none at 300 (docs/local.md) */
+#define LOCAL_REGION_BODIES 500 /* 2D: regions up to this many bodies (1,500
+                                  rows, the sparse simplex's) whatever their
+                                  share of S: a component of 1,076 blocks sent
+                                  117 tests to the full system at a quarter,
+                                  none at 300; two 60 x 60 stacker stacks sent
+                                  2 each at 300, none at 500 (docs/local.md) */
 #define LEVEL0_ROWS 90        /* 2D level 0 takes the seeds' neighbours up to this;
                                  regions of up to this many rows are never
                                  handed to the full system */
@@ -973,8 +975,8 @@ static int run_levels(us_Local *L, const us_Bitset *cur, int size, us_StabilityR
      LPs and 3-5 % to the plan for 2 fewer full-system tests */
   int closed = 0, coned = 0, widened = L->dim != 2;
   int limit = US_MAX((int)(LOCAL_GLOBAL_SHARE * size), LEVEL0_ROWS / L->eq.nw);
-  if (L->dim == 2) /* inside the sparse simplex (3D regions go to CLP) */
-    limit = US_MAX(US_MIN(limit, US_SPARSE_ROWS / L->eq.nw), US_MIN(size, LOCAL_REGION_BODIES));
+  if (L->dim == 2) /* the sparse simplex's regions (3D regions go to CLP) */
+    limit = US_MIN(size, LOCAL_REGION_BODIES);
   grow_supporters(L, cur);
   /* a seed that a present body rests on: level 1 alone never held one
      (0 of 894 such tests on stacks of 632 to 9,352 blocks), so the first
@@ -1043,6 +1045,11 @@ static int changed_part(us_Local *L, const us_Bitset *cur, int nseed) {
   }
   L->npart = count;
   return 0;
+}
+
+const double *us_local_hint(us_Local *L) {
+  if (!L->have_base || us_plumb_materialize(&L->plumb, L->fbase)) return NULL;
+  return L->fbase;
 }
 
 int us_local_changed_part(const us_Local *L, const us_Bitset **part) {

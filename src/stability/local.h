@@ -42,6 +42,10 @@ void us_local_free(us_Local *L);
 int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
                   us_StabilityInfo *info, us_Error *err);
 
+/* The base's forces (pending plumb loads pushed in first) as a full
+ * system's starting point, indexed by structure contact (dim each): NULL
+ * without a base, or when the pending loads could not be pushed (OOM). */
+const double *us_local_hint(us_Local *L);
 /* After a test that returned US_LOCAL_GLOBAL with only bodies added (no
  * removed body touches cur): *part is the union K of the components of
  * cur that hold a changed body, and the result its size; else -1. The

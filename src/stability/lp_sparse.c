@@ -570,14 +570,24 @@ static double hint_share(const SparseWs *w, const us_EqSystem *sys, int j, const
  * than rows) stay at their shares as superbasic columns: the start is
  * the hint itself, off balance only where the change is. */
 static int start_basis(SparseWs *w, const us_EqSystem *sys, const double *hint) {
-  int nc = 0, use_hint = hint && sys->dim == 2;
+  int nc = 0, use_hint = hint && sys->dim == 2, pair[2] = {-2, -2}, in_pair = 0;
   for (int j = 0; j < w->n + w->m; j++) w->xn[j] = 0.0;
   for (int j = 0; j < w->n; j++) {
     double h = use_hint ? hint_share(w, sys, j, hint) : 0.0;
-    if (use_hint ? h > HINT_SHARE : w->was_basic[key_of(w, sys, j)]) {
+    if (!(use_hint ? h > HINT_SHARE : w->was_basic[key_of(w, sys, j)])) continue;
+    if (!use_hint) {
       w->cand[nc++] = j;
-      if (use_hint) w->xn[j] = h;
+      continue;
     }
+    /* the columns of the contacts between two bodies span at most nw
+       dimensions (both bodies' wrenches are the force at the same points),
+       so a pair's hint columns past the first nw are dependent: they stay
+       superbasic without a factorization's attempt (40 of 206 candidates
+       on regions of 174 rows) */
+    const us_Contact *k = &sys->s->contacts[sys->contact[w->gen.col_contact[j]]];
+    if (k->a != pair[0] || k->b != pair[1]) pair[0] = k->a, pair[1] = k->b, in_pair = 0;
+    w->xn[j] = h;
+    if (in_pair++ < sys->nw) w->cand[nc++] = j;
   }
   order_candidates(w, nc);
   if (factorize(w, nc)) return -1;
