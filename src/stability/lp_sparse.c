@@ -68,6 +68,8 @@ typedef struct SparseWs {
   double *lval, *uval;
   int cap_l, cap_u;
   int *pat;            /* [m] nonzero rows of the column being factorized */
+  int *cx;             /* [m] its unpivoted nonzero rows after elimination */
+  double *cv;          /* [m] ... and their values */
   int *heap;           /* [m + 2] the steps it reaches; scratch counts */
   unsigned char *mark; /* [m] */
   int *cand;           /* [n + m] candidate basis columns */
@@ -93,7 +95,7 @@ static void sparse_destroy(void *ws) {
   void *arrays[] = {w->basis, w->where, w->xb, w->x, w->z, w->w, w->alpha, w->prow, w->pinv,
                     w->uinv, w->lstart, w->ustart, w->lidx, w->uidx, w->lval, w->uval,
                     w->pat, w->heap, w->mark, w->cand, w->sortkey, w->cost, w->eta_pos, w->eta_start, w->eta_idx,
-                    w->eta_val, w->was_basic, w->ray, w->xn};
+                    w->eta_val, w->was_basic, w->ray, w->xn, w->cx, w->cv};
   for (size_t k = 0; k < sizeof arrays / sizeof *arrays; k++) us_free(arrays[k]);
   us_free(w);
 }
@@ -118,8 +120,10 @@ static int reserve(SparseWs *w, int m, int n) {
     us_free(w->basis), us_free(w->xb), us_free(w->x), us_free(w->z), us_free(w->w);
     us_free(w->alpha), us_free(w->prow), us_free(w->pinv), us_free(w->uinv);
     us_free(w->lstart), us_free(w->ustart), us_free(w->pat), us_free(w->mark), us_free(w->ray);
-    us_free(w->heap);
+    us_free(w->heap), us_free(w->cx), us_free(w->cv);
     w->heap = us_malloc((size_t)(c + 2) * sizeof(int)); /* + 2: order_candidates counts */
+    w->cx = us_malloc((size_t)c * sizeof(int));
+    w->cv = us_malloc((size_t)c * sizeof(double));
     w->basis = us_malloc((size_t)c * sizeof(int));
     w->xb = us_malloc((size_t)c * sizeof(double));
     w->x = us_calloc((size_t)c, sizeof(double));
@@ -135,7 +139,8 @@ static int reserve(SparseWs *w, int m, int n) {
     w->mark = us_calloc((size_t)c, 1);
     w->ray = us_malloc((size_t)c * sizeof(double));
     w->cap_m = w->basis && w->xb && w->x && w->z && w->w && w->alpha && w->prow && w->pinv &&
-                       w->uinv && w->lstart && w->ustart && w->pat && w->mark && w->ray && w->heap
+                       w->uinv && w->lstart && w->ustart && w->pat && w->mark && w->ray && w->heap &&
+                       w->cx && w->cv
                    ? c
                    : 0;
     if (!w->cap_m) return -1;
@@ -231,17 +236,21 @@ static int heap_pop(int *h, int *n) {
 
 /* Factor column j as step k: 1 taken, 0 dependent (nothing kept), -1 OOM.
  * The L solve visits only the steps the column reaches (a heap of them,
- * smallest first: L's column s only holds rows pivoted after s). */
+ * smallest first: L's column s only holds rows pivoted after s). Then one
+ * pass over the pattern clears the work arrays and keeps the unpivoted
+ * nonzeros (w->cx, w->cv) with their largest magnitude; the pivot and L's
+ * column come from those. */
 static int factor_column(SparseWs *w, int j, int k) {
-  int np = scatter(w, j), nh = 0;
-  int ul = w->ustart[k], *heap = w->heap;
+  int ul = w->ustart[k], ll = w->lstart[k];
+  /* room first: U's column k has at most k entries, L's at most m - 1 */
+  if (grow_lu(w, ll + w->m, ul + k + 1)) return -1;
+  int np = scatter(w, j), nh = 0, *heap = w->heap;
   for (int q = 0; q < np; q++)
     if (w->pinv[w->pat[q]] >= 0) heap_push(heap, &nh, w->pinv[w->pat[q]]);
   while (nh > 0) {
     int s = heap_pop(heap, &nh);
     double v = w->x[w->prow[s]];
     if (v == 0.0) continue;
-    if (grow_lu(w, 0, ul + 1)) return -1;
     w->uidx[ul] = s, w->uval[ul++] = v;
     for (int q = w->lstart[s]; q < w->lstart[s + 1]; q++) {
       int r = w->lidx[q];
@@ -253,27 +262,27 @@ static int factor_column(SparseWs *w, int j, int k) {
     }
   }
   double big = 0.0;
-  for (int q = 0; q < np; q++)
-    if (w->pinv[w->pat[q]] < 0) big = US_MAX(big, fabs(w->x[w->pat[q]]));
+  int nx = 0;
+  for (int q = 0; q < np; q++) {
+    int r = w->pat[q];
+    double v = w->x[r];
+    w->x[r] = 0.0, w->mark[r] = 0;
+    if (w->pinv[r] >= 0 || v == 0.0) continue;
+    w->cx[nx] = r, w->cv[nx++] = v;
+    big = US_MAX(big, fabs(v));
+  }
   int p = -1;
   if (big > PIV_ABS)
-    for (int q = 0; q < np; q++) {
-      int r = w->pat[q];
-      if (w->pinv[r] < 0 && fabs(w->x[r]) >= PIV_REL * big && (p < 0 || r < p)) p = r;
-    }
-  int ok = p >= 0, ll = w->lstart[k];
-  if (ok) {
-    w->ustart[k + 1] = ul;
-    w->prow[k] = p, w->pinv[p] = k, w->uinv[k] = 1.0 / w->x[p];
-    if (grow_lu(w, ll + np, 0)) return -1;
-    for (int q = 0; q < np; q++) {
-      int r = w->pat[q];
-      if (w->pinv[r] < 0 && w->x[r] != 0.0) w->lidx[ll] = r, w->lval[ll++] = w->x[r] * w->uinv[k];
-    }
-    w->lstart[k + 1] = ll;
-  }
-  for (int q = 0; q < np; q++) w->x[w->pat[q]] = 0.0, w->mark[w->pat[q]] = 0;
-  return ok;
+    for (int q = 0; q < nx; q++)
+      if (fabs(w->cv[q]) >= PIV_REL * big && (p < 0 || w->cx[q] < w->cx[p])) p = q;
+  if (p < 0) return 0;
+  double piv = w->cv[p];
+  w->ustart[k + 1] = ul;
+  w->prow[k] = w->cx[p], w->pinv[w->cx[p]] = k, w->uinv[k] = 1.0 / piv;
+  for (int q = 0; q < nx; q++)
+    if (q != p) w->lidx[ll] = w->cx[q], w->lval[ll++] = w->cv[q] * w->uinv[k];
+  w->lstart[k + 1] = ll;
+  return 1;
 }
 
 /* Factorize a basis from the candidate columns w->cand[0 .. nc) (in the
