@@ -84,6 +84,7 @@ typedef struct SparseWs {
   unsigned char *was_basic; /* [nkey = structure contacts * slots], allocated
                                at the first solve */
   int nslot, nkey;
+  int nw;              /* rows per body (the system's wrench size) */
   double *ray;
   int nray, last_body;
 } SparseWs;
@@ -443,8 +444,15 @@ static double phase1_costs(const SparseWs *w, double *c) {
 static int price(const SparseWs *w, const double *y, int bland, int *dir) {
   int pc = -1;
   double most = COST_EPS;
+  unsigned char *nzb = w->mark; /* all 0 between uses: the row blocks where y != 0 */
+  int nw = w->nw;
+  for (int i = 0; i < w->m; i++)
+    if (y[i] != 0.0) nzb[i / nw] = 1;
   for (int j = 0; j < w->n; j++) {
     if (w->where[j] >= 0) continue;
+    int a = w->gen.start[j], b = w->gen.start[j + 1];
+    /* a column touches at most two bodies' row blocks: its first and last rows' */
+    if (a == b || (!nzb[w->gen.row[a] / nw] && !nzb[w->gen.row[b - 1] / nw])) continue;
     double d = 0.0;
     for (int q = w->gen.start[j]; q < w->gen.start[j + 1]; q++) d -= y[w->gen.row[q]] * w->gen.val[q];
     double gain = w->xn[j] > 0.0 ? fabs(d) : -d;
@@ -454,6 +462,7 @@ static int price(const SparseWs *w, const double *y, int bland, int *dir) {
       most = gain;
     }
   }
+  for (int i = 0; i < w->m; i += nw) nzb[i / nw] = 0;
   return pc;
 }
 
@@ -614,7 +623,7 @@ static us_Status sparse_solve(void *ws, const us_BackendProblem *pb, us_BackendO
   out->verdict = US_UNDECIDED;
   if (us_eq_generators(sys, w->set.n_column_mu, &w->gen))
     return us_error_set(err, US_ERR_NOMEM, "out of memory building the LP");
-  w->m = w->gen.nrow, w->n = w->gen.ncol;
+  w->m = w->gen.nrow, w->n = w->gen.ncol, w->nw = sys->nw;
   if (w->n == 0) {
     out->verdict = us_eq_no_columns_verdict(sys);
     snprintf(out->note, out->note_sz, "no active contact");
