@@ -694,6 +694,14 @@ static us_Status solve_region(us_Local *L, const us_Bitset *cur, int fixed, us_V
   L->ray_ws = L->bws[0];
   us_Status st = US_OK;
   *v = US_UNDECIDED;
+  /* the start: B's forces, and for a fixed LP the added weights down their
+     plumb lines as far as they go (taken back below; the build above
+     folded B's own forces) */
+  int routed = fixed && L->dim == 2 && !L->touching && L->nadd > 0;
+  if (routed && us_plumb_route_hint(&L->plumb, cur, L->added, L->nadd, L->fbase)) {
+    us_plumb_undo(&L->plumb, L->fbase);
+    return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)");
+  }
   /* a region system: no lists, no restart (backend.h) */
   const us_BackendProblem pb = {.sys = &L->eq, .hint = L->fbase};
   us_BackendOut out = {US_UNDECIDED, L->f, info, res->note, sizeof res->note};
@@ -714,6 +722,7 @@ static us_Status solve_region(us_Local *L, const us_Bitset *cur, int fixed, us_V
     *v = out.verdict;
   }
   if (L->cones) L->cones->mode = US_CONE_INNER; /* the full system's default */
+  if (routed) us_plumb_undo(&L->plumb, L->fbase);
   return st;
 }
 

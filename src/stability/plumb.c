@@ -414,6 +414,17 @@ int us_plumb_route(us_Plumb *p, const us_Bitset *cur, const int *added, int nadd
   return 1;
 }
 
+int us_plumb_route_hint(us_Plumb *p, const us_Bitset *cur, const int *added, int nadd,
+                        double *f) {
+  for (int q = 0; q < p->npath; q++) p->mark[p->path[q]] = 0;
+  p->npath = 0;
+  p->nlog = 0;
+  if (US_GROW(p->path, p->cap_path, p->s->nbody + 1)) return -1;
+  for (int q = 0; q < nadd; q++) /* a line that finds no hop stops there */
+    if (route_one(p, cur, added[q], f) < 0) return -1;
+  return 0;
+}
+
 /* ------------------------------------------------------------ levers */
 
 /* Support point m of u usable by a lever's lines: its body below present

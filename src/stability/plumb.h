@@ -117,6 +117,14 @@ void us_plumb_horizontal(const us_Plumb *p, const double *x, double out[2]);
  * unchanged; -1: OOM, f unchanged. */
 int us_plumb_route(us_Plumb *p, const us_Bitset *cur, const int *added, int nadd, double *f);
 
+/* The same routes as a region LP's starting point (local.c): each added
+ * body's lines as far as they find hops, kept in f (logged) where a line
+ * stops. f then holds no certificate: the caller takes the route back with
+ * us_plumb_undo once the LP has read it. 0, or -1 on OOM (undo still
+ * restores f). */
+int us_plumb_route_hint(us_Plumb *p, const us_Bitset *cur, const int *added, int nadd,
+                        double *f);
+
 /* The lever (2D, docs/local.md "Levers"): added body a whose centre lies
  * beyond its outermost support s (a cantilever) and a body d resting on a
  * across s (its counterweight), at point q: d pushes a down at q with
