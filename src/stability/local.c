@@ -72,7 +72,7 @@
 #include <string.h>
 
 #define LOCAL_MIN_BODIES 1    /* default: smaller sub-assemblies go to the full system */
-#define LOCAL_GLOBAL_SHARE 0.25 /* a region past this share of S: the full system
+#define LOCAL_GLOBAL_SHARE 0.25 /* 3D: a region past this share of S: the full system
                                   (0.5 and 0.75 measured slower on random stacks;
                                   1/16 and 1/32 2.4-3x slower on stacks of 876
                                   and 9,352 blocks: the full system then takes

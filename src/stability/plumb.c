@@ -399,11 +399,17 @@ static int route_one(us_Plumb *p, const us_Bitset *cur, int a, double *f) {
   return 1;
 }
 
-int us_plumb_route(us_Plumb *p, const us_Bitset *cur, const int *added, int nadd, double *f) {
+/* An eager route's start: no path, an empty log and stack. 0, -1 OOM. */
+static int route_start(us_Plumb *p) {
   for (int q = 0; q < p->npath; q++) p->mark[p->path[q]] = 0;
   p->npath = 0;
   p->nlog = 0;
-  if (US_GROW(p->path, p->cap_path, p->s->nbody + 1)) return -1;
+  p->nstack = 0;
+  return US_GROW(p->path, p->cap_path, p->s->nbody + 1) ? -1 : 0;
+}
+
+int us_plumb_route(us_Plumb *p, const us_Bitset *cur, const int *added, int nadd, double *f) {
+  if (route_start(p)) return -1;
   for (int q = 0; q < nadd; q++) {
     int r = route_one(p, cur, added[q], f);
     if (r <= 0) {
@@ -416,10 +422,7 @@ int us_plumb_route(us_Plumb *p, const us_Bitset *cur, const int *added, int nadd
 
 int us_plumb_route_hint(us_Plumb *p, const us_Bitset *cur, const int *added, int nadd,
                         double *f) {
-  for (int q = 0; q < p->npath; q++) p->mark[p->path[q]] = 0;
-  p->npath = 0;
-  p->nlog = 0;
-  if (US_GROW(p->path, p->cap_path, p->s->nbody + 1)) return -1;
+  if (route_start(p)) return -1;
   for (int q = 0; q < nadd; q++) /* a line that finds no hop stops there */
     if (route_one(p, cur, added[q], f) < 0) return -1;
   return 0;
@@ -555,12 +558,8 @@ static int lever_points(const us_Plumb *p, const us_Bitset *cur, int a, double c
 }
 
 int us_plumb_lever(us_Plumb *p, const us_Bitset *cur, int a, double *f) {
-  for (int q = 0; q < p->npath; q++) p->mark[p->path[q]] = 0;
-  p->npath = 0;
-  p->nlog = 0;
-  p->nstack = 0;
+  if (route_start(p)) return -1;
   if (p->nax != 1) return 0;
-  if (US_GROW(p->path, p->cap_path, p->s->nbody + 1)) return -1;
   double c[2], w = p->s->bodies[a].mass / p->mass_total;
   us_plumb_horizontal(p, p->s->bodies[a].com, c);
   int ms, mp;
