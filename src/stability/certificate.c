@@ -109,10 +109,11 @@ double us_cone_distance(double fn, double ft, double mu) {
   return ft * c - fn * s;                             /* nearest point on the edge */
 }
 
-/* Add normalized force F at p to body i's accumulator a (US_CERT_ACC
- * values: force, torque about com / L, sum of |F|, longest lever arm). */
+/* Add normalized force F (of norm fn, fast_norm3(F)) at p to body i's
+ * accumulator a (US_CERT_ACC values: force, torque about com / L, sum of
+ * |F|, longest lever arm). */
 static void push_at(const us_Structure *s, const Units *u, double *a, int i, const double *p,
-                    const double *F, double sign) {
+                    const double *F, double fn, double sign) {
   const double *c = s->bodies[i].com;
   double r[3] = {(p[0] - c[0]) * u->inv_l, (p[1] - c[1]) * u->inv_l, (p[2] - c[2]) * u->inv_l};
   if (F[0] == 0.0 && F[1] == 0.0 && F[2] == 0.0) { /* adds nothing but the lever arm */
@@ -123,14 +124,14 @@ static void push_at(const us_Structure *s, const Units *u, double *a, int i, con
   a[3] += sign * (r[1] * F[2] - r[2] * F[1]);
   a[4] += sign * (r[2] * F[0] - r[0] * F[2]);
   a[5] += sign * (r[0] * F[1] - r[1] * F[0]);
-  a[6] += fast_norm3(F);
+  a[6] += fn;
   a[7] = US_MAX(a[7], fast_norm3(r));
 }
 
 /* The same into the accumulator of body i among all bodies' (acc). */
 static void push(const us_Structure *s, const Units *u, double *acc, int i, const double *p,
-                 const double *F, double sign) {
-  if (side_moves(s, i)) push_at(s, u, acc + US_CERT_ACC * (size_t)i, i, p, F, sign);
+                 const double *F, double fn, double sign) {
+  if (side_moves(s, i)) push_at(s, u, acc + US_CERT_ACC * (size_t)i, i, p, F, fn, sign);
 }
 
 /* The smaller weight share of the movable sides of contact k (the floor
@@ -157,9 +158,10 @@ static void body_residuals(const us_Structure *s, const Units *u, int i, const d
 }
 
 /* Cone and sign measures of one force (normalized); F gets the normalized
- * force vector. Returns 0, or -1 if a component is not finite. */
+ * force vector, *fn its norm. Returns 0, or -1 if a component is not
+ * finite. */
 static int one_force(const us_Structure *s, const Units *u, const us_Contact *k, const double *f,
-                     int bilateral, double *F, double *cone, double *sign) {
+                     int bilateral, double *F, double *fn, double *cone, double *sign) {
   int dim = s->dim;
   double fc[3] = {0.0, 0.0, 0.0};
   int zero = 1;
@@ -170,16 +172,21 @@ static int one_force(const us_Structure *s, const Units *u, const us_Contact *k,
   }
   if (zero) { /* an idle contact (most side joints of a wall): inside, no sign */
     F[0] = F[1] = F[2] = 0.0;
-    *cone = *sign = 0.0;
+    *fn = *cone = *sign = 0.0;
     return 0;
   }
   for (int j = 0; j < 3; j++) F[j] = fc[0] * k->n[j];
   for (int t = 1; t < dim; t++)
     for (int j = 0; j < 3; j++) F[j] += fc[t] * k->t[t - 1][j];
-  double scale = fast_norm3(F) + contact_floor(s, u, k);
-  *cone = us_cone_distance(fc[0], dim == 2 ? fabs(fc[1]) : hypot(fc[1], fc[2]), k->mu) / scale;
+  *fn = fast_norm3(F);
+  double dist = us_cone_distance(fc[0], dim == 2 ? fabs(fc[1]) : hypot(fc[1], fc[2]), k->mu);
+  if (bilateral || (dist == 0.0 && fc[0] >= 0.0)) { /* a joint (docs/classify.md), or inside */
+    *cone = *sign = 0.0;
+    return 0;
+  }
+  double scale = *fn + contact_floor(s, u, k);
+  *cone = dist / scale;
   *sign = US_MAX(-fc[0], 0.0) / scale;
-  if (bilateral) *cone = *sign = 0.0; /* a joint: any force (docs/classify.md) */
   return 0;
 }
 
@@ -207,13 +214,13 @@ static int add_forces(const us_Structure *s, const Units *u, const us_Bitset *pr
     }
     seen[c] = 1;
     const us_Contact *k = &s->contacts[c];
-    double F[3], cone, sign;
-    if (one_force(s, u, k, f->f + (size_t)i * (size_t)s->dim, bilateral, F, &cone, &sign)) {
+    double F[3], fn, cone, sign;
+    if (one_force(s, u, k, f->f + (size_t)i * (size_t)s->dim, bilateral, F, &fn, &cone, &sign)) {
       r->worst_contact = c;
       return -1;
     }
-    push(s, u, acc, k->b, k->p, F, 1.0);
-    push(s, u, acc, k->a, k->p, F, -1.0);
+    push(s, u, acc, k->b, k->p, F, fn, 1.0);
+    push(s, u, acc, k->a, k->p, F, fn, -1.0);
     r->max_cone_violation = US_MAX(r->max_cone_violation, cone);
     r->max_sign_violation = US_MAX(r->max_sign_violation, sign);
     if (cone + sign > worst) {
@@ -286,12 +293,12 @@ static void check_one_body(const us_Structure *s, const Units *u, const us_Bitse
     int c = inc[m];
     if (!usable(s, present, c)) continue;
     const us_Contact *k = &s->contacts[c];
-    double F[3], cone, sign;
-    if (one_force(s, u, k, fc + (size_t)c * (size_t)s->dim, 0, F, &cone, &sign)) {
+    double F[3], fn, cone, sign;
+    if (one_force(s, u, k, fc + (size_t)c * (size_t)s->dim, 0, F, &fn, &cone, &sign)) {
       cone = sign = INFINITY;
-      F[0] = F[1] = F[2] = 0.0;
+      F[0] = F[1] = F[2] = fn = 0.0;
     }
-    push_at(s, u, acc, i, k->p, F, i == k->b ? 1.0 : -1.0);
+    push_at(s, u, acc, i, k->p, F, fn, i == k->b ? 1.0 : -1.0);
     if (cone + sign > r->max_cone_violation + r->max_sign_violation) r->worst_contact = c;
     r->max_cone_violation = US_MAX(r->max_cone_violation, cone);
     r->max_sign_violation = US_MAX(r->max_sign_violation, sign);

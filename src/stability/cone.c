@@ -104,6 +104,7 @@ void us_eq_gen_free(us_EqGen *g) {
   us_free(g->col_contact);
   us_free(g->col_slot);
   us_free(g->col_coef);
+  us_free(g->col_blk);
   memset(g, 0, sizeof *g);
 }
 
@@ -122,6 +123,9 @@ static int gen_reserve(us_EqGen *g, int ncol, int nnz) {
     double *cf = us_realloc(g->col_coef, 3 * n * sizeof(double));
     if (!cf) return -1;
     g->col_coef = cf;
+    int *cb = us_realloc(g->col_blk, 2 * n * sizeof(int));
+    if (!cb) return -1;
+    g->col_blk = cb;
     g->cap_col = ncol + 1;
   }
   if (nnz > g->cap_nnz) {
@@ -152,6 +156,7 @@ static void gen_column(const us_EqSystem *e, us_EqGen *g, int ci, int slot, cons
   int nnz = g->start[g->ncol];
   for (size_t side = 0; side < 2; side++) {
     int blk = e->blk[2 * j0 + side]; /* the same for every component */
+    g->col_blk[2 * (size_t)g->ncol + side] = blk;
     if (blk < 0) continue;
     if (e->dim == 2 && nw == 3) { /* 2D: the same sums, unrolled (most region LP set-up) */
       const double *w0 = e->w + (2 * j0 + side) * 3, *w1 = e->w + (2 * (j0 + 1) + side) * 3;

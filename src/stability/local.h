@@ -44,7 +44,9 @@ int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
 
 /* The base's forces (pending plumb loads pushed in first) as a full
  * system's starting point, indexed by structure contact (dim each): NULL
- * without a base, or when the pending loads could not be pushed (OOM). */
+ * without a base, when the last test changed too many of its bodies (the
+ * base is no start then), or when the pending loads could not be pushed
+ * (OOM). */
 const double *us_local_hint(us_Local *L);
 /* After a test that returned US_LOCAL_GLOBAL with only bodies added (no
  * removed body touches cur): *part is the union K of the components of

@@ -74,6 +74,7 @@ typedef struct us_EqGen {
   int *col_contact;        /* [ncol] active-contact index */
   unsigned char *col_slot; /* [ncol] key among the contact's columns */
   double *col_coef;        /* [3 ncol] (cn, ct1, ct2) in the contact frame */
+  int *col_blk;            /* [2 ncol] the row blocks of its sides a, b (-1: held) */
   int cap_col, cap_nnz;
 } us_EqGen;
 

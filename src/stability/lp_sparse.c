@@ -431,17 +431,21 @@ static double phase1_costs(const SparseWs *w, double *c) {
  * against d_j), or the lowest index with a gain (bland); -1 when none.
  * *dir: +1 the column rises, -1 it falls. */
 static int price(const SparseWs *w, const double *y, int bland, int *dir) {
-  int pc = -1;
+  int pc = -1, nw = w->nw, nb = w->m / nw;
   double most = COST_EPS;
   unsigned char *nzb = w->mark; /* all 0 between uses: the row blocks where y != 0 */
-  int nw = w->nw;
-  for (int i = 0; i < w->m; i++)
-    if (y[i] != 0.0) nzb[i / nw] = 1;
+  for (int b = 0; b < nb; b++)
+    for (int r = 0; r < nw; r++)
+      if (y[b * nw + r] != 0.0) {
+        nzb[b] = 1;
+        break;
+      }
+  const int *blk = w->gen.col_blk;
   for (int j = 0; j < w->n; j++) {
     if (w->where[j] >= 0) continue;
-    int a = w->gen.start[j], b = w->gen.start[j + 1];
-    /* a column touches at most two bodies' row blocks: its first and last rows' */
-    if (a == b || (!nzb[w->gen.row[a] / nw] && !nzb[w->gen.row[b - 1] / nw])) continue;
+    /* a column touches at most two bodies' row blocks (its sides') */
+    int b0 = blk[2 * j], b1 = blk[2 * j + 1];
+    if (!(b0 >= 0 && nzb[b0]) && !(b1 >= 0 && nzb[b1])) continue;
     double d = 0.0;
     for (int q = w->gen.start[j]; q < w->gen.start[j + 1]; q++) d -= y[w->gen.row[q]] * w->gen.val[q];
     double gain = w->xn[j] > 0.0 ? fabs(d) : -d;
@@ -451,7 +455,7 @@ static int price(const SparseWs *w, const double *y, int bland, int *dir) {
       most = gain;
     }
   }
-  for (int i = 0; i < w->m; i += nw) nzb[i / nw] = 0;
+  memset(nzb, 0, (size_t)nb);
   return pc;
 }
 
