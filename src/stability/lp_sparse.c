@@ -26,10 +26,12 @@
  * earlier ones are left out and the artificials of the rows left
  * unpivoted complete the basis.
  *
- * Warm start: the workspace keeps, per structure contact and cone slot,
- * whether the column was basic when its last solve ended; the next solve
- * starts from those columns (a test next to the previous one starts near
- * its answer, as CLP's statuses do in lp_clp.c).
+ * Warm start: a 2D hint (the base's forces) gives the first basis
+ * (start_basis). Without one, the workspace keeps, per structure contact
+ * and cone slot, whether the column was basic when its last solve without
+ * a hint ended; the next such solve starts from those columns (a test next
+ * to the previous one starts near its answer, as CLP's statuses do in
+ * lp_clp.c).
  */
 #include "lp_sparse.h"
 
@@ -67,9 +69,8 @@ typedef struct SparseWs {
   int *lidx, *uidx;      /* L: rows; U: steps */
   double *lval, *uval;
   int cap_l, cap_u;
-  int *pat;            /* [m] nonzero rows of the column being factorized */
-  int *cx;             /* [m] its unpivoted nonzero rows after elimination */
-  double *cv;          /* [m] ... and their values */
+  int *cx;             /* [m] the unpivoted rows of the column being factorized */
+  double *cv;          /* [m] ... their nonzero values after elimination */
   int *heap;           /* [m + 2] the steps it reaches; scratch counts */
   unsigned char *mark; /* [m] */
   int *cand;           /* [n + m] candidate basis columns */
@@ -95,7 +96,7 @@ static void sparse_destroy(void *ws) {
   us_eq_gen_free(&w->gen);
   void *arrays[] = {w->basis, w->where, w->xb, w->x, w->z, w->w, w->alpha, w->prow, w->pinv,
                     w->uinv, w->lstart, w->ustart, w->lidx, w->uidx, w->lval, w->uval,
-                    w->pat, w->heap, w->mark, w->cand, w->sortkey, w->cost, w->eta_pos, w->eta_start, w->eta_idx,
+                    w->heap, w->mark, w->cand, w->sortkey, w->cost, w->eta_pos, w->eta_start, w->eta_idx,
                     w->eta_val, w->was_basic, w->ray, w->xn, w->cx, w->cv};
   for (size_t k = 0; k < sizeof arrays / sizeof *arrays; k++) us_free(arrays[k]);
   us_free(w);
@@ -120,7 +121,7 @@ static int reserve(SparseWs *w, int m, int n) {
     int c = 2 * m + 16;
     us_free(w->basis), us_free(w->xb), us_free(w->x), us_free(w->z), us_free(w->w);
     us_free(w->alpha), us_free(w->prow), us_free(w->pinv), us_free(w->uinv);
-    us_free(w->lstart), us_free(w->ustart), us_free(w->pat), us_free(w->mark), us_free(w->ray);
+    us_free(w->lstart), us_free(w->ustart), us_free(w->mark), us_free(w->ray);
     us_free(w->heap), us_free(w->cx), us_free(w->cv);
     w->heap = us_malloc((size_t)(c + 2) * sizeof(int)); /* + 2: order_candidates counts */
     w->cx = us_malloc((size_t)c * sizeof(int));
@@ -136,11 +137,10 @@ static int reserve(SparseWs *w, int m, int n) {
     w->uinv = us_malloc((size_t)c * sizeof(double));
     w->lstart = us_malloc((size_t)(c + 1) * sizeof(int));
     w->ustart = us_malloc((size_t)(c + 1) * sizeof(int));
-    w->pat = us_malloc((size_t)c * sizeof(int));
     w->mark = us_calloc((size_t)c, 1);
     w->ray = us_malloc((size_t)c * sizeof(double));
     w->cap_m = w->basis && w->xb && w->x && w->z && w->w && w->alpha && w->prow && w->pinv &&
-                       w->uinv && w->lstart && w->ustart && w->pat && w->mark && w->ray && w->heap &&
+                       w->uinv && w->lstart && w->ustart && w->mark && w->ray && w->heap &&
                        w->cx && w->cv
                    ? c
                    : 0;
@@ -202,19 +202,6 @@ static int grow_lu(SparseWs *w, int nl, int nu) {
              : 0;
 }
 
-/* Scatter column j into w->x over rows, its pattern into w->pat. */
-static int scatter(SparseWs *w, int j) {
-  const int *row;
-  const double *val;
-  int ar, np = 0, nz = column(w, j, &row, &val, &ar);
-  for (int q = 0; q < nz; q++) {
-    int r = row[q];
-    if (!w->mark[r]) w->mark[r] = 1, w->pat[np++] = r;
-    w->x[r] += val[q];
-  }
-  return np;
-}
-
 /* The steps a column reaches, in decreasing order (the L solve takes the
  * smallest, from the end): insertion, as a column reaches few steps (4 on
  * average on stacker stacks), where a heap's sifting cost more. */
@@ -224,52 +211,64 @@ static void steps_push(int *h, int *n, int v) {
   h[i] = v;
 }
 
+/* Row r of the column being factorized becomes nonzero: a pivoted row's
+ * step joins the steps to visit, an unpivoted row the pivot candidates. */
+static void reach(SparseWs *w, int r, int *nh, int *nx) {
+  w->mark[r] = 1;
+  if (w->pinv[r] >= 0) steps_push(w->heap, nh, w->pinv[r]);
+  else w->cx[(*nx)++] = r;
+}
+
 /* Factor column j as step k: 1 taken, 0 dependent (nothing kept), -1 OOM.
- * The L solve visits only the steps the column reaches (smallest first:
- * L's column s only holds rows pivoted after s). Then one
- * pass over the pattern clears the work arrays and keeps the unpivoted
- * nonzeros (w->cx, w->cv) with their largest magnitude; the pivot and L's
- * column come from those. */
+ * The column's rows split as they are reached (reach): pivoted rows are
+ * steps of the L solve, which visits only those (smallest first: L's
+ * column s only holds rows pivoted after s) and clears each as it goes
+ * (no later L column holds it); unpivoted rows are the pivot candidates
+ * (w->cx), cleared with their values kept (w->cv) in one pass at the end;
+ * the pivot and L's column come from those. */
 static int factor_column(SparseWs *w, int j, int k) {
   int ul = w->ustart[k], ll = w->lstart[k];
   /* room first: U's column k has at most k entries, L's at most m - 1 */
   if (grow_lu(w, ll + w->m, ul + k + 1)) return -1;
-  int np = scatter(w, j), nh = 0, *heap = w->heap;
-  for (int q = 0; q < np; q++)
-    if (w->pinv[w->pat[q]] >= 0) steps_push(heap, &nh, w->pinv[w->pat[q]]);
+  const int *row;
+  const double *val;
+  int ar, nz = column(w, j, &row, &val, &ar), nh = 0, nx = 0, *heap = w->heap;
+  for (int q = 0; q < nz; q++) {
+    int r = row[q];
+    if (!w->mark[r]) reach(w, r, &nh, &nx);
+    w->x[r] += val[q];
+  }
   while (nh > 0) {
-    int s = heap[--nh];
-    double v = w->x[w->prow[s]];
+    int s = heap[--nh], r0 = w->prow[s];
+    double v = w->x[r0];
+    w->x[r0] = 0.0, w->mark[r0] = 0;
     if (v == 0.0) continue;
     w->uidx[ul] = s, w->uval[ul++] = v;
     for (int q = w->lstart[s]; q < w->lstart[s + 1]; q++) {
       int r = w->lidx[q];
-      if (!w->mark[r]) {
-        w->mark[r] = 1, w->pat[np++] = r;
-        if (w->pinv[r] >= 0) steps_push(heap, &nh, w->pinv[r]);
-      }
+      if (!w->mark[r]) reach(w, r, &nh, &nx);
       w->x[r] -= w->lval[q] * v;
     }
   }
   double big = 0.0;
-  int nx = 0;
-  for (int q = 0; q < np; q++) {
-    int r = w->pat[q];
+  int n = 0;
+  for (int q = 0; q < nx; q++) {
+    int r = w->cx[q];
     double v = w->x[r];
     w->x[r] = 0.0, w->mark[r] = 0;
-    if (w->pinv[r] >= 0 || v == 0.0) continue;
-    w->cx[nx] = r, w->cv[nx++] = v;
+    if (v == 0.0) continue;
+    w->cx[n] = r, w->cv[n++] = v;
     big = US_MAX(big, fabs(v));
   }
   int p = -1;
   if (big > PIV_ABS)
-    for (int q = 0; q < nx; q++)
+    for (int q = 0; q < n; q++)
       if (fabs(w->cv[q]) >= PIV_REL * big && (p < 0 || w->cx[q] < w->cx[p])) p = q;
   if (p < 0) return 0;
   double piv = w->cv[p];
   w->ustart[k + 1] = ul;
   w->prow[k] = w->cx[p], w->pinv[w->cx[p]] = k, w->uinv[k] = 1.0 / piv;
-  for (int q = 0; q < nx; q++)
+  for (int q = 0; q < n; q++)
     if (q != p) w->lidx[ll] = w->cx[q], w->lval[ll++] = w->cv[q] * w->uinv[k];
   w->lstart[k + 1] = ll;
   return 1;
@@ -631,7 +630,7 @@ static us_Status sparse_solve(void *ws, const us_BackendProblem *pb, us_BackendO
     snprintf(out->note, out->note_sz, "sparse LP: iteration limit");
     return US_OK;
   }
-  save_statuses(w, sys);
+  if (!(pb->hint && sys->dim == 2)) save_statuses(w, sys); /* a 2D hint is the start */
   if (r == RUN_FEASIBLE) {
     if (residual(w, sys) > RESID_TOL) {
       snprintf(out->note, out->note_sz, "sparse LP: inaccurate");
