@@ -115,8 +115,9 @@ struct us_Local {
   int npart;             /* their bodies; -1: none kept (us_local_changed_part) */
   int *stack;            /* [nbody] scratch of the components' search */
   int have_base;
-  int hint_ok;           /* the last test changed few bodies of its base
-                            (few_seeds): B's forces are a start for it */
+  int hint_ok;           /* the last test changed few bodies of its base (or
+                            few at all): B's forces start its hand-back
+                            (us_local_hint) */
   /* B xor S as two lists, S \ B (alist) and B \ S (rlist): a body is in
      the one its base bit names while it differs, at slot dpos (else -1);
      tlist: the bodies of B \ S that touch S (tcur > 0), at slot tpos */
