@@ -208,8 +208,36 @@ static void gen_edges_2d(const us_EqSystem *e, us_EqGen *g, int ci, EdgeMemo *m)
   if (!m->set || !(m->mu == e->mu[ci])) edge_angle(e->mu[ci], &m->c, &m->s), m->mu = e->mu[ci], m->set = 1;
   double c = m->c, s = m->s;
   const double ep[3] = {c, s, 0.0}, em[3] = {c, -s, 0.0};
-  gen_column(e, g, ci, 1, ep);
-  gen_column(e, g, ci, 2, em);
+  if (e->nw != 3 || !(c != 0.0 && s != 0.0)) {
+    gen_column(e, g, ci, 1, ep);
+    gen_column(e, g, ci, 2, em);
+    return;
+  }
+  /* both edges in one pass over the two sides' wrenches (gen_column's
+     sums, the same values): most of a region LP's set-up */
+  size_t j0 = (size_t)ci * 2;
+  int jp = g->ncol, np = g->start[jp], nm = 0, rm[6];
+  double vm[6];
+  for (size_t side = 0; side < 2; side++) {
+    int blk = e->blk[2 * j0 + side];
+    g->col_blk[2 * (size_t)jp + side] = g->col_blk[2 * (size_t)jp + 2 + side] = blk;
+    if (blk < 0) continue;
+    const double *w0 = e->w + (2 * j0 + side) * 3, *w1 = e->w + (2 * (j0 + 1) + side) * 3;
+    for (int r = 0; r < 3; r++) {
+      double a = c * w0[r], b = s * w1[r], v = a + b, u = a + -s * w1[r];
+      if (v != 0.0) g->row[np] = blk * 3 + r, g->val[np++] = v;
+      if (u != 0.0) rm[nm] = blk * 3 + r, vm[nm++] = u;
+    }
+  }
+  g->start[jp + 1] = np;
+  memcpy(g->row + np, rm, (size_t)nm * sizeof(int));
+  memcpy(g->val + np, vm, (size_t)nm * sizeof(double));
+  g->start[jp + 2] = np + nm;
+  g->col_contact[jp] = g->col_contact[jp + 1] = ci;
+  g->col_slot[jp] = 1, g->col_slot[jp + 1] = 2;
+  memcpy(g->col_coef + 3 * (size_t)jp, ep, sizeof ep);
+  memcpy(g->col_coef + 3 * (size_t)jp + 3, em, sizeof em);
+  g->ncol = jp + 2;
 }
 
 /* 3D edges of the polygon (slots 1..k): at the directions (inner) or at
