@@ -131,6 +131,9 @@ struct us_Local {
   int *reg, nreg;        /* [nbody] the region */
   int *added, *removed, nadd, nrem;
   int touching;          /* some removed body touches S */
+  int *carry_c, ncarry, cap_carry; /* a failed fixed LP's contacts and where */
+  double *carry_f;       /* its phase 1 stopped: the next fixed LP's start */
+  int cap_carry_f;
   double foot_lo[2], foot_hi[2]; /* the change's horizontal extent */
   double *f, *saved;     /* LP solution; base values it replaces */
   int cap_f, cap_saved;
@@ -231,6 +234,8 @@ void us_local_free(us_Local *L) {
   us_free(L->slot);
   us_free(L->f);
   us_free(L->saved);
+  us_free(L->carry_c);
+  us_free(L->carry_f);
   us_plumb_free(&L->plumb);
   us_free(L);
 }
@@ -702,7 +707,17 @@ static us_Status solve_region(us_Local *L, const us_Bitset *cur, int fixed, us_V
   /* the start: B's forces, and for a fixed LP the added weights down their
      plumb lines as far as they go (taken back below; the build above
      folded B's own forces) */
-  int routed = fixed && L->dim == 2 && !L->touching && L->nadd > 0;
+  int carried = fixed && L->ncarry > 0;
+  if (carried) { /* the last fixed LP's stop on its contacts, all inside R */
+    size_t dim = (size_t)L->dim;
+    for (int q = 0; q < L->ncarry; q++) {
+      double *fb = L->fbase + (size_t)L->carry_c[q] * dim, t[3];
+      memcpy(t, fb, dim * sizeof(double));
+      memcpy(fb, L->carry_f + q * dim, dim * sizeof(double));
+      memcpy(L->carry_f + q * dim, t, dim * sizeof(double));
+    }
+  }
+  int routed = fixed && L->dim == 2 && !L->touching && L->nadd > 0 && !carried;
   if (routed && us_plumb_route_hint(&L->plumb, cur, L->added, L->nadd, L->fbase)) {
     us_plumb_undo(&L->plumb, L->fbase);
     return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)");
@@ -728,6 +743,12 @@ static us_Status solve_region(us_Local *L, const us_Bitset *cur, int fixed, us_V
   }
   if (L->cones) L->cones->mode = US_CONE_INNER; /* the full system's default */
   if (routed) us_plumb_undo(&L->plumb, L->fbase);
+  if (carried) {
+    size_t dim = (size_t)L->dim;
+    for (int q = 0; q < L->ncarry; q++)
+      memcpy(L->fbase + (size_t)L->carry_c[q] * dim, L->carry_f + q * dim, dim * sizeof(double));
+    L->ncarry = 0;
+  }
   return st;
 }
 
@@ -858,6 +879,16 @@ static int try_fixed(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
                      us_StabilityInfo *info, us_Error *err) {
   us_Verdict v;
   if (solve_region(L, cur, 1, &v, res, info, err)) return -1;
+  if (v == US_UNSTABLE && L->ray_be == &us_backend_sparse && L->dim == 2) {
+    /* keep where phase 1 stopped for the grown region's LP */
+    int n = L->eq.ncontact;
+    size_t dim = (size_t)L->dim;
+    if (US_GROW(L->carry_c, L->cap_carry, n + 1) || US_GROW(L->carry_f, L->cap_carry_f, (int)dim * n + 1))
+      return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)"), -1;
+    memcpy(L->carry_c, L->eq.contact, (size_t)n * sizeof(int));
+    memcpy(L->carry_f, L->f, (size_t)n * dim * sizeof(double));
+    L->ncarry = n;
+  }
   if (v != US_STABLE || !merge_and_check(L, cur, res)) return 0;
   res->verdict = US_STABLE;
   snprintf(res->note, sizeof res->note, "local: %d bodies, the rest unchanged", L->nreg);
@@ -1129,6 +1160,7 @@ int us_local_test(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
     if (changed_part(L, cur, nseed)) L->npart = -1; /* OOM: the whole system */
   }
   region_clear(L);
+  L->ncarry = 0;
   if (r == US_LOCAL_GLOBAL) info->local_global++;
   return r;
 }
