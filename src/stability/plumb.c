@@ -43,16 +43,13 @@
 #define SAME_NORMAL 1e-9 /* normals closer than this (1 - cos) are one contact face */
 #define CONE_SLACK 1e-12 /* relative slack of the hop's own cone test */
 #define PLUMB_HOPS 4096  /* hops one added body's lines may take */
-#define LEVER_HOPS 64    /* hops a lever's signed lines may take: they split
-                            at every hop and never merge, so a long route
-                            grows to the budget and its path mostly fails
-                            the check. Instructions of `unstack plan` on a
-                            1,076-block stack: 2.29 G at 4,096 hops (before
-                            2026-12-06), 1.73 G at 256; later, 1.42 G at
-                            256 and 1.36 G at 64, which also beat 256 by
-                            1-7 % on stacks of 632 to 5,796 blocks. Levers kept: 39 of the 53 / 468
-                            of the 566 tests they settled at 4,096 on the
-                            1,076 / 9,352-block stacks */
+#define LEVER_HOPS 128   /* bodies a lever's signed route may visit (merged
+                            per body: route_signed). Instructions of `unstack
+                            plan`, 64 / 128 / 256: 1,076 blocks 852 / 678 /
+                            678 M, seed 15 468 / 474 / 474 M, 632 blocks
+                            238 / 241 / 241 M. Before the merging (lines split
+                            at every hop and never met) 64 hops were best and
+                            most routes failed on the budget */
 #define PLUMB_RETRIES 8  /* a lazy route starts over at most this often */
 #define PLUMB_MAX_TRI 48 /* 3D: support points of a body searched for triangles at most */
 
@@ -191,6 +188,10 @@ void us_plumb_free(us_Plumb *p) {
   us_free(p->path);
   us_free(p->mark);
   us_free(p->stack);
+  us_free(p->sgF);
+  us_free(p->sgM);
+  us_free(p->sg_in);
+  us_free(p->sg_heap);
   us_free(p->width);
   us_free(p->sup_start);
   us_free(p->sup);
@@ -495,25 +496,120 @@ static int hop_signed(const us_Plumb *p, const us_Bitset *cur, int skip, int u, 
   return 1;
 }
 
-/* Route the stacked lines (signed loads) down, not resting on skip:
- * 1 routed, 0 no hop or out of budget (LEVER_HOPS), -1 OOM. */
+/* Signed lines merge per body: the loads on body u sum to a vertical
+ * force sgF[u] and a moment sgM[u] (sum of load x position), so a body is
+ * routed once however many lines reach it (split lines never merging grew
+ * past any budget in a stack's column, and a release and a push meeting
+ * in the same column now cancel there). Bodies go in decreasing height
+ * (a max-heap on the centre's height), so what rests on a body is routed
+ * before it, mostly. */
+static double height(const us_Plumb *p, int u) { return dot3(p->s->bodies[u].com, p->up); }
+
+static void sg_sift_up(us_Plumb *p, int i) {
+  int *h = p->sg_heap;
+  while (i > 0) {
+    int up = (i - 1) / 2;
+    if (!(height(p, h[up]) < height(p, h[i]))) break;
+    int t = h[up];
+    h[up] = h[i], h[i] = t, i = up;
+  }
+}
+
+static int sg_pop(us_Plumb *p) {
+  int *h = p->sg_heap, top = h[0], n = --p->nsg, i = 0;
+  h[0] = h[n];
+  for (;;) {
+    int l = 2 * i + 1, r = l + 1, m = i;
+    if (l < n && height(p, h[l]) > height(p, h[m])) m = l;
+    if (r < n && height(p, h[r]) > height(p, h[m])) m = r;
+    if (m == i) break;
+    int t = h[m];
+    h[m] = h[i], h[i] = t, i = m;
+  }
+  return top;
+}
+
+static void sg_add(us_Plumb *p, int u, double load, double x) {
+  if (!p->sg_in[u]) {
+    p->sg_in[u] = 1;
+    p->sgF[u] = p->sgM[u] = 0.0;
+    p->sg_heap[p->nsg++] = u;
+    sg_sift_up(p, p->nsg - 1);
+  }
+  p->sgF[u] += load;
+  p->sgM[u] += load * x;
+}
+
+/* A (nearly) pure couple on u, force F and moment M: its outermost
+ * usable points take f_hi = (M - F s_lo) / (s_hi - s_lo) and F - f_hi
+ * (h->w: the loads themselves). 1 found, 0 none. */
+static int hop_couple(const us_Plumb *p, const us_Bitset *cur, int skip, int u, double F,
+                      double M, Hop *h) {
+  int lo = -1, hi = -1;
+  for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++) {
+    if (!usable(p, cur, m, skip)) continue;
+    if (lo < 0 || p->sup[m].pos[0] < p->sup[lo].pos[0]) lo = m;
+    if (hi < 0 || p->sup[m].pos[0] > p->sup[hi].pos[0]) hi = m;
+  }
+  double span = lo < 0 ? 0.0 : p->sup[hi].pos[0] - p->sup[lo].pos[0];
+  if (!(span > AT_POINT * p->width[u])) return 0;
+  double fhi = (M - F * p->sup[lo].pos[0]) / span;
+  h->n = 2;
+  hop_point(p, h, 0, lo, F - fhi);
+  hop_point(p, h, 1, hi, fhi);
+  return 1;
+}
+
+/* Route the stacked lines (signed loads) down, not resting on skip,
+ * merged per body: 1 routed, 0 no hop or out of budget (LEVER_HOPS
+ * bodies), -1 OOM. */
 static int route_signed(us_Plumb *p, const us_Bitset *cur, int skip, double *f) {
-  for (int hops = 0; p->nstack > 0; hops++) {
-    if (hops >= LEVER_HOPS) return 0;
+  size_t nb = (size_t)(p->s->nbody > 0 ? p->s->nbody : 1);
+  if (!p->sgF) {
+    p->sgF = us_malloc(nb * sizeof(double));
+    p->sgM = us_malloc(nb * sizeof(double));
+    p->sg_in = us_calloc(nb, 1);
+    p->sg_heap = us_malloc(nb * sizeof(int));
+    if (!p->sgF || !p->sgM || !p->sg_in || !p->sg_heap) return -1;
+  }
+  p->nsg = 0;
+  while (p->nstack > 0) {
     us_PlumbLine l = p->stack[--p->nstack];
-    Hop h;
-    if (!hop_signed(p, cur, skip, l.body, l.pos, l.load, f, &h)) return 0;
-    for (int q = 0; q < h.n; q++) {
-      if (add_force(p, h.k[q], l.body, h.w[q] * l.load, f)) return -1;
+    sg_add(p, l.body, l.load, l.pos[0]);
+  }
+  int r = 1;
+  for (int hops = 0; p->nsg > 0 && r > 0; hops++) {
+    int u = sg_pop(p);
+    p->sg_in[u] = 0;
+    double F = p->sgF[u], M = p->sgM[u], scale = fabs(F) + fabs(M) / p->width[u];
+    if (!(scale > 1e-300)) continue; /* the lines cancelled */
+    if (hops >= LEVER_HOPS) {
+      r = 0;
+      break;
     }
-    int body[3];
-    double w[3], at[3][2];
-    for (int j = 0, n = hop_children(p, &h, l.pos, 1, body, w, at); j < n; j++) {
-      mark_body(p, body[j]);
-      if (push_line(p, body[j], at[j], w[j] * l.load)) return -1;
+    Hop h;
+    double c[2] = {F != 0.0 ? M / F : 0.0, 0.0}, load = F;
+    int found;
+    if (F != 0.0 && isfinite(c[0]) && fabs(F) > 1e-12 * scale) {
+      found = hop_signed(p, cur, skip, u, c, F, f, &h);
+    } else { /* (nearly) a couple */
+      found = hop_couple(p, cur, skip, u, F, M, &h);
+      load = 1.0;
+    }
+    if (!found) {
+      r = 0;
+      break;
+    }
+    for (int q = 0; q < h.n; q++) {
+      if (add_force(p, h.k[q], u, h.w[q] * load, f)) return -1;
+      int v = h.below[q];
+      if (held(p, v)) continue;
+      mark_body(p, v);
+      sg_add(p, v, h.w[q] * load, h.pos[q][0]);
     }
   }
-  return 1;
+  while (p->nsg > 0) p->sg_in[sg_pop(p)] = 0;
+  return r;
 }
 
 /* Is c within the span of u's present support points? */

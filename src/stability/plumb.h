@@ -82,6 +82,11 @@ typedef struct us_Plumb {
   unsigned char *mark;   /* [nbody] */
   us_PlumbLine *stack;   /* lines still to route */
   int nstack, cap_stack;
+  /* signed routes: each body's summed force and moment, a max-heap of
+     the bodies with some, by height (plumb.c, route_signed) */
+  double *sgF, *sgM;
+  unsigned char *sg_in;
+  int *sg_heap, nsg;
   /* lazy routing: the memo of checked lines, valid while every body of
      dep is present; the lines with pending load in a max-heap by level */
   us_PlumbEntry *ent;
