@@ -192,6 +192,7 @@ void us_plumb_free(us_Plumb *p) {
   us_free(p->sgM);
   us_free(p->sg_in);
   us_free(p->sg_heap);
+  us_free(p->sg_skip);
   us_free(p->width);
   us_free(p->sup_start);
   us_free(p->sup);
@@ -433,23 +434,24 @@ int us_plumb_route_hint(us_Plumb *p, const us_Bitset *cur, const int *added, int
 
 /* Support point m of u usable by a lever's lines: its body below present
  * and not the cantilever itself (skip). */
-static int usable(const us_Plumb *p, const us_Bitset *cur, int m, int skip) {
+static int usable(const us_Plumb *p, const us_Bitset *cur, int m, int skip, int skip2) {
   int v = p->sup[m].below;
-  return (skip < 0 || v != skip) && present(p, cur, v);
+  return (skip < 0 || v != skip) && (skip2 < 0 || v != skip2) && present(p, cur, v);
 }
 
 /* The far point of an extended lever rule for a load on u at c beyond its
  * point `near`: the usable point on the other side of near, at least tol
  * away, whose normal force is largest after its share is taken off (or
  * put on); -1 if none. */
-static int release_point(const us_Plumb *p, const us_Bitset *cur, int skip, int u, double c,
+static int release_point(const us_Plumb *p, const us_Bitset *cur, int skip, int skip2, int u,
+                         double c,
                          int near, double load, const double *f, double tol) {
   double sn = p->sup[near].pos[0], best_left = -INFINITY;
   int best = -1;
   size_t dim = (size_t)p->s->dim;
   for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++) {
     double x = p->sup[m].pos[0];
-    if (!usable(p, cur, m, skip) || !(fabs(x - sn) > tol) || (x - sn) * (c - sn) > 0) continue;
+    if (!usable(p, cur, m, skip, skip2) || !(fabs(x - sn) > tol) || (x - sn) * (c - sn) > 0) continue;
     double share = (c - sn) / (x - sn), d[3]; /* x's share of the load (< 0) */
     components(p, &p->s->contacts[p->sup[m].contact], u, share * load, d);
     double left = f[dim * (size_t)p->sup[m].contact] + d[0];
@@ -464,12 +466,13 @@ static int release_point(const us_Plumb *p, const us_Bitset *cur, int skip, int 
  * same rule extended (one share negative: part of the load the far point
  * carries already is taken off it; the caller's check decides whether it
  * had that much). 1 found, 0 none. */
-static int hop_signed(const us_Plumb *p, const us_Bitset *cur, int skip, int u, const double c[2],
+static int hop_signed(const us_Plumb *p, const us_Bitset *cur, int skip, int skip2, int u,
+                      const double c[2],
                       double load, const double *f, Hop *h) {
   double tol = AT_POINT * p->width[u];
   int best[2] = {-1, -1}, lo = -1, hi = -1;
   for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++) {
-    if (!usable(p, cur, m, skip)) continue;
+    if (!usable(p, cur, m, skip, skip2)) continue;
     double x = p->sup[m].pos[0];
     if (fabs(x - c[0]) <= tol) {
       h->n = 1;
@@ -484,7 +487,7 @@ static int hop_signed(const us_Plumb *p, const us_Bitset *cur, int skip, int u, 
   }
   if (best[0] < 0 || best[1] < 0) { /* c outside the points: the rule extended */
     if (lo < 0 || !(p->sup[hi].pos[0] - p->sup[lo].pos[0] > tol)) return 0;
-    int near = best[0] < 0 ? lo : hi, far = release_point(p, cur, skip, u, c[0], near, load, f, tol);
+    int near = best[0] < 0 ? lo : hi, far = release_point(p, cur, skip, skip2, u, c[0], near, load, f, tol);
     if (far < 0) return 0;
     best[0] = p->sup[far].pos[0] < p->sup[near].pos[0] ? far : near;
     best[1] = best[0] == far ? near : far;
@@ -532,6 +535,7 @@ static int sg_pop(us_Plumb *p) {
 static void sg_add(us_Plumb *p, int u, double load, double x) {
   if (!p->sg_in[u]) {
     p->sg_in[u] = 1;
+    p->sg_skip[u] = -1;
     p->sgF[u] = p->sgM[u] = 0.0;
     p->sg_heap[p->nsg++] = u;
     sg_sift_up(p, p->nsg - 1);
@@ -543,11 +547,11 @@ static void sg_add(us_Plumb *p, int u, double load, double x) {
 /* A (nearly) pure couple on u, force F and moment M: its outermost
  * usable points take f_hi = (M - F s_lo) / (s_hi - s_lo) and F - f_hi
  * (h->w: the loads themselves). 1 found, 0 none. */
-static int hop_couple(const us_Plumb *p, const us_Bitset *cur, int skip, int u, double F,
+static int hop_couple(const us_Plumb *p, const us_Bitset *cur, int skip, int skip2, int u, double F,
                       double M, Hop *h) {
   int lo = -1, hi = -1;
   for (int m = p->sup_start[u]; m < p->sup_start[u + 1]; m++) {
-    if (!usable(p, cur, m, skip)) continue;
+    if (!usable(p, cur, m, skip, skip2)) continue;
     if (lo < 0 || p->sup[m].pos[0] < p->sup[lo].pos[0]) lo = m;
     if (hi < 0 || p->sup[m].pos[0] > p->sup[hi].pos[0]) hi = m;
   }
@@ -560,6 +564,21 @@ static int hop_couple(const us_Plumb *p, const us_Bitset *cur, int skip, int u, 
   return 1;
 }
 
+static int lever_points(const us_Plumb *p, const us_Bitset *cur, int a, double c, int *ms,
+                        int *mp);
+
+/* Has u's own far support room for the release of the extended lever
+ * rule (a load F at c beyond u's tipping point ms)? */
+static int release_room(const us_Plumb *p, const us_Bitset *cur, int skip, int u, double c,
+                        int ms, double F, const double *f) {
+  double tol = AT_POINT * p->width[u];
+  int far = release_point(p, cur, skip, -1, u, c, ms, F, f, tol);
+  if (far < 0) return 0;
+  double sn = p->sup[ms].pos[0], share = (c - sn) / (p->sup[far].pos[0] - sn), d[3];
+  components(p, &p->s->contacts[p->sup[far].contact], u, share * F, d);
+  return f[(size_t)p->s->dim * (size_t)p->sup[far].contact] + d[0] >= 0.0;
+}
+
 /* Route the stacked lines (signed loads) down, not resting on skip,
  * merged per body: 1 routed, 0 no hop or out of budget (LEVER_HOPS
  * bodies), -1 OOM. */
@@ -570,7 +589,8 @@ static int route_signed(us_Plumb *p, const us_Bitset *cur, int skip, double *f) 
     p->sgM = us_malloc(nb * sizeof(double));
     p->sg_in = us_calloc(nb, 1);
     p->sg_heap = us_malloc(nb * sizeof(int));
-    if (!p->sgF || !p->sgM || !p->sg_in || !p->sg_heap) return -1;
+    p->sg_skip = us_malloc(nb * sizeof(int));
+    if (!p->sgF || !p->sgM || !p->sg_in || !p->sg_heap || !p->sg_skip) return -1;
   }
   p->nsg = 0;
   while (p->nstack > 0) {
@@ -589,11 +609,33 @@ static int route_signed(us_Plumb *p, const us_Bitset *cur, int skip, double *f) 
     }
     Hop h;
     double c[2] = {F != 0.0 ? M / F : 0.0, 0.0}, load = F;
-    int found;
+    int found, ms, mp, skip2 = p->sg_skip[u];
+    if (F > 1e-12 * scale && isfinite(c[0]) && skip2 < 0 &&
+        lever_points(p, cur, u, c[0], &ms, &mp) &&
+        other_side(&p->s->contacts[p->sup[mp].contact], u) != skip &&
+        !release_room(p, cur, skip, u, c[0], ms, F, f)) {
+      /* u a cantilever under a load beyond its support s, a presser d
+         across s (us_plumb_lever's rule): d pushes u down at q with
+         Fp = F (c - s) / (s - q), s takes F + Fp, and d releases Fp at q
+         from its other supports (its lines not resting on u) */
+      const us_PlumbSupport *qs = &p->sup[ms], *qp = &p->sup[mp];
+      double Fp = F * (c[0] - qs->pos[0]) / (qs->pos[0] - qp->pos[0]);
+      int d = other_side(&p->s->contacts[qp->contact], u);
+      mark_body(p, d);
+      if (add_force(p, qp->contact, d, Fp, f) || add_force(p, qs->contact, u, F + Fp, f))
+        return -1;
+      if (!held(p, qs->below)) {
+        mark_body(p, qs->below);
+        sg_add(p, qs->below, F + Fp, qs->pos[0]);
+      }
+      sg_add(p, d, -Fp, qp->pos[0]);
+      p->sg_skip[d] = u;
+      continue;
+    }
     if (F != 0.0 && isfinite(c[0]) && fabs(F) > 1e-12 * scale) {
-      found = hop_signed(p, cur, skip, u, c, F, f, &h);
+      found = hop_signed(p, cur, skip, skip2, u, c, F, f, &h);
     } else { /* (nearly) a couple */
-      found = hop_couple(p, cur, skip, u, F, M, &h);
+      found = hop_couple(p, cur, skip, skip2, u, F, M, &h);
       load = 1.0;
     }
     if (!found) {

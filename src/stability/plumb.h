@@ -87,6 +87,7 @@ typedef struct us_Plumb {
   double *sgF, *sgM;
   unsigned char *sg_in;
   int *sg_heap, nsg;
+  int *sg_skip;          /* a presser's release does not rest on its cantilever */
   /* lazy routing: the memo of checked lines, valid while every body of
      dep is present; the lines with pending load in a max-heap by level */
   us_PlumbEntry *ent;
