@@ -439,13 +439,27 @@ static int usable(const us_Plumb *p, const us_Bitset *cur, int m, int skip, int 
   return (skip < 0 || v != skip) && (skip2 < 0 || v != skip2) && present(p, cur, v);
 }
 
+/* How far inside its cone support point m of u stays after a vertical
+ * load on u through it (signed): mu n - |t| (n when mu is infinite), < 0
+ * outside. A release needs force where it takes it off, friction
+ * included. */
+static double slack_after(const us_Plumb *p, int u, int m, double load, const double *f) {
+  const us_Contact *k = &p->s->contacts[p->sup[m].contact];
+  double d[3];
+  components(p, k, u, load, d);
+  const double *fc = f + (size_t)p->s->dim * (size_t)p->sup[m].contact;
+  double n = fc[0] + d[0], t = p->s->dim == 2 ? fabs(fc[1] + d[1]) : hypot(fc[1] + d[1], fc[2] + d[2]);
+  if (isinf(k->mu)) return n;
+  return US_MIN(n, k->mu * n - t);
+}
+
 /* The far point of an extended lever rule for a load on u at c beyond its
  * point `near`: the usable point on the other side of near, at least tol
  * away, whose normal force is largest after its share is taken off (or
- * put on); -1 if none. */
+ * put on); -1 if none. (Largest slack in the cone instead, friction
+ * counted: seed 17 +13 % instructions, seed 11 +10 %.) */
 static int release_point(const us_Plumb *p, const us_Bitset *cur, int skip, int skip2, int u,
-                         double c,
-                         int near, double load, const double *f, double tol) {
+                         double c, int near, double load, const double *f, double tol) {
   double sn = p->sup[near].pos[0], best_left = -INFINITY;
   int best = -1;
   size_t dim = (size_t)p->s->dim;
@@ -568,15 +582,16 @@ static int lever_points(const us_Plumb *p, const us_Bitset *cur, int a, double c
                         int *mp);
 
 /* Has u's own far support room for the release of the extended lever
- * rule (a load F at c beyond u's tipping point ms)? */
+ * rule (a load F at c beyond u's tipping point ms), friction included
+ * (slack_after >= 0)? With the normal force alone: 632 blocks 217 M
+ * instructions against 180 M. */
 static int release_room(const us_Plumb *p, const us_Bitset *cur, int skip, int u, double c,
                         int ms, double F, const double *f) {
   double tol = AT_POINT * p->width[u];
   int far = release_point(p, cur, skip, -1, u, c, ms, F, f, tol);
   if (far < 0) return 0;
-  double sn = p->sup[ms].pos[0], share = (c - sn) / (p->sup[far].pos[0] - sn), d[3];
-  components(p, &p->s->contacts[p->sup[far].contact], u, share * F, d);
-  return f[(size_t)p->s->dim * (size_t)p->sup[far].contact] + d[0] >= 0.0;
+  double sn = p->sup[ms].pos[0];
+  return slack_after(p, u, far, (c - sn) / (p->sup[far].pos[0] - sn) * F, f) >= 0.0;
 }
 
 /* Route the stacked lines (signed loads) down, not resting on skip,
