@@ -31,6 +31,9 @@ typedef struct us_BackendProblem {
    * structure contact (dim each); a backend may start from the columns
    * they use (the local tests pass the base forces). */
   const double *hint;
+  /* 1: only a feasible answer matters (a region's fixed LP): an
+   * infeasible one needs no checked Farkas ray (backends may ignore it) */
+  int no_ray;
 } us_BackendProblem;
 
 /* What a backend answers: the verdict; on stable, dim * ncontact

@@ -723,7 +723,7 @@ static us_Status solve_region(us_Local *L, const us_Bitset *cur, int fixed, us_V
     return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)");
   }
   /* a region system: no lists, no restart (backend.h) */
-  const us_BackendProblem pb = {.sys = &L->eq, .hint = L->fbase};
+  const us_BackendProblem pb = {.sys = &L->eq, .hint = L->fbase, .no_ray = fixed};
   us_BackendOut out = {US_UNDECIDED, L->f, info, res->note, sizeof res->note};
   /* 2D up to US_SPARSE_ROWS rows the sparse simplex, then CLP. The dense
      tableau of lp_small.c took regions of up to 90 rows until 2026-12-06:

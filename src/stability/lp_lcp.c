@@ -287,7 +287,7 @@ static us_Status clp_decide(LpLcpWs *w, const us_EqSystem *sys, const int *added
   }
   char sub[96] = "";
   us_BackendProblem pb = {sys, chain && added ? added : &none, chain ? nadded : 0,
-                          chain && removed ? removed : &none, chain ? nremoved : 0, !chain, NULL};
+                          chain && removed ? removed : &none, chain ? nremoved : 0, !chain, NULL, 0};
   us_BackendOut out = {*verdict, f, info, sub, sizeof sub};
   us_Status st = us_backend_clp.solve(w->clp, &pb, &out, err);
   *verdict = out.verdict;

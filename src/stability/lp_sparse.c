@@ -641,10 +641,15 @@ static us_Status sparse_solve(void *ws, const us_BackendProblem *pb, us_BackendO
     snprintf(out->note, out->note_sz, "sparse LP: feasible");
     return US_OK;
   }
-  /* where phase 1 stopped (basic values clamped at 0): a grown region's
-     start (local.c) */
-  residual(w, sys);
-  us_eq_gen_forces(sys, &w->gen, w->cost, out->f);
+  if (pb->no_ray) { /* infeasible as far as phase 1 saw: not proven, no ray
+                       kept; where it stopped (basic values clamped at 0) in
+                       out->f, a grown region's start (local.c) */
+    residual(w, sys);
+    us_eq_gen_forces(sys, &w->gen, w->cost, out->f);
+    out->verdict = US_UNSTABLE;
+    snprintf(out->note, out->note_sz, "sparse LP: infeasible (no ray asked)");
+    return US_OK;
+  }
   w->last_body = us_eq_gen_farkas_body(sys, &w->gen, w->ray, w->set.farkas_slack);
   if (w->last_body < 0) {
     snprintf(out->note, out->note_sz, "sparse LP: infeasible, ray rejected");

@@ -475,7 +475,7 @@ static us_Status run_backend(us_Stability *w, us_StabilityResult *res, us_Error 
     memset(w->f, 0, (size_t)need * sizeof(double));
   }
   w->have_last = 0; /* until the backend succeeds, its state is unknown */
-  us_BackendProblem pb = {&w->eq, w->added, nadd, w->removed, nrem, restart, NULL};
+  us_BackendProblem pb = {&w->eq, w->added, nadd, w->removed, nrem, restart, NULL, 0};
   us_BackendOut out = {US_UNDECIDED, w->f, &w->info, res->note, sizeof res->note};
   us_Status st = w->be->solve(w->bws, &pb, &out, err);
   res->verdict = out.verdict;
