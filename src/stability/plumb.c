@@ -439,16 +439,6 @@ static int usable(const us_Plumb *p, const us_Bitset *cur, int m, int skip, int 
   return (skip < 0 || v != skip) && (skip2 < 0 || v != skip2) && present(p, cur, v);
 }
 
-/* How far inside its cone contact c's force in f is: mu n - |t| (n when
- * mu is infinite), < 0 outside. */
-static double contact_slack(const us_Plumb *p, int c, const double *f) {
-  const us_Contact *k = &p->s->contacts[c];
-  const double *fc = f + (size_t)p->s->dim * (size_t)c;
-  double n = fc[0], t = p->s->dim == 2 ? fabs(fc[1]) : hypot(fc[1], fc[2]);
-  if (isinf(k->mu)) return n;
-  return US_MIN(n, k->mu * n - t);
-}
-
 /* How far inside its cone support point m of u stays after a vertical
  * load on u through it (signed): mu n - |t| (n when mu is infinite), < 0
  * outside. A release needs force where it takes it off, friction
@@ -669,11 +659,6 @@ static int route_signed(us_Plumb *p, const us_Bitset *cur, int skip, double *f) 
     }
     for (int q = 0; q < h.n; q++) {
       if (add_force(p, h.k[q], u, h.w[q] * load, f)) return -1;
-      /* a release that leaves its contact outside the cone: the route
-         fails here, not at the caller's check (u's supports take no
-         more load once u is routed, bar a body routed twice) */
-      if (h.w[q] * load < 0.0 && contact_slack(p, h.k[q], f) < -CONE_SLACK * p->s->bodies[u].mass / p->mass_total)
-        r = 0;
       int v = h.below[q];
       if (held(p, v)) continue;
       mark_body(p, v);
