@@ -718,8 +718,10 @@ int us_plumb_lever(us_Plumb *p, const us_Bitset *cur, int a, double *f) {
   int ms, mp;
   mark_body(p, a);
   if (!lever_points(p, cur, a, c[0], &ms, &mp)) { /* a's own line, extended levers below */
-    if (!within(p, cur, a, c[0]))
+    if (!within(p, cur, a, c[0])) {
+      p->tipped = 1;
       return 0; /* a beyond its supports with nothing on it: it tips */
+    }
     int r = push_line(p, a, c, w) ? -1 : route_signed(p, cur, -1, f);
     if (r <= 0) us_plumb_undo(p, f);
     return r;

@@ -88,6 +88,8 @@ typedef struct us_Plumb {
   unsigned char *sg_in;
   int *sg_heap, nsg;
   int *sg_skip;          /* a presser's release does not rest on its cantilever */
+  int tipped;            /* us_plumb_lever found its body beyond its supports
+                            with nothing pressing it (the caller clears it) */
   /* lazy routing: the memo of checked lines, valid while every body of
      dep is present; the lines with pending load in a max-heap by level */
   us_PlumbEntry *ent;
