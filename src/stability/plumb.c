@@ -581,6 +581,16 @@ static int hop_couple(const us_Plumb *p, const us_Bitset *cur, int skip, int ski
 static int lever_points(const us_Plumb *p, const us_Bitset *cur, int a, double c, int *ms,
                         int *mp);
 
+/* Does d rest on something besides u (where a presser's release goes)?
+ * A presser resting on its cantilever alone cannot press harder (its
+ * release finds no hop): the extended rule then, whose check the path's
+ * LP may repair (seed 15 299 -> 275 M instructions). */
+static int rests_beside(const us_Plumb *p, const us_Bitset *cur, int d, int u) {
+  for (int m = p->sup_start[d]; m < p->sup_start[d + 1]; m++)
+    if (usable(p, cur, m, u, -1)) return 1;
+  return 0;
+}
+
 /* Has u's own far support room for the release of the extended lever
  * rule (a load F at c beyond u's tipping point ms), friction included
  * (slack_after >= 0)? With the normal force alone: 632 blocks 217 M
@@ -628,6 +638,7 @@ static int route_signed(us_Plumb *p, const us_Bitset *cur, int skip, double *f) 
     if (F > 1e-12 * scale && isfinite(c[0]) && skip2 < 0 &&
         lever_points(p, cur, u, c[0], &ms, &mp) &&
         other_side(&p->s->contacts[p->sup[mp].contact], u) != skip &&
+        rests_beside(p, cur, other_side(&p->s->contacts[p->sup[mp].contact], u), u) &&
         !release_room(p, cur, skip, u, c[0], ms, F, f)) {
       /* u a cantilever under a load beyond its support s, a presser d
          across s (us_plumb_lever's rule): d pushes u down at q with
