@@ -125,6 +125,53 @@ static int route_all_lazy(const us_Structure *s) {
   return out;
 }
 
+/* The local tests' re-check (us_certificate_check_list: each contact
+ * measured once) against the per-body one on g's path, as routed and with
+ * one routed force turned to pull (a sign violation both must see). */
+static int checks_agree(const us_Structure *s, Rig *g, int *slot, double *acc) {
+  us_CertCheck a, b;
+  us_certificate_check_bodies(s, &g->cur, g->p.path, g->p.npath, g->in.start, g->in.list, g->f,
+                              g->mass, 1e-9, &a);
+  us_certificate_check_list(s, &g->cur, g->p.path, g->p.npath, g->in.start, g->in.list, g->f,
+                            g->mass, 1e-9, slot, acc, &b);
+  for (int i = 0; i < s->nbody; i++)
+    if (slot[i] != -1) return fprintf(stderr, "check_list left slot %d set\n", i), 0;
+  double tol = 1e-12;
+  int same = a.ok == b.ok && fabs(a.max_force_residual - b.max_force_residual) <= tol &&
+             fabs(a.max_torque_residual - b.max_torque_residual) <= tol &&
+             a.max_cone_violation == b.max_cone_violation &&
+             a.max_sign_violation == b.max_sign_violation;
+  if (!same)
+    fprintf(stderr, "check_list %d (%g %g %g %g) against check_bodies %d (%g %g %g %g)\n", b.ok,
+            b.max_force_residual, b.max_torque_residual, b.max_cone_violation,
+            b.max_sign_violation, a.ok, a.max_force_residual, a.max_torque_residual,
+            a.max_cone_violation, a.max_sign_violation);
+  return same;
+}
+
+static int list_check_agrees(const us_Structure *s, Rig *g) {
+  int *slot = malloc(((size_t)s->nbody + 1) * sizeof(int));
+  double *acc = malloc(((size_t)g->p.npath + 1) * US_CERT_ACC * sizeof(double));
+  int ok = slot && acc;
+  for (int i = 0; ok && i < s->nbody; i++) slot[i] = -1;
+  ok = ok && checks_agree(s, g, slot, acc);
+  int c = -1; /* the largest routed normal force, turned to a pull */
+  for (int q = 0; q < s->ncontact; q++)
+    if (g->f[2 * (size_t)q] > 0 && (c < 0 || g->f[2 * (size_t)q] > g->f[2 * (size_t)c])) c = q;
+  if (ok && c >= 0) {
+    g->f[2 * (size_t)c] = -g->f[2 * (size_t)c];
+    ok = checks_agree(s, g, slot, acc);
+    us_CertCheck b;
+    us_certificate_check_list(s, &g->cur, g->p.path, g->p.npath, g->in.start, g->in.list, g->f,
+                              g->mass, 1e-9, slot, acc, &b);
+    if (b.ok) ok = 0, fprintf(stderr, "check_list passed a pulling contact\n");
+    g->f[2 * (size_t)c] = -g->f[2 * (size_t)c];
+  }
+  free(slot);
+  free(acc);
+  return ok;
+}
+
 /* Route every movable body of s at once from zero forces: 1 routed (and
  * the forces pass the check on the path and the full check), 0 refused
  * (forces still all zero), -1 a failure (reported). npath: path size.
@@ -144,6 +191,7 @@ static int route_all(const us_Structure *s, int *npath) {
     out = c.ok && full_check(s, &g.cur, g.f, g.mass) ? 1 : -1;
     if (!c.ok) fprintf(stderr, "routed forces fail the path check (force %g torque %g cone %g)\n",
                        c.max_force_residual, c.max_torque_residual, c.max_cone_violation);
+    if (out == 1 && !list_check_agrees(s, &g)) out = -1;
   }
   rig_close(&g);
   int lazy = route_all_lazy(s);

@@ -326,6 +326,59 @@ void us_certificate_check_bodies(const us_Structure *s, const us_Bitset *present
   *out = r;
 }
 
+void us_certificate_check_list(const us_Structure *s, const us_Bitset *present,
+                               const int *bodies, int nb, const int *inc_start, const int *inc,
+                               const double *fc, double mass, double tol, int *slot,
+                               double *acc, us_CertCheck *out) {
+  us_CertCheck r;
+  memset(&r, 0, sizeof r);
+  r.worst_body = r.worst_contact = -1;
+  Units u = units_of_mass(s, mass);
+  u.inv_w = 1.0; /* fc is normalized already */
+  int n = 0;
+  for (int q = 0; q < nb; q++) {
+    int b = bodies[q];
+    if (!side_moves(s, b) || !us_bitset_get(present, b) || slot[b] >= 0) continue;
+    slot[b] = n;
+    memset(acc + US_CERT_ACC * (size_t)n++, 0, US_CERT_ACC * sizeof(double));
+  }
+  /* each active contact once: from the side with the smaller slot when
+     both sides are listed, its force pushed on both */
+  for (int q = 0; q < nb; q++) {
+    int b = bodies[q], sb = slot[b];
+    if (sb < 0) continue;
+    for (int m = inc_start[b]; m < inc_start[b + 1]; m++) {
+      int c = inc[m];
+      const us_Contact *k = &s->contacts[c];
+      int o = k->a == b ? k->b : k->a, so = o >= 0 ? slot[o] : -1;
+      if ((so >= 0 && so < sb) || !usable(s, present, c)) continue;
+      double F[3], fn, cone, sign;
+      if (one_force(s, &u, k, fc + (size_t)c * (size_t)s->dim, 0, F, &fn, &cone, &sign)) {
+        cone = sign = INFINITY;
+        F[0] = F[1] = F[2] = fn = 0.0;
+      }
+      push_at(s, &u, acc + US_CERT_ACC * (size_t)sb, b, k->p, F, fn, b == k->b ? 1.0 : -1.0);
+      if (so >= 0) push_at(s, &u, acc + US_CERT_ACC * (size_t)so, o, k->p, F, fn, o == k->b ? 1.0 : -1.0);
+      if (cone + sign > r.max_cone_violation + r.max_sign_violation) r.worst_contact = c;
+      r.max_cone_violation = US_MAX(r.max_cone_violation, cone);
+      r.max_sign_violation = US_MAX(r.max_sign_violation, sign);
+    }
+  }
+  for (int q = 0; q < nb; q++) {
+    int b = bodies[q], sb = slot[b];
+    if (sb < 0) continue;
+    double fr, tr;
+    body_residuals(s, &u, b, acc + US_CERT_ACC * (size_t)sb, &fr, &tr);
+    if (fr + tr > r.max_force_residual + r.max_torque_residual) r.worst_body = b;
+    r.max_force_residual = US_MAX(r.max_force_residual, fr);
+    r.max_torque_residual = US_MAX(r.max_torque_residual, tr);
+    slot[b] = -1;
+  }
+  r.ok = r.max_force_residual <= tol && r.max_torque_residual <= tol &&
+         r.max_cone_violation <= tol && r.max_sign_violation <= tol;
+  *out = r;
+}
+
 us_CertCheck us_certificate_check(const us_Structure *s, const us_Bitset *present,
                                   const us_Forces *f, double tol) {
   us_CertCheck r;

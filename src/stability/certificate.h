@@ -54,6 +54,18 @@ void us_certificate_check_bodies(const us_Structure *s, const us_Bitset *present
                                  const int *bodies, int nb, const int *inc_start, const int *inc,
                                  const double *fc, double mass, double tol, us_CertCheck *out);
 
+/* The same check, each active contact's force measured once (both its
+ * sides' sums from one evaluation when both are listed): the local tests'
+ * (their regions' contacts are mostly between listed bodies). Caller
+ * scratch: slot[nbody], all -1 on entry and on return; acc, US_CERT_ACC
+ * doubles per listed body. The sums' order differs from
+ * us_certificate_check_bodies', so residuals may differ in their last
+ * bits (tests/test_stability_plumb.c compares the two). */
+void us_certificate_check_list(const us_Structure *s, const us_Bitset *present,
+                               const int *bodies, int nb, const int *inc_start, const int *inc,
+                               const double *fc, double mass, double tol, int *slot,
+                               double *acc, us_CertCheck *out);
+
 /* us_mechanism_check over the contacts in list (NULL: all) with caller
  * scratch slot[nbody], all -1 on entry and on return. */
 int us_mechanism_check_list(const us_Structure *s, const us_Bitset *present, us_Mechanism *m,

@@ -138,7 +138,10 @@ struct us_Local {
   double foot_lo[2], foot_hi[2]; /* the change's horizontal extent */
   double *f, *saved;     /* LP solution; base values it replaces */
   int cap_f, cap_saved;
-  int *list, *slot;      /* mechanism check: contacts of R, body slots */
+  int *list, *slot;      /* mechanism check: contacts of R, body slots (and
+                            the re-check's, check_list) */
+  double *cacc;          /* the re-check's sums, US_CERT_ACC per body */
+  int cap_cacc;
   us_Pays seed_pays;     /* 3D level-0 support LPs: run, and proofs found */
   us_Pays grow_pays;     /* the support LPs of grown levels before the last */
   double mass;           /* movable mass, summed once for the checks */
@@ -236,6 +239,7 @@ void us_local_free(us_Local *L) {
   us_free(L->f);
   us_free(L->saved);
   us_free(L->carry_c);
+  us_free(L->cacc);
   us_free(L->carry_f);
   us_plumb_free(&L->plumb);
   us_free(L);
@@ -753,6 +757,16 @@ static us_Status solve_region(us_Local *L, const us_Bitset *cur, int fixed, us_V
   return st;
 }
 
+/* The independent re-check of the listed bodies under fbase
+ * (us_certificate_check_list) into out: 0, or -1 on OOM (out not set). */
+static int check_list(us_Local *L, const us_Bitset *cur, const int *bodies, int nb,
+                      us_CertCheck *out) {
+  if (US_GROW(L->cacc, L->cap_cacc, US_CERT_ACC * nb + 1)) return -1;
+  us_certificate_check_list(L->s, cur, bodies, nb, L->inc_start, L->inc, L->fbase, L->mass,
+                            L->set.cert_tol, L->slot, L->cacc, out);
+  return 0;
+}
+
 /* Merge the fixed LP's forces into fbase and re-check R's bodies; undo
  * and return 0 if the check fails. */
 static int merge_and_check(us_Local *L, const us_Bitset *cur, us_StabilityResult *res) {
@@ -764,9 +778,7 @@ static int merge_and_check(us_Local *L, const us_Bitset *cur, us_StabilityResult
     memcpy(L->saved + (size_t)ci * dim, fb, dim * sizeof(double));
     memcpy(fb, L->f + (size_t)ci * dim, dim * sizeof(double));
   }
-  us_certificate_check_bodies(L->s, cur, L->reg, L->nreg, L->inc_start, L->inc, L->fbase,
-                              L->mass, L->set.cert_tol, &res->check);
-  if (res->check.ok) return 1;
+  if (check_list(L, cur, L->reg, L->nreg, &res->check) == 0 && res->check.ok) return 1;
   for (int ci = 0; ci < e->ncontact; ci++)
     memcpy(L->fbase + (size_t)e->contact[ci] * dim, L->saved + (size_t)ci * dim,
            dim * sizeof(double));
@@ -1002,8 +1014,7 @@ static int try_lever(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
   int r = us_plumb_lever(p, cur, L->added[0], L->fbase);
   if (r < 0) return us_error_set(err, US_ERR_NOMEM, "out of memory (local tests)"), -1;
   if (r == 0) return 0;
-  us_certificate_check_bodies(L->s, cur, p->path, p->npath, L->inc_start, L->inc, L->fbase,
-                              L->mass, L->set.cert_tol, &res->check);
+  if (check_list(L, cur, p->path, p->npath, &res->check)) res->check.ok = 0;
   if (!res->check.ok) {
     r = lever_region(L, cur, res, info, err);
     if (r < 0) return -1;
