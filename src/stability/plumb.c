@@ -50,7 +50,11 @@
                             238 / 241 / 241 M. Before the merging (lines split
                             at every hop and never met) 64 hops were best and
                             most routes failed on the budget */
-#define PLUMB_RETRIES 8  /* a lazy route starts over at most this often */
+#define PLUMB_RETRIES 2  /* a lazy route starts over at most this often:
+                            with levers and their path LPs behind it, a
+                            failed route is cheaper to give up (8 -> 2:
+                            seed 15 231 -> 192 M instructions, 9,352 blocks
+                            2,768 -> 2,406 M; 1: 9,352 blocks 3,173 M) */
 #define PLUMB_MAX_TRI 48 /* 3D: support points of a body searched for triangles at most */
 
 typedef struct Hop {
