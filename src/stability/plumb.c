@@ -461,7 +461,7 @@ static double slack_after(const us_Plumb *p, int u, int m, double load, const do
  * point `near`: the usable point on the other side of near, at least tol
  * away, whose normal force is largest after its share is taken off (or
  * put on); -1 if none. (Largest slack in the cone instead, friction
- * counted: seed 17 +13 % instructions, seed 11 +10 %.) */
+ * counted: seed 17 +18 % instructions, seed 11 +10 %.) */
 static int release_point(const us_Plumb *p, const us_Bitset *cur, int skip, int skip2, int u,
                          double c, int near, double load, const double *f, double tol) {
   double sn = p->sup[near].pos[0], best_left = -INFINITY;

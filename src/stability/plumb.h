@@ -139,11 +139,16 @@ int us_plumb_route_hint(us_Plumb *p, const us_Bitset *cur, const int *added, int
  * load = w (c - s) / (s - q), a's line at s carries w + load down, and d
  * releases load from its other supports at q (a negative line, which may
  * take a load off a support and put part of it on another; no line rests
- * on a). Eager, into f (logged: us_plumb_undo takes it back); p->path
- * lists every body whose forces changed. Nothing is proven here: a
- * release may leave a contact outside its cone, so the caller re-checks
- * the path's bodies. 1 routed, 0 no lever or no route (f unchanged), -1
- * OOM (f unchanged). */
+ * on a). Without a presser, a's own line (a within its supports; else it
+ * sets p->tipped). The signed lines merge per body (a force and a moment,
+ * each body routed once, highest first), and a load beyond a cantilever's
+ * support below takes the same rule with that cantilever's presser when
+ * its own far support has no room for the extended rule's release.
+ * Eager, into f (logged: us_plumb_undo takes it back); p->path lists
+ * every body whose forces changed (every changed contact has both sides
+ * there, or a held body). Nothing is proven here: a release may leave a
+ * contact outside its cone, so the caller re-checks the path's bodies. 1
+ * routed, 0 no lever or no route (f unchanged), -1 OOM (f unchanged). */
 int us_plumb_lever(us_Plumb *p, const us_Bitset *cur, int a, double *f);
 /* Undo the last successful route (f back to its values before it). */
 void us_plumb_undo(us_Plumb *p, double *f);
