@@ -933,13 +933,11 @@ static int try_plumb(us_Local *L, const us_Bitset *cur, us_StabilityResult *res,
   return 1;
 }
 
-/* The cone slack of contact c's force in fbase: mu n - |t| (n when mu is
- * infinite), < 0 outside. */
-static double cone_slack(const us_Local *L, int c) {
-  const us_Contact *k = &L->s->contacts[c];
+/* Is contact c's force in fbase outside its cone (us_cone_distance)? */
+static int outside_cone(const us_Local *L, int c) {
   const double *f = L->fbase + (size_t)L->dim * (size_t)c;
   double t = L->dim == 2 ? fabs(f[1]) : hypot(f[1], f[2]);
-  return isinf(k->mu) ? f[0] : US_MIN(f[0], k->mu * f[0] - t);
+  return us_cone_distance(f[0], t, L->s->contacts[c].mu) > 0.0;
 }
 
 /* The fixed LP of the current region from fbase as it is (no route);
@@ -974,7 +972,7 @@ static int lever_region(us_Local *L, const us_Bitset *cur, us_StabilityResult *r
   region_clear(L);
   for (int q = 0; q < p->nlog; q++) {
     int c = p->log_c[q];
-    if (!(cone_slack(L, c) < 0.0)) continue;
+    if (!outside_cone(L, c)) continue;
     const us_Contact *k = &L->s->contacts[c];
     int e[2] = {k->a, k->b};
     for (int j = 0; j < 2; j++)

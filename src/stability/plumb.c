@@ -443,18 +443,16 @@ static int usable(const us_Plumb *p, const us_Bitset *cur, int m, int skip, int 
   return (skip < 0 || v != skip) && (skip2 < 0 || v != skip2) && present(p, cur, v);
 }
 
-/* How far inside its cone support point m of u stays after a vertical
- * load on u through it (signed): mu n - |t| (n when mu is infinite), < 0
- * outside. A release needs force where it takes it off, friction
- * included. */
-static double slack_after(const us_Plumb *p, int u, int m, double load, const double *f) {
+/* Does support point m of u stay in its cone after a vertical load on u
+ * through it (signed)? A release needs force where it takes it off,
+ * friction included (us_cone_distance, the check's own measure). */
+static int inside_after(const us_Plumb *p, int u, int m, double load, const double *f) {
   const us_Contact *k = &p->s->contacts[p->sup[m].contact];
   double d[3];
   components(p, k, u, load, d);
   const double *fc = f + (size_t)p->s->dim * (size_t)p->sup[m].contact;
   double n = fc[0] + d[0], t = p->s->dim == 2 ? fabs(fc[1] + d[1]) : hypot(fc[1] + d[1], fc[2] + d[2]);
-  if (isinf(k->mu)) return n;
-  return US_MIN(n, k->mu * n - t);
+  return us_cone_distance(n, t, k->mu) == 0.0;
 }
 
 /* The far point of an extended lever rule for a load on u at c beyond its
@@ -597,7 +595,7 @@ static int rests_beside(const us_Plumb *p, const us_Bitset *cur, int d, int u) {
 
 /* Has u's own far support room for the release of the extended lever
  * rule (a load F at c beyond u's tipping point ms), friction included
- * (slack_after >= 0)? With the normal force alone: 632 blocks 217 M
+ * (inside_after)? With the normal force alone: 632 blocks 217 M
  * instructions against 180 M. */
 static int release_room(const us_Plumb *p, const us_Bitset *cur, int skip, int u, double c,
                         int ms, double F, const double *f) {
@@ -605,7 +603,7 @@ static int release_room(const us_Plumb *p, const us_Bitset *cur, int skip, int u
   int far = release_point(p, cur, skip, -1, u, c, ms, F, f, tol);
   if (far < 0) return 0;
   double sn = p->sup[ms].pos[0];
-  return slack_after(p, u, far, (c - sn) / (p->sup[far].pos[0] - sn) * F, f) >= 0.0;
+  return inside_after(p, u, far, (c - sn) / (p->sup[far].pos[0] - sn) * F, f);
 }
 
 /* Route the stacked lines (signed loads) down, not resting on skip,
